@@ -1,0 +1,64 @@
+# The two commands of the README: `make demo` and `make test`. Both install what they need.
+# ROS tools must see Debian's python3, not a python3 earlier on PATH.
+SHELL := /bin/bash
+export PATH := /usr/bin:/bin:$(PATH)
+
+WS := $(CURDIR)/.ws
+PKG_LINK := $(WS)/src/mrs_vpr
+SETUP := source $(WS)/devel/setup.bash
+
+# Debian 12 packages (ROS 1 from Debian itself).
+DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation ros-message-runtime \
+  libroscpp-dev libcv-bridge-dev libimage-transport-dev librosbag-dev librostest-dev libnodeletlib-dev \
+  libstd-msgs-dev libstd-srvs-dev libsensor-msgs-dev libopencv-dev libeigen3-dev libgtest-dev googletest \
+  libbenchmark-dev nlohmann-json3-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
+  python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash catkin-lint
+
+.PHONY: all deps link build test demo bench lint clean
+
+all: build
+
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'install ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = 0 ]; then \
+	    echo "Installing: $$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing; \
+	  else \
+	    echo "Missing Debian packages. Run:"; \
+	    echo "  sudo apt-get install -y --no-install-recommends" $$missing; exit 1; \
+	  fi; \
+	fi
+
+# The workspace links each top-level entry of the package rather than the package folder itself, so
+# that `rosrun` (which searches the package with `find -L`) never walks back into .ws/.
+$(PKG_LINK):
+	@mkdir -p $(PKG_LINK)
+
+link: $(PKG_LINK)
+	@find $(PKG_LINK) -maxdepth 1 -type l -delete
+	@for f in $(CURDIR)/*; do ln -sfn "$$f" "$(PKG_LINK)/$$(basename "$$f")"; done
+
+build: deps link
+	@cd $(WS) && catkin_make -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON >/dev/null \
+	  || (cd $(WS) && catkin_make -DCMAKE_BUILD_TYPE=Release)
+	@echo "Built. Run: source $(WS)/devel/setup.bash"
+
+test: build
+	@cd $(WS) && rm -rf build/test_results && catkin_make run_tests -j2 >$(WS)/test.log 2>&1; \
+	  status=$$?; grep -E '^\[( +OK|  FAILED|  PASSED) |^(FAILURE|SUMMARY|RESULT)' $(WS)/test.log || true; \
+	  if [ $$status -ne 0 ]; then tail -50 $(WS)/test.log; exit $$status; fi
+	@$(SETUP) && scripts/test_summary.sh $(WS)/build/test_results
+
+demo: build
+	@$(SETUP) && scripts/demo.sh
+
+bench: build
+	@$(WS)/devel/lib/mrs_vpr/mrs_vpr_benchmark 2>/dev/null || $(WS)/build/mrs_vpr/mrs_vpr_benchmark
+
+lint: deps
+	@catkin_lint --strict -W2 .
+
+clean:
+	rm -rf $(WS)

@@ -1,0 +1,23 @@
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace mrs_vpr {
+
+/**
+ * OpenSeqSLAM's local contrast enhancement, applied to each row (one query frame) of a CV_32FC1
+ * difference matrix: every cell becomes (D - mean) / std over the reference columns
+ * [c - window/2, c + window/2] clipped to the matrix (std with n - 1, as MATLAB's std), 0 where the
+ * std is 0. The result is shifted by contrastShift(window) so that it is never negative, which
+ * OpenSeqSLAM achieves by subtracting the global minimum; a constant shift keeps the live node causal.
+ * window == 0 returns a copy of the input.
+ */
+cv::Mat enhanceContrast(const cv::Mat& differences, int window);
+
+/// Enhances one cell: `values` holds the window's raw differences, `centre` the cell's own.
+float enhanceCell(float centre, const float* values, int count, int window);
+
+/// The bound (n - 1) / sqrt(n), n = window + 1, on how negative a z-score over n samples can be.
+float contrastShift(int window);
+
+}  // namespace mrs_vpr

@@ -1,0 +1,19 @@
+#pragma once
+
+#include <cstdint>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+
+namespace mrs_vpr {
+
+/// Mean absolute difference of two descriptors in patch standard deviations (SIMD sum of absolute
+/// differences on the uint8 rows).
+float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size);
+
+/// D(t, r) = descriptorDifference(query t, reference r): CV_32FC1, query.count x reference.count.
+/// Rows are filled in parallel. Throws std::invalid_argument when descriptor sizes differ.
+cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference);
+
+}  // namespace mrs_vpr

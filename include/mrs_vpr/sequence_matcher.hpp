@@ -1,0 +1,46 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/match.hpp"
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+
+/// A method that finds where a test sequence lies in a reference sequence.
+class SequenceMatcher {
+ public:
+  virtual ~SequenceMatcher() = default;
+
+  /**
+   * Global localisation: the whole `query` view is the test sequence (oldest first). Returns the
+   * reference frame matched to the query's newest frame (its middle frame when the alignment is
+   * centred). Throws std::invalid_argument when the query is shorter than 2 frames, longer than the
+   * reference, or descriptor sizes differ.
+   */
+  virtual Match match(SequenceView reference, SequenceView query) const = 0;
+
+  /**
+   * Per-frame protocol: for every query frame i, the test sequence is the `sequence_length` frames
+   * ending at i (centred on i when so aligned). Frames without a full sequence get reference_index -1.
+   */
+  virtual std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const;
+
+  virtual std::string name() const = 0;
+  const SequenceParams& sequenceParams() const { return sequence_; }
+
+ protected:
+  explicit SequenceMatcher(const SequenceParams& sequence);
+  /// Throws std::invalid_argument with a clear message when the inputs cannot be matched.
+  static void checkInputs(SequenceView reference, SequenceView query);
+
+  SequenceParams sequence_;
+};
+
+/// "seqslam" (brute force) or "mrs"; throws std::invalid_argument for any other name or bad parameters.
+std::unique_ptr<SequenceMatcher> makeMatcher(const std::string& method, const Parameters& params);
+
+}  // namespace mrs_vpr

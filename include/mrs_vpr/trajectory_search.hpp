@@ -1,0 +1,34 @@
+#pragma once
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/match.hpp"
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+
+/// The velocities tried: velocity_min, +step, ... up to velocity_max (inclusive, rounding-safe).
+std::vector<double> velocities(const SequenceParams& params);
+
+/// Rows of a test sequence inside a difference matrix and the row whose reference frame is reported.
+struct SequenceRows {
+  int first = 0;   ///< Oldest test frame.
+  int last = 0;    ///< Newest test frame.
+  int anchor = 0;  ///< Frame localised: `last` when causal, the middle when centred.
+};
+
+/// Rows of the sequence that localises query frame `frame`; first < 0 or last >= rows when incomplete.
+SequenceRows sequenceRowsFor(int frame, const SequenceParams& params);
+
+/**
+ * Brute-force straight-trajectory search through an enhanced difference matrix (test frames x
+ * reference frames): for every anchor reference column j and velocity v, the trajectory visits
+ * column j + round(v * (t - anchor)) at row t; its cost is the mean of the cells it visits. Only
+ * trajectories that stay inside the matrix count. Returns the best anchor column with OpenSeqSLAM's
+ * best / runner-up score (runner-up outside +-match_exclusion/2 of the best).
+ */
+Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
+
+}  // namespace mrs_vpr
