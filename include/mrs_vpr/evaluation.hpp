@@ -1,0 +1,111 @@
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+
+/// Ground truth: query frame -> the reference frames that show the same place (possibly several,
+/// possibly none). Query frames without an entry are not evaluated.
+using GroundTruth = std::map<int, std::vector<int>>;
+
+/// The outcome of one test sequence.
+struct QueryRecord {
+  int query_index = 0;            ///< Query frame localised (where the test sequence ends when causal).
+  std::vector<int> true_indices;  ///< Reference frames that are correct answers (empty: none is).
+  int predicted_index = -1;       ///< Reference frame returned; -1 when the method returned none.
+  float score = 1.0F;             ///< Best / runner-up, lower is better.
+  float confidence = 0.0F;        ///< 0..1, higher is surer; the PR curve sweeps a threshold on it.
+  double time_ms = 0.0;           ///< Time spent on this query.
+};
+
+/// One point of a precision-recall curve.
+struct PrPoint {
+  double threshold = 0.0;  ///< Queries with confidence >= threshold are accepted.
+  double precision = 1.0;  ///< Correct accepted / accepted.
+  double recall = 0.0;     ///< Correct accepted / all queries.
+};
+
+/// The figures of an evaluation (NaN where undefined, e.g. the median of nothing).
+struct EvaluationSummary {
+  int tolerance = 0;
+  int queries = 0;
+  double top1 = 0.0;
+  double pr_auc = 0.0;
+  double recall_at_100_precision = 0.0;
+  double median_abs_error = std::numeric_limits<double>::quiet_NaN();
+  double median_time_ms = std::numeric_limits<double>::quiet_NaN();
+  double total_time_s = 0.0;  ///< Sum of the queries' times; a caller may replace it by a wall time.
+};
+
+/// Distance from the prediction to the nearest true index; -1 when there is no prediction or no truth.
+int absoluteError(const QueryRecord& record);
+
+/// The true index nearest to the prediction (the first listed without a prediction); -1 without truth.
+int nearestTrueIndex(const QueryRecord& record);
+
+/// A prediction is correct when it lies within `tolerance` frames of any true index.
+bool isCorrect(const QueryRecord& record, int tolerance);
+
+/// Fraction of queries whose prediction is correct (0 for no queries).
+double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance);
+
+/**
+ * Precision-recall curve over a threshold on confidence, one point per distinct confidence, from
+ * the highest threshold down. Queries without a prediction are never accepted; recall counts every
+ * query. Throws std::invalid_argument when tolerance < 0.
+ */
+std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& records, int tolerance);
+
+/**
+ * Area under the PR curve as average precision (the step-wise sum that scikit-learn's
+ * average_precision_score computes): sum over the curve's points of (R_k - R_{k-1}) * P_k, with R_0 = 0.
+ * No interpolation, so it does not reward the optimistic straight lines of the trapezoidal rule.
+ */
+double averagePrecision(const std::vector<PrPoint>& curve);
+
+/// Highest recall among the curve's points whose precision is exactly 1 (0 when there is none).
+double recallAtFullPrecision(const std::vector<PrPoint>& curve);
+
+/// Median (mean of the two middle values for an even count); NaN for no values.
+double median(std::vector<double> values);
+
+/// Every figure of the summary; total_time_s is the sum of the records' times.
+EvaluationSummary summarise(const std::vector<QueryRecord>& records, int tolerance);
+
+/**
+ * Per-frame protocol: the query frames (ascending) that have a full test sequence of
+ * params.sequence_length frames inside a query of `query_frames` frames, with params.alignment.
+ */
+std::vector<int> perFrameQueries(int query_frames, const SequenceParams& params);
+
+/// A test sequence of the global localisation protocol: query frames [start, start + length).
+struct TestSequence {
+  int start = 0;
+  int length = 0;
+  int query_index = 0;  ///< The frame localised: the newest, or the middle when centred.
+};
+
+/**
+ * Global localisation protocol: `count` test sequences of `length` frames at random start positions
+ * in a query of `query_frames` frames, drawn with std::mt19937_64 seeded with `seed` (same seed, same
+ * positions on every platform). Positions are distinct when count <= query_frames - length + 1;
+ * otherwise every position is used and the rest are drawn again. Returned in ascending start order.
+ * Throws std::invalid_argument when length < 1, count < 0 or length > query_frames.
+ */
+std::vector<TestSequence> globalQueries(int query_frames, int length, int count, std::uint64_t seed,
+                                        WindowAlignment alignment = WindowAlignment::kCausal);
+
+/**
+ * Truth for a query frame: its ground-truth entry when `ground_truth` is given (nothing when the frame
+ * has no entry), else the identity alignment {query_index} (nothing when query_index >= reference_frames).
+ */
+std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth,
+                                         int reference_frames);
+
+}  // namespace mrs_vpr
