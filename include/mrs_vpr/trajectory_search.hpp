@@ -31,4 +31,8 @@ SequenceRows sequenceRowsFor(int frame, const SequenceParams& params);
  */
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
 
+/// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than
+/// exclusion/2 frames away: score = best / runner-up, confidence = 1 - score.
+Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion);
+
 }  // namespace mrs_vpr

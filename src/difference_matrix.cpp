@@ -1,0 +1,44 @@
+#include "mrs_vpr/difference_matrix.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/core/hal/hal.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+
+namespace mrs_vpr {
+
+float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size) {
+  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8.
+  const int sum = cv::hal::normL1_(a, b, size);
+  return static_cast<float>(sum) / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd);
+}
+
+cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
+  if (query.descriptor_size != reference.descriptor_size) {
+    throw std::invalid_argument("query descriptors have " + std::to_string(query.descriptor_size) +
+                                " bytes but reference descriptors have " +
+                                std::to_string(reference.descriptor_size));
+  }
+  cv::Mat differences(query.count, reference.count, CV_32F);
+  // Blocks of reference frames are swept for all query frames so that a block stays in cache.
+  constexpr int kBlock = 64;
+  const int blocks = (reference.count + kBlock - 1) / kBlock;
+  cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
+    for (int block = range.start; block < range.end; ++block) {
+      const int begin = block * kBlock;
+      const int end = std::min(reference.count, begin + kBlock);
+      for (int t = 0; t < query.count; ++t) {
+        float* row = differences.ptr<float>(t);
+        const std::uint8_t* q = query.frame(t);
+        for (int r = begin; r < end; ++r) {
+          row[r] = descriptorDifference(q, reference.frame(r), query.descriptor_size);
+        }
+      }
+    }
+  });
+  return differences;
+}
+
+}  // namespace mrs_vpr

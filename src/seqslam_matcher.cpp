@@ -1,0 +1,39 @@
+#include "mrs_vpr/seqslam_matcher.hpp"
+
+#include "mrs_vpr/contrast_enhancement.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
+
+namespace mrs_vpr {
+
+SeqSlamMatcher::SeqSlamMatcher(const SequenceParams& params) : SequenceMatcher(params) {}
+
+Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
+  checkInputs(reference, query);
+  const cv::Mat enhanced =
+      enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
+  SequenceRows rows;
+  rows.first = 0;
+  rows.last = query.count - 1;
+  rows.anchor = sequence_.alignment == WindowAlignment::kCausal ? rows.last : rows.last / 2;
+  return searchTrajectories(enhanced, rows, sequence_);
+}
+
+std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
+  checkInputs(reference, query.slice(0, std::min(query.count, sequence_.sequence_length)));
+  // Contrast enhancement works per query frame, so one matrix serves every test sequence.
+  const cv::Mat enhanced =
+      enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
+  std::vector<Match> matches(query.count);
+  cv::parallel_for_(cv::Range(0, query.count), [&](const cv::Range& range) {
+    for (int frame = range.start; frame < range.end; ++frame) {
+      const SequenceRows rows = sequenceRowsFor(frame, sequence_);
+      if (rows.first < 0 || rows.last >= query.count) continue;
+      matches[frame] = searchTrajectories(enhanced, rows, sequence_);
+      matches[frame].comparisons = static_cast<long long>(reference.count);  // One new row per frame.
+    }
+  });
+  return matches;
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,90 @@
+#include "mrs_vpr/trajectory_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace mrs_vpr {
+
+std::vector<double> velocities(const SequenceParams& params) {
+  std::vector<double> result;
+  // Counting steps (not accumulating) keeps 0.8 + 4 * 0.1 from falling short of 1.2.
+  const int steps = static_cast<int>(
+      std::floor((params.velocity_max - params.velocity_min) / params.velocity_step + 1e-9));
+  for (int i = 0; i <= steps; ++i) {
+    result.push_back(params.velocity_min + i * params.velocity_step);
+  }
+  return result;
+}
+
+SequenceRows sequenceRowsFor(int frame, const SequenceParams& params) {
+  SequenceRows rows;
+  rows.anchor = frame;
+  if (params.alignment == WindowAlignment::kCausal) {
+    rows.last = frame;
+    rows.first = frame - params.sequence_length + 1;
+  } else {
+    rows.first = frame - params.sequence_length / 2;
+    rows.last = rows.first + params.sequence_length - 1;
+  }
+  return rows;
+}
+
+Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
+  Match match;
+  const int columns = static_cast<int>(cost_by_anchor.size());
+  float best = std::numeric_limits<float>::infinity();
+  for (int j = 0; j < columns; ++j) {
+    if (cost_by_anchor[j] < best) {
+      best = cost_by_anchor[j];
+      match.reference_index = j;
+    }
+  }
+  if (match.reference_index < 0) return match;  // No trajectory fits in the reference.
+  float runner_up = std::numeric_limits<float>::infinity();
+  const int half = exclusion / 2;
+  for (int j = 0; j < columns; ++j) {
+    if (std::abs(j - match.reference_index) > half) runner_up = std::min(runner_up, cost_by_anchor[j]);
+  }
+  match.sequence_difference = best;
+  // Without a distinct runner-up there is nothing to be sure about: score 1, confidence 0.
+  match.score = (std::isfinite(runner_up) && runner_up > 0.0F) ? std::clamp(best / runner_up, 0.0F, 1.0F)
+                                                                : 1.0F;
+  match.confidence = 1.0F - match.score;
+  return match;
+}
+
+Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
+  CV_Assert(enhanced.type() == CV_32FC1);
+  if (rows.first < 0 || rows.last >= enhanced.rows || rows.first > rows.last || rows.anchor < rows.first ||
+      rows.anchor > rows.last) {
+    throw std::invalid_argument("test sequence rows are outside the difference matrix");
+  }
+  const int columns = enhanced.cols;
+  const int length = rows.last - rows.first + 1;
+  std::vector<float> cost_by_anchor(columns, std::numeric_limits<float>::infinity());
+  std::vector<float> sum(columns);
+  std::vector<int> offsets(length);
+  for (double velocity : velocities(params)) {
+    for (int t = rows.first; t <= rows.last; ++t) {
+      offsets[t - rows.first] = static_cast<int>(std::lround(velocity * (t - rows.anchor)));
+    }
+    // Anchors whose whole trajectory lies inside the reference.
+    const int begin = std::max(0, -offsets.front());
+    const int end = std::min(columns, columns - offsets.back());
+    if (begin >= end) continue;
+    std::fill(sum.begin() + begin, sum.begin() + end, 0.0F);
+    // Row by row, so that the inner loop is a contiguous, vectorisable add.
+    for (int t = rows.first; t <= rows.last; ++t) {
+      const float* row = enhanced.ptr<float>(t) + offsets[t - rows.first];
+      for (int j = begin; j < end; ++j) sum[j] += row[j];
+    }
+    for (int j = begin; j < end; ++j) cost_by_anchor[j] = std::min(cost_by_anchor[j], sum[j] / length);
+  }
+  Match match = scoreFromCosts(cost_by_anchor, params.match_exclusion);
+  match.comparisons = static_cast<long long>(length) * columns;
+  return match;
+}
+
+}  // namespace mrs_vpr
