@@ -1,0 +1,44 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <ros/time.h>
+#include <sensor_msgs/Image.h>
+
+namespace mrs_vpr {
+namespace bag {
+
+/// Number of image messages (sensor_msgs/Image or sensor_msgs/CompressedImage) on `topic` of a bag.
+/// Throws std::runtime_error when the bag cannot be opened or the topic holds no image messages.
+int countImages(const std::string& bag_path, const std::string& topic);
+
+/**
+ * Hands the image messages of `topic` to `visit` in bag order (index counted from 0 over the topic),
+ * starting at message `start` and stopping after `count` messages (count < 0: to the end).
+ * sensor_msgs/CompressedImage messages are decoded to bgr8 or mono8 first. A header stamp of zero is
+ * replaced by the time the message was recorded.
+ * Throws std::runtime_error naming the bag and topic when the bag cannot be opened, the topic holds
+ * no image messages, or a compressed image cannot be decoded.
+ */
+void forEachImage(const std::string& bag_path, const std::string& topic,
+                  const std::function<void(int index, const sensor_msgs::ImageConstPtr& image)>& visit,
+                  int start = 0, int count = -1);
+
+/// Messages [start, start + count) of `topic`. Throws std::runtime_error as forEachImage does, and
+/// when the topic holds fewer messages.
+std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, const std::string& topic,
+                                                   int start, int count);
+
+/// True when `path` names a bag file (by its extension), so that a tool can accept folders and bags.
+bool isBagPath(const std::string& path);
+
+/// An image message of an 8-bit image in `encoding` ("bgr8" or "mono8"), converting colour, alpha
+/// and 16-bit depth as needed. Throws std::invalid_argument for another encoding or an empty image.
+sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,
+                                     const std::string& frame_id);
+
+}  // namespace bag
+}  // namespace mrs_vpr

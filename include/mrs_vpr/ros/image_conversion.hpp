@@ -1,0 +1,44 @@
+#pragma once
+
+#include <string>
+
+#include <boost/shared_ptr.hpp>
+#include <cv_bridge/cv_bridge.h>
+#include <opencv2/core.hpp>
+#include <sensor_msgs/Image.h>
+
+#include "mrs_vpr/descriptor.hpp"
+
+namespace mrs_vpr {
+namespace node {
+
+/// An image message as OpenCV sees it, ready for DescriptorExtractor::compute.
+struct ImageFrame {
+  /// Shares the message's pixels when possible (keeps the message alive), so a frame costs no copy.
+  cv_bridge::CvImageConstPtr cv_image;
+  ChannelOrder order = ChannelOrder::kBgr;
+
+  const cv::Mat& image() const { return cv_image->image; }
+};
+
+/// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8.
+bool isSupportedEncoding(const std::string& encoding);
+
+/// The encodings accepted, for messages: "mono8, mono16, bgr8, rgb8, bgra8, rgba8".
+std::string supportedEncodings();
+
+/**
+ * Converts an image message without changing its encoding. `tracked_object` keeps the message's
+ * memory alive while the returned frame shares it (pass the message's shared pointer, or nullptr when
+ * the caller outlives the frame). Throws std::invalid_argument, with a message naming the problem,
+ * for an empty image, an unsupported encoding or a data array too short for its size and step.
+ */
+ImageFrame fromImageMessage(const sensor_msgs::Image& message,
+                            const boost::shared_ptr<void const>& tracked_object = nullptr);
+
+/// Converts and describes one image. Throws std::invalid_argument as fromImageMessage and compute do.
+cv::Mat describeImage(const DescriptorExtractor& extractor, const sensor_msgs::Image& message,
+                      const boost::shared_ptr<void const>& tracked_object = nullptr);
+
+}  // namespace node
+}  // namespace mrs_vpr

@@ -1,0 +1,61 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ros/node_handle.h>
+
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+namespace node {
+
+/// Everything the node is configured with: the core's parameters plus the node's own. Each default
+/// is written once, here or in mrs_vpr/parameters.hpp, and mirrored in config/default.yaml.
+struct NodeParameters {
+  /// The core's parameters, read from ~descriptor/*, ~sequence/* and ~mrs/*.
+  Parameters core;
+
+  double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp), >= 0; 0 = off.
+  int frame_stride = 1;             ///< Keep at most every n-th frame, 1..10000.
+  int max_frames = 500000;          ///< Reference map capacity [frames], 0 (unbounded) or >= 2.
+  int image_queue_size = 10;        ///< Subscriber queue of the image topic, 1..10000.
+  int max_pending_frames = 600;     ///< Keyframes buffered while a query reads the map, 1..1000000.
+  int recent_exclusion = 100;       ///< Frames before the recent test sequence that are not searched, 0..1000000.
+  std::string default_method = "mrs";  ///< Method for requests with an empty method and continuous mode.
+  double accept_threshold = 0.2;    ///< A match is accepted when its confidence reaches this, 0..1.
+  double auto_query_period = 0.0;   ///< Continuous mode period [s], >= 0; 0 = off.
+  int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
+  double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz], (0, 1000].
+
+  /// Throws std::invalid_argument naming the first parameter out of range and its allowed range.
+  void validate() const;
+  /// auto_query_frames, or sequence/sequence_length when it is 0.
+  int autoQueryFrames() const;
+};
+
+/**
+ * Reads every parameter that is set under `private_nh` over the defaults (kiss-icp style: an unset
+ * parameter keeps its default), then validates. Throws std::invalid_argument naming the parameter
+ * (as ~group/name) when it has the wrong type or is out of range.
+ */
+NodeParameters loadParameters(const ros::NodeHandle& private_nh);
+
+/// One line of the parameter reference printed by `mrs_vpr_node --help`.
+struct ParameterDescription {
+  std::string name;           ///< Private name, e.g. "mrs/tau".
+  std::string type;           ///< "int", "double", "string".
+  std::string default_value;  ///< As written in config/default.yaml.
+  std::string range;          ///< Allowed values.
+  std::string meaning;
+};
+
+/// Every parameter with its default (taken from NodeParameters{}), range and meaning.
+std::vector<ParameterDescription> describeParameters();
+
+/// Parameters set under `private_nh` that the node does not know (typos), as "~name". Parameters of
+/// image transport plugins are not reported.
+std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh);
+
+}  // namespace node
+}  // namespace mrs_vpr

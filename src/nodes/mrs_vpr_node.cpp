@@ -1,0 +1,62 @@
+// mrs_vpr_node: live visual place recognition (see mrs_vpr/ros/place_recognition_node.hpp).
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include <ros/ros.h>
+
+#include "mrs_vpr/ros/node_parameters.hpp"
+#include "mrs_vpr/ros/place_recognition_node.hpp"
+
+namespace {
+
+void printHelp() {
+  std::printf(
+      "Usage: rosrun mrs_vpr mrs_vpr_node [image:=TOPIC] [_param:=value ...]\n"
+      "       roslaunch mrs_vpr mrs_vpr.launch image:=TOPIC params:=FILE.yaml\n\n"
+      "Subscribes:  image (sensor_msgs/Image; ~image_transport selects raw, compressed, ...)\n"
+      "Publishes:   ~loop_closure (mrs_vpr/LoopClosure), ~map_info (mrs_vpr/MapInfo, latched)\n"
+      "Services:    ~query (mrs_vpr/QuerySequence), ~reset (std_srvs/Trigger)\n\n"
+      "Parameters (private):\n");
+  for (const auto& p : mrs_vpr::node::describeParameters()) {
+    std::printf("  ~%-26s %-6s default %-8s range %s\n      %s\n", p.name.c_str(), p.type.c_str(),
+                p.default_value.c_str(), p.range.c_str(), p.meaning.c_str());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0 ||
+        std::strcmp(argv[i], "--params") == 0) {
+      printHelp();
+      return 0;
+    }
+  }
+  ros::init(argc, argv, "mrs_vpr");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+
+  mrs_vpr::node::NodeParameters params;
+  try {
+    params = mrs_vpr::node::loadParameters(private_nh);
+  } catch (const std::exception& error) {
+    ROS_FATAL("mrs_vpr: invalid parameter: %s", error.what());
+    return 2;
+  }
+  for (const auto& name : mrs_vpr::node::unknownParameters(private_nh)) {
+    ROS_WARN("mrs_vpr: unknown parameter %s (ignored; see mrs_vpr_node --help)", name.c_str());
+  }
+
+  try {
+    mrs_vpr::node::PlaceRecognitionNode node(nh, private_nh, params);
+    ros::spin();  // image callbacks; queries run on the node's own thread
+  } catch (const std::exception& error) {
+    ROS_FATAL("mrs_vpr: %s", error.what());
+    return 1;
+  }
+  return 0;
+}
