@@ -1,0 +1,335 @@
+// Drives two running mrs_vpr_node instances (see mrs_vpr_node.test) through their topics and services.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <cv_bridge/cv_bridge.h>
+#include <ros/ros.h>
+#include <std_srvs/Trigger.h>
+
+#include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace {
+
+constexpr int kTolerance = 5;          // frames
+constexpr double kReferenceStart = 1000.0;  // stamp of reference frame 0 [s]
+constexpr double kQueryStart = 5000.0;      // stamp of the first query frame played into the map [s]
+constexpr double kFramePeriod = 0.1;        // [s]
+
+/// Latest messages of a topic, collected by the spinner thread.
+template <typename Message>
+class Inbox {
+ public:
+  Inbox(ros::NodeHandle& nh, const std::string& topic)
+      : sub_(nh.subscribe(topic, 100, &Inbox::callback, this)) {}
+
+  /// Waits until a message satisfies `predicate`; returns it (or a default message on timeout).
+  template <typename Predicate>
+  bool waitFor(Predicate predicate, Message& found, double timeout = 20.0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (auto it = messages_.rbegin(); it != messages_.rend(); ++it) {
+          if (predicate(*it)) {
+            found = *it;
+            return true;
+          }
+        }
+      }
+      ros::WallDuration(0.02).sleep();
+    }
+    return false;
+  }
+
+  void clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.clear();
+  }
+
+ private:
+  void callback(const Message& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.push_back(message);
+  }
+
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  std::vector<Message> messages_;
+};
+
+sensor_msgs::Image toMessage(const cv::Mat& bgr, double stamp, const std::string& encoding = "bgr8") {
+  std_msgs::Header header;
+  header.stamp = ros::Time(stamp);
+  header.frame_id = "camera";
+  return *cv_bridge::CvImage(header, encoding, bgr).toImageMsg();
+}
+
+class NodeTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    mrs_vpr::SyntheticRouteParams params;  // 400 reference frames, 300 query frames, 128 x 64
+    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(params));
+  }
+  static void TearDownTestSuite() {
+    delete route_;
+    route_ = nullptr;
+  }
+
+  void SetUp() override {
+    ASSERT_TRUE(ros::service::waitForService("mrs_vpr/query", ros::Duration(30.0)));
+    ASSERT_TRUE(ros::service::waitForService("mrs_vpr_auto/query", ros::Duration(30.0)));
+    image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
+    query_ = nh_.serviceClient<mrs_vpr::QuerySequence>("mrs_vpr/query");
+    if (!reference_published_) {
+      playIntoNodes(route_->reference, 0, static_cast<int>(route_->reference.size()), kReferenceStart);
+      reference_published_ = true;
+    }
+  }
+
+  /// Publishes frames [begin, end) of `frames` stamped start + i * period and waits until both nodes
+  /// have added them to their maps.
+  void playIntoNodes(const std::vector<cv::Mat>& frames, int begin, int end, double start) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
+    while (image_pub_.getNumSubscribers() < 2 && ros::WallTime::now() < deadline) {
+      ros::WallDuration(0.05).sleep();
+    }
+    ASSERT_GE(image_pub_.getNumSubscribers(), 2U);
+    for (int i = begin; i < end; ++i) {
+      image_pub_.publish(toMessage(frames[static_cast<std::size_t>(i)], start + (i - begin) * kFramePeriod));
+      ros::WallDuration(0.002).sleep();
+    }
+    map_frames_ += static_cast<std::uint32_t>(end - begin);
+    const std::uint32_t expected = map_frames_;
+    mrs_vpr::MapInfo info;
+    ASSERT_TRUE(map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, info))
+        << "the map did not reach " << expected << " frames";
+    EXPECT_EQ(info.descriptor_size, 64U * 32U);
+    EXPECT_EQ(info.frames_failed, 0U);
+    EXPECT_EQ(info.frames_dropped, 0U);
+    EXPECT_GT(info.memory_bytes, static_cast<std::uint64_t>(expected) * 64U * 32U - 1U);
+    ASSERT_TRUE(auto_map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, info));
+  }
+
+  /// The explicit test sequence: query frames [first, first + count).
+  mrs_vpr::QuerySequence explicitQuery(int first, int count, const std::string& method) const {
+    mrs_vpr::QuerySequence srv;
+    for (int i = first; i < first + count; ++i) {
+      srv.request.images.push_back(toMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+    }
+    srv.request.method = method;
+    return srv;
+  }
+
+  /// Calls ~query; the call itself must always succeed (failures are in the response).
+  mrs_vpr::QuerySequence::Response call(mrs_vpr::QuerySequence& srv) {
+    EXPECT_TRUE(query_.call(srv)) << "the service call itself failed";
+    return srv.response;
+  }
+
+  void expectFailure(mrs_vpr::QuerySequence srv, const std::string& expected_text) {
+    const auto response = call(srv);
+    EXPECT_FALSE(response.success);
+    EXPECT_NE(response.message.find(expected_text), std::string::npos)
+        << "message '" << response.message << "' does not name '" << expected_text << "'";
+    EXPECT_EQ(response.reference_index, -1);
+  }
+
+  static mrs_vpr::SyntheticRoute* route_;
+  static bool reference_published_;
+  static std::uint32_t map_frames_;
+
+  ros::NodeHandle nh_;
+  ros::Publisher image_pub_;
+  ros::ServiceClient query_;
+  Inbox<mrs_vpr::MapInfo> map_info_{nh_, "mrs_vpr/map_info"};
+  Inbox<mrs_vpr::MapInfo> auto_map_info_{nh_, "mrs_vpr_auto/map_info"};
+  Inbox<mrs_vpr::LoopClosure> loop_closures_{nh_, "mrs_vpr/loop_closure"};
+  Inbox<mrs_vpr::LoopClosure> auto_loop_closures_{nh_, "mrs_vpr_auto/loop_closure"};
+};
+
+mrs_vpr::SyntheticRoute* NodeTest::route_ = nullptr;
+bool NodeTest::reference_published_ = false;
+std::uint32_t NodeTest::map_frames_ = 0;
+
+// The tests run in this order (gtest keeps declaration order) and share the nodes' maps.
+
+TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
+  const int first = 100;
+  const int count = 40;
+  const int truth = route_->query_to_reference[first + count - 1];
+  for (const std::string method : {"", "mrs", "seqslam"}) {
+    SCOPED_TRACE("method '" + method + "'");
+    loop_closures_.clear();
+    auto srv = explicitQuery(first, count, method);
+    const auto response = call(srv);
+    ASSERT_TRUE(response.success) << response.message;
+    EXPECT_NEAR(response.reference_index, truth, kTolerance);
+    EXPECT_NEAR(response.reference_stamp.toSec(), kReferenceStart + response.reference_index * kFramePeriod, 1e-3);
+    EXPECT_GE(response.confidence, 0.0F);
+    EXPECT_LE(response.confidence, 1.0F);
+    EXPECT_NEAR(response.score + response.confidence, 1.0F, 1e-4F);
+    EXPECT_EQ(response.accepted, response.confidence >= 0.2F);
+    EXPECT_GT(response.elapsed_ms, 0.0F);
+
+    const std::string expected_method = method.empty() ? "mrs" : method;
+    mrs_vpr::LoopClosure closure;
+    ASSERT_TRUE(loop_closures_.waitFor([](const mrs_vpr::LoopClosure&) { return true; }, closure, 5.0));
+    EXPECT_EQ(closure.reference_index, response.reference_index);
+    EXPECT_EQ(closure.reference_stamp, response.reference_stamp);
+    EXPECT_EQ(closure.query_length, static_cast<std::uint32_t>(count));
+    EXPECT_EQ(closure.method, expected_method);
+    EXPECT_EQ(closure.accepted, response.accepted);
+    EXPECT_FLOAT_EQ(closure.confidence, response.confidence);
+    EXPECT_EQ(closure.header.stamp, srv.request.images.back().header.stamp);
+    EXPECT_EQ(closure.header.frame_id, "camera");
+  }
+}
+
+TEST_F(NodeTest, BadRequestsAreReportedAndTheNodeKeepsServing) {
+  expectFailure(mrs_vpr::QuerySequence{}, "empty request");
+
+  auto unknown = explicitQuery(100, 20, "fast");
+  expectFailure(unknown, "unknown method 'fast'");
+
+  mrs_vpr::QuerySequence too_many;
+  too_many.request.recent_frames = 5000;
+  expectFailure(too_many, "recent_frames 5000 is more than the 400 frames");
+
+  mrs_vpr::QuerySequence too_few_older;
+  too_few_older.request.recent_frames = 200;  // 400 - 200 - 50 excluded leaves 150 < 200
+  expectFailure(too_few_older, "leaves 150 searchable frames");
+
+  auto zero_size = explicitQuery(100, 20, "mrs");
+  zero_size.request.images[3] = sensor_msgs::Image();
+  zero_size.request.images[3].encoding = "bgr8";
+  expectFailure(zero_size, "images[3]");
+  expectFailure(zero_size, "empty image (0 x 0");
+
+  auto float_image = explicitQuery(100, 20, "mrs");
+  float_image.request.images[5] = toMessage(cv::Mat(64, 128, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5)), 1.0, "32FC3");
+  expectFailure(float_image, "images[5]");
+  expectFailure(float_image, "unsupported encoding '32FC3'");
+
+  auto bayer = explicitQuery(100, 20, "seqslam");
+  bayer.request.images[0] = toMessage(cv::Mat(64, 128, CV_8UC1, cv::Scalar(9)), 1.0, "bayer_rggb8");
+  expectFailure(bayer, "unsupported encoding 'bayer_rggb8'");
+
+  auto one_image = explicitQuery(100, 1, "mrs");
+  expectFailure(one_image, "at least 2 images");
+
+  auto both = explicitQuery(100, 20, "mrs");
+  both.request.recent_frames = 10;
+  expectFailure(both, "not both");
+
+  // Still serving, with the right answer.
+  auto good = explicitQuery(150, 30, "mrs");
+  const auto response = call(good);
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_NEAR(response.reference_index, route_->query_to_reference[179], kTolerance);
+}
+
+TEST_F(NodeTest, RecentFramesAndContinuousMode) {
+  // The second traversal passes through the same camera topic: its frames join the map, and the
+  // newest ones are the test sequence.
+  const int first = 200;
+  const int count = 60;
+  auto_loop_closures_.clear();
+  playIntoNodes(route_->query, first, first + count, kQueryStart);
+  const int newest = first + count - 1;
+  const int truth = route_->query_to_reference[static_cast<std::size_t>(newest)];
+  const ros::Time newest_stamp(kQueryStart + (count - 1) * kFramePeriod);
+
+  for (const std::string method : {"mrs", "seqslam"}) {
+    SCOPED_TRACE(method);
+    loop_closures_.clear();
+    mrs_vpr::QuerySequence srv;
+    srv.request.recent_frames = 50;
+    srv.request.method = method;
+    const auto response = call(srv);
+    ASSERT_TRUE(response.success) << response.message;
+    EXPECT_NEAR(response.reference_index, truth, kTolerance);
+    EXPECT_LT(response.reference_index, 400 + count - 50 - 50);  // only older, non-excluded frames
+    mrs_vpr::LoopClosure closure;
+    ASSERT_TRUE(loop_closures_.waitFor([](const mrs_vpr::LoopClosure&) { return true; }, closure, 5.0));
+    EXPECT_EQ(closure.reference_index, response.reference_index);
+    EXPECT_EQ(closure.query_length, 50U);
+    EXPECT_NEAR((closure.header.stamp - newest_stamp).toSec(), 0.0, 1e-6);
+    EXPECT_EQ(closure.header.frame_id, "camera");
+  }
+
+  // The continuous-mode node answers on its own once the newest frame is in its map.
+  mrs_vpr::LoopClosure automatic;
+  ASSERT_TRUE(auto_loop_closures_.waitFor(
+      [&](const mrs_vpr::LoopClosure& m) { return std::abs((m.header.stamp - newest_stamp).toSec()) < 1e-6; }, automatic, 10.0));
+  EXPECT_EQ(automatic.query_length, 30U);
+  EXPECT_EQ(automatic.method, "mrs");
+  EXPECT_NEAR(automatic.reference_index, truth, kTolerance);
+}
+
+TEST_F(NodeTest, ResetEmptiesTheMap) {
+  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Trigger>("mrs_vpr/reset");
+  std_srvs::Trigger trigger;
+  ASSERT_TRUE(reset.call(trigger));
+  EXPECT_TRUE(trigger.response.success);
+  EXPECT_EQ(trigger.response.message, "cleared " + std::to_string(map_frames_) + " frames");
+  mrs_vpr::MapInfo info;
+  ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 0; }, info));
+  EXPECT_EQ(info.frames_received, map_frames_);
+
+  auto srv = explicitQuery(100, 20, "mrs");
+  expectFailure(srv, "reference map is empty");
+}
+
+/// Runs a command, returns its exit status and fills `output` with stdout and stderr.
+int run(const std::string& command, std::string& output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) {
+    return -1;
+  }
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe) != nullptr) {
+    output += buffer.data();
+  }
+  const int status = pclose(pipe);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
+  std::string output;
+  EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_width _descriptor/image_width:=2", output), 0);
+  EXPECT_NE(output.find("image_width"), std::string::npos) << output;
+
+  output.clear();
+  EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_tau _mrs/tau:=fast", output), 0);
+  EXPECT_NE(output.find("~mrs/tau must be a number, got a string"), std::string::npos) << output;
+
+  output.clear();
+  EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_stride _frame_stride:=0", output), 0);
+  EXPECT_NE(output.find("~frame_stride must be in 1..10000, got 0"), std::string::npos) << output;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "mrs_vpr_node_rostest");
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}
