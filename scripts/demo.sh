@@ -1,0 +1,160 @@
+#!/usr/bin/env bash
+# The mrs_vpr node end to end on a generated route:
+#   1. generate two traversals of one route as bags (reference.bag, query.bag) with their ground truth,
+#   2. start a private roscore (on a free port, so it never meets a running master) and the node,
+#   3. play the reference bag into the node (it builds its reference map),
+#   4. query a few stretches of the second traversal with mrs and seqslam via the ~query service,
+#   5. print predicted vs true reference frame and the time of each query,
+# then shut everything down, also on Ctrl-C or an error.
+#
+# Needs the workspace's setup sourced (make demo does it). Usage: scripts/demo.sh
+set -euo pipefail
+export PATH=/usr/bin:/bin:$PATH  # ROS tools need Debian's python3.
+
+readonly TOPIC=/camera/image_raw
+readonly SERVICE=/mrs_vpr/query
+readonly RATE=20            # Frame rate of the generated traversals [Hz].
+readonly START_TIME=1700000000
+readonly REFERENCE_FRAMES=600
+readonly QUERY_FRAMES=400
+readonly QUERY_LENGTH=60    # Frames per test sequence.
+readonly QUERY_STARTS="20 110 200 290 330"
+
+if ! command -v rospack >/dev/null || ! rospack find mrs_vpr >/dev/null 2>&1; then
+  echo "demo: mrs_vpr is not on ROS_PACKAGE_PATH; source the workspace's devel/setup.bash first" >&2
+  exit 1
+fi
+
+work=$(mktemp -d -t mrs_vpr_demo.XXXXXX)
+export ROS_LOG_DIR=$work/log
+export ROS_HOSTNAME=localhost
+unset ROS_IP
+background_pids=()
+
+stop_process() {  # PID NAME: ask politely (roslaunch stops its nodes on SIGINT), then insist.
+  local pid=$1 name=$2
+  kill -0 "$pid" 2>/dev/null || return 0
+  kill -INT "$pid" 2>/dev/null || true
+  for _ in $(seq 100); do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid" 2>/dev/null || true; return 0; }
+    sleep 0.1
+  done
+  echo "demo: $name did not stop in 10 s; killing it" >&2
+  kill -KILL "$pid" 2>/dev/null || true
+  wait "$pid" 2>/dev/null || true
+}
+
+cleanup() {
+  local status=$?
+  trap - EXIT INT TERM
+  if [ "$status" -ne 0 ] && [ -f "$work/node.log" ]; then
+    echo "demo: failed (exit $status); last lines of the node's log:" >&2
+    tail -n 20 "$work/node.log" >&2 || true
+  fi
+  # Newest first: the listener, the node (roslaunch), then the master.
+  for ((i = ${#background_pids[@]} - 1; i >= 0; i--)); do
+    stop_process "${background_pids[i]%%:*}" "${background_pids[i]#*:}"
+  done
+  rm -rf "$work"
+  exit "$status"
+}
+trap cleanup EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
+
+wait_until() {  # SECONDS DESCRIPTION COMMAND...: polls COMMAND until it succeeds.
+  local seconds=$1 description=$2
+  shift 2
+  for _ in $(seq $((seconds * 5))); do
+    "$@" >/dev/null 2>&1 && return 0
+    sleep 0.2
+  done
+  echo "demo: timed out after ${seconds} s waiting for $description" >&2
+  return 1
+}
+
+node_alive() { kill -0 "$launch_pid" 2>/dev/null; }
+service_ready() {
+  node_alive || { echo "demo: the node exited; see its log below" >&2; exit 1; }
+  rosservice list 2>/dev/null | grep -qx "$SERVICE"
+}
+
+echo "== Generating the demo route ($REFERENCE_FRAMES reference, $QUERY_FRAMES query frames at $RATE Hz)"
+rosrun mrs_vpr make_demo_route --output "$work" --reference-frames "$REFERENCE_FRAMES" \
+  --query-frames "$QUERY_FRAMES" --topic "$TOPIC" --rate "$RATE" --start-time "$START_TIME"
+
+port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://localhost:$port
+echo "== Starting roscore on port $port and the node (roslaunch mrs_vpr mrs_vpr.launch)"
+roscore -p "$port" >"$work/roscore.log" 2>&1 &
+background_pids+=("$!:roscore")
+wait_until 30 "the ROS master" rosparam get /rosversion
+
+roslaunch mrs_vpr mrs_vpr.launch image:="$TOPIC" >"$work/node.log" 2>&1 &
+launch_pid=$!
+background_pids+=("$launch_pid:roslaunch")
+wait_until 30 "the service $SERVICE" service_ready
+
+rostopic echo -p /mrs_vpr/loop_closure >"$work/loop_closure.csv" 2>/dev/null &
+background_pids+=("$!:rostopic echo")
+
+echo "== Playing reference.bag into the node ($REFERENCE_FRAMES frames, twice real time)"
+rosbag play --quiet --rate 2 --wait-for-subscribers "$work/reference.bag"
+sleep 1  # The last frames still in the subscriber queue.
+map_frames=$(timeout 10 rostopic echo -n 1 /mrs_vpr/map_info/frames 2>/dev/null | head -n 1 || true)
+echo "   reference map: ${map_frames:-?} frames"
+
+echo "== Querying with $QUERY_LENGTH-frame stretches of query.bag"
+results=$work/results.jsonl
+: >"$results"
+for start in $QUERY_STARTS; do
+  for method in mrs seqslam; do
+    # A failed query still prints its JSON answer (success false, message); the table shows it.
+    rosrun mrs_vpr query_bag --bag "$work/query.bag" --topic "$TOPIC" --start "$start" \
+      --count "$QUERY_LENGTH" --method "$method" --service "$SERVICE" >>"$results" || true
+  done
+done
+sleep 0.5  # Let the listener write the last loop closure.
+
+python3 - "$results" "$work/ground_truth.csv" "$START_TIME" "$RATE" "$work/loop_closure.csv" <<'EOF'
+import csv
+import json
+import sys
+
+results, truth_file, start_time, rate, closures = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+truth = {}
+with open(truth_file) as f:
+    for row in csv.DictReader(f):
+        truth[int(row["query_index"])] = [int(i) for i in row["matching_ref_indices"].split()]
+
+print()
+print("%-8s %-11s %6s %10s %6s %6s %5s %9s" % ("method", "query", "true", "predicted", "error", "conf", "acc", "time_ms"))
+errors = {"mrs": [], "seqslam": []}
+with open(results) as f:
+    for line in f:
+        answer = json.loads(line)
+        request = answer["request"]
+        last = request["start"] + request["count"] - 1
+        true_index = truth[last][0]
+        frames = "%d-%d" % (request["start"], last)
+        if not answer["success"]:
+            print("%-8s %-11s %6d   failed: %s" % (request["method"], frames, true_index, answer["message"]))
+            continue
+        # The node's map index equals the bag frame only if it kept every frame; the stamp always tells.
+        predicted = round((answer["reference_stamp"] - start_time) * rate)
+        error = abs(predicted - true_index)
+        errors[request["method"]].append(error)
+        print("%-8s %-11s %6d %10d %6d %6.2f %5s %9.1f" % (
+            request["method"], frames, true_index, predicted, error, answer["confidence"],
+            "yes" if answer["accepted"] else "no", answer["elapsed_ms"]))
+print()
+for method, values in errors.items():
+    if values:
+        within = sum(1 for e in values if e <= 5)
+        print("%s: %d/%d queries within 5 frames of the truth" % (method, within, len(values)))
+with open(closures) as f:
+    published = max(0, sum(1 for _ in f) - 1)  # Minus the CSV header.
+print("loop closures published on /mrs_vpr/loop_closure: %d" % published)
+EOF
+echo
+echo "== Shutting down"

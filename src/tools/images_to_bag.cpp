@@ -1,0 +1,95 @@
+// images_to_bag: an image folder (file-name order) -> a bag of sensor_msgs/Image at a fixed rate.
+
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include <boost/program_options.hpp>
+#include <ros/time.h>
+#include <rosbag/bag.h>
+
+#include "mrs_vpr/image_folder.hpp"
+#include "mrs_vpr/ros/bag_images.hpp"
+
+namespace po = boost::program_options;
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: images_to_bag --images DIR --bag OUT.bag --topic T --rate HZ [--encoding bgr8|mono8]\n"
+    "                     [--start-time SEC] [--frame-id ID]\n"
+    "\n"
+    "Writes the images of DIR, in file-name order, as sensor_msgs/Image messages on topic T, one every\n"
+    "1/HZ seconds from --start-time (Unix time; default: now). Header stamp and bag time are equal.\n";
+
+int run(int argc, char** argv) {
+  std::string images;
+  std::string bag_path;
+  std::string topic;
+  std::string encoding = "bgr8";
+  std::string frame_id = "camera";
+  double rate = 0.0;
+  double start_time = -1.0;
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("images", po::value(&images)->required(), "folder of images")
+      ("bag", po::value(&bag_path)->required(), "bag to write (overwritten)")
+      ("topic", po::value(&topic)->required(), "topic of the images, e.g. /camera/image_raw")
+      ("rate", po::value(&rate)->required(), "frames per second [Hz], > 0")
+      ("encoding", po::value(&encoding)->default_value(encoding), "bgr8 | mono8")
+      ("start-time", po::value(&start_time), "stamp of the first frame [s since the Unix epoch] (default: now)")
+      ("frame-id", po::value(&frame_id)->default_value(frame_id), "header.frame_id of the images");
+  // clang-format on
+  po::variables_map variables;
+  po::store(po::parse_command_line(argc, argv, description), variables);
+  if (variables.count("help") > 0) {
+    std::cout << kUsage << "\n" << description << std::flush;
+    return 0;
+  }
+  po::notify(variables);
+  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
+  if (encoding != "bgr8" && encoding != "mono8") {
+    throw std::invalid_argument("unknown encoding '" + encoding + "' (expected bgr8 or mono8)");
+  }
+  if (variables.count("start-time") == 0) {
+    start_time = ros::WallTime::now().toSec();  // Wall-clock time: no ROS master, no /clock.
+  }
+  if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s (a bag cannot hold time 0)");
+
+  // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
+  const std::vector<std::string> files = mrs_vpr::listImageFiles(images);
+  rosbag::Bag bag;
+  bag.open(bag_path, rosbag::bagmode::Write);
+  int written = 0;
+  mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
+    // Stamps from the frame number, not accumulated, so they never drift.
+    const ros::Time stamp(start_time + index / rate);
+    try {
+      bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(image, encoding, stamp, frame_id));
+    } catch (const std::invalid_argument& error) {
+      throw std::runtime_error("image '" + path + "': " + error.what());
+    }
+    ++written;
+    if (written % 500 == 0) std::cerr << "  " << written << "/" << files.size() << " images\n";
+  });
+  bag.close();
+  std::cerr << "images_to_bag: wrote " << written << " images to " << bag_path << " on " << topic << " at " << rate
+            << " Hz\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const po::error& error) {
+    std::cerr << "images_to_bag: error: " << error.what() << " (see --help)" << std::endl;
+  } catch (const std::exception& error) {
+    std::cerr << "images_to_bag: error: " << error.what() << std::endl;
+  }
+  return 1;
+}

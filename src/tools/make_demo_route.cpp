@@ -1,0 +1,122 @@
+// make_demo_route: a generated route (two traversals with known alignment) as reference.bag,
+// query.bag and ground_truth.csv, optionally also as image folders for mrs_vpr_eval.
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <boost/program_options.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <ros/time.h>
+#include <rosbag/bag.h>
+
+#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: make_demo_route --output DIR [--reference-frames M] [--query-frames Q] [--topic T]\n"
+    "                       [--rate HZ] [--start-time SEC] [--seed S] [--images]\n"
+    "\n"
+    "Generates two traversals of one synthetic route (the second one at 0.8..1.2 times the speed, with\n"
+    "other illumination, contrast, blur, noise and small shifts) and writes DIR/reference.bag,\n"
+    "DIR/query.bag (bgr8 sensor_msgs/Image on T) and DIR/ground_truth.csv (query_index,\n"
+    "matching_ref_indices). Reference frame i is stamped start-time + i / rate; the query traversal\n"
+    "starts one hour later. --images also writes DIR/reference/ and DIR/query/ as PNG folders.\n";
+
+void writeBag(const std::string& path, const std::string& topic, const std::vector<cv::Mat>& frames, double start,
+              double rate) {
+  rosbag::Bag bag;
+  bag.open(path, rosbag::bagmode::Write);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const ros::Time stamp(start + static_cast<double>(i) / rate);
+    bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera"));
+  }
+  bag.close();
+}
+
+void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
+  fs::create_directories(folder);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    std::ostringstream name;
+    name << std::setw(6) << std::setfill('0') << i << ".png";
+    if (!cv::imwrite((folder / name.str()).string(), frames[i])) {
+      throw std::runtime_error("cannot write '" + (folder / name.str()).string() + "'");
+    }
+  }
+}
+
+int run(int argc, char** argv) {
+  mrs_vpr::SyntheticRouteParams route_params;
+  route_params.reference_frames = 600;
+  route_params.query_frames = 400;
+  std::string output;
+  std::string topic = "/camera/image_raw";
+  double rate = 20.0;
+  double start_time = 1.7e9;  // A fixed, plausible epoch time: same route, same bags.
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("output", po::value(&output)->required(), "folder to write into (created)")
+      ("reference-frames", po::value(&route_params.reference_frames)->default_value(route_params.reference_frames),
+       "frames of the reference traversal")
+      ("query-frames", po::value(&route_params.query_frames)->default_value(route_params.query_frames),
+       "frames of the query traversal")
+      ("topic", po::value(&topic)->default_value(topic), "image topic in the bags")
+      ("rate", po::value(&rate)->default_value(rate), "frame rate of the stamps [Hz]")
+      ("start-time", po::value(&start_time)->default_value(start_time), "stamp of the first reference frame [s]")
+      ("seed", po::value(&route_params.seed)->default_value(route_params.seed), "seed of the route")
+      ("images", "also write the traversals as PNG folders");
+  // clang-format on
+  po::variables_map variables;
+  po::store(po::parse_command_line(argc, argv, description), variables);
+  if (variables.count("help") > 0) {
+    std::cout << kUsage << "\n" << description << std::flush;
+    return 0;
+  }
+  po::notify(variables);
+  if (!(rate > 0.0)) throw std::invalid_argument("--rate must be > 0 Hz");
+  if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s");
+
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+  const fs::path folder(output);
+  fs::create_directories(folder);
+  writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
+  writeBag((folder / "query.bag").string(), topic, route.query, start_time + 3600.0, rate);
+  std::ofstream truth(folder / "ground_truth.csv");
+  truth << "query_index,matching_ref_indices\n";
+  for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
+    truth << i << "," << route.query_to_reference[i] << "\n";
+  }
+  if (!truth) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
+  if (variables.count("images") > 0) {
+    writeFolder(folder / "reference", route.reference);
+    writeFolder(folder / "query", route.query);
+  }
+  std::cerr << "make_demo_route: " << route.reference.size() << " reference and " << route.query.size()
+            << " query frames of " << route_params.image_width << "x" << route_params.image_height << " px in "
+            << output << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const po::error& error) {
+    std::cerr << "make_demo_route: error: " << error.what() << " (see --help)" << std::endl;
+  } catch (const std::exception& error) {
+    std::cerr << "make_demo_route: error: " << error.what() << std::endl;
+  }
+  return 1;
+}

@@ -1,0 +1,410 @@
+// mrs_vpr_eval: offline evaluation of `seqslam` and `mrs` on two traversals (image folders or bags)
+// with either protocol of the paper notes: per-frame (SeqSLAM style) or global localisation.
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/evaluation.hpp"
+#include "mrs_vpr/image_folder.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/ros/image_conversion.hpp"
+#include "mrs_vpr/sequence_matcher.hpp"
+
+namespace po = boost::program_options;
+using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: mrs_vpr_eval --reference DIR|BAG --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
+    "                    --method mrs|seqslam --protocol per-frame|global --sequence-length N\n"
+    "                    [--queries K] [--tolerance T] [--seed S] [--output FILE.json]\n"
+    "\n"
+    "Evaluates visual place recognition of a query traversal against a reference traversal.\n"
+    "Image folders are read in file-name order; bags (*.bag) give the sensor_msgs/Image or\n"
+    "CompressedImage messages of --topic. Without --ground-truth, query frame i matches reference\n"
+    "frame i; a ground-truth CSV has the header query_index,matching_ref_indices and rows\n"
+    "'i,a b c' (0-based). Protocols:\n"
+    "  per-frame  every query frame with a full sequence of N frames (ending at it when causal);\n"
+    "             PR curve over a threshold on confidence, PR-AUC, recall at 100% precision, top-1\n"
+    "  global     K test sequences of N frames at random start positions (seeded); each returns\n"
+    "             the reference frame of its newest frame (its middle when centred)\n"
+    "A prediction is correct within --tolerance frames of a true index. The summary is printed on\n"
+    "stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n";
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// NaN has no JSON spelling; null says "undefined" (e.g. the median error when nothing was predicted).
+json number(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
+
+struct Options {
+  std::string reference;
+  std::string query;
+  std::string topic;
+  std::string ground_truth;
+  std::string method;
+  std::string protocol;
+  std::string output;
+  int queries = 200;
+  int tolerance = 2;
+  std::uint64_t seed = 42;
+  mrs_vpr::Parameters params;
+};
+
+/// Parses the command line; returns nothing after printing the help.
+std::optional<Options> parseOptions(int argc, char** argv) {
+  Options options;
+  mrs_vpr::Parameters& params = options.params;
+  std::string alignment = mrs_vpr::toString(params.sequence.alignment);
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("reference", po::value(&options.reference)->required(), "reference traversal: image folder or .bag")
+      ("query", po::value(&options.query)->required(), "query traversal: image folder or .bag")
+      ("topic", po::value(&options.topic), "image topic of the bags")
+      ("ground-truth", po::value(&options.ground_truth), "CSV query_index,matching_ref_indices (default: identity)")
+      ("method", po::value(&options.method)->required(), "mrs | seqslam")
+      ("protocol", po::value(&options.protocol)->required(), "per-frame | global")
+      ("sequence-length", po::value(&params.sequence.sequence_length)->required(),
+       "N: frames per test sequence (ds of the per-frame protocol)")
+      ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of the global protocol")
+      ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
+      ("seed", po::value(&options.seed)->default_value(options.seed), "seed of the global start positions and of mrs")
+      ("output", po::value(&options.output), "JSON file with parameters, records, summary and PR curve")
+      ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
+      ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
+      ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau")
+      ("image-width", po::value(&params.descriptor.image_width)->default_value(params.descriptor.image_width),
+       "descriptor width [px]")
+      ("image-height", po::value(&params.descriptor.image_height)->default_value(params.descriptor.image_height),
+       "descriptor height [px]")
+      ("patch-size", po::value(&params.descriptor.patch_size)->default_value(params.descriptor.patch_size),
+       "patch normalisation size [px]");
+  // clang-format on
+  po::variables_map variables;
+  po::store(po::parse_command_line(argc, argv, description), variables);
+  if (variables.count("help") > 0) {
+    std::cout << kUsage << "\n" << description << std::flush;
+    return std::nullopt;
+  }
+  po::notify(variables);
+
+  if (options.method != "mrs" && options.method != "seqslam") {
+    throw std::invalid_argument("unknown method '" + options.method + "' (expected mrs or seqslam)");
+  }
+  if (options.protocol != "per-frame" && options.protocol != "global") {
+    throw std::invalid_argument("unknown protocol '" + options.protocol + "' (expected per-frame or global)");
+  }
+  if (options.tolerance < 0) throw std::invalid_argument("--tolerance must be >= 0");
+  if (options.queries < 1) throw std::invalid_argument("--queries must be >= 1");
+  if ((mrs_vpr::bag::isBagPath(options.reference) || mrs_vpr::bag::isBagPath(options.query)) &&
+      options.topic.empty()) {
+    throw std::invalid_argument("reading a bag needs --topic");
+  }
+  params.sequence.alignment = mrs_vpr::parseWindowAlignment(alignment);
+  params.mrs.seed = options.seed;
+  params.validate();
+  return options;
+}
+
+/// A described traversal and the size of its images.
+struct Traversal {
+  mrs_vpr::DescriptorSequence descriptors;
+  cv::Size image_size;
+  std::string source;
+};
+
+/// Reads and describes every image of a folder or bag, reporting progress on stderr.
+Traversal describe(const std::string& source, const std::string& topic, const std::string& what,
+                   const mrs_vpr::DescriptorExtractor& extractor) {
+  const Clock::time_point start = Clock::now();
+  Traversal traversal{mrs_vpr::DescriptorSequence(extractor.size()), cv::Size(), source};
+  const auto progress = [&](int frames) {
+    if (frames % 500 == 0) std::cerr << "  " << what << ": " << frames << " frames\n";
+  };
+  const auto checkSize = [&](const cv::Size& size, const std::string& image_name) {
+    if (traversal.descriptors.empty()) {
+      traversal.image_size = size;
+    } else if (size != traversal.image_size) {
+      throw std::runtime_error(image_name + " is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
+                               " but the first " + what + " image is " + std::to_string(traversal.image_size.width) +
+                               "x" + std::to_string(traversal.image_size.height));
+    }
+  };
+
+  if (mrs_vpr::bag::isBagPath(source)) {
+    mrs_vpr::bag::forEachImage(source, topic, [&](int index, const sensor_msgs::ImageConstPtr& image) {
+      const std::string name = what + " message " + std::to_string(index) + " of '" + source + "'";
+      checkSize(cv::Size(static_cast<int>(image->width), static_cast<int>(image->height)), name);
+      try {
+        traversal.descriptors.append(mrs_vpr::node::describeImage(extractor, *image, image),
+                                     image->header.stamp.toSec());
+      } catch (const std::invalid_argument& error) {
+        throw std::runtime_error(name + ": " + error.what());
+      }
+      progress(traversal.descriptors.size());
+    });
+  } else {
+    mrs_vpr::forEachImage(source, [&](int index, const std::string& path, const cv::Mat& image) {
+      checkSize(image.size(), "image '" + path + "'");
+      try {
+        // cv::imread gives BGR; the frame index is the stamp, as a folder has no times.
+        traversal.descriptors.append(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), index);
+      } catch (const std::invalid_argument& error) {
+        throw std::runtime_error("image '" + path + "': " + error.what());
+      }
+      progress(traversal.descriptors.size());
+    });
+  }
+  std::cerr << "  " << what << ": " << traversal.descriptors.size() << " frames of " << traversal.image_size.width
+            << "x" << traversal.image_size.height << " px described in " << std::fixed << std::setprecision(2)
+            << secondsSince(start) << " s\n";
+  return traversal;
+}
+
+mrs_vpr::QueryRecord makeRecord(int query_index, const std::vector<int>& truth, const mrs_vpr::Match& match,
+                                double time_ms) {
+  mrs_vpr::QueryRecord record;
+  record.query_index = query_index;
+  record.true_indices = truth;
+  record.predicted_index = match.reference_index;
+  record.score = match.score;
+  record.confidence = match.confidence;
+  record.time_ms = time_ms;
+  return record;
+}
+
+/// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
+/// method can share work between frames (seqslam computes the difference matrix once). The time of
+/// a query is therefore the call's time divided by the number of frames searched.
+std::vector<mrs_vpr::QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Traversal& reference,
+                                              const Traversal& query, const mrs_vpr::GroundTruth* truth,
+                                              const mrs_vpr::SequenceParams& sequence) {
+  const std::vector<int> frames = mrs_vpr::perFrameQueries(query.descriptors.size(), sequence);
+  if (frames.empty()) {
+    throw std::invalid_argument("the query has " + std::to_string(query.descriptors.size()) +
+                                " frames, fewer than the sequence length " + std::to_string(sequence.sequence_length));
+  }
+  std::cerr << "  matching " << frames.size() << " query frames with " << matcher.name() << "\n";
+  const Clock::time_point start = Clock::now();
+  const std::vector<mrs_vpr::Match> matches = matcher.matchEveryFrame(reference.descriptors.view(), query.descriptors.view());
+  const double per_query_ms = 1000.0 * secondsSince(start) / static_cast<double>(frames.size());
+
+  std::vector<mrs_vpr::QueryRecord> records;
+  for (int frame : frames) {
+    const auto true_indices = mrs_vpr::truthFor(frame, truth, reference.descriptors.size());
+    if (!true_indices) continue;
+    records.push_back(makeRecord(frame, *true_indices, matches.at(static_cast<std::size_t>(frame)), per_query_ms));
+  }
+  return records;
+}
+
+/// Global localisation protocol: each test sequence is searched on its own and timed.
+std::vector<mrs_vpr::QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Traversal& reference,
+                                            const Traversal& query, const mrs_vpr::GroundTruth* truth,
+                                            const Options& options) {
+  const mrs_vpr::SequenceParams& sequence = options.params.sequence;
+  if (sequence.sequence_length > query.descriptors.size()) {
+    throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
+                                " is larger than the query of " + std::to_string(query.descriptors.size()) + " frames");
+  }
+  const std::vector<mrs_vpr::TestSequence> tests = mrs_vpr::globalQueries(
+      query.descriptors.size(), sequence.sequence_length, options.queries, options.seed, sequence.alignment);
+  std::vector<mrs_vpr::QueryRecord> records;
+  int done = 0;
+  int skipped = 0;
+  for (const mrs_vpr::TestSequence& test : tests) {
+    ++done;
+    const auto true_indices = mrs_vpr::truthFor(test.query_index, truth, reference.descriptors.size());
+    if (!true_indices) {
+      ++skipped;
+      continue;
+    }
+    const Clock::time_point start = Clock::now();
+    const mrs_vpr::Match match =
+        matcher.match(reference.descriptors.view(), query.descriptors.view(test.start, test.start + test.length));
+    records.push_back(makeRecord(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
+    if (done % std::max(1, static_cast<int>(tests.size()) / 10) == 0) {
+      std::cerr << "  " << matcher.name() << ": " << done << "/" << tests.size() << " test sequences\n";
+    }
+  }
+  if (skipped > 0) std::cerr << "  " << skipped << " test sequences skipped: their frame has no ground truth\n";
+  return records;
+}
+
+json parametersToJson(const Options& options) {
+  const mrs_vpr::Parameters& p = options.params;
+  return {
+      {"method", options.method},
+      {"protocol", options.protocol},
+      {"reference", options.reference},
+      {"query", options.query},
+      {"topic", options.topic.empty() ? json(nullptr) : json(options.topic)},
+      {"ground_truth", options.ground_truth.empty() ? json(nullptr) : json(options.ground_truth)},
+      {"sequence_length", p.sequence.sequence_length},
+      {"queries", options.queries},
+      {"tolerance", options.tolerance},
+      {"seed", options.seed},
+      {"descriptor",
+       {{"image_width", p.descriptor.image_width},
+        {"image_height", p.descriptor.image_height},
+        {"patch_size", p.descriptor.patch_size}}},
+      {"sequence",
+       {{"sequence_length", p.sequence.sequence_length},
+        {"velocity_min", p.sequence.velocity_min},
+        {"velocity_max", p.sequence.velocity_max},
+        {"velocity_step", p.sequence.velocity_step},
+        {"contrast_window", p.sequence.contrast_window},
+        {"match_exclusion", p.sequence.match_exclusion},
+        {"alignment", mrs_vpr::toString(p.sequence.alignment)}}},
+      {"mrs",
+       {{"levels", p.mrs.levels},
+        {"min_coarse_frames", p.mrs.min_coarse_frames},
+        {"tau", p.mrs.tau},
+        {"index_shift", p.mrs.index_shift},
+        {"coverage_threshold", p.mrs.coverage_threshold},
+        {"max_iterations", p.mrs.max_iterations},
+        {"resample_threshold", p.mrs.resample_threshold},
+        {"min_particles", p.mrs.min_particles},
+        {"seed", p.mrs.seed}}},
+  };
+}
+
+json summaryToJson(const mrs_vpr::EvaluationSummary& summary) {
+  return {{"tolerance", summary.tolerance},
+          {"queries", summary.queries},
+          {"top1", summary.top1},
+          {"pr_auc", summary.pr_auc},
+          {"recall_at_100_precision", summary.recall_at_100_precision},
+          {"median_abs_error", number(summary.median_abs_error)},
+          {"median_time_ms", number(summary.median_time_ms)},
+          {"total_time_s", summary.total_time_s}};
+}
+
+json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int tolerance) {
+  json list = json::array();
+  for (const mrs_vpr::QueryRecord& record : records) {
+    const int nearest = mrs_vpr::nearestTrueIndex(record);
+    list.push_back({{"query_index", record.query_index},
+                    {"true_index", nearest >= 0 ? json(nearest) : json(nullptr)},
+                    {"true_indices", record.true_indices},
+                    {"predicted_index", record.predicted_index},
+                    {"score", record.score},
+                    {"confidence", record.confidence},
+                    {"time_ms", record.time_ms},
+                    {"correct", mrs_vpr::isCorrect(record, tolerance)}});
+  }
+  return list;
+}
+
+int run(int argc, char** argv) {
+  const Clock::time_point start = Clock::now();
+  const std::optional<Options> parsed = parseOptions(argc, argv);
+  if (!parsed) return 0;
+  const Options& options = *parsed;
+  const mrs_vpr::SequenceParams& sequence = options.params.sequence;
+  const std::unique_ptr<mrs_vpr::SequenceMatcher> matcher = mrs_vpr::makeMatcher(options.method, options.params);
+
+  std::optional<mrs_vpr::GroundTruth> truth;
+  if (!options.ground_truth.empty()) truth = mrs_vpr::readGroundTruthCsv(options.ground_truth);
+
+  const mrs_vpr::DescriptorExtractor extractor(options.params.descriptor);
+  std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
+            << sequence.sequence_length << "\n";
+  const Traversal reference = describe(options.reference, options.topic, "reference", extractor);
+  if (sequence.sequence_length > reference.descriptors.size()) {
+    throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
+                                " is larger than the reference of " + std::to_string(reference.descriptors.size()) +
+                                " frames");
+  }
+  const Traversal query = describe(options.query, options.topic, "query", extractor);
+  if (query.image_size != reference.image_size) {
+    throw std::invalid_argument(
+        "query images are " + std::to_string(query.image_size.width) + "x" + std::to_string(query.image_size.height) +
+        " but reference images are " + std::to_string(reference.image_size.width) + "x" +
+        std::to_string(reference.image_size.height));
+  }
+  const double describe_s = secondsSince(start);
+
+  const mrs_vpr::GroundTruth* truth_ptr = truth ? &*truth : nullptr;
+  const Clock::time_point match_start = Clock::now();
+  const std::vector<mrs_vpr::QueryRecord> records =
+      options.protocol == "per-frame" ? runPerFrame(*matcher, reference, query, truth_ptr, sequence)
+                                      : runGlobal(*matcher, reference, query, truth_ptr, options);
+  const double match_s = secondsSince(match_start);
+  if (records.empty()) throw std::invalid_argument("no query frame has ground truth: nothing to evaluate");
+
+  mrs_vpr::EvaluationSummary summary = mrs_vpr::summarise(records, options.tolerance);
+  summary.total_time_s = secondsSince(start);  // The whole evaluation: reading, describing, matching.
+
+  if (!options.output.empty()) {
+    json pr_curve = json::array();
+    for (const mrs_vpr::PrPoint& point : mrs_vpr::precisionRecallCurve(records, options.tolerance)) {
+      pr_curve.push_back({{"threshold", point.threshold}, {"precision", point.precision}, {"recall", point.recall}});
+    }
+    const json document = {
+        {"method", options.method},
+        {"protocol", options.protocol},
+        {"reference_frames", reference.descriptors.size()},
+        {"query_frames", query.descriptors.size()},
+        {"parameters", parametersToJson(options)},
+        {"summary", summaryToJson(summary)},
+        {"timing",
+         {{"read_and_describe_s", describe_s},
+          {"match_s", match_s},
+          {"note", options.protocol == "per-frame"
+                       ? "per-frame time_ms is the matching time of all frames divided by their number"
+                       : "time_ms is the matching time of each test sequence"}}},
+        {"records", recordsToJson(records, options.tolerance)},
+        {"pr_curve", pr_curve},
+    };
+    std::ofstream file(options.output);
+    if (!file) throw std::runtime_error("cannot write '" + options.output + "'");
+    file << document.dump(2) << "\n";
+    if (!file) throw std::runtime_error("cannot write '" + options.output + "'");
+    std::cerr << "  wrote " << options.output << "\n";
+  }
+  std::cout << json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}.dump(2)
+            << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const po::error& error) {
+    std::cerr << "mrs_vpr_eval: error: " << error.what() << " (see --help)" << std::endl;
+    return 1;
+  } catch (const std::exception& error) {
+    // One line, whatever the source of the message.
+    std::string message = error.what();
+    for (char& c : message) {
+      if (c == '\n' || c == '\r') c = ' ';
+    }
+    std::cerr << "mrs_vpr_eval: error: " << message << std::endl;
+    return 1;
+  }
+}

@@ -1,0 +1,124 @@
+// query_bag: sends frames of a bag as a test sequence to the node's ~query service and prints the
+// answer as one JSON object on stdout.
+
+#include <chrono>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
+#include <ros/ros.h>
+
+#include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/ros/bag_images.hpp"
+
+namespace po = boost::program_options;
+using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: query_bag --bag B.bag --topic T --start I --count N [--method mrs|seqslam]\n"
+    "                 [--service /mrs_vpr/query] [--timeout SEC]\n"
+    "       query_bag --recent-frames K [--method mrs|seqslam] [--service /mrs_vpr/query]\n"
+    "\n"
+    "Calls the mrs_vpr node's query service (mrs_vpr/QuerySequence) with frames I..I+N-1 of topic T\n"
+    "(oldest first), or with the node's own K most recent frames, and prints the response as JSON.\n"
+    "Exit code 0 when the node answered with success, 1 otherwise.\n";
+
+int run(int argc, char** argv) {
+  // Strips ROS remapping arguments (name:=value) before the options are parsed.
+  ros::init(argc, argv, "query_bag", ros::init_options::AnonymousName | ros::init_options::NoRosout);
+
+  std::string bag_path;
+  std::string topic;
+  std::string method = "mrs";
+  std::string service = "/mrs_vpr/query";
+  int start = 0;
+  int count = 0;
+  int recent_frames = 0;
+  double timeout = 10.0;
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("bag", po::value(&bag_path), "bag holding the test sequence")
+      ("topic", po::value(&topic), "image topic in the bag")
+      ("start", po::value(&start)->default_value(start), "first frame (index among the topic's messages)")
+      ("count", po::value(&count), "frames in the test sequence (>= 2)")
+      ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
+      ("method", po::value(&method)->default_value(method), "mrs | seqslam")
+      ("service", po::value(&service)->default_value(service), "the node's query service")
+      ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service");
+  // clang-format on
+  po::variables_map variables;
+  po::store(po::parse_command_line(argc, argv, description), variables);
+  if (variables.count("help") > 0) {
+    std::cout << kUsage << "\n" << description << std::flush;
+    return 0;
+  }
+  po::notify(variables);
+
+  mrs_vpr::QuerySequence query;
+  query.request.method = method;
+  json request = {{"method", method}, {"service", service}};
+  if (variables.count("recent-frames") > 0) {
+    if (variables.count("bag") > 0) throw std::invalid_argument("give either --bag or --recent-frames, not both");
+    if (recent_frames < 1) throw std::invalid_argument("--recent-frames must be >= 1");
+    query.request.recent_frames = static_cast<std::uint32_t>(recent_frames);
+    request["recent_frames"] = recent_frames;
+  } else {
+    if (bag_path.empty() || topic.empty() || variables.count("count") == 0) {
+      throw std::invalid_argument("--bag, --topic and --count are required (or --recent-frames)");
+    }
+    if (start < 0) throw std::invalid_argument("--start must be >= 0");
+    if (count < 1) throw std::invalid_argument("--count must be >= 1");
+    for (const sensor_msgs::ImageConstPtr& image : mrs_vpr::bag::readImages(bag_path, topic, start, count)) {
+      query.request.images.push_back(*image);
+    }
+    request["bag"] = bag_path;
+    request["topic"] = topic;
+    request["start"] = start;
+    request["count"] = count;
+    request["last_stamp"] = query.request.images.back().header.stamp.toSec();
+  }
+
+  if (!ros::service::waitForService(service, ros::Duration(timeout))) {
+    throw std::runtime_error("service " + service + " is not available after " + std::to_string(timeout) +
+                             " s (is the mrs_vpr node running? ROS_MASTER_URI=" + ros::master::getURI() + ")");
+  }
+  const auto sent = std::chrono::steady_clock::now();
+  if (!ros::service::call(service, query)) {
+    throw std::runtime_error("calling " + service + " failed (the node may have died or the types differ)");
+  }
+  const double round_trip_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
+
+  const auto& response = query.response;
+  const json answer = {{"success", static_cast<bool>(response.success)},
+                       {"message", response.message},
+                       {"reference_index", response.reference_index},
+                       {"reference_stamp", response.reference_stamp.toSec()},
+                       {"score", response.score},
+                       {"confidence", response.confidence},
+                       {"accepted", static_cast<bool>(response.accepted)},
+                       {"elapsed_ms", response.elapsed_ms},
+                       {"round_trip_ms", round_trip_ms},
+                       {"request", request}};
+  std::cout << answer.dump() << std::endl;
+  return response.success ? 0 : 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const po::error& error) {
+    std::cerr << "query_bag: error: " << error.what() << " (see --help)" << std::endl;
+  } catch (const std::exception& error) {
+    std::cerr << "query_bag: error: " << error.what() << std::endl;
+  }
+  return 1;
+}
