@@ -1,0 +1,241 @@
+// Runs the installed command-line tools (mrs_vpr_eval, images_to_bag) on generated data in a
+// temporary folder: results, JSON fields, and one-line errors with exit code 1 on bad input.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+struct Result {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string readText(const fs::path& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+/// A generated route written as image folders once for all tests of this file.
+class ToolsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / ("mrs_vpr_tools_test_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    mrs_vpr::SyntheticRouteParams params;
+    params.reference_frames = 150;
+    params.query_frames = 100;
+    params.start_place = 20.0;
+    const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
+    writeFolder(root_ / "reference", route.reference);
+    writeFolder(root_ / "query", route.query);
+    std::ofstream truth(root_ / "truth.csv");
+    truth << "query_index,matching_ref_indices\n";
+    for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
+      truth << i << "," << route.query_to_reference[i] << "\n";
+    }
+  }
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+
+  static void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
+    fs::create_directories(folder);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      std::ostringstream name;
+      name << std::setw(5) << std::setfill('0') << i << ".png";
+      cv::imwrite((folder / name.str()).string(), frames[i]);
+    }
+  }
+
+  /// Runs `command` (arguments already quoted) and captures its exit status, stdout and stderr.
+  static Result run(const std::string& command) {
+    const fs::path out = root_ / "stdout.txt";
+    const fs::path err = root_ / "stderr.txt";
+    const int raw = std::system((command + " >'" + out.string() + "' 2>'" + err.string() + "'").c_str());
+    Result result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    result.out = readText(out);
+    result.err = readText(err);
+    return result;
+  }
+
+  static std::string eval(const std::string& arguments) { return std::string(MRS_VPR_EVAL_PATH) + " " + arguments; }
+  static std::string path(const std::string& child) { return (root_ / child).string(); }
+
+  /// Expects exit code 1 and exactly one line on stderr that contains `text`.
+  static void expectError(const std::string& arguments, const std::string& text) {
+    const Result result = run(eval(arguments));
+    EXPECT_EQ(result.status, 1) << arguments << "\n" << result.err;
+    EXPECT_NE(result.err.find(text), std::string::npos) << result.err;
+    const std::string last_line = result.err.substr(result.err.rfind('\n', result.err.size() - 2) + 1);
+    EXPECT_EQ(last_line.rfind("mrs_vpr_eval: error: ", 0), 0U) << result.err;
+    EXPECT_NE(last_line.find(text), std::string::npos) << result.err;
+  }
+
+  static fs::path root_;
+};
+
+fs::path ToolsTest::root_;
+
+TEST_F(ToolsTest, PerFrameSeqSlamFindsThePlantedAlignment) {
+  const std::string output = path("per_frame.json");
+  const Result result =
+      run(eval("--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+               path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 --tolerance 2 --output " +
+               output));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json document = json::parse(readText(output));
+  const json& summary = document.at("summary");
+  for (const char* field : {"tolerance", "queries", "top1", "pr_auc", "recall_at_100_precision", "median_abs_error",
+                            "median_time_ms", "total_time_s"}) {
+    EXPECT_TRUE(summary.contains(field)) << field;
+  }
+  EXPECT_EQ(summary.at("queries").get<int>(), 91);  // Query frames 9..99 have 10 frames behind them.
+  EXPECT_EQ(summary.at("tolerance").get<int>(), 2);
+  EXPECT_GE(summary.at("top1").get<double>(), 0.9);
+  EXPECT_GE(summary.at("pr_auc").get<double>(), 0.9);
+  EXPECT_EQ(document.at("parameters").at("sequence").at("sequence_length").get<int>(), 10);
+  EXPECT_EQ(document.at("protocol"), "per-frame");
+  const json& record = document.at("records").at(0);
+  EXPECT_EQ(record.at("query_index").get<int>(), 9);
+  for (const char* field : {"query_index", "true_index", "predicted_index", "score", "confidence", "time_ms"}) {
+    EXPECT_TRUE(record.contains(field)) << field;
+  }
+  // The summary also goes to stdout.
+  EXPECT_EQ(json::parse(result.out).at("summary").at("queries").get<int>(), 91);
+}
+
+TEST_F(ToolsTest, GlobalProtocolIsSeededAndUsesKSequences) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method seqslam --protocol global --sequence-length 40 " +
+                                "--queries 12 --tolerance 5 --seed 3 --output ";
+  ASSERT_EQ(run(eval(arguments + path("global_a.json"))).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("global_b.json"))).status, 0);
+  const json a = json::parse(readText(path("global_a.json")));
+  const json b = json::parse(readText(path("global_b.json")));
+  ASSERT_EQ(a.at("records").size(), 12U);
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_EQ(a["records"][i]["query_index"], b["records"][i]["query_index"]);
+    EXPECT_GE(a["records"][i]["query_index"].get<int>(), 39);
+  }
+  EXPECT_GE(a.at("summary").at("top1").get<double>(), 0.9);
+}
+
+TEST_F(ToolsTest, BadInputGivesOneLineAndExitCodeOne) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query");
+  expectError("--reference " + path("nowhere") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 10",
+              "image folder '" + path("nowhere") + "' does not exist");
+  expectError(folders + " --method fastest --protocol per-frame --sequence-length 10", "unknown method 'fastest'");
+  expectError(folders + " --method mrs --protocol sideways --sequence-length 10", "unknown protocol 'sideways'");
+  expectError(folders + " --method seqslam --protocol global --sequence-length 151",
+              "sequence length 151 is larger than the reference of 150 frames");
+  expectError(folders + " --method seqslam --protocol per-frame", "sequence-length");  // Missing flag.
+
+  // An unreadable image, named.
+  fs::create_directories(path("broken"));
+  fs::copy_file(path("reference/00000.png"), path("broken/00000.png"), fs::copy_options::overwrite_existing);
+  std::ofstream(path("broken/00001.png")) << "not a png";
+  expectError("--reference " + path("broken") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "cannot read image '" + path("broken/00001.png") + "'");
+
+  // Different sizes within a folder and between folders.
+  fs::create_directories(path("mixed"));
+  fs::copy_file(path("reference/00000.png"), path("mixed/00000.png"), fs::copy_options::overwrite_existing);
+  cv::imwrite(path("mixed/00001.png"), cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(9)));
+  expectError("--reference " + path("mixed") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "00001.png' is 10x10 but");
+  fs::create_directories(path("small"));
+  for (int i = 0; i < 3; ++i) {
+    cv::imwrite(path("small/" + std::to_string(i) + ".png"), cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(i)));
+  }
+  expectError(folders.substr(0, folders.find(" --query")) + " --query " + path("small") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "query images are 10x10 but reference images are 128x64");
+}
+
+TEST_F(ToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) {
+  for (const char* traversal : {"reference", "query"}) {
+    const Result result = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path(traversal) + " --bag " +
+                              path(std::string(traversal) + ".bag") +
+                              " --topic /camera/image_raw --rate 10 --start-time 1000");
+    ASSERT_EQ(result.status, 0) << result.err;
+  }
+  const auto images = mrs_vpr::bag::readImages(path("query.bag"), "/camera/image_raw", 0, 100);
+  ASSERT_EQ(images.size(), 100U);
+  EXPECT_EQ(images[0]->encoding, "bgr8");
+  EXPECT_EQ(images[0]->width, 128U);
+  EXPECT_DOUBLE_EQ(images[0]->header.stamp.toSec(), 1000.0);
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    EXPECT_GT(images[i]->header.stamp, images[i - 1]->header.stamp);
+  }
+  EXPECT_NEAR(images[99]->header.stamp.toSec(), 1009.9, 1e-6);
+
+  // Same frames from bags as from folders: the same answers.
+  const std::string common = " --ground-truth " + path("truth.csv") +
+                             " --method seqslam --protocol per-frame --sequence-length 10 --output ";
+  ASSERT_EQ(run(eval("--reference " + path("reference") + " --query " + path("query") + common +
+                     path("folders.json")))
+                .status,
+            0);
+  const Result from_bags = run(eval("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                                    " --topic /camera/image_raw" + common + path("bags.json")));
+  ASSERT_EQ(from_bags.status, 0) << from_bags.err;
+  const json folders = json::parse(readText(path("folders.json")));
+  const json bags = json::parse(readText(path("bags.json")));
+  ASSERT_EQ(folders["records"].size(), bags["records"].size());
+  for (std::size_t i = 0; i < folders["records"].size(); ++i) {
+    EXPECT_EQ(folders["records"][i]["predicted_index"], bags["records"][i]["predicted_index"]) << i;
+  }
+
+  expectError("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                  " --method seqslam --protocol per-frame --sequence-length 10",
+              "reading a bag needs --topic");
+  expectError("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                  " --topic /nothing --method seqslam --protocol per-frame --sequence-length 10",
+              "has no topic '/nothing' (it has: /camera/image_raw (sensor_msgs/Image))");
+}
+
+TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
+  const Result no_rate = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                             path("x.bag") + " --topic /t --rate 0");
+  EXPECT_EQ(no_rate.status, 1);
+  EXPECT_NE(no_rate.err.find("--rate must be > 0"), std::string::npos) << no_rate.err;
+  const Result no_folder = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("nowhere") + " --bag " +
+                               path("x.bag") + " --topic /t --rate 5");
+  EXPECT_EQ(no_folder.status, 1);
+  EXPECT_NE(no_folder.err.find("does not exist"), std::string::npos) << no_folder.err;
+  EXPECT_FALSE(fs::exists(path("x.bag")));  // Nothing written for a bad folder.
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
