@@ -47,9 +47,11 @@ stop_process() {  # PID NAME: ask politely (roslaunch stops its nodes on SIGINT)
 cleanup() {
   local status=$?
   trap - EXIT INT TERM
-  if [ "$status" -ne 0 ] && [ -f "$work/node.log" ]; then
-    echo "demo: failed (exit $status); last lines of the node's log:" >&2
-    tail -n 20 "$work/node.log" >&2 || true
+  if [ -n "$interrupted" ]; then
+    echo "demo: interrupted; shutting down" >&2
+    status=130
+  elif [ "$status" -ne 0 ]; then
+    echo "demo: stopped early (exit $status); shutting down" >&2
   fi
   # Newest first: the listener, the node (roslaunch), then the master.
   for ((i = ${#background_pids[@]} - 1; i >= 0; i--)); do
@@ -58,9 +60,10 @@ cleanup() {
   rm -rf "$work"
   exit "$status"
 }
+interrupted=
 trap cleanup EXIT
-trap 'exit 130' INT
-trap 'exit 143' TERM
+trap 'interrupted=1; exit 130' INT
+trap 'interrupted=1; exit 143' TERM
 
 wait_until() {  # SECONDS DESCRIPTION COMMAND...: polls COMMAND until it succeeds.
   local seconds=$1 description=$2
@@ -75,7 +78,11 @@ wait_until() {  # SECONDS DESCRIPTION COMMAND...: polls COMMAND until it succeed
 
 node_alive() { kill -0 "$launch_pid" 2>/dev/null; }
 service_ready() {
-  node_alive || { echo "demo: the node exited; see its log below" >&2; exit 1; }
+  if ! node_alive; then
+    echo "demo: the node exited at start-up; its log:" >&2
+    tail -n 20 "$work/node.log" >&2 || true
+    exit 1
+  fi
   rosservice list 2>/dev/null | grep -qx "$SERVICE"
 }
 
@@ -99,7 +106,7 @@ rostopic echo -p /mrs_vpr/loop_closure >"$work/loop_closure.csv" 2>/dev/null &
 background_pids+=("$!:rostopic echo")
 
 echo "== Playing reference.bag into the node ($REFERENCE_FRAMES frames, twice real time)"
-rosbag play --quiet --rate 2 --wait-for-subscribers "$work/reference.bag"
+rosbag play --quiet --rate 2 --wait-for-subscribers "$work/reference.bag" >"$work/play.log" 2>&1
 sleep 1  # The last frames still in the subscriber queue.
 map_frames=$(timeout 10 rostopic echo -n 1 /mrs_vpr/map_info/frames 2>/dev/null | head -n 1 || true)
 echo "   reference map: ${map_frames:-?} frames"
@@ -127,6 +134,9 @@ with open(truth_file) as f:
     for row in csv.DictReader(f):
         truth[int(row["query_index"])] = [int(i) for i in row["matching_ref_indices"].split()]
 
+print()
+print("true: reference frame of the query's newest frame; predicted: the node's answer (by its stamp);")
+print("conf: confidence (1 - best/runner-up); acc: accepted by ~accept_threshold; time_ms: the node's time")
 print()
 print("%-8s %-11s %6s %10s %6s %6s %5s %9s" % ("method", "query", "true", "predicted", "error", "conf", "acc", "time_ms"))
 errors = {"mrs": [], "seqslam": []}
