@@ -46,7 +46,7 @@ int run(int argc, char** argv) {
       ("bag", po::value(&bag_path), "bag holding the test sequence")
       ("topic", po::value(&topic), "image topic in the bag")
       ("start", po::value(&start)->default_value(start), "first frame (index among the topic's messages)")
-      ("count", po::value(&count), "frames in the test sequence (>= 2)")
+      ("count", po::value(&count), "frames in the test sequence")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method)->default_value(method), "mrs | seqslam")
       ("service", po::value(&service)->default_value(service), "the node's query service")
