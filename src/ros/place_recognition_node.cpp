@@ -47,6 +47,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
     auto_query_timer_ = query_nh_.createTimer(ros::Duration(params_.auto_query_period),
                                               &PlaceRecognitionNode::autoQueryCallback, this);
   }
+  reserveAhead();
   publishMapInfoIfChanged();
 
   // The transport ("raw", "compressed", ...) comes from ~image_transport.
@@ -94,6 +95,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
   }
 
   // The expensive part runs without any lock.
+  const auto start = std::chrono::steady_clock::now();
   cv::Mat descriptor;
   try {
     descriptor = describeImage(extractor_, *message, message);
@@ -128,6 +130,11 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
     pending_.push_back({descriptor, stamp});
     keyframe_policy_.keep(stamp);
     camera_frame_id_ = message->header.frame_id;
+    const double elapsed_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frame_time_total_ms_ += elapsed_ms;
+    ++frames_timed_;
+    frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
   }
 
   // Never wait for a query: if one holds the map, the frame stays pending until the map is free.
@@ -156,6 +163,25 @@ void PlaceRecognitionNode::flushPendingLocked() {
 void PlaceRecognitionNode::flushPending() {
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
   flushPendingLocked();
+}
+
+void PlaceRecognitionNode::reserveAhead() {
+  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
+  const int frames = map_frames_.load();
+  if (frames < reserved_frames_ - reserved_frames_ / 4) {
+    return;
+  }
+  int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));
+  if (params_.max_frames > 0) {
+    target = std::min(target, params_.max_frames);
+  }
+  if (target <= reserved_frames_) {
+    return;
+  }
+  // Copying a large map takes a while; meanwhile the image callback parks frames in pending_.
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  map_.reserve(target);
+  reserved_frames_ = target;
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -337,6 +363,7 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
     map_.clear();
     keyframe_policy_.reset();
     map_frames_ = 0;
+    reserved_frames_ = 0;
     ++map_version_;
   }
   response.success = true;
@@ -359,6 +386,13 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
     }
   }
   info.max_frames = static_cast<std::uint32_t>(params_.max_frames);
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    info.frames_pending = static_cast<std::uint32_t>(pending_.size());
+    info.frame_time_mean_ms =
+        frames_timed_ > 0 ? static_cast<float>(frame_time_total_ms_ / static_cast<double>(frames_timed_)) : 0.0F;
+    info.frame_time_max_ms = static_cast<float>(frame_time_max_ms_);
+  }
   info.frames_received = frames_received_.load();
   info.frames_skipped = frames_skipped_.load();
   info.frames_dropped = frames_dropped_.load();
@@ -368,20 +402,25 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
 
 void PlaceRecognitionNode::publishMapInfoIfChanged() {
   MapInfo info = makeMapInfo();
-  info.header.frame_id = last_map_info_.header.frame_id;
-  info.header.stamp = last_map_info_.header.stamp;
-  info.header.seq = last_map_info_.header.seq;
-  if (map_info_published_ && info == last_map_info_) {
+  // Republish only when the map or a counter changed; the header and timings alone do not count.
+  MapInfo comparable = info;
+  comparable.header = last_map_info_.header;
+  comparable.frame_time_mean_ms = last_map_info_.frame_time_mean_ms;
+  comparable.frame_time_max_ms = last_map_info_.frame_time_max_ms;
+  if (map_info_published_ && comparable == last_map_info_) {
     return;
   }
   info.header.stamp = ros::Time::now();
   map_info_pub_.publish(info);
   last_map_info_ = info;
   map_info_published_ = true;
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  frame_time_max_ms_ = 0.0;
 }
 
 void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
   flushPending();  // frames parked during a query show up even when no new image arrives
+  reserveAhead();
   publishMapInfoIfChanged();
 }
 

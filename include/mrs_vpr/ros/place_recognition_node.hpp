@@ -77,6 +77,9 @@ class PlaceRecognitionNode {
   void flushPendingLocked();
   /// Blocks for the exclusive lock and flushes (query thread only).
   void flushPending();
+  /// Grows the map's storage ahead of need (query thread only), so that the reallocation happens
+  /// here rather than in the image callback.
+  void reserveAhead();
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 
@@ -88,6 +91,7 @@ class PlaceRecognitionNode {
   std::shared_mutex map_mutex_;
   ReferenceMap map_;
   std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
+  int reserved_frames_ = 0;         // capacity requested by reserveAhead()
 
   // Keyframes waiting for the map lock, and the keyframe policy. Both under pending_mutex_, which is
   // only ever held for a few instructions.
@@ -95,6 +99,9 @@ class PlaceRecognitionNode {
   std::vector<PendingFrame> pending_;
   KeyframePolicy keyframe_policy_;
   std::string camera_frame_id_;
+  double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
+  std::uint64_t frames_timed_ = 0;
+  double frame_time_max_ms_ = 0.0;    // since the last ~map_info
 
   std::atomic<std::uint64_t> frames_received_{0};
   std::atomic<std::uint64_t> frames_skipped_{0};
