@@ -44,7 +44,7 @@ int main(int argc, char** argv) {
   try {
     params = mrs_vpr::node::loadParameters(private_nh);
   } catch (const std::exception& error) {
-    ROS_FATAL("mrs_vpr: invalid parameter: %s", error.what());
+    ROS_FATAL("mrs_vpr: invalid parameters, not starting: %s", error.what());
     return 2;
   }
   for (const auto& name : mrs_vpr::node::unknownParameters(private_nh)) {

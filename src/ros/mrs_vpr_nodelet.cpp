@@ -19,7 +19,7 @@ class MrsVprNodelet : public nodelet::Nodelet {
       params = node::loadParameters(private_nh);
     } catch (const std::exception& error) {
       // A nodelet cannot exit its manager; it stays inert and says why.
-      NODELET_FATAL("invalid parameter: %s", error.what());
+      NODELET_FATAL("invalid parameters, not starting: %s", error.what());
       return;
     }
     for (const auto& name : node::unknownParameters(private_nh)) {

@@ -168,22 +168,11 @@ void require(bool condition, const std::string& name, const std::string& range, 
   }
 }
 
-/// Runs one group's validate(), naming the group in the message.
-template <typename Group>
-void validateGroup(const Group& group, const std::string& prefix) {
-  try {
-    group.validate();
-  } catch (const std::invalid_argument& error) {
-    throw std::invalid_argument("~" + prefix + "/: " + error.what());
-  }
-}
-
 }  // namespace
 
 void NodeParameters::validate() const {
-  validateGroup(core.descriptor, "descriptor");
-  validateGroup(core.sequence, "sequence");
-  validateGroup(core.mrs, "mrs");
+  // The core's messages already name the parameter as group/name with its range.
+  core.validate();
   require(min_frame_interval >= 0.0, "min_frame_interval", ">= 0", format(min_frame_interval));
   require(frame_stride >= 1 && frame_stride <= 10000, "frame_stride", "in 1..10000", format(frame_stride));
   require(max_frames == 0 || max_frames >= 2, "max_frames", "0 (unbounded) or >= 2", format(max_frames));

@@ -36,8 +36,8 @@ TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
   params = NodeParameters{};
   params.core.descriptor.image_width = 2;
   const std::string core = errorOf(params);
-  EXPECT_EQ(core.rfind("~descriptor/", 0), 0U) << core;
-  EXPECT_NE(core.find("image_width"), std::string::npos) << core;
+  EXPECT_NE(core.find("descriptor/image_width"), std::string::npos) << core;
+  EXPECT_NE(core.find("4"), std::string::npos) << core;  // the range
 }
 
 TEST(NodeParameters, AutoQueryFramesDefaultsToSequenceLength) {

@@ -310,7 +310,7 @@ int run(const std::string& command, std::string& output) {
 TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
   std::string output;
   EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_width _descriptor/image_width:=2", output), 0);
-  EXPECT_NE(output.find("image_width"), std::string::npos) << output;
+  EXPECT_NE(output.find("descriptor/image_width"), std::string::npos) << output;
 
   output.clear();
   EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_tau _mrs/tau:=fast", output), 0);
