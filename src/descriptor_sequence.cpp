@@ -1,7 +1,10 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+
+#include "mrs_vpr/temporal_pooling.hpp"
 
 namespace mrs_vpr {
 
@@ -10,7 +13,27 @@ SequenceView SequenceView::slice(int begin, int end) const {
     throw std::out_of_range("frames [" + std::to_string(begin) + ", " + std::to_string(end) +
                             ") are outside a sequence of " + std::to_string(count) + " frames");
   }
-  return {frame(begin), end - begin, descriptor_size};
+  SequenceView sliced{frame(begin), end - begin, descriptor_size, step};
+  if (begin == 0) sliced.pooled = pooled;
+  return sliced;
+}
+
+SequenceView SequenceView::pooledCells(int stride, int pixel_pooling) const {
+  if (pooled == nullptr || pixel_pooling != pooled->pixel_pooling || step != 1 || count == 0) return {};
+  for (std::size_t level = 0; level < pooled->levels.size(); ++level) {
+    if (stride == (2 << level)) {
+      return {pooled->levels[level].data(), (count - 1) / stride + 1, descriptor_size / pixel_pooling, 1};
+    }
+  }
+  return {};
+}
+
+SequenceView SequenceView::subsample(int first, int stride) const {
+  if (first < 0 || stride < 1 || (count > 0 && first >= count)) {
+    throw std::out_of_range("cannot subsample a sequence of " + std::to_string(count) + " frames from frame " +
+                            std::to_string(first) + " with stride " + std::to_string(stride));
+  }
+  return {frame(first), count == 0 ? 0 : (count - first - 1) / stride + 1, descriptor_size, step * stride};
 }
 
 DescriptorSequence::DescriptorSequence(int descriptor_size) : descriptor_size_(descriptor_size) {
@@ -29,6 +52,34 @@ void DescriptorSequence::append(const cv::Mat& descriptor, double stamp) {
   }
   data_.insert(data_.end(), descriptor.data, descriptor.data + descriptor_size_);
   stamps_.push_back(stamp);
+  appendPooledCells(size() - 1);
+}
+
+void DescriptorSequence::appendPooledCells(int last) {
+  const std::size_t cell_size = static_cast<std::size_t>(descriptor_size_ / pooled_.pixel_pooling);
+  for (std::size_t level = 0; level < pooled_.levels.size(); ++level) {
+    const int stride = 2 << level;
+    if (last % stride != 0) continue;
+    std::vector<std::uint8_t>& cells = pooled_.levels[level];
+    cells.resize(cells.size() + cell_size);
+    poolCell(view(), last, stride, pooled_.pixel_pooling, cells.data() + cells.size() - cell_size);
+  }
+}
+
+void DescriptorSequence::keepPooledCells(int levels, int pixel_pooling) {
+  if (pixel_pooling < 1 || descriptor_size_ % pixel_pooling != 0) {
+    throw std::invalid_argument("pixel pooling " + std::to_string(pixel_pooling) +
+                                " does not divide the descriptor size " + std::to_string(descriptor_size_));
+  }
+  pooled_.pixel_pooling = pixel_pooling;
+  pooled_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
+  for (int frame = 0; frame < size(); ++frame) appendPooledCells(frame);
+}
+
+SequenceView DescriptorSequence::view() const {
+  SequenceView whole{data_.data(), size(), descriptor_size_, 1};
+  if (!pooled_.levels.empty()) whole.pooled = &pooled_;
+  return whole;
 }
 
 void DescriptorSequence::reserve(int frames) {
@@ -39,6 +90,7 @@ void DescriptorSequence::reserve(int frames) {
 void DescriptorSequence::clear() {
   data_.clear();
   stamps_.clear();
+  for (std::vector<std::uint8_t>& cells : pooled_.levels) cells.clear();
 }
 
 const std::uint8_t* DescriptorSequence::descriptor(int index) const {
@@ -50,7 +102,9 @@ const std::uint8_t* DescriptorSequence::descriptor(int index) const {
 }
 
 std::size_t DescriptorSequence::memoryBytes() const {
-  return data_.capacity() + stamps_.capacity() * sizeof(double);
+  std::size_t bytes = data_.capacity() + stamps_.capacity() * sizeof(double);
+  for (const std::vector<std::uint8_t>& cells : pooled_.levels) bytes += cells.capacity();
+  return bytes;
 }
 
 }  // namespace mrs_vpr

@@ -1,6 +1,8 @@
 #include "mrs_vpr/lazy_difference_matrix.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
@@ -8,52 +10,72 @@
 namespace mrs_vpr {
 namespace {
 
-std::uint64_t key(int row, int column) {
-  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(row)) << 32U) |
-         static_cast<std::uint32_t>(column);
-}
+// Requests closer than this merge into one segment: filling a small gap is cheaper than bookkeeping.
+constexpr int kMergeGap = 16;
 
 }  // namespace
 
-LazyDifferenceMatrix::LazyDifferenceMatrix(SequenceView query, SequenceView reference, int contrast_window)
-    : query_(query), reference_(reference), contrast_window_(contrast_window) {
-  setLevel(1, query.count - 1);
-}
+LazyDifferenceMatrix::LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride,
+                                           int pixel_pooling, int contrast_window)
+    : query_(query), reference_(reference, stride, pixel_pooling), contrast_window_(contrast_window),
+      segments_(static_cast<std::size_t>(query.count)) {}
 
-void LazyDifferenceMatrix::setLevel(int stride, int anchor) {
-  stride_ = stride;
-  anchor_ = anchor;
-  grid_size_ = (reference_.count + stride - 1) / stride;
-  enhanced_.clear();
-}
-
-float LazyDifferenceMatrix::raw(int test_frame, int reference_frame) {
-  const auto [it, inserted] = raw_.try_emplace(key(test_frame, reference_frame), 0.0F);
-  if (inserted) {
-    it->second = descriptorDifference(query_.frame(test_frame), reference_.frame(reference_frame),
-                                      query_.descriptor_size);
-    ++comparisons_;
+const float* LazyDifferenceMatrix::rawRow(int row, int begin, int end) {
+  std::vector<Segment>& segments = segments_[static_cast<std::size_t>(row)];
+  for (const Segment& segment : segments) {
+    if (segment.begin <= begin && segment.end() >= end) return segment.values.data() + (begin - segment.begin);
   }
-  return it->second;
+  // Merge the request with every segment within reach into one new segment.
+  Segment merged;
+  int merged_begin = begin;
+  int merged_end = end;
+  for (const Segment& segment : segments) {
+    if (segment.begin <= end + kMergeGap && segment.end() + kMergeGap >= begin) {
+      merged_begin = std::min(merged_begin, segment.begin);
+      merged_end = std::max(merged_end, segment.end());
+    }
+  }
+  merged.begin = merged_begin;
+  merged.values.assign(static_cast<std::size_t>(merged_end - merged_begin), std::numeric_limits<float>::quiet_NaN());
+  std::vector<Segment> kept;
+  for (Segment& segment : segments) {
+    if (segment.begin >= merged_begin && segment.end() <= merged_end) {
+      std::copy(segment.values.begin(), segment.values.end(), merged.values.begin() + (segment.begin - merged_begin));
+    } else {
+      kept.push_back(std::move(segment));
+    }
+  }
+  const std::uint8_t* test_frame = query_.frame(row);
+  for (int column = merged_begin; column < merged_end; ++column) {
+    float& value = merged.values[static_cast<std::size_t>(column - merged_begin)];
+    if (std::isnan(value)) {
+      value = descriptorDifference(test_frame, reference_.cell(column), query_.descriptor_size);
+      ++comparisons_;
+    }
+  }
+  kept.push_back(std::move(merged));
+  segments.swap(kept);
+  const Segment& result = segments.back();
+  return result.values.data() + (begin - result.begin);
 }
 
-float LazyDifferenceMatrix::enhanced(int k, int grid_index) {
-  const auto [it, inserted] = enhanced_.try_emplace(key(k, grid_index), 0.0F);
-  if (!inserted) return it->second;
-  const int test_frame = anchor_ + k * stride_;
+void LazyDifferenceMatrix::enhancedRow(int row, int begin, int end, float* out) {
   if (contrast_window_ == 0) {
-    it->second = raw(test_frame, grid_index * stride_);
-    return it->second;
+    const float* raw = rawRow(row, begin, end);
+    std::copy(raw, raw + (end - begin), out);
+    return;
   }
-  // The same window as enhanceContrast, on this level's grid.
+  // The same clipped window as enhanceContrast.
   const int half = contrast_window_ / 2;
-  const int begin = std::max(0, grid_index - half);
-  const int end = std::min(grid_size_, grid_index + half + 1);
-  window_.clear();
-  for (int j = begin; j < end; ++j) window_.push_back(raw(test_frame, j * stride_));
-  const float centre = window_[static_cast<std::size_t>(grid_index - begin)];
-  it->second = enhanceCell(centre, window_.data(), static_cast<int>(window_.size()), contrast_window_);
-  return it->second;
+  const int raw_begin = std::max(0, begin - half);
+  const int raw_end = std::min(columns(), end + half);
+  const float* raw = rawRow(row, raw_begin, raw_end);
+  for (int column = begin; column < end; ++column) {
+    const int low = std::max(0, column - half);
+    const int high = std::min(columns(), column + half + 1);
+    out[column - begin] =
+        enhanceCell(raw[column - raw_begin], raw + (low - raw_begin), high - low, contrast_window_);
+  }
 }
 
 }  // namespace mrs_vpr

@@ -2,85 +2,185 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "mrs_vpr/contrast_enhancement.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/lazy_difference_matrix.hpp"
+#include "mrs_vpr/particle_evaluation.hpp"
 #include "mrs_vpr/particle_filter.hpp"
+#include "mrs_vpr/sampling_level.hpp"
+#include "mrs_vpr/temporal_pooling.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace {
 
-constexpr float kNoCost = std::numeric_limits<float>::infinity();
-
-/// One sampling level: stride, the test frames it sees (k_min..k_max around the anchor), and the
-/// end indices whose trajectories can fit in its reference grid.
-struct Level {
-  int stride = 1;
-  int k_min = 0;
-  int k_max = 0;
-  int lowest_end = 0;
-  int highest_end = 0;
-};
-
-Level makeLevel(int stride, const SequenceRows& rows, int grid_size, double velocity_min) {
-  Level level;
-  level.stride = stride;
-  level.k_min = -((rows.anchor - rows.first) / stride);
-  level.k_max = (rows.last - rows.anchor) / stride;
-  // The slowest velocity reaches least far, so it bounds where any trajectory can end.
-  level.lowest_end = static_cast<int>(std::lround(velocity_min * -level.k_min));
-  level.highest_end = grid_size - 1 - static_cast<int>(std::lround(velocity_min * level.k_max));
-  return level;
+/// The test sequence's cells at a level, row k - k_min ending at frame anchor + k * stride.
+DescriptorSequence levelQueryCells(SequenceView query, const SequenceRows& rows, const SamplingLevel& level,
+                                   int pixel_pooling) {
+  return poolSequence(query, rows.anchor + level.k_min * level.stride, level.stride, level.rows(), pixel_pooling);
 }
 
-/// The best end index within `radius` of `centre` and its cost (mean enhanced difference along the
-/// best straight trajectory): Algorithm 2 of the paper.
-struct Evaluation {
-  int index = -1;
-  float cost = kNoCost;
-};
+/// The reference grid's cells at a level: the ones its store keeps when it can, else pooled now
+/// into `storage` (one pass over the reference).
+SequenceView levelReferenceCells(SequenceView reference, const SamplingLevel& level, int pixel_pooling,
+                                 DescriptorSequence& storage) {
+  const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
+  if (kept.count == level.grid_size) return kept;
+  storage = poolSequence(reference, 0, level.stride, level.grid_size, pixel_pooling);
+  return storage.view();
+}
 
-class ParticleEvaluator {
+/// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
+class CoarseToFineSearch {
  public:
-  ParticleEvaluator(LazyDifferenceMatrix& differences, const std::vector<double>& velocities)
-      : differences_(differences), velocities_(velocities) {}
+  CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
+                     const SequenceParams& sequence, const MrsParams& mrs)
+      : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
+        velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
-  /// Cost of the trajectory ending at `end` with `velocity`; kNoCost when it leaves the grid.
-  float trajectoryCost(const Level& level, int end, double velocity) {
-    const int oldest = end + static_cast<int>(std::lround(velocity * level.k_min));
-    const int newest = end + static_cast<int>(std::lround(velocity * level.k_max));
-    if (oldest < 0 || newest >= differences_.gridSize()) return kNoCost;
-    float sum = 0.0F;
-    for (int k = level.k_min; k <= level.k_max; ++k) {
-      sum += differences_.enhanced(k, end + static_cast<int>(std::lround(velocity * k)));
+  Match run() {
+    level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
+    if (level_.empty()) return result_;  // No trajectory fits in the reference.
+    scoreCoarsestLevel();
+    spreadParticles();
+    for (int level_number = 0; level_number <= levels_ && !particles_.empty(); ++level_number) {
+      iterateLevel(level_number == 0, level_number == levels_);
+      if (level_number < levels_) descend();
     }
-    return sum / static_cast<float>(level.k_max - level.k_min + 1);
-  }
-
-  float endCost(const Level& level, int end) {
-    float best = kNoCost;
-    for (double velocity : velocities_) best = std::min(best, trajectoryCost(level, end, velocity));
-    return best;
-  }
-
-  Evaluation evaluate(const Level& level, int centre, int radius, std::vector<float>* costs_by_end) {
-    Evaluation best;
-    const int begin = std::max(level.lowest_end, centre - radius);
-    const int end = std::min(level.highest_end, centre + radius);
-    for (int index = begin; index <= end; ++index) {
-      const float cost = endCost(level, index);
-      if (costs_by_end != nullptr) (*costs_by_end)[static_cast<std::size_t>(index)] = cost;
-      if (cost < best.cost) best = {index, cost};
-    }
-    return best;
+    return finish();
   }
 
  private:
-  LazyDifferenceMatrix& differences_;
-  const std::vector<double>& velocities_;
+  /// The coarsest level. Uniformly spread particles with their +-Id_shift windows, velocity fans
+  /// and contrast windows would touch nearly every cell of it anyway, so its matrix is computed
+  /// densely (vectorised, on pooled cells) and every end is scored once; particles then read the
+  /// table. The table also gives the runner-up for the confidence.
+  void scoreCoarsestLevel() {
+    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
+    DescriptorSequence storage(reference_.descriptor_size);
+    const cv::Mat matrix = enhanceContrast(
+        computeDifferenceMatrix(levelQueryCells(query_, rows_, level_, pixel_pooling).view(),
+                                levelReferenceCells(reference_, level_, pixel_pooling, storage)),
+        sequence_.contrast_window);
+    result_.comparisons += static_cast<long long>(matrix.total()) / pixel_pooling;
+    coarse_costs_ = costsByAnchor(matrix, level_.sequenceRows(), velocities_);
+  }
+
+  /// P_init = (M / N) * tau particles, uniformly over the ends that fit.
+  void spreadParticles() {
+    const int count = std::max(mrs_.min_particles,
+                               static_cast<int>(std::lround(static_cast<double>(reference_.count) / query_.count *
+                                                            mrs_.tau)));
+    const int span = level_.highest_end - level_.lowest_end + 1;
+    particles_.resize(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) {
+      Particle& particle = particles_[static_cast<std::size_t>(i)];
+      particle.index = level_.lowest_end + static_cast<int>((i + 0.5) * span / count);
+      particle.weight = 1.0 / count;
+    }
+    // The first look gives each particle its share of the map, so that together they see every
+    // coarse end once; later looks search +-Id_shift around where a particle has moved to.
+    first_radius_ = std::max(mrs_.index_shift, (span + count) / (2 * count));
+  }
+
+  /// Evaluate, weight, resample until the coverage shrinks (the paper's loop) or nothing changes.
+  void iterateLevel(bool coarsest, bool finest) {
+    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
+    const DescriptorSequence query_cells =
+        coarsest ? DescriptorSequence(1) : levelQueryCells(query_, rows_, level_, pixel_pooling);
+    // Finer levels compare ends a few frames apart, whose local contrast statistics are nearly the
+    // same: enhancement would not change their order but would cost window/2 extra cells on each
+    // side of every cell. Raw differences are used there (same success on Nordland, measured).
+    LazyDifferenceMatrix matrix(coarsest ? SequenceView{} : query_cells.view(), reference_, level_.stride,
+                                pixel_pooling, 0);
+    // A level of L rows tells velocities apart to about 1 / L (one cell of drift over the
+    // sequence). A finer level searches +-2 / L of the previous level's velocity, and at least two
+    // steps of the velocity grid either side, so the fan of trajectories narrows level by level.
+    const double velocity_spread = std::max(2.0 * sequence_.velocity_step, 2.0 / previous_rows_);
+
+    for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
+      const int coverage_before = coverage(particles_, mrs_.index_shift);
+      bool moved = false;
+      for (Particle& particle : particles_) {
+        const Evaluation evaluation =
+            coarsest ? bestInWindow(coarse_costs_, particle.index, iteration == 0 ? first_radius_ : mrs_.index_shift,
+                                    level_)
+                     : evaluateTrajectories(matrix, level_, particle.index, mrs_.index_shift,
+                                            velocitiesNear(velocities_, particle.velocity, velocity_spread));
+        particle.cost = evaluation.cost;
+        if (evaluation.index < 0) continue;
+        moved = moved || evaluation.index != particle.index;
+        particle.index = evaluation.index;
+        particle.velocity = evaluation.velocity;
+        if (finest && evaluation.cost < best_.cost) best_ = evaluation;
+      }
+      // Particles stranded where no trajectory fits carry no weight.
+      particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
+                                      [](const Particle& p) { return !std::isfinite(p.cost); }),
+                       particles_.end());
+      if (particles_.empty()) break;
+      updateWeights(particles_);
+      bool resampled = false;
+      if (effectiveSampleSize(particles_) < mrs_.resample_threshold * static_cast<double>(particles_.size())) {
+        resampleSystematic(particles_, 2 * mrs_.index_shift, level_.lowest_end, level_.highest_end, rng_);
+        resampled = true;
+      }
+      // The paper's rule: stay on a level until the map coverage shrinks below the threshold.
+      if (coverage(particles_, mrs_.index_shift) < mrs_.coverage_threshold * coverage_before) break;
+      if (!moved && !resampled) break;  // Converged: another pass would evaluate the same cells.
+    }
+    result_.comparisons += matrix.comparisons() / pixel_pooling;
+    previous_rows_ = level_.rows();
+  }
+
+  /// Next level: half the stride, indices double, fewer particles survive (N_eff of them, at most
+  /// half, at least min_particles).
+  void descend() {
+    const int half = std::max(mrs_.min_particles, (static_cast<int>(particles_.size()) + 1) / 2);
+    const int survivors =
+        std::clamp(static_cast<int>(std::ceil(effectiveSampleSize(particles_))), mrs_.min_particles, half);
+    keepHeaviest(particles_, survivors);
+    level_ = SamplingLevel::make(level_.stride / 2, rows_, reference_.count, velocities_.front());
+    for (Particle& particle : particles_) {
+      particle.index = std::clamp(particle.index * 2, level_.lowest_end, level_.highest_end);
+    }
+  }
+
+  /// The best end seen at full resolution. Its confidence is OpenSeqSLAM's best / runner-up ratio,
+  /// read on the coarse table, which covers the whole map.
+  Match finish() {
+    if (best_.index < 0) return result_;
+    result_.reference_index = best_.index;
+    result_.sequence_difference = best_.cost;
+    const int coarse_stride = 1 << levels_;
+    const Match coarse = scoreAround(coarse_costs_.cost, best_.index / coarse_stride,
+                                     std::max(2, sequence_.match_exclusion / coarse_stride));
+    result_.score = coarse.score;
+    result_.confidence = coarse.confidence;
+    return result_;
+  }
+
+  SequenceView reference_;
+  SequenceView query_;
+  SequenceRows rows_;
+  int levels_;
+  const SequenceParams& sequence_;
+  const MrsParams& mrs_;
+  std::vector<double> velocities_;
+  std::mt19937_64 rng_;
+
+  SamplingLevel level_;
+  AnchorCosts coarse_costs_;
+  std::vector<Particle> particles_;
+  int first_radius_ = 0;
+  int previous_rows_ = 1;
+  Evaluation best_;
+  Match result_;
 };
 
 }  // namespace
@@ -98,100 +198,15 @@ int MrsSearch::levelsFor(int query_length) const {
 
 Match MrsSearch::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
+  if (reference.descriptor_size % mrs_.pixel_pooling != 0) {
+    throw std::invalid_argument("mrs/pixel_pooling " + std::to_string(mrs_.pixel_pooling) +
+                                " does not divide the descriptor size " + std::to_string(reference.descriptor_size));
+  }
   SequenceRows rows;
   rows.first = 0;
   rows.last = query.count - 1;
   rows.anchor = sequence_.alignment == WindowAlignment::kCausal ? rows.last : rows.last / 2;
-
-  const int levels = levelsFor(query.count);
-  const std::vector<double> speeds = velocities(sequence_);
-  LazyDifferenceMatrix differences(query, reference, sequence_.contrast_window);
-  ParticleEvaluator evaluator(differences, speeds);
-  std::mt19937_64 rng(mrs_.seed);
-
-  // P_init = (M / N) * tau particles, spread uniformly over the coarsest grid.
-  const int coarsest_stride = 1 << levels;
-  differences.setLevel(coarsest_stride, rows.anchor);
-  Level level = makeLevel(coarsest_stride, rows, differences.gridSize(), speeds.front());
-  if (level.lowest_end > level.highest_end) {
-    // The reference is too short for the coarse level; nothing to search.
-    Match none;
-    none.comparisons = differences.comparisons();
-    return none;
-  }
-  const int particle_count = std::max(
-      mrs_.min_particles,
-      static_cast<int>(std::lround(static_cast<double>(reference.count) / query.count * mrs_.tau)));
-  const int span = level.highest_end - level.lowest_end + 1;
-  std::vector<Particle> particles(static_cast<std::size_t>(particle_count));
-  for (int i = 0; i < particle_count; ++i) {
-    particles[static_cast<std::size_t>(i)].index =
-        level.lowest_end + static_cast<int>((i + 0.5) * span / particle_count);
-    particles[static_cast<std::size_t>(i)].weight = 1.0 / particle_count;
-  }
-
-  // Every cost seen on the coarsest grid, for the runner-up of the confidence.
-  std::vector<float> coarse_costs(static_cast<std::size_t>(differences.gridSize()), kNoCost);
-  Evaluation best_final;
-
-  for (int level_number = 0; level_number <= levels; ++level_number) {
-    const bool coarsest = level_number == 0;
-    const bool finest = level_number == levels;
-    for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
-      const int coverage_before = coverage(particles, mrs_.index_shift);
-      bool moved = false;
-      for (Particle& particle : particles) {
-        const Evaluation evaluation =
-            evaluator.evaluate(level, particle.index, mrs_.index_shift, coarsest ? &coarse_costs : nullptr);
-        if (evaluation.index < 0) {
-          particle.cost = kNoCost;
-          continue;
-        }
-        moved = moved || evaluation.index != particle.index;
-        particle.index = evaluation.index;
-        particle.cost = evaluation.cost;
-        if (finest && evaluation.cost < best_final.cost) best_final = evaluation;
-      }
-      // Particles stranded where no trajectory fits carry no weight.
-      particles.erase(std::remove_if(particles.begin(), particles.end(),
-                                     [](const Particle& p) { return !std::isfinite(p.cost); }),
-                      particles.end());
-      if (particles.empty()) break;
-      updateWeights(particles);
-      bool resampled = false;
-      if (effectiveSampleSize(particles) < mrs_.resample_threshold * static_cast<double>(particles.size())) {
-        resampleSystematic(particles, 2 * mrs_.index_shift, level.lowest_end, level.highest_end, rng);
-        resampled = true;
-      }
-      // Paper: stay on a level while the map coverage shrinks by less than the threshold.
-      const int coverage_after = coverage(particles, mrs_.index_shift);
-      if (coverage_after < mrs_.coverage_threshold * coverage_before) break;
-      if (!moved && !resampled) break;  // Converged: another pass would evaluate the same cells.
-    }
-    if (particles.empty() || finest) break;
-
-    // Next level: half the stride, indices double, fewer particles survive.
-    const int stride = level.stride / 2;
-    differences.setLevel(stride, rows.anchor);
-    level = makeLevel(stride, rows, differences.gridSize(), speeds.front());
-    keepHeaviest(particles, std::max(mrs_.min_particles, (static_cast<int>(particles.size()) + 1) / 2));
-    for (Particle& particle : particles) {
-      particle.index = std::clamp(particle.index * 2, level.lowest_end, level.highest_end);
-    }
-  }
-
-  Match match;
-  match.comparisons = differences.comparisons();
-  if (best_final.index < 0) return match;
-  match.reference_index = best_final.index;
-  match.sequence_difference = best_final.cost;
-
-  // Confidence: OpenSeqSLAM's best / runner-up ratio, on the coarsest grid where the particles
-  // started spread over the whole map.
-  const Match coarse = scoreFromCosts(coarse_costs, std::max(2, sequence_.match_exclusion / coarsest_stride));
-  match.score = coarse.score;
-  match.confidence = coarse.confidence;
-  return match;
+  return CoarseToFineSearch(reference, query, rows, levelsFor(query.count), sequence_, mrs_).run();
 }
 
 }  // namespace mrs_vpr

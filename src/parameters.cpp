@@ -55,6 +55,7 @@ void MrsParams::validate() const {
   requireInRange("mrs/levels", levels, 0, 8, "[0, 8]");
   requireInRange("mrs/min_coarse_frames", min_coarse_frames, 2, 1000, "[2, 1000]");
   requireInRange("mrs/tau", tau, 1.0, 16.0, "[1, 16]");
+  requireInRange("mrs/pixel_pooling", pixel_pooling, 1, 64, "[1, 64]");
   requireInRange("mrs/index_shift", index_shift, 0, 1000, "[0, 1000]");
   requireOpen("mrs/coverage_threshold", coverage_threshold, 0.0, 1.0, "(0, 1)");
   requireInRange("mrs/max_iterations", max_iterations, 1, 1000, "[1, 1000]");
@@ -66,6 +67,13 @@ void Parameters::validate() const {
   descriptor.validate();
   sequence.validate();
   mrs.validate();
+  const int descriptor_size = descriptor.image_width * descriptor.image_height;
+  if (descriptor_size % mrs.pixel_pooling != 0) {
+    std::ostringstream message;
+    message << "parameter 'mrs/pixel_pooling' = " << mrs.pixel_pooling
+            << " must divide the descriptor size image_width * image_height = " << descriptor_size;
+    throw std::invalid_argument(message.str());
+  }
 }
 
 WindowAlignment parseWindowAlignment(const std::string& text) {

@@ -84,7 +84,9 @@ int coverage(const std::vector<Particle>& particles, int radius) {
 
 void keepHeaviest(std::vector<Particle>& particles, int count) {
   std::sort(particles.begin(), particles.end(), [](const Particle& a, const Particle& b) {
-    return a.weight != b.weight ? a.weight > b.weight : a.index < b.index;
+    // After a resampling all weights are equal: the last evaluation's cost breaks the tie.
+    if (a.weight != b.weight) return a.weight > b.weight;
+    return a.cost != b.cost ? a.cost < b.cost : a.index < b.index;
   });
   std::vector<Particle> kept;
   for (const Particle& particle : particles) {

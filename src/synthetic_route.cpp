@@ -101,9 +101,10 @@ SyntheticRoute generateSyntheticRoute(const SyntheticRouteParams& params) {
   const cv::Mat season = makeWorld(world_size, rng);
   cv::Mat changed_world;
   cv::addWeighted(world, 0.75, season, 0.25, 0.0, changed_world);
-  // Speed drifts slowly (a vehicle, not a jittering hand) so that a straight trajectory fits a
-  // sequence of a few hundred frames, as SeqSLAM and MRS-VPR assume; light changes faster.
-  const SmoothSignal speed(rng, 1000.0, 4000.0);
+  // Speed drifts slowly (a vehicle, not a jittering hand): over 300 frames it changes by less than
+  // 0.1, so that a straight trajectory fits a long test sequence to within a frame or two, as SeqSLAM
+  // and MRS-VPR assume. Light changes much faster.
+  const SmoothSignal speed(rng, 5000.0, 15000.0);
   const SmoothSignal light(rng, 40.0, 400.0);
   cv::RNG pixel_noise(rng());
   std::uniform_real_distribution<double> jitter(-2.0, 2.0);

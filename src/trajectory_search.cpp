@@ -31,31 +31,34 @@ SequenceRows sequenceRowsFor(int frame, const SequenceParams& params) {
   return rows;
 }
 
-Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
+Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion) {
   Match match;
   const int columns = static_cast<int>(cost_by_anchor.size());
-  float best = std::numeric_limits<float>::infinity();
-  for (int j = 0; j < columns; ++j) {
-    if (cost_by_anchor[j] < best) {
-      best = cost_by_anchor[j];
-      match.reference_index = j;
-    }
-  }
-  if (match.reference_index < 0) return match;  // No trajectory fits in the reference.
-  float runner_up = std::numeric_limits<float>::infinity();
+  if (winner < 0 || winner >= columns) return match;
   const int half = exclusion / 2;
+  float best = std::numeric_limits<float>::infinity();
+  float runner_up = std::numeric_limits<float>::infinity();
   for (int j = 0; j < columns; ++j) {
-    if (std::abs(j - match.reference_index) > half) runner_up = std::min(runner_up, cost_by_anchor[j]);
+    float& slot = std::abs(j - winner) > half ? runner_up : best;
+    slot = std::min(slot, cost_by_anchor[j]);
   }
+  match.reference_index = winner;
   match.sequence_difference = best;
   // Without a distinct runner-up there is nothing to be sure about: score 1, confidence 0.
-  match.score = (std::isfinite(runner_up) && runner_up > 0.0F) ? std::clamp(best / runner_up, 0.0F, 1.0F)
-                                                                : 1.0F;
+  match.score = (std::isfinite(best) && std::isfinite(runner_up) && runner_up > 0.0F)
+                    ? std::clamp(best / runner_up, 0.0F, 1.0F)
+                    : 1.0F;
   match.confidence = 1.0F - match.score;
   return match;
 }
 
-Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
+Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
+  const auto best = std::min_element(cost_by_anchor.begin(), cost_by_anchor.end());
+  if (best == cost_by_anchor.end() || !std::isfinite(*best)) return Match{};  // No trajectory fits.
+  return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion);
+}
+
+AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities) {
   CV_Assert(enhanced.type() == CV_32FC1);
   if (rows.first < 0 || rows.last >= enhanced.rows || rows.first > rows.last || rows.anchor < rows.first ||
       rows.anchor > rows.last) {
@@ -63,10 +66,12 @@ Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, cons
   }
   const int columns = enhanced.cols;
   const int length = rows.last - rows.first + 1;
-  std::vector<float> cost_by_anchor(columns, std::numeric_limits<float>::infinity());
+  AnchorCosts costs;
+  costs.cost.assign(columns, std::numeric_limits<float>::infinity());
+  costs.velocity.assign(columns, 0.0F);
   std::vector<float> sum(columns);
   std::vector<int> offsets(length);
-  for (double velocity : velocities(params)) {
+  for (double velocity : velocities) {
     for (int t = rows.first; t <= rows.last; ++t) {
       offsets[t - rows.first] = static_cast<int>(std::lround(velocity * (t - rows.anchor)));
     }
@@ -80,10 +85,20 @@ Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, cons
       const float* row = enhanced.ptr<float>(t) + offsets[t - rows.first];
       for (int j = begin; j < end; ++j) sum[j] += row[j];
     }
-    for (int j = begin; j < end; ++j) cost_by_anchor[j] = std::min(cost_by_anchor[j], sum[j] / length);
+    for (int j = begin; j < end; ++j) {
+      const float mean = sum[j] / static_cast<float>(length);
+      if (mean < costs.cost[j]) {
+        costs.cost[j] = mean;
+        costs.velocity[j] = static_cast<float>(velocity);
+      }
+    }
   }
-  Match match = scoreFromCosts(cost_by_anchor, params.match_exclusion);
-  match.comparisons = static_cast<long long>(length) * columns;
+  return costs;
+}
+
+Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
+  Match match = scoreFromCosts(costsByAnchor(enhanced, rows, velocities(params)).cost, params.match_exclusion);
+  match.comparisons = static_cast<long long>(rows.last - rows.first + 1) * enhanced.cols;
   return match;
 }
 

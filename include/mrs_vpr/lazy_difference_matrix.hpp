@@ -1,47 +1,48 @@
 #pragma once
 
-#include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/temporal_pooling.hpp"
 
 namespace mrs_vpr {
 
 /**
- * Contrast-enhanced differences between a test sequence and a reference, computed only where a
- * search looks and remembered for the rest of the search. A sampling level of stride s sees the test
- * frames `anchor + k * s` and the reference grid `J * s`; the raw differences are shared by all levels
- * (a coarse grid point is also a fine one), the enhanced values belong to a level.
+ * Contrast-enhanced difference matrix between a test sequence (rows) and a reference (columns) that
+ * computes only the cells a search asks for and remembers them. Each row keeps a few contiguous
+ * segments of raw differences, so that nearby requests (particles of one cluster, neighbouring end
+ * indices) share work and the contrast window sees the same neighbours as enhanceContrast.
  */
 class LazyDifferenceMatrix {
  public:
-  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int contrast_window);
+  /// Rows are the `query` descriptors; column J is the reference cell pooled over `stride` frames
+  /// ending at frame J * stride. contrast_window as SequenceParams::contrast_window.
+  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, int pixel_pooling, int contrast_window);
 
-  /// Switches to a level: test frame `anchor + k * stride`, reference grid J * stride.
-  void setLevel(int stride, int anchor);
+  int rows() const { return query_.count; }
+  int columns() const { return reference_.size(); }
 
-  /// Enhanced difference between test frame anchor + k * stride and reference frame J * stride.
-  float enhanced(int k, int grid_index);
+  /// Writes the enhanced differences of `row` for columns [begin, end) (inside the matrix) to `out`.
+  void enhancedRow(int row, int begin, int end, float* out);
 
-  /// Reference frames on the current level's grid.
-  int gridSize() const { return grid_size_; }
   /// Raw descriptor comparisons made so far.
   long long comparisons() const { return comparisons_; }
 
  private:
-  float raw(int test_frame, int reference_frame);
+  struct Segment {
+    int begin = 0;
+    std::vector<float> values;
+    int end() const { return begin + static_cast<int>(values.size()); }
+  };
+
+  /// Raw differences of `row` over [begin, end), computed where missing; valid until the next call.
+  const float* rawRow(int row, int begin, int end);
 
   SequenceView query_;
-  SequenceView reference_;
+  PooledReference reference_;
   int contrast_window_;
-  int stride_ = 1;
-  int anchor_ = 0;
-  int grid_size_ = 0;
   long long comparisons_ = 0;
-  std::unordered_map<std::uint64_t, float> raw_;
-  std::unordered_map<std::uint64_t, float> enhanced_;
-  std::vector<float> window_;
+  std::vector<std::vector<Segment>> segments_;
 };
 
 }  // namespace mrs_vpr

@@ -37,8 +37,9 @@ struct SequenceParams {
 /// The coarse-to-fine particle search of MRS-VPR. Defaults follow the paper where it gives one.
 struct MrsParams {
   int levels = 3;               ///< l_max: the coarsest stride is 2^levels, 0..8.
-  int min_coarse_frames = 16;   ///< Fewer levels are used when N / 2^levels would drop below this, 2..1000.
+  int min_coarse_frames = 32;   ///< Fewer levels are used when N / 2^levels would drop below this, 2..1000.
   double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau, 1..16.
+  int pixel_pooling = 4;        ///< Levels coarser than full resolution average runs of this many pixels, 1..64.
   int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames, 0..1000.
   double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio, (0, 1).
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none), 1..1000.

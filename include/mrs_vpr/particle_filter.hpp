@@ -12,6 +12,7 @@ struct Particle {
   int index = 0;          ///< End index in level coordinates (reference frame = index * stride).
   double weight = 0.0;    ///< Normalised importance weight.
   float cost = 0.0F;      ///< Best mean difference found at `index` by the last evaluation.
+  float velocity = 1.0F;  ///< Velocity of that best trajectory (reference frames per test frame).
 };
 
 /**
@@ -35,7 +36,7 @@ void resampleSystematic(std::vector<Particle>& particles, int jitter, int low, i
 /// Number of distinct indices covered by the windows [index - radius, index + radius] of the particles.
 int coverage(const std::vector<Particle>& particles, int radius);
 
-/// Keeps the `count` heaviest particles (one per index), renormalised.
+/// Keeps the `count` heaviest particles (one per index; the last cost breaks ties), renormalised.
 void keepHeaviest(std::vector<Particle>& particles, int count);
 
 /// The weights as an Eigen vector.

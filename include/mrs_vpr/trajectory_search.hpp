@@ -22,6 +22,16 @@ struct SequenceRows {
 /// Rows of the sequence that localises query frame `frame`; first < 0 or last >= rows when incomplete.
 SequenceRows sequenceRowsFor(int frame, const SequenceParams& params);
 
+/// For every anchor column: the lowest trajectory cost (infinity when no trajectory fits) and the
+/// velocity that achieved it.
+struct AnchorCosts {
+  std::vector<float> cost;
+  std::vector<float> velocity;
+};
+
+/// Costs of all straight trajectories through `enhanced` (see searchTrajectories), per anchor column.
+AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities);
+
 /**
  * Brute-force straight-trajectory search through an enhanced difference matrix (test frames x
  * reference frames): for every anchor reference column j and velocity v, the trajectory visits
@@ -30,6 +40,10 @@ SequenceRows sequenceRowsFor(int frame, const SequenceParams& params);
  * best / runner-up score (runner-up outside +-match_exclusion/2 of the best).
  */
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
+
+/// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
+/// cost farther away; score = best / runner-up, confidence = 1 - score.
+Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion);
 
 /// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than
 /// exclusion/2 frames away: score = best / runner-up, confidence = 1 - score.
