@@ -85,6 +85,11 @@ SequenceView DescriptorSequence::view() const {
 void DescriptorSequence::reserve(int frames) {
   data_.reserve(static_cast<std::size_t>(frames) * static_cast<std::size_t>(descriptor_size_));
   stamps_.reserve(static_cast<std::size_t>(frames));
+  const std::size_t cell_size = static_cast<std::size_t>(descriptor_size_ / pooled_.pixel_pooling);
+  for (std::size_t level = 0; level < pooled_.levels.size(); ++level) {
+    const std::size_t cells = static_cast<std::size_t>(frames) / (std::size_t{2} << level) + 1;
+    pooled_.levels[level].reserve(cells * cell_size);
+  }
 }
 
 void DescriptorSequence::clear() {

@@ -2,48 +2,68 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace mrs_vpr {
 
-Evaluation bestInWindow(const AnchorCosts& costs, int centre, int radius, const SamplingLevel& level) {
+EndCostTable::EndCostTable(AnchorCosts costs, const SamplingLevel& level)
+    : level_(level), costs_(std::move(costs)), known_(costs_.cost.size(), 1) {}
+
+EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities)
+    : matrix_(&matrix), level_(level), velocities_(std::move(velocities)), known_(level.grid_size, 0) {
+  costs_.cost.assign(static_cast<std::size_t>(level.grid_size), std::numeric_limits<float>::infinity());
+  costs_.velocity.assign(static_cast<std::size_t>(level.grid_size), 1.0F);
+}
+
+Evaluation EndCostTable::bestInWindow(int centre, int radius) {
+  const int first = std::max(level_.lowest_end, centre - radius);
+  const int last = std::min(level_.highest_end, centre + radius);
+  // Compute the unknown ends of the window in contiguous runs.
+  for (int index = first; index <= last;) {
+    if (known_[static_cast<std::size_t>(index)]) {
+      ++index;
+      continue;
+    }
+    int run_end = index;
+    while (run_end + 1 <= last && !known_[static_cast<std::size_t>(run_end + 1)]) ++run_end;
+    computeEnds(index, run_end);
+    index = run_end + 1;
+  }
   Evaluation best;
-  const int begin = std::max(level.lowest_end, centre - radius);
-  const int end = std::min(level.highest_end, centre + radius);
-  for (int index = begin; index <= end; ++index) {
+  for (int index = first; index <= last; ++index) {
     const auto i = static_cast<std::size_t>(index);
-    if (costs.cost[i] < best.cost) best = {index, costs.cost[i], costs.velocity[i]};
+    if (costs_.cost[i] < best.cost) best = {index, costs_.cost[i], costs_.velocity[i]};
   }
   return best;
 }
 
-Evaluation evaluateTrajectories(LazyDifferenceMatrix& matrix, const SamplingLevel& level, int centre, int radius,
-                                const std::vector<double>& velocities) {
-  Evaluation best;
-  const int first_end = std::max(level.lowest_end, centre - radius);
-  const int last_end = std::min(level.highest_end, centre + radius);
-  if (first_end > last_end) return best;
-  std::vector<float> sums(static_cast<std::size_t>(last_end - first_end + 1));
+void EndCostTable::computeEnds(int first, int last) {
+  std::vector<float> sums(static_cast<std::size_t>(last - first + 1));
   std::vector<float> row(sums.size());
-  for (double velocity : velocities) {
+  for (double velocity : velocities_) {
     // Ends whose trajectory at this velocity stays inside the grid.
-    const int begin = std::max(first_end, -static_cast<int>(std::lround(velocity * level.k_min)));
+    const int begin = std::max(first, -static_cast<int>(std::lround(velocity * level_.k_min)));
     const int end =
-        std::min(last_end, level.grid_size - 1 - static_cast<int>(std::lround(velocity * level.k_max)));
+        std::min(last, level_.grid_size - 1 - static_cast<int>(std::lround(velocity * level_.k_max)));
     if (begin > end) continue;
     const auto count = static_cast<std::size_t>(end - begin + 1);
     std::fill(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(count), 0.0F);
-    for (int k = level.k_min; k <= level.k_max; ++k) {
+    for (int k = level_.k_min; k <= level_.k_max; ++k) {
       // Neighbouring ends at one velocity visit neighbouring cells of a row: one contiguous request.
       const int offset = static_cast<int>(std::lround(velocity * k));
-      matrix.enhancedRow(k - level.k_min, begin + offset, end + offset + 1, row.data());
+      matrix_->enhancedRow(k - level_.k_min, begin + offset, end + offset + 1, row.data());
       for (std::size_t e = 0; e < count; ++e) sums[e] += row[e];
     }
     for (std::size_t e = 0; e < count; ++e) {
-      const float cost = sums[e] / static_cast<float>(level.rows());
-      if (cost < best.cost) best = {begin + static_cast<int>(e), cost, static_cast<float>(velocity)};
+      const float cost = sums[e] / static_cast<float>(level_.rows());
+      const auto i = static_cast<std::size_t>(begin) + e;
+      if (cost < costs_.cost[i]) {
+        costs_.cost[i] = cost;
+        costs_.velocity[i] = static_cast<float>(velocity);
+      }
     }
   }
-  return best;
+  std::fill(known_.begin() + first, known_.begin() + last + 1, 1);
 }
 
 std::vector<double> velocitiesNear(const std::vector<double>& all, double centre, double spread) {

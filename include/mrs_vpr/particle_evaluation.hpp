@@ -16,16 +16,33 @@ struct Evaluation {
   float velocity = 1.0F;
 };
 
-/// The best end within `radius` of `centre` in a table of costs already computed for every end.
-Evaluation bestInWindow(const AnchorCosts& costs, int centre, int radius, const SamplingLevel& level);
-
 /**
- * The best end within `radius` of `centre` over the given velocities, computing (through `matrix`)
- * only the cells those trajectories visit. The cost is the mean difference along the trajectory, so
- * costs of levels with different numbers of rows mean the same.
+ * Trajectory costs of the ends of one level (mean difference along the best straight trajectory,
+ * so that levels with different numbers of rows mean the same), each computed at most once: all at
+ * once from a dense table, or on demand through a lazy difference matrix, where particles that
+ * share ends share the work.
  */
-Evaluation evaluateTrajectories(LazyDifferenceMatrix& matrix, const SamplingLevel& level, int centre, int radius,
-                                const std::vector<double>& velocities);
+class EndCostTable {
+ public:
+  /// Every end already scored (the dense coarsest level).
+  EndCostTable(AnchorCosts costs, const SamplingLevel& level);
+  /// Ends scored on demand over `velocities`; `matrix` must outlive the table.
+  EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities);
+
+  /// The best end within `radius` of `centre` (the paper's +-Id_shift window).
+  Evaluation bestInWindow(int centre, int radius);
+  /// Costs of every end; infinity where none was computed or no trajectory fits.
+  const std::vector<float>& costs() const { return costs_.cost; }
+
+ private:
+  void computeEnds(int first, int last);
+
+  LazyDifferenceMatrix* matrix_ = nullptr;
+  SamplingLevel level_;
+  std::vector<double> velocities_;
+  AnchorCosts costs_;
+  std::vector<char> known_;
+};
 
 /// The velocities of `all` within `spread` of `centre`; the nearest one when none is.
 std::vector<double> velocitiesNear(const std::vector<double>& all, double centre, double spread);
