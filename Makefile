@@ -11,7 +11,7 @@ SETUP := source $(WS)/devel/setup.bash
 DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation ros-message-runtime \
   libroscpp-dev libcv-bridge-dev libimage-transport-dev librosbag-dev librostest-dev libnodeletlib-dev \
   libstd-msgs-dev libstd-srvs-dev libsensor-msgs-dev libopencv-dev libeigen3-dev libgtest-dev googletest \
-  libbenchmark-dev nlohmann-json3-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
+  nlohmann-json3-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
   python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash catkin-lint
 
 .PHONY: all deps link build test demo bench lint clean
@@ -55,7 +55,7 @@ demo: build
 	@$(SETUP) && scripts/demo.sh
 
 bench: build
-	@$(WS)/devel/lib/mrs_vpr/mrs_vpr_benchmark 2>/dev/null || $(WS)/build/mrs_vpr/mrs_vpr_benchmark
+	@$(SETUP) && rosrun mrs_vpr mrs_vpr_benchmark
 
 lint: deps
 	@catkin_lint --strict -W2 .
