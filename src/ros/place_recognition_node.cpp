@@ -34,6 +34,9 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   for (const char* method : {"mrs", "seqslam"}) {
     matchers_[method] = makeMatcher(method, params_.core);
   }
+  // The map keeps MRS's pooled coarse levels up to date as frames arrive, so that a query does not
+  // pool the whole map again.
+  map_.keepPooledCells(params_.core.mrs.levels, params_.core.mrs.pixel_pooling);
 
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
@@ -300,9 +303,10 @@ void PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& re
     response.confidence = match.confidence;
     response.reference_stamp =
         match.reference_index >= 0 ? toRosTime(map_.stamp(match.reference_index)) : ros::Time();
-    response.accepted = match.reference_index >= 0 && match.confidence >= params_.accept_threshold;
+    response.accepted =
+        match.reference_index >= 0 && match.confidence >= params_.acceptThreshold(matcher->first);
     response.message = match.reference_index >= 0
-                           ? (response.accepted ? "accepted" : "below ~accept_threshold")
+                           ? (response.accepted ? "accepted" : "below ~accept_threshold/" + matcher->first)
                            : "no match found";
   }
   flushPending();
