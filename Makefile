@@ -9,7 +9,7 @@ SETUP := source $(WS)/devel/setup.bash
 
 # Debian 12 packages (ROS 1 from Debian itself).
 DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation ros-message-runtime \
-  libroscpp-dev libcv-bridge-dev libimage-transport-dev librosbag-dev librostest-dev libnodeletlib-dev \
+  libroscpp-dev libcv-bridge-dev libimage-transport-dev librosbag-dev librostest-dev libnodeletlib-dev libpluginlib-dev \
   libstd-msgs-dev libstd-srvs-dev libsensor-msgs-dev libopencv-dev libeigen3-dev libgtest-dev googletest \
   nlohmann-json3-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
   python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash catkin-lint
@@ -45,7 +45,7 @@ build: deps link
 	  || (cd $(WS) && catkin_make -DCMAKE_BUILD_TYPE=Release)
 	@echo "Built. Run: source $(WS)/devel/setup.bash"
 
-test: build
+test: build lint
 	@cd $(WS) && rm -rf build/test_results && catkin_make run_tests -j2 >$(WS)/test.log 2>&1; \
 	  status=$$?; grep -E '^\[( +OK|  FAILED|  PASSED) |^(FAILURE|SUMMARY|RESULT)' $(WS)/test.log || true; \
 	  if [ $$status -ne 0 ]; then tail -50 $(WS)/test.log; exit $$status; fi
@@ -57,8 +57,9 @@ demo: build
 bench: build
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_benchmark
 
-lint: deps
-	@catkin_lint --strict -W2 .
+# Checked on the workspace link, whose folder carries the package's name as catkin_lint expects.
+lint: deps link
+	@catkin_lint --strict -W2 $(PKG_LINK) 2>&1 | grep -v rosdep; test $${PIPESTATUS[0]} -eq 0
 
 clean:
 	rm -rf $(WS)
