@@ -60,7 +60,7 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("mrs/tau"), 1U);
   EXPECT_EQ(names.count("descriptor/image_width"), 1U);
   EXPECT_EQ(names.count("min_frame_interval"), 1U);
-  EXPECT_EQ(descriptions.size(), 30U);
+  EXPECT_EQ(descriptions.size(), 32U);
 }
 
 }  // namespace
