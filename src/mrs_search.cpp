@@ -211,11 +211,9 @@ Match MrsSearch::match(SequenceView reference, SequenceView query) const {
     throw std::invalid_argument("mrs/pixel_pooling " + std::to_string(mrs_.pixel_pooling) +
                                 " does not divide the descriptor size " + std::to_string(reference.descriptor_size));
   }
-  SequenceRows rows;
-  rows.first = 0;
-  rows.last = query.count - 1;
-  rows.anchor = sequence_.alignment == WindowAlignment::kCausal ? rows.last : rows.last / 2;
-  return CoarseToFineSearch(reference, query, rows, levelsFor(query.count), sequence_, mrs_).run();
+  return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment),
+                            levelsFor(query.count), sequence_, mrs_)
+      .run();
 }
 
 }  // namespace mrs_vpr

@@ -12,11 +12,7 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
   const cv::Mat enhanced =
       enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
-  SequenceRows rows;
-  rows.first = 0;
-  rows.last = query.count - 1;
-  rows.anchor = sequence_.alignment == WindowAlignment::kCausal ? rows.last : rows.last / 2;
-  return searchTrajectories(enhanced, rows, sequence_);
+  return searchTrajectories(enhanced, wholeSequenceRows(query.count, sequence_.alignment), sequence_);
 }
 
 std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {

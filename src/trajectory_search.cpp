@@ -31,6 +31,14 @@ SequenceRows sequenceRowsFor(int frame, const SequenceParams& params) {
   return rows;
 }
 
+SequenceRows wholeSequenceRows(int count, WindowAlignment alignment) {
+  SequenceRows rows;
+  rows.first = 0;
+  rows.last = count - 1;
+  rows.anchor = alignment == WindowAlignment::kCausal ? rows.last : count / 2;
+  return rows;
+}
+
 Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion) {
   Match match;
   const int columns = static_cast<int>(cost_by_anchor.size());

@@ -17,7 +17,7 @@ class SequenceMatcher {
 
   /**
    * Global localisation: the whole `query` view is the test sequence (oldest first). Returns the
-   * reference frame matched to the query's newest frame (its middle frame when the alignment is
+   * reference frame matched to the query's newest frame (frame count / 2 when the alignment is
    * centred). Throws std::invalid_argument when the query is shorter than 2 frames, longer than the
    * reference, or descriptor sizes differ.
    */

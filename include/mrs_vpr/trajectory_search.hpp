@@ -22,6 +22,10 @@ struct SequenceRows {
 /// Rows of the sequence that localises query frame `frame`; first < 0 or last >= rows when incomplete.
 SequenceRows sequenceRowsFor(int frame, const SequenceParams& params);
 
+/// Rows of a whole test sequence of `count` frames: anchored at its newest frame when causal, at
+/// frame count / 2 when centred (the same frame sequenceRowsFor centres on).
+SequenceRows wholeSequenceRows(int count, WindowAlignment alignment);
+
 /// For every anchor column: the lowest trajectory cost (infinity when no trajectory fits) and the
 /// velocity that achieved it.
 struct AnchorCosts {
