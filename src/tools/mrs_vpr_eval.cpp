@@ -281,6 +281,7 @@ json parametersToJson(const Options& options) {
       {"mrs",
        {{"levels", p.mrs.levels},
         {"min_coarse_frames", p.mrs.min_coarse_frames},
+        {"pixel_pooling", p.mrs.pixel_pooling},
         {"tau", p.mrs.tau},
         {"index_shift", p.mrs.index_shift},
         {"coverage_threshold", p.mrs.coverage_threshold},
@@ -332,7 +333,9 @@ int run(int argc, char** argv) {
   const mrs_vpr::DescriptorExtractor extractor(options.params.descriptor);
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
             << sequence.sequence_length << "\n";
-  const Traversal reference = describe(options.reference, options.topic, "reference", extractor);
+  Traversal reference = describe(options.reference, options.topic, "reference", extractor);
+  // As the node's map does: keep MRS's pooled levels so that queries do not pool the map again.
+  reference.descriptors.keepPooledCells(options.params.mrs.levels, options.params.mrs.pixel_pooling);
   if (sequence.sequence_length > reference.descriptors.size()) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
                                 " is larger than the reference of " + std::to_string(reference.descriptors.size()) +
