@@ -17,8 +17,8 @@ readonly RATE=20            # Frame rate of the generated traversals [Hz].
 readonly START_TIME=1700000000
 readonly REFERENCE_FRAMES=600
 readonly QUERY_FRAMES=400
-readonly QUERY_LENGTH=60    # Frames per test sequence.
-readonly QUERY_STARTS="20 110 200 290 330"
+readonly QUERY_LENGTH=80    # Frames per test sequence (long enough for one MRS level).
+readonly QUERY_STARTS="60 120 180 240 300"
 
 if ! command -v rospack >/dev/null || ! rospack find mrs_vpr >/dev/null 2>&1; then
   echo "demo: mrs_vpr is not on ROS_PACKAGE_PATH; source the workspace's devel/setup.bash first" >&2
