@@ -11,6 +11,7 @@
 
 #include "mrs_vpr/image_folder.hpp"
 #include "mrs_vpr/ros/bag_images.hpp"
+#include "tool_main.hpp"
 
 namespace po = boost::program_options;
 
@@ -83,13 +84,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const po::error& error) {
-    std::cerr << "images_to_bag: error: " << error.what() << " (see --help)" << std::endl;
-  } catch (const std::exception& error) {
-    std::cerr << "images_to_bag: error: " << error.what() << std::endl;
-  }
-  return 1;
-}
+int main(int argc, char** argv) { return mrs_vpr::tools::runTool("images_to_bag", run, argc, argv); }

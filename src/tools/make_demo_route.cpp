@@ -16,6 +16,7 @@
 
 #include "mrs_vpr/ros/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "tool_main.hpp"
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
@@ -110,13 +111,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const po::error& error) {
-    std::cerr << "make_demo_route: error: " << error.what() << " (see --help)" << std::endl;
-  } catch (const std::exception& error) {
-    std::cerr << "make_demo_route: error: " << error.what() << std::endl;
-  }
-  return 1;
-}
+int main(int argc, char** argv) { return mrs_vpr::tools::runTool("make_demo_route", run, argc, argv); }

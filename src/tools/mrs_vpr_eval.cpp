@@ -26,6 +26,7 @@
 #include "mrs_vpr/ros/bag_images.hpp"
 #include "mrs_vpr/ros/image_conversion.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
+#include "tool_main.hpp"
 
 namespace po = boost::program_options;
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
@@ -395,19 +396,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const po::error& error) {
-    std::cerr << "mrs_vpr_eval: error: " << error.what() << " (see --help)" << std::endl;
-    return 1;
-  } catch (const std::exception& error) {
-    // One line, whatever the source of the message.
-    std::string message = error.what();
-    for (char& c : message) {
-      if (c == '\n' || c == '\r') c = ' ';
-    }
-    std::cerr << "mrs_vpr_eval: error: " << message << std::endl;
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return mrs_vpr::tools::runTool("mrs_vpr_eval", run, argc, argv); }

@@ -12,6 +12,7 @@
 
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/ros/bag_images.hpp"
+#include "tool_main.hpp"
 
 namespace po = boost::program_options;
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
@@ -112,13 +113,4 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return run(argc, argv);
-  } catch (const po::error& error) {
-    std::cerr << "query_bag: error: " << error.what() << " (see --help)" << std::endl;
-  } catch (const std::exception& error) {
-    std::cerr << "query_bag: error: " << error.what() << std::endl;
-  }
-  return 1;
-}
+int main(int argc, char** argv) { return mrs_vpr::tools::runTool("query_bag", run, argc, argv); }

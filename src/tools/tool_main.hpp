@@ -1,0 +1,30 @@
+#pragma once
+
+#include <iostream>
+#include <string>
+
+#include <boost/program_options/errors.hpp>
+
+namespace mrs_vpr {
+namespace tools {
+
+/// Runs a command-line tool's `run`, turning any exception into one line on stderr
+/// ("<name>: error: ...") and exit code 1, so that bad input never ends in a crash or a stack dump.
+template <typename Run>
+int runTool(const char* name, Run&& run, int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const boost::program_options::error& error) {
+    std::cerr << name << ": error: " << error.what() << " (see --help)" << std::endl;
+  } catch (const std::exception& error) {
+    std::string message = error.what();
+    for (char& c : message) {
+      if (c == '\n' || c == '\r') c = ' ';  // One line, whatever the source of the message.
+    }
+    std::cerr << name << ": error: " << message << std::endl;
+  }
+  return 1;
+}
+
+}  // namespace tools
+}  // namespace mrs_vpr
