@@ -21,6 +21,7 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/evaluation.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 
@@ -72,11 +73,7 @@ struct MethodResult {
   std::vector<double> milliseconds;
   long long comparisons = 0;
 
-  double median() const {
-    std::vector<double> sorted = milliseconds;
-    std::sort(sorted.begin(), sorted.end());
-    return sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
-  }
+  double median() const { return mrs_vpr::median(milliseconds); }
 };
 
 MethodResult runQueries(const mrs_vpr::SequenceMatcher& matcher, const mrs_vpr::DescriptorSequence& reference,
