@@ -1,0 +1,181 @@
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+/// The message of the std::invalid_argument that `action` throws ("" when it throws none).
+template <typename Action>
+std::string invalidArgumentMessage(Action action) {
+  try {
+    action();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+DescriptorParams paramsOf(int width, int height, int patch) {
+  DescriptorParams params;
+  params.image_width = width;
+  params.image_height = height;
+  params.patch_size = patch;
+  return params;
+}
+
+/// Deterministic textured colour image.
+cv::Mat colourImage(int width, int height, int seed) {
+  cv::Mat image(height, width, CV_8UC3);
+  cv::RNG rng(static_cast<std::uint64_t>(seed));
+  rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+  cv::GaussianBlur(image, image, cv::Size(5, 5), 1.5);
+  return image;
+}
+
+TEST(DescriptorExtractor, DefaultDescriptorIsOneContinuousRowOfWTimesHBytes) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  EXPECT_EQ(extractor.size(), 64 * 32);
+  const cv::Mat descriptor = extractor.compute(colourImage(160, 90, 1));
+  EXPECT_EQ(descriptor.type(), CV_8UC1);
+  EXPECT_EQ(descriptor.rows, 1);
+  EXPECT_EQ(descriptor.cols, 64 * 32);
+  EXPECT_TRUE(descriptor.isContinuous());
+}
+
+TEST(DescriptorExtractor, QuantisesZScoresAs128Plus32Z) {
+  // The image already has the descriptor size, so only patch normalisation acts on it.
+  const DescriptorExtractor extractor(paramsOf(4, 4, 2));
+  const cv::Mat image = (cv::Mat_<std::uint8_t>(4, 4) << 10, 20, 50, 50,  //
+                         30, 40, 50, 50,                                    //
+                         0, 0, 0, 0,                                        //
+                         0, 0, 0, 0);
+  const cv::Mat descriptor = extractor.compute(image);
+  ASSERT_EQ(descriptor.cols, 16);
+  // Patch {10, 20; 30, 40}: mean 25, population std sqrt(125); z = -+1.342, -+0.447.
+  // 128 + 32 z = 85.07, 113.69, 142.31, 170.93.
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 0), 85);
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 1), 114);
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 4), 142);
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 5), 171);
+  // Constant patches: z = 0 -> 128.
+  for (int i : {2, 3, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}) {
+    EXPECT_EQ(descriptor.at<std::uint8_t>(0, i), 128) << "pixel " << i;
+  }
+}
+
+TEST(DescriptorExtractor, SaturatesBeyondFourStandardDeviations) {
+  // One bright pixel in an 8 x 8 patch: z = 63 / sqrt(63) = 7.9 -> 255; the rest z = -1 / sqrt(63) -> 124.
+  const DescriptorExtractor extractor(paramsOf(8, 8, 8));
+  cv::Mat image(8, 8, CV_8UC1, cv::Scalar(0));
+  image.at<std::uint8_t>(3, 5) = 200;
+  const cv::Mat descriptor = extractor.compute(image);
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 3 * 8 + 5), 255);
+  EXPECT_EQ(descriptor.at<std::uint8_t>(0, 0), 124);
+}
+
+TEST(DescriptorExtractor, SixteenBitImageGivesTheSameDescriptorAsItsEightBitOriginal) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::Mat gray;
+  cv::cvtColor(colourImage(128, 64, 2), gray, cv::COLOR_BGR2GRAY);
+  cv::Mat wide;
+  gray.convertTo(wide, CV_16U, 256.0);
+  const cv::Mat from_wide = extractor.compute(wide);
+  EXPECT_EQ(from_wide.type(), CV_8UC1);
+  EXPECT_EQ(from_wide.cols, extractor.size());
+  // Patch normalisation removes the scale; float rounding may move a value by one level.
+  EXPECT_LE(cv::norm(from_wide, extractor.compute(gray), cv::NORM_INF), 1.0);
+}
+
+TEST(DescriptorExtractor, RgbOrderOfASwappedImageGivesTheBgrResult) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat bgr = colourImage(128, 64, 3);
+  cv::Mat rgb;
+  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
+  const cv::Mat expected = extractor.compute(bgr, ChannelOrder::kBgr);
+  EXPECT_EQ(cv::norm(extractor.compute(rgb, ChannelOrder::kRgb), expected, cv::NORM_INF), 0.0);
+  // The channel order matters: reading the swapped image as BGR gives another descriptor.
+  EXPECT_GT(cv::norm(extractor.compute(rgb, ChannelOrder::kBgr), expected, cv::NORM_L1), 0.0);
+}
+
+TEST(DescriptorExtractor, FourChannelImagesIgnoreAlphaAndHonourChannelOrder) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat bgr = colourImage(128, 64, 4);
+  cv::Mat bgra;
+  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
+  // An alpha channel with structure must not change the descriptor.
+  cv::Mat channels[4];
+  cv::split(bgra, channels);
+  cv::randu(channels[3], 0, 256);
+  cv::merge(channels, 4, bgra);
+  cv::Mat rgba;
+  cv::cvtColor(bgra, rgba, cv::COLOR_BGRA2RGBA);
+  const cv::Mat expected = extractor.compute(bgr);
+  const cv::Mat from_bgra = extractor.compute(bgra, ChannelOrder::kBgr);
+  EXPECT_EQ(from_bgra.type(), CV_8UC1);
+  EXPECT_EQ(from_bgra.cols, extractor.size());
+  EXPECT_EQ(cv::norm(from_bgra, expected, cv::NORM_INF), 0.0);
+  EXPECT_EQ(cv::norm(extractor.compute(rgba, ChannelOrder::kRgb), expected, cv::NORM_INF), 0.0);
+}
+
+TEST(DescriptorExtractor, NonContinuousRoiIsDescribedLikeItsCopy) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat big = colourImage(200, 120, 5);
+  const cv::Mat roi = big(cv::Rect(30, 20, 128, 64));
+  ASSERT_FALSE(roi.isContinuous());
+  EXPECT_EQ(cv::norm(extractor.compute(roi), extractor.compute(roi.clone()), cv::NORM_INF), 0.0);
+}
+
+TEST(DescriptorExtractor, EmptyImageThrowsNamingTheProblem) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const std::string message = invalidArgumentMessage([&] { extractor.compute(cv::Mat()); });
+  EXPECT_NE(message.find("empty"), std::string::npos) << message;
+}
+
+TEST(DescriptorExtractor, UnsupportedTypesThrowNamingTheType) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const std::string float_message =
+      invalidArgumentMessage([&] { extractor.compute(cv::Mat(64, 128, CV_32FC3, cv::Scalar::all(0.5))); });
+  EXPECT_NE(float_message.find("unsupported image type"), std::string::npos) << float_message;
+  EXPECT_NE(float_message.find("32FC3"), std::string::npos) << float_message;
+  const std::string two_channel_message =
+      invalidArgumentMessage([&] { extractor.compute(cv::Mat(64, 128, CV_8UC2, cv::Scalar::all(1))); });
+  EXPECT_NE(two_channel_message.find("8UC2"), std::string::npos) << two_channel_message;
+}
+
+TEST(DescriptorExtractor, InvalidParametersThrowNamingTheParameter) {
+  const std::string not_dividing = invalidArgumentMessage([] { DescriptorExtractor(paramsOf(64, 32, 5)); });
+  EXPECT_NE(not_dividing.find("descriptor/patch_size"), std::string::npos) << not_dividing;
+  const std::string narrow = invalidArgumentMessage([] { DescriptorExtractor(paramsOf(2, 32, 1)); });
+  EXPECT_NE(narrow.find("descriptor/image_width"), std::string::npos) << narrow;
+  const std::string tall = invalidArgumentMessage([] { DescriptorExtractor(paramsOf(64, 2048, 8)); });
+  EXPECT_NE(tall.find("descriptor/image_height"), std::string::npos) << tall;
+}
+
+TEST(DescriptorExtractor, SameImageSameDescriptorAndDifferentImagesDiffer) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat a = colourImage(128, 64, 6);
+  EXPECT_EQ(cv::norm(extractor.compute(a), extractor.compute(a.clone()), cv::NORM_INF), 0.0);
+  EXPECT_GT(cv::norm(extractor.compute(a), extractor.compute(colourImage(128, 64, 7)), cv::NORM_L1), 0.0);
+}
+
+TEST(DescriptorExtractor, IsInvariantToBrightnessAndContrastChanges) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat image = colourImage(128, 64, 8);
+  cv::Mat changed;
+  image.convertTo(changed, -1, 0.5, 40.0);  // Half the contrast, brighter.
+  // Within a level or two of rounding everywhere.
+  const double mean_difference =
+      cv::norm(extractor.compute(image), extractor.compute(changed), cv::NORM_L1) / extractor.size();
+  EXPECT_LT(mean_difference, 2.0);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
