@@ -1,0 +1,292 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/lazy_difference_matrix.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/particle_evaluation.hpp"
+#include "mrs_vpr/sampling_level.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+/// Enhanced-looking matrix: values in [1, 2] with a trajectory of zeros through (anchor row, column)
+/// at `velocity` (the same rounding as the search: column + round(v * (t - anchor))).
+cv::Mat plantedMatrix(int rows, int columns, const SequenceRows& sequence, int column, double velocity) {
+  cv::Mat matrix(rows, columns, CV_32F);
+  cv::RNG rng(17);
+  rng.fill(matrix, cv::RNG::UNIFORM, 1.0, 2.0);
+  for (int t = sequence.first; t <= sequence.last; ++t) {
+    matrix.at<float>(t, column + static_cast<int>(std::lround(velocity * (t - sequence.anchor)))) = 0.0F;
+  }
+  return matrix;
+}
+
+TEST(Velocities, DefaultFanHasFiveValuesEndingExactlyAtTheMaximum) {
+  const SequenceParams params;  // 0.8 .. 1.2 step 0.1
+  const std::vector<double> v = velocities(params);
+  ASSERT_EQ(v.size(), 5U);
+  const double expected[] = {0.8, 0.9, 1.0, 1.1, 1.2};
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_NEAR(v[i], expected[i], 1e-12) << i;
+}
+
+TEST(Velocities, SingleVelocityAndStepsThatDoNotReachTheMaximum) {
+  SequenceParams params;
+  params.velocity_min = 1.0;
+  params.velocity_max = 1.0;
+  EXPECT_EQ(velocities(params), std::vector<double>{1.0});
+  params.velocity_min = 0.8;
+  params.velocity_max = 1.2;
+  params.velocity_step = 0.15;  // 0.8, 0.95, 1.1 (1.25 would overshoot).
+  const std::vector<double> v = velocities(params);
+  ASSERT_EQ(v.size(), 3U);
+  EXPECT_NEAR(v.back(), 1.1, 1e-12);
+}
+
+TEST(SequenceRowsFor, CausalEndsAtTheFrameCentredSurroundsIt) {
+  SequenceParams params;
+  params.sequence_length = 10;
+  const SequenceRows causal = sequenceRowsFor(20, params);
+  EXPECT_EQ(causal.first, 11);
+  EXPECT_EQ(causal.last, 20);
+  EXPECT_EQ(causal.anchor, 20);
+  params.alignment = WindowAlignment::kCentred;
+  const SequenceRows centred = sequenceRowsFor(20, params);
+  EXPECT_EQ(centred.first, 15);
+  EXPECT_EQ(centred.last, 24);
+  EXPECT_EQ(centred.anchor, 20);
+  params.sequence_length = 5;
+  const SequenceRows odd = sequenceRowsFor(20, params);
+  EXPECT_EQ(odd.first, 18);
+  EXPECT_EQ(odd.last, 22);
+  // Too close to the start: the rows tell the caller the sequence is incomplete.
+  params.alignment = WindowAlignment::kCausal;
+  EXPECT_LT(sequenceRowsFor(3, params).first, 0);
+}
+
+TEST(WholeSequenceRows, AnchorsAtTheNewestFrameOrAtCountOverTwo) {
+  const SequenceRows causal = wholeSequenceRows(100, WindowAlignment::kCausal);
+  EXPECT_EQ(causal.first, 0);
+  EXPECT_EQ(causal.last, 99);
+  EXPECT_EQ(causal.anchor, 99);
+  const SequenceRows centred = wholeSequenceRows(100, WindowAlignment::kCentred);
+  EXPECT_EQ(centred.last, 99);
+  EXPECT_EQ(centred.anchor, 50);
+  EXPECT_EQ(wholeSequenceRows(7, WindowAlignment::kCentred).anchor, 3);
+  // The frame the per-frame protocol centres a sequence of the same length on.
+  SequenceParams params;
+  params.alignment = WindowAlignment::kCentred;
+  params.sequence_length = 10;
+  const SequenceRows per_frame = sequenceRowsFor(20, params);
+  EXPECT_EQ(per_frame.anchor - per_frame.first, wholeSequenceRows(10, WindowAlignment::kCentred).anchor);
+}
+
+TEST(SearchTrajectories, FindsAPlantedCausalTrajectoryAndItsVelocity) {
+  const SequenceRows rows{0, 9, 9};
+  const cv::Mat matrix = plantedMatrix(10, 60, rows, 37, 0.9);
+  const SequenceParams params;
+  const Match match = searchTrajectories(matrix, rows, params);
+  EXPECT_EQ(match.reference_index, 37);
+  EXPECT_FLOAT_EQ(match.sequence_difference, 0.0F);
+  EXPECT_FLOAT_EQ(match.score, 0.0F);
+  EXPECT_FLOAT_EQ(match.confidence, 1.0F);
+  EXPECT_EQ(match.comparisons, 10 * 60);
+  const AnchorCosts costs = costsByAnchor(matrix, rows, velocities(params));
+  EXPECT_FLOAT_EQ(costs.cost[37], 0.0F);
+  EXPECT_FLOAT_EQ(costs.velocity[37], 0.9F);
+}
+
+TEST(SearchTrajectories, FindsAPlantedCentredTrajectory) {
+  const SequenceRows rows{0, 9, 4};
+  const cv::Mat matrix = plantedMatrix(10, 50, rows, 21, 1.2);
+  SequenceParams params;
+  params.alignment = WindowAlignment::kCentred;
+  const Match match = searchTrajectories(matrix, rows, params);
+  EXPECT_EQ(match.reference_index, 21);
+  EXPECT_FLOAT_EQ(costsByAnchor(matrix, rows, velocities(params)).velocity[21], 1.2F);
+}
+
+TEST(SearchTrajectories, UsesOnlyTheRowsOfTheSequence) {
+  // A planted trajectory in rows 5..14 of a 20-row matrix; other rows hold a decoy at column 10.
+  cv::Mat matrix = plantedMatrix(20, 50, SequenceRows{5, 14, 14}, 40, 1.0);
+  for (int t = 0; t < 20; ++t) {
+    if (t < 5 || t > 14) matrix.at<float>(t, 10) = -100.0F;
+  }
+  EXPECT_EQ(searchTrajectories(matrix, SequenceRows{5, 14, 14}, SequenceParams{}).reference_index, 40);
+}
+
+TEST(CostsByAnchor, OnlyTrajectoriesInsideTheMatrixCount) {
+  const SequenceRows rows{0, 9, 9};
+  const cv::Mat matrix(10, 30, CV_32F, cv::Scalar(1.0F));
+  const AnchorCosts costs = costsByAnchor(matrix, rows, velocities(SequenceParams{}));
+  ASSERT_EQ(costs.cost.size(), 30U);
+  // The slowest velocity reaches round(0.8 * 9) = 7 columns back from its anchor.
+  for (int j = 0; j < 7; ++j) EXPECT_EQ(costs.cost[static_cast<std::size_t>(j)], kInf) << j;
+  for (int j = 7; j < 30; ++j) EXPECT_FLOAT_EQ(costs.cost[static_cast<std::size_t>(j)], 1.0F) << j;
+  // Column 7 fits only the slowest velocity.
+  EXPECT_FLOAT_EQ(costs.velocity[7], 0.8F);
+}
+
+TEST(CostsByAnchor, CostIsTheMeanOfTheVisitedCells) {
+  const SequenceRows rows{0, 2, 2};
+  cv::Mat matrix = (cv::Mat_<float>(3, 4) << 1, 2, 3, 4,  //
+                    5, 6, 7, 8,                           //
+                    9, 10, 11, 12);
+  // Velocity 1 only: the anchor column 3 visits (0, 1), (1, 2), (2, 3) -> (2 + 7 + 12) / 3.
+  const AnchorCosts costs = costsByAnchor(matrix, rows, {1.0});
+  EXPECT_EQ(costs.cost[0], kInf);
+  EXPECT_EQ(costs.cost[1], kInf);
+  EXPECT_FLOAT_EQ(costs.cost[2], (1.0F + 6.0F + 11.0F) / 3.0F);
+  EXPECT_FLOAT_EQ(costs.cost[3], (2.0F + 7.0F + 12.0F) / 3.0F);
+}
+
+TEST(CostsByAnchor, RowsOutsideTheMatrixThrow) {
+  const cv::Mat matrix(10, 30, CV_32F, cv::Scalar(1.0F));
+  const std::vector<double> v{1.0};
+  EXPECT_THROW(costsByAnchor(matrix, SequenceRows{0, 10, 10}, v), std::invalid_argument);
+  EXPECT_THROW(costsByAnchor(matrix, SequenceRows{-1, 5, 5}, v), std::invalid_argument);
+  EXPECT_THROW(costsByAnchor(matrix, SequenceRows{0, 5, 6}, v), std::invalid_argument);
+}
+
+TEST(ScoreFromCosts, ScoreIsBestOverRunnerUpOutsideHalfTheExclusion) {
+  // Best 1 at index 2; 1.5 and 1.2 are within exclusion / 2 = 1 of it and do not count.
+  const std::vector<float> costs{5.0F, 1.5F, 1.0F, 1.2F, 2.0F, 6.0F};
+  const Match match = scoreFromCosts(costs, 2);
+  EXPECT_EQ(match.reference_index, 2);
+  EXPECT_FLOAT_EQ(match.sequence_difference, 1.0F);
+  EXPECT_FLOAT_EQ(match.score, 0.5F);
+  EXPECT_FLOAT_EQ(match.confidence, 0.5F);
+  // Without exclusion the neighbour is the runner-up.
+  EXPECT_FLOAT_EQ(scoreFromCosts(costs, 0).score, 1.0F / 1.2F);
+}
+
+TEST(ScoreFromCosts, ExclusionBoundaryIsHalfTheWindow) {
+  std::vector<float> costs(30, 10.0F);
+  costs[10] = 1.0F;
+  costs[15] = 2.0F;  // |15 - 10| = 5 = exclusion / 2: excluded.
+  costs[16] = 4.0F;  // 6 > 5: the runner-up.
+  const Match match = scoreFromCosts(costs, 10);
+  EXPECT_EQ(match.reference_index, 10);
+  EXPECT_FLOAT_EQ(match.score, 0.25F);
+  EXPECT_FLOAT_EQ(match.confidence, 0.75F);
+}
+
+TEST(ScoreFromCosts, NothingFitsOrNoRunnerUp) {
+  EXPECT_EQ(scoreFromCosts({}, 10).reference_index, -1);
+  EXPECT_EQ(scoreFromCosts({kInf, kInf}, 10).reference_index, -1);
+  // A best but no runner-up: score 1, confidence 0.
+  const Match alone = scoreFromCosts({kInf, 3.0F, 2.0F, kInf}, 10);
+  EXPECT_EQ(alone.reference_index, 2);
+  EXPECT_FLOAT_EQ(alone.score, 1.0F);
+  EXPECT_FLOAT_EQ(alone.confidence, 0.0F);
+}
+
+TEST(ScoreAround, ScoresAGivenWinner) {
+  const std::vector<float> costs{4.0F, 3.0F, 2.0F, 8.0F, 8.0F, 8.0F, 1.0F};
+  // Winner 1 (not the global minimum): best within +-1 is 2 (index 2), runner-up beyond is 1 (index 6).
+  const Match match = scoreAround(costs, 1, 2);
+  EXPECT_EQ(match.reference_index, 1);
+  EXPECT_FLOAT_EQ(match.sequence_difference, 2.0F);
+  EXPECT_FLOAT_EQ(match.score, 1.0F);  // 2 / 1, clamped.
+  const Match good = scoreAround(costs, 6, 2);
+  EXPECT_FLOAT_EQ(good.score, 0.5F);  // 1 / 2.
+  EXPECT_FLOAT_EQ(good.confidence, 0.5F);
+  EXPECT_EQ(scoreAround(costs, 7, 2).reference_index, -1);
+  EXPECT_EQ(scoreAround(costs, -1, 2).reference_index, -1);
+}
+
+TEST(SamplingLevel, MakeComputesRowsGridAndFeasibleEnds) {
+  // Causal sequence of 100 frames, stride 4, reference of 600 frames, slowest velocity 0.8.
+  const SamplingLevel level = SamplingLevel::make(4, SequenceRows{0, 99, 99}, 600, 0.8);
+  EXPECT_EQ(level.k_min, -24);
+  EXPECT_EQ(level.k_max, 0);
+  EXPECT_EQ(level.rows(), 25);
+  EXPECT_EQ(level.grid_size, 150);
+  EXPECT_EQ(level.lowest_end, 19);  // round(0.8 * 24)
+  EXPECT_EQ(level.highest_end, 149);
+  EXPECT_FALSE(level.empty());
+  const SequenceRows rows = level.sequenceRows();
+  EXPECT_EQ(rows.first, 0);
+  EXPECT_EQ(rows.last, 24);
+  EXPECT_EQ(rows.anchor, 24);
+  EXPECT_EQ(level.pixelPooling(4), 4);
+  EXPECT_EQ(SamplingLevel::make(1, SequenceRows{0, 99, 99}, 600, 0.8).pixelPooling(4), 1);
+  // A reference too short for the sequence has no feasible end.
+  EXPECT_TRUE(SamplingLevel::make(1, SequenceRows{0, 99, 99}, 50, 0.8).empty());
+}
+
+TEST(EndCostTable, DenseTablePicksTheLowestFeasibleCostNearTheCentre) {
+  AnchorCosts costs;
+  costs.cost = {0.0F, 5.0F, 4.0F, 3.0F, 6.0F, 2.5F, 7.0F, 0.5F};
+  costs.velocity = {1.0F, 1.0F, 0.9F, 1.1F, 1.0F, 1.2F, 1.0F, 0.8F};
+  SamplingLevel level;
+  level.grid_size = 8;
+  level.lowest_end = 1;  // Index 0 (cost 0) is not feasible.
+  level.highest_end = 7;
+  EndCostTable table(costs, level);
+  const Evaluation near_start = table.bestInWindow(1, 2);
+  EXPECT_EQ(near_start.index, 3);
+  EXPECT_FLOAT_EQ(near_start.cost, 3.0F);
+  EXPECT_FLOAT_EQ(near_start.velocity, 1.1F);
+  EXPECT_EQ(table.bestInWindow(5, 2).index, 7);
+  EXPECT_EQ(table.costs(), costs.cost);
+}
+
+TEST(EndCostTable, LazyCostsEqualTheDenseSearchOnTheEndsAsked) {
+  // Random descriptors; the sequence is reference frames 30..41 with a different phase of noise.
+  cv::RNG rng(23);
+  DescriptorSequence reference(32);
+  DescriptorSequence query(32);
+  cv::Mat row(1, 32, CV_8U);
+  for (int f = 0; f < 80; ++f) {
+    rng.fill(row, cv::RNG::UNIFORM, 0, 256);
+    reference.append(row);
+  }
+  for (int f = 0; f < 12; ++f) {
+    cv::Mat noisy = cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(reference.descriptor(30 + f))).clone();
+    noisy.at<std::uint8_t>(0, f) = static_cast<std::uint8_t>(noisy.at<std::uint8_t>(0, f) ^ 0x55);
+    query.append(noisy);
+  }
+  const SequenceRows rows = wholeSequenceRows(12, WindowAlignment::kCausal);
+  const SamplingLevel level = SamplingLevel::make(1, rows, reference.size(), 0.8);
+  const std::vector<double> fan = velocities(SequenceParams{});
+  const AnchorCosts dense =
+      costsByAnchor(computeDifferenceMatrix(query.view(), reference.view()), level.sequenceRows(), fan);
+
+  LazyDifferenceMatrix matrix(query.view(), reference.view(), 1, 1, 0);
+  EndCostTable lazy(matrix, level, fan);
+  const Evaluation best = lazy.bestInWindow(40, 3);
+  EXPECT_EQ(best.index, 41);
+  EXPECT_FLOAT_EQ(best.velocity, 1.0F);
+  for (int end = 37; end <= 43; ++end) {
+    EXPECT_NEAR(lazy.costs()[static_cast<std::size_t>(end)], dense.cost[static_cast<std::size_t>(end)], 1e-5F) << end;
+  }
+  // Ends never asked for stay unknown (infinity); only the visited cells were compared.
+  EXPECT_EQ(lazy.costs()[60], kInf);
+  EXPECT_LT(matrix.comparisons(), 12 * 80 / 2);
+  const long long after_first = matrix.comparisons();
+  lazy.bestInWindow(41, 2);  // Every end already known: no new work.
+  EXPECT_EQ(matrix.comparisons(), after_first);
+}
+
+TEST(VelocitiesNear, KeepsTheFanWithinTheSpreadOrTheNearest) {
+  const std::vector<double> all{0.8, 0.9, 1.0, 1.1, 1.2};
+  const std::vector<double> near = velocitiesNear(all, 1.0, 0.1);
+  ASSERT_EQ(near.size(), 3U);
+  EXPECT_NEAR(near.front(), 0.9, 1e-12);
+  EXPECT_NEAR(near.back(), 1.1, 1e-12);
+  EXPECT_EQ(velocitiesNear(all, 2.0, 0.1), std::vector<double>{1.2});
+}
+
+}  // namespace
+}  // namespace mrs_vpr
