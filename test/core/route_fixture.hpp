@@ -1,0 +1,78 @@
+#pragma once
+
+// A generated route described once per test run and shared by the matcher tests.
+
+#include <cstdlib>
+#include <vector>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace mrs_vpr {
+namespace testing_support {
+
+struct DescribedRoute {
+  DescriptorSequence reference{1};
+  DescriptorSequence query{1};
+  std::vector<int> query_to_reference;
+};
+
+inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
+  const SyntheticRoute route = generateSyntheticRoute(route_params);
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  DescribedRoute described;
+  described.reference = DescriptorSequence(extractor.size());
+  described.query = DescriptorSequence(extractor.size());
+  for (std::size_t i = 0; i < route.reference.size(); ++i) {
+    described.reference.append(extractor.compute(route.reference[i]), static_cast<double>(i));
+  }
+  for (std::size_t i = 0; i < route.query.size(); ++i) {
+    described.query.append(extractor.compute(route.query[i]), static_cast<double>(i));
+  }
+  described.query_to_reference = route.query_to_reference;
+  return described;
+}
+
+/// 600 reference frames, 400 query frames, the default seed.
+inline const DescribedRoute& standardRoute() {
+  static const DescribedRoute route = [] {
+    SyntheticRouteParams params;
+    params.reference_frames = 600;
+    params.query_frames = 400;
+    return describeRoute(params);
+  }();
+  return route;
+}
+
+/// A long reference (2400 frames) for cost comparisons; only its first 300 query frames are used.
+inline const DescribedRoute& longRoute() {
+  static const DescribedRoute route = [] {
+    SyntheticRouteParams params;
+    params.reference_frames = 2400;
+    params.query_frames = 300;
+    params.image_width = 64;
+    params.image_height = 32;
+    params.start_place = 1500.0;
+    params.seed = 21;
+    return describeRoute(params);
+  }();
+  return route;
+}
+
+/// Parameters for global queries of 100+ frames. The generated route's neighbouring frames do not
+/// look alike (the difference dips over one frame only), so a trajectory whose velocity is off by
+/// half a step of 0.1 drifts off the dip after ~20 frames: long sequences need a finer step, as the
+/// benchmark uses (0.02: at most 2 frames of drift over 200 frames).
+inline Parameters globalSearchParams() {
+  Parameters params;
+  params.sequence.velocity_step = 0.02;
+  return params;
+}
+
+/// True when `predicted` is within `tolerance` frames of `truth`.
+inline bool within(int predicted, int truth, int tolerance) { return std::abs(predicted - truth) <= tolerance; }
+
+}  // namespace testing_support
+}  // namespace mrs_vpr
