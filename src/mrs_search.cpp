@@ -26,13 +26,24 @@ DescriptorSequence levelQueryCells(SequenceView query, const SequenceRows& rows,
   return poolSequence(query, rows.anchor + level.k_min * level.stride, level.stride, level.rows(), pixel_pooling);
 }
 
-/// The reference grid's cells at a level: the ones its store keeps when it can, else pooled now
-/// into `storage` (one pass over the reference).
+/// The reference grid's cells at a level: the ones its store keeps where it can (a store keeps
+/// complete cells only), the others pooled now into `storage`.
 SequenceView levelReferenceCells(SequenceView reference, const SamplingLevel& level, int pixel_pooling,
                                  DescriptorSequence& storage) {
   const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
   if (kept.count == level.grid_size) return kept;
-  storage = poolSequence(reference, 0, level.stride, level.grid_size, pixel_pooling);
+  const int cell_size = reference.descriptor_size / pixel_pooling;
+  storage = DescriptorSequence(cell_size);
+  storage.reserve(level.grid_size);
+  cv::Mat cell(1, cell_size, CV_8U);
+  for (int index = 0; index < level.grid_size; ++index) {
+    if (index < kept.count) {
+      storage.append(cv::Mat(1, cell_size, CV_8U, const_cast<std::uint8_t*>(kept.frame(index))));
+    } else {
+      poolCell(reference, index * level.stride, level.stride, pixel_pooling, cell.data);
+      storage.append(cell);
+    }
+  }
   return storage.view();
 }
 
@@ -103,36 +114,49 @@ class CoarseToFineSearch {
     if (!coarsest) lazy_costs = std::make_unique<EndCostTable>(matrix, level_, levelVelocities());
     EndCostTable& costs = coarsest ? *coarse_costs_ : *lazy_costs;
 
+    bool resampled = false;
     for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
       const int coverage_before = coverage(particles_, mrs_.index_shift);
-      bool moved = false;
-      for (Particle& particle : particles_) {
-        const Evaluation evaluation =
-            costs.bestInWindow(particle.index, coarsest && iteration == 0 ? first_radius_ : mrs_.index_shift);
-        particle.cost = evaluation.cost;
-        if (evaluation.index < 0) continue;
-        moved = moved || evaluation.index != particle.index;
-        particle.index = evaluation.index;
-        particle.velocity = evaluation.velocity;
-        if (finest && evaluation.cost < best_.cost) best_ = evaluation;
-      }
-      // Particles stranded where no trajectory fits carry no weight.
-      particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
-                                      [](const Particle& p) { return !std::isfinite(p.cost); }),
-                       particles_.end());
+      const bool moved =
+          moveParticles(costs, coarsest && iteration == 0 ? first_radius_ : mrs_.index_shift, finest);
       if (particles_.empty()) break;
       updateWeights(particles_);
-      bool resampled = false;
-      if (effectiveSampleSize(particles_) < mrs_.resample_threshold * static_cast<double>(particles_.size())) {
+      resampled = effectiveSampleSize(particles_) < mrs_.resample_threshold * static_cast<double>(particles_.size());
+      if (resampled) {
         resampleSystematic(particles_, 2 * mrs_.index_shift, level_.lowest_end, level_.highest_end, rng_);
-        resampled = true;
       }
       // The paper's rule: stay on a level until the map coverage shrinks below the threshold.
       if (coverage(particles_, mrs_.index_shift) < mrs_.coverage_threshold * coverage_before) break;
       if (!moved && !resampled) break;  // Converged: another pass would evaluate the same cells.
     }
+    if (resampled && !particles_.empty()) {
+      // Resampling jittered the particles away from the ends their costs belong to; let them settle
+      // on this level before the heaviest are chosen, or the ranking would go by stale costs.
+      moveParticles(costs, mrs_.index_shift, finest);
+      for (Particle& particle : particles_) particle.weight = 1.0 / static_cast<double>(particles_.size());
+      updateWeights(particles_);
+    }
     result_.comparisons += matrix.comparisons() / pixel_pooling;
     previous_rows_ = level_.rows();
+  }
+
+  /// Algorithm 2 for every particle: move to the best end within `radius`. Particles where no
+  /// trajectory fits are dropped (they carry no weight). Returns whether any particle moved.
+  bool moveParticles(EndCostTable& costs, int radius, bool finest) {
+    bool moved = false;
+    for (Particle& particle : particles_) {
+      const Evaluation evaluation = costs.bestInWindow(particle.index, radius);
+      particle.cost = evaluation.cost;
+      if (evaluation.index < 0) continue;
+      moved = moved || evaluation.index != particle.index;
+      particle.index = evaluation.index;
+      particle.velocity = evaluation.velocity;
+      if (finest && evaluation.cost < best_.cost) best_ = evaluation;
+    }
+    particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
+                                    [](const Particle& p) { return !std::isfinite(p.cost); }),
+                     particles_.end());
+    return moved;
   }
 
   /// A level of L rows tells velocities apart to about 1 / L (one cell of drift over the sequence).

@@ -49,10 +49,16 @@ void resampleSystematic(std::vector<Particle>& particles, int jitter, int low, i
   double pointer = start(rng);
   double cumulative = particles.front().weight;
   std::size_t source = 0;
+  std::size_t previous_source = count;  // None yet.
   for (std::size_t i = 0; i < count; ++i) {
     while (pointer > cumulative && source + 1 < count) cumulative += particles[++source].weight;
     Particle copy = particles[source];
-    copy.index = std::clamp(copy.index + move(rng), low, high);
+    // The first copy of a particle stays where it is, only further copies explore around it: on a
+    // sharp cost landscape (a fine level, where only the exact end matches) jittering every copy
+    // would lose the best particle.
+    const int jitter_here = source == previous_source ? move(rng) : 0;
+    copy.index = std::clamp(copy.index + jitter_here, low, high);
+    previous_source = source;
     copy.weight = 1.0 / static_cast<double>(count);
     drawn.push_back(copy);
     pointer += 1.0 / static_cast<double>(count);

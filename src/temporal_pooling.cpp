@@ -14,6 +14,7 @@ void poolCell(SequenceView view, int end, int stride, int pixel_pooling, std::ui
                                 " does not divide the descriptor size " + std::to_string(size));
   }
   const int begin = std::max(0, end - stride + 1);
+  end = std::min(end, view.count - 1);  // A cell may end past the view: pool the frames that exist.
   const int frames = end - begin + 1;
   if (frames == 1 && pixel_pooling == 1) {
     std::copy(view.frame(end), view.frame(end) + size, out);

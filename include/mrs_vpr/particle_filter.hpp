@@ -28,8 +28,9 @@ double effectiveSampleSize(const std::vector<Particle>& particles);
 
 /**
  * Systematic (low-variance) resampling: draws particles.size() particles in proportion to weight,
- * moves each copy by a uniform jitter in [-jitter, jitter] clamped to [low, high], resets weights to
- * uniform. The paper's "resample around effective particles", made explicit.
+ * keeps the first copy of each drawn particle in place and moves every further copy by a uniform
+ * jitter in [-jitter, jitter] clamped to [low, high], resets weights to uniform. The paper's
+ * "resample around effective particles", made explicit.
  */
 void resampleSystematic(std::vector<Particle>& particles, int jitter, int low, int high, std::mt19937_64& rng);
 

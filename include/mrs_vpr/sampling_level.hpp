@@ -7,7 +7,8 @@ namespace mrs_vpr {
 /**
  * One level of the coarse-to-fine search, of stride s: the test cells ending at frames
  * `anchor + k * s` (k in [k_min, k_max]; row k - k_min of the level's difference matrix) against the
- * reference grid of cells ending at frames J * s. Particle indices are grid indices J.
+ * reference grid of cells ending at frames J * s (the last one possibly past the reference's newest
+ * frame, pooling only the frames that exist). Particle indices are grid indices J.
  */
 struct SamplingLevel {
   int stride = 1;

@@ -10,8 +10,8 @@ namespace mrs_vpr {
 
 /**
  * Pooling, the low-pass filter of the coarse-to-fine search. A level of stride s compares "cells":
- * the mean descriptor of the s frames ending at a frame (frames end - s + 1 .. end, clipped at the
- * start), optionally also averaged over runs of `pixel_pooling` consecutive pixels.
+ * the mean descriptor of the s frames ending at a frame (frames end - s + 1 .. end, clipped to the
+ * frames that exist), optionally also averaged over runs of `pixel_pooling` consecutive pixels.
  *
  * Subsampling alone (every s-th frame, as the paper writes) only works when s consecutive frames
  * look alike; on keyframed or fast imagery a coarse test frame meets a reference frame up to s/2
