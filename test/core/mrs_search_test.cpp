@@ -79,10 +79,10 @@ TEST(MrsSearch, FindsACopyOfTheReferenceAwayFromItsEnds) {
 }
 
 TEST(MrsSearch, FindsACopyOfTheReferenceAtEveryEnd) {
-  // After a resampling all weights are equal and the particles' costs are those of their positions
-  // before the jitter, so keepHeaviest keeps the lowest-index copies of the best particle: the next
-  // level starts up to 2 * index_shift coarse cells early and +-index_shift cannot reach back (e.g.
-  // N = 160: 583 -> 571, 464 -> 454, always early).
+  // An exact copy has a needle-sharp cost at finer levels: only the true end matches. Resampling
+  // must not jitter the best particle away from it, and the particles must settle after a
+  // resampling before the heaviest go on to the next level (both once placed N = 160 copies
+  // 10 frames early, e.g. 464 -> 454).
 
   const auto& route = standardRoute();
   const auto mrs = makeMatcher("mrs", Parameters{});
@@ -93,9 +93,9 @@ TEST(MrsSearch, FindsACopyOfTheReferenceAtEveryEnd) {
 }
 
 TEST(MrsSearch, FindsASequenceEndingAtTheNewestReferenceFrame) {
-  // Cells of stride s end at frames J * s: with 600 reference frames the last stride-4 cell ends at
-  // frame 596, and a 160-frame copy ending at 599 (3 frames past it) is placed at 586, with or without
-  // resampling. References of 597..599 frames (0..2 frames past the last cell) are found exactly.
+  // Cells of stride s end at frames J * s. With 600 reference frames the last complete stride-4
+  // cell ends at 596; a partial cell ending at 600 makes frames 597..599 reachable (without it a
+  // 160-frame copy ending at 599 was placed at 586).
 
   const auto& route = standardRoute();
   const auto mrs = makeMatcher("mrs", Parameters{});
