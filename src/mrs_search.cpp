@@ -103,12 +103,16 @@ class CoarseToFineSearch {
   /// Evaluate, weight, resample until the coverage shrinks (the paper's loop) or nothing changes.
   void iterateLevel(bool coarsest, bool finest) {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
-    const DescriptorSequence query_cells =
-        coarsest ? DescriptorSequence(1) : levelQueryCells(query_, rows_, level_, pixel_pooling);
+    // At full resolution the cells are the frames themselves: no copy.
+    const bool full_resolution = level_.stride == 1 && pixel_pooling == 1;
+    const DescriptorSequence query_cells = coarsest || full_resolution
+                                               ? DescriptorSequence(1)
+                                               : levelQueryCells(query_, rows_, level_, pixel_pooling);
+    const SequenceView query_rows = full_resolution ? query_.slice(rows_.first, rows_.last + 1) : query_cells.view();
     // Finer levels compare ends a few frames apart, whose local contrast statistics are nearly the
     // same: enhancement would not change their order but would cost window/2 extra cells on each
     // side of every cell. Raw differences are used there (same success on Nordland, measured).
-    LazyDifferenceMatrix matrix(coarsest ? SequenceView{} : query_cells.view(), reference_, level_.stride,
+    LazyDifferenceMatrix matrix(coarsest ? SequenceView{} : query_rows, reference_, level_.stride,
                                 pixel_pooling, 0);
     std::unique_ptr<EndCostTable> lazy_costs;
     if (!coarsest) lazy_costs = std::make_unique<EndCostTable>(matrix, level_, levelVelocities());
