@@ -45,12 +45,7 @@ int run(int argc, char** argv) {
       ("frame-id", po::value(&frame_id)->default_value(frame_id), "header.frame_id of the images");
   // clang-format on
   po::variables_map variables;
-  po::store(po::parse_command_line(argc, argv, description), variables);
-  if (variables.count("help") > 0) {
-    std::cout << kUsage << "\n" << description << std::flush;
-    return 0;
-  }
-  po::notify(variables);
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (encoding != "bgr8" && encoding != "mono8") {
     throw std::invalid_argument("unknown encoding '" + encoding + "' (expected bgr8 or mono8)");

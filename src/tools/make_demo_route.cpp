@@ -79,12 +79,7 @@ int run(int argc, char** argv) {
       ("images", "also write the traversals as PNG folders");
   // clang-format on
   po::variables_map variables;
-  po::store(po::parse_command_line(argc, argv, description), variables);
-  if (variables.count("help") > 0) {
-    std::cout << kUsage << "\n" << description << std::flush;
-    return 0;
-  }
-  po::notify(variables);
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (!(rate > 0.0)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s");
 

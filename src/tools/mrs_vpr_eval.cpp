@@ -104,12 +104,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
        "patch normalisation size [px]");
   // clang-format on
   po::variables_map variables;
-  po::store(po::parse_command_line(argc, argv, description), variables);
-  if (variables.count("help") > 0) {
-    std::cout << kUsage << "\n" << description << std::flush;
-    return std::nullopt;
-  }
-  po::notify(variables);
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
 
   if (options.method != "mrs" && options.method != "seqslam") {
     throw std::invalid_argument("unknown method '" + options.method + "' (expected mrs or seqslam)");

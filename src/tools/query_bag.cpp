@@ -54,12 +54,7 @@ int run(int argc, char** argv) {
       ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service");
   // clang-format on
   po::variables_map variables;
-  po::store(po::parse_command_line(argc, argv, description), variables);
-  if (variables.count("help") > 0) {
-    std::cout << kUsage << "\n" << description << std::flush;
-    return 0;
-  }
-  po::notify(variables);
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
 
   mrs_vpr::QuerySequence query;
   query.request.method = method;

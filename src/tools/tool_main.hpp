@@ -3,10 +3,24 @@
 #include <iostream>
 #include <string>
 
-#include <boost/program_options/errors.hpp>
+#include <boost/program_options.hpp>
 
 namespace mrs_vpr {
 namespace tools {
+
+/// Parses the command line into `variables`. Returns false when --help was asked for: the usage
+/// and the options have then been printed and the tool should exit 0.
+inline bool parseCommandLine(int argc, char** argv, const char* usage,
+                             const boost::program_options::options_description& options,
+                             boost::program_options::variables_map& variables) {
+  boost::program_options::store(boost::program_options::parse_command_line(argc, argv, options), variables);
+  if (variables.count("help") > 0) {
+    std::cout << usage << "\n" << options << std::flush;
+    return false;
+  }
+  boost::program_options::notify(variables);
+  return true;
+}
 
 /// Runs a command-line tool's `run`, turning any exception into one line on stderr
 /// ("<name>: error: ...") and exit code 1, so that bad input never ends in a crash or a stack dump.

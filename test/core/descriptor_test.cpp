@@ -8,20 +8,12 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "error_message.hpp"
 
 namespace mrs_vpr {
 namespace {
 
-/// The message of the std::invalid_argument that `action` throws ("" when it throws none).
-template <typename Action>
-std::string invalidArgumentMessage(Action action) {
-  try {
-    action();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
+using testing_support::invalidArgumentMessage;
 
 DescriptorParams paramsOf(int width, int height, int patch) {
   DescriptorParams params;

@@ -9,24 +9,16 @@
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "route_fixture.hpp"
+#include "error_message.hpp"
 
 namespace mrs_vpr {
 namespace {
 
+using testing_support::invalidArgumentMessage;
 using testing_support::longRoute;
 using testing_support::globalSearchParams;
 using testing_support::standardRoute;
 using testing_support::within;
-
-template <typename Action>
-std::string invalidArgumentMessage(Action action) {
-  try {
-    action();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
 
 void expectIdentical(const Match& a, const Match& b) {
   EXPECT_EQ(a.reference_index, b.reference_index);

@@ -9,25 +9,17 @@
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "route_fixture.hpp"
+#include "error_message.hpp"
 
 namespace mrs_vpr {
 namespace {
 
+using testing_support::invalidArgumentMessage;
 using testing_support::globalSearchParams;
 using testing_support::standardRoute;
 using testing_support::within;
 
 /// The std::invalid_argument message of `action`, "" when it throws none.
-template <typename Action>
-std::string invalidArgumentMessage(Action action) {
-  try {
-    action();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
-}
-
 TEST(MakeMatcher, BuildsBothMethodsAndRejectsOthers) {
   const Parameters params;
   EXPECT_EQ(makeMatcher("seqslam", params)->name(), "seqslam");
