@@ -63,7 +63,7 @@ cv::Mat DescriptorExtractor::compute(const cv::Mat& image, ChannelOrder order) c
   cv::Mat descriptor;
   // 128 + 32 z, saturated to [0, 255]: +-4 std in steps of 1/32 std.
   small.convertTo(descriptor, CV_8U, kLevelsPerStd, 128.0);
-  return descriptor.reshape(1, 1).clone();
+  return descriptor.reshape(1, 1);  // convertTo allocated it: continuous and owned.
 }
 
 }  // namespace mrs_vpr

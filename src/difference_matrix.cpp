@@ -16,12 +16,18 @@ float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int siz
 }
 
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
+  cv::Mat differences(query.count, reference.count, CV_32F);
+  computeDifferenceMatrix(query, reference, differences);
+  return differences;
+}
+
+void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences) {
   if (query.descriptor_size != reference.descriptor_size) {
     throw std::invalid_argument("query descriptors have " + std::to_string(query.descriptor_size) +
                                 " bytes but reference descriptors have " +
                                 std::to_string(reference.descriptor_size));
   }
-  cv::Mat differences(query.count, reference.count, CV_32F);
+  CV_Assert(differences.type() == CV_32FC1 && differences.rows == query.count && differences.cols == reference.count);
   // Blocks of reference frames are swept for all query frames so that a block stays in cache.
   constexpr int kBlock = 64;
   const int blocks = (reference.count + kBlock - 1) / kBlock;
@@ -38,7 +44,6 @@ cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
       }
     }
   });
-  return differences;
 }
 
 }  // namespace mrs_vpr

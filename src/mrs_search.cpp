@@ -26,25 +26,25 @@ DescriptorSequence levelQueryCells(SequenceView query, const SequenceRows& rows,
   return poolSequence(query, rows.anchor + level.k_min * level.stride, level.stride, level.rows(), pixel_pooling);
 }
 
-/// The reference grid's cells at a level: the ones its store keeps where it can (a store keeps
-/// complete cells only), the others pooled now into `storage`.
-SequenceView levelReferenceCells(SequenceView reference, const SamplingLevel& level, int pixel_pooling,
-                                 DescriptorSequence& storage) {
+/// Differences between the test cells and the reference grid of a level. The grid's cells come
+/// from the ones the reference's store keeps (complete cells only), the rest (all of them when it
+/// keeps none, else the last, partial one) are pooled now.
+cv::Mat levelDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
+                         int pixel_pooling) {
+  cv::Mat differences(query_cells.count, level.grid_size, CV_32F);
   const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
-  if (kept.count == level.grid_size) return kept;
-  const int cell_size = reference.descriptor_size / pixel_pooling;
-  storage = DescriptorSequence(cell_size);
-  storage.reserve(level.grid_size);
-  cv::Mat cell(1, cell_size, CV_8U);
-  for (int index = 0; index < level.grid_size; ++index) {
-    if (index < kept.count) {
-      storage.append(cv::Mat(1, cell_size, CV_8U, const_cast<std::uint8_t*>(kept.frame(index))));
-    } else {
-      poolCell(reference, index * level.stride, level.stride, pixel_pooling, cell.data);
-      storage.append(cell);
-    }
+  const int known = std::min(kept.count, level.grid_size);
+  if (known > 0) {
+    cv::Mat columns = differences.colRange(0, known);
+    computeDifferenceMatrix(query_cells, kept.slice(0, known), columns);
   }
-  return storage.view();
+  if (known < level.grid_size) {
+    const DescriptorSequence pooled =
+        poolSequence(reference, known * level.stride, level.stride, level.grid_size - known, pixel_pooling);
+    cv::Mat columns = differences.colRange(known, level.grid_size);
+    computeDifferenceMatrix(query_cells, pooled.view(), columns);
+  }
+  return differences;
 }
 
 /// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
@@ -74,10 +74,9 @@ class CoarseToFineSearch {
   /// table. The table also gives the runner-up for the confidence.
   void scoreCoarsestLevel() {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
-    DescriptorSequence storage(reference_.descriptor_size);
     const cv::Mat matrix = enhanceContrast(
-        computeDifferenceMatrix(levelQueryCells(query_, rows_, level_, pixel_pooling).view(),
-                                levelReferenceCells(reference_, level_, pixel_pooling, storage)),
+        levelDifferences(levelQueryCells(query_, rows_, level_, pixel_pooling).view(), reference_, level_,
+                         pixel_pooling),
         sequence_.contrast_window);
     result_.comparisons += static_cast<long long>(matrix.total()) / pixel_pooling;
     coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);

@@ -16,4 +16,8 @@ float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int siz
 /// Rows are filled in parallel. Throws std::invalid_argument when descriptor sizes differ.
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference);
 
+/// The same into `differences`, an existing CV_32FC1 matrix (or region of one) of query.count x
+/// reference.count, so that columns from different sources can fill one matrix without copies.
+void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences);
+
 }  // namespace mrs_vpr

@@ -153,6 +153,10 @@ TEST(MrsSearch, KeptPyramidGivesTheSameAnswer) {
     const Match kept = matcher->match(with_pyramid.view(), query);
     expectIdentical(plain, kept);
     EXPECT_TRUE(within(kept.reference_index, route.query_to_reference[static_cast<std::size_t>(start + 199)], 3));
+    // A prefix of the map (as a recent_frames query searches) uses the kept cells it contains and
+    // pools its last, partial cell.
+    expectIdentical(matcher->match(route.reference.view(0, 597), query),
+                    matcher->match(with_pyramid.view(0, 597), query));
   }
 }
 
