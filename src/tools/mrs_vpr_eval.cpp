@@ -331,7 +331,9 @@ int run(int argc, char** argv) {
             << sequence.sequence_length << "\n";
   Traversal reference = describe(options.reference, options.topic, "reference", extractor);
   // As the node's map does: keep MRS's pooled levels so that queries do not pool the map again.
-  reference.descriptors.keepPooledCells(options.params.mrs.levels, options.params.mrs.pixel_pooling);
+  if (options.method == "mrs") {
+    reference.descriptors.keepPooledCells(options.params.mrs.levels, options.params.mrs.pixel_pooling);
+  }
   if (sequence.sequence_length > reference.descriptors.size()) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
                                 " is larger than the reference of " + std::to_string(reference.descriptors.size()) +
