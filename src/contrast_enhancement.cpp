@@ -7,11 +7,14 @@
 namespace mrs_vpr {
 namespace {
 
+// Below this variance a window counts as constant and its cells get no contrast.
+constexpr float kMinVariance = 1e-12F;
+
 float zScore(float centre, double sum, double sum_of_squares, int count) {
   if (count < 2) return 0.0F;
   const double mean = sum / count;
   const double variance = (sum_of_squares - sum * mean) / (count - 1);
-  if (variance <= 1e-12) return 0.0F;
+  if (variance <= kMinVariance) return 0.0F;
   return static_cast<float>((centre - mean) / std::sqrt(variance));
 }
 
@@ -41,36 +44,55 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
   const float shift = contrastShift(window);
   cv::Mat enhanced(differences.size(), CV_32F);
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
-    // Prefix sums make every window O(1); doubles keep them exact enough for thousands of columns.
-    std::vector<double> prefix(columns + 1);
-    std::vector<double> prefix_of_squares(columns + 1);
+    std::vector<float> means(static_cast<std::size_t>(columns));
+    std::vector<float> squares(static_cast<std::size_t>(columns));
     for (int row = rows.start; row < rows.end; ++row) {
       const float* in = differences.ptr<float>(row);
       float* out = enhanced.ptr<float>(row);
-      for (int c = 0; c < columns; ++c) {
-        prefix[c + 1] = prefix[c] + in[c];
-        prefix_of_squares[c + 1] = prefix_of_squares[c] + static_cast<double>(in[c]) * in[c];
-      }
       // Edges, where the window is clipped.
+      const int interior_begin = std::min(columns, half);
+      const int interior_end = std::max(interior_begin, columns - half);
       const auto clipped = [&](int c) {
         const int begin = std::max(0, c - half);
         const int end = std::min(columns, c + half + 1);
-        out[c] = zScore(in[c], prefix[end] - prefix[begin], prefix_of_squares[end] - prefix_of_squares[begin],
-                        end - begin) +
-                 shift;
+        out[c] = enhanceCell(in[c], in + begin, end - begin, window);
       };
-      const int interior_begin = std::min(columns, half);
-      const int interior_end = std::max(interior_begin, columns - half);
       for (int c = 0; c < interior_begin; ++c) clipped(c);
       for (int c = interior_end; c < columns; ++c) clipped(c);
-      // Interior: a full window of n samples; branch-free so that the loop vectorises.
-      const double n = 2 * half + 1;
+      // Interior: a full window of n samples. Each pass below runs over contiguous columns and
+      // vectorises; the two-pass variance (mean first) stays exact in single precision. Two
+      // offsets per pass halve the loads and stores of the running sums.
+      const int n = 2 * half + 1;
+      float* __restrict mean = means.data();
+      float* __restrict square = squares.data();
+      std::fill(mean + interior_begin, mean + interior_end, 0.0F);
+      std::fill(square + interior_begin, square + interior_end, 0.0F);
+      int d = -half;
+      for (; d + 1 <= half; d += 2) {
+        for (int c = interior_begin; c < interior_end; ++c) mean[c] += in[c + d] + in[c + d + 1];
+      }
+      for (; d <= half; ++d) {
+        for (int c = interior_begin; c < interior_end; ++c) mean[c] += in[c + d];
+      }
+      for (int c = interior_begin; c < interior_end; ++c) mean[c] /= static_cast<float>(n);
+      for (d = -half; d + 1 <= half; d += 2) {
+        for (int c = interior_begin; c < interior_end; ++c) {
+          const float first = in[c + d] - mean[c];
+          const float second = in[c + d + 1] - mean[c];
+          square[c] += first * first + second * second;
+        }
+      }
+      for (; d <= half; ++d) {
+        for (int c = interior_begin; c < interior_end; ++c) {
+          const float deviation = in[c + d] - mean[c];
+          square[c] += deviation * deviation;
+        }
+      }
       for (int c = interior_begin; c < interior_end; ++c) {
-        const double sum = prefix[c + half + 1] - prefix[c - half];
-        const double mean = sum / n;
-        const double variance = (prefix_of_squares[c + half + 1] - prefix_of_squares[c - half] - sum * mean) / (n - 1);
-        const double z = variance > 1e-12 ? (in[c] - mean) / std::sqrt(std::max(variance, 1e-12)) : 0.0;
-        out[c] = static_cast<float>(z) + shift;
+        const float variance = square[c] / static_cast<float>(n - 1);
+        // A constant window gives no contrast; a multiplication rather than a branch vectorises.
+        const float deviation = (in[c] - mean[c]) * static_cast<float>(variance > kMinVariance);
+        out[c] = deviation / std::sqrt(std::max(variance, kMinVariance)) + shift;
       }
     }
   });
