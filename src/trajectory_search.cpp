@@ -88,10 +88,22 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
     const int end = std::min(columns, columns - offsets.back());
     if (begin >= end) continue;
     std::fill(sum.begin() + begin, sum.begin() + end, 0.0F);
-    // Row by row, so that the inner loop is a contiguous, vectorisable add.
-    for (int t = rows.first; t <= rows.last; ++t) {
-      const float* row = enhanced.ptr<float>(t) + offsets[t - rows.first];
-      for (int j = begin; j < end; ++j) sum[j] += row[j];
+    // Four rows at a time, so that the inner loop is a contiguous, vectorisable add that loads
+    // and stores the sums a quarter as often.
+    const auto row_at = [&](int t) { return enhanced.ptr<float>(t) + offsets[t - rows.first]; };
+    int t = rows.first;
+    for (; t + 3 <= rows.last; t += 4) {
+      const float* __restrict r0 = row_at(t);
+      const float* __restrict r1 = row_at(t + 1);
+      const float* __restrict r2 = row_at(t + 2);
+      const float* __restrict r3 = row_at(t + 3);
+      float* __restrict s = sum.data();
+      for (int j = begin; j < end; ++j) s[j] += (r0[j] + r1[j]) + (r2[j] + r3[j]);
+    }
+    for (; t <= rows.last; ++t) {
+      const float* __restrict row = row_at(t);
+      float* __restrict s = sum.data();
+      for (int j = begin; j < end; ++j) s[j] += row[j];
     }
     for (int j = begin; j < end; ++j) {
       const float mean = sum[j] / static_cast<float>(length);
