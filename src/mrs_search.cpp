@@ -20,17 +20,12 @@
 namespace mrs_vpr {
 namespace {
 
-/// The test sequence's cells at a level, row k - k_min ending at frame anchor + k * stride.
-DescriptorSequence levelQueryCells(SequenceView query, const SequenceRows& rows, const SamplingLevel& level,
-                                   int pixel_pooling) {
-  return poolSequence(query, rows.anchor + level.k_min * level.stride, level.stride, level.rows(), pixel_pooling);
-}
-
 /// Differences between the test cells and the reference grid of a level. The grid's cells come
 /// from the ones the reference's store keeps (complete cells only), the rest (all of them when it
 /// keeps none, else the last, partial one) are pooled now.
 cv::Mat levelDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
                          int pixel_pooling) {
+  if (level.stride == 1) return computeDifferenceMatrix(query_cells, reference);  // Full resolution.
   cv::Mat differences(query_cells.count, level.grid_size, CV_32F);
   const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
   const int known = std::min(kept.count, level.grid_size);
@@ -53,7 +48,8 @@ class CoarseToFineSearch {
   CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                      const SequenceParams& sequence, const MrsParams& mrs)
       : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
-        velocities_(velocities(sequence)), rng_(mrs.seed) {}
+        velocities_(velocities(sequence)), rng_(mrs.seed),
+        query_runs_(levels > 0 ? query : SequenceView{}, mrs.pixel_pooling) {}
 
   Match run() {
     level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
@@ -74,12 +70,19 @@ class CoarseToFineSearch {
   /// table. The table also gives the runner-up for the confidence.
   void scoreCoarsestLevel() {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
+    DescriptorSequence query_cells(1);
     const cv::Mat matrix = enhanceContrast(
-        levelDifferences(levelQueryCells(query_, rows_, level_, pixel_pooling).view(), reference_, level_,
-                         pixel_pooling),
-        sequence_.contrast_window);
+        levelDifferences(levelQuery(query_cells), reference_, level_, pixel_pooling), sequence_.contrast_window);
     result_.comparisons += static_cast<long long>(matrix.total()) / pixel_pooling;
     coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
+  }
+
+  /// The test sequence at the current level, row k - k_min ending at frame anchor + k * stride:
+  /// the frames themselves at full resolution, else cells pooled into `storage`.
+  SequenceView levelQuery(DescriptorSequence& storage) const {
+    if (level_.stride == 1) return query_.slice(rows_.first, rows_.last + 1);
+    storage = query_runs_.pool(rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
+    return storage.view();
   }
 
   /// P_init = (M / N) * tau particles, uniformly over the ends that fit.
@@ -102,17 +105,12 @@ class CoarseToFineSearch {
   /// Evaluate, weight, resample until the coverage shrinks (the paper's loop) or nothing changes.
   void iterateLevel(bool coarsest, bool finest) {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
-    // At full resolution the cells are the frames themselves: no copy.
-    const bool full_resolution = level_.stride == 1 && pixel_pooling == 1;
-    const DescriptorSequence query_cells = coarsest || full_resolution
-                                               ? DescriptorSequence(1)
-                                               : levelQueryCells(query_, rows_, level_, pixel_pooling);
-    const SequenceView query_rows = full_resolution ? query_.slice(rows_.first, rows_.last + 1) : query_cells.view();
+    DescriptorSequence query_cells(1);
+    const SequenceView query_rows = coarsest ? SequenceView{} : levelQuery(query_cells);
     // Finer levels compare ends a few frames apart, whose local contrast statistics are nearly the
     // same: enhancement would not change their order but would cost window/2 extra cells on each
     // side of every cell. Raw differences are used there (same success on Nordland, measured).
-    LazyDifferenceMatrix matrix(coarsest ? SequenceView{} : query_rows, reference_, level_.stride,
-                                pixel_pooling, 0);
+    LazyDifferenceMatrix matrix(query_rows, reference_, level_.stride, pixel_pooling, 0);
     std::unique_ptr<EndCostTable> lazy_costs;
     if (!coarsest) lazy_costs = std::make_unique<EndCostTable>(matrix, level_, levelVelocities());
     EndCostTable& costs = coarsest ? *coarse_costs_ : *lazy_costs;
@@ -209,6 +207,7 @@ class CoarseToFineSearch {
   const MrsParams& mrs_;
   std::vector<double> velocities_;
   std::mt19937_64 rng_;
+  PixelRunSums query_runs_;  ///< Pools the test sequence at every level below full resolution.
 
   SamplingLevel level_;
   std::unique_ptr<EndCostTable> coarse_costs_;

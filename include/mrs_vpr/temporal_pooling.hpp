@@ -27,6 +27,29 @@ void poolCell(SequenceView view, int end, int stride, int pixel_pooling, std::ui
 /// descriptors of view.descriptor_size / pixel_pooling bytes.
 DescriptorSequence poolSequence(SequenceView view, int first_end, int stride, int count, int pixel_pooling = 1);
 
+/// A sequence with the runs of `pixel_pooling` pixels of each frame summed once. Cells of any
+/// stride then pool from these sums with contiguous additions only, so that pooling a test
+/// sequence at every level of a search reads its full-size frames once rather than once per level.
+class PixelRunSums {
+ public:
+  /// Throws std::invalid_argument when pixel_pooling does not divide the descriptor size.
+  PixelRunSums(SequenceView view, int pixel_pooling);
+
+  /// The same cells as poolSequence(view, first_end, stride, count, pixel_pooling).
+  DescriptorSequence pool(int first_end, int stride, int count) const;
+
+ private:
+  std::uint16_t* frameSums(int frame) { return sums_.data() + static_cast<std::ptrdiff_t>(frame) * cell_size_; }
+  const std::uint16_t* frameSums(int frame) const {
+    return sums_.data() + static_cast<std::ptrdiff_t>(frame) * cell_size_;
+  }
+
+  int frames_;
+  int pixel_pooling_;
+  int cell_size_ = 0;
+  std::vector<std::uint16_t> sums_;  ///< frames_ x cell_size_ run sums.
+};
+
 /// Cells ending at grid index J * stride of a reference: the store's kept cells when it has them,
 /// else pooled on first use and remembered.
 class PooledReference {

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -69,6 +70,35 @@ TEST(PoolSequence, CellsEndAtFirstEndPlusMultiplesOfTheStride) {
     poolCell(sequence.view(), 3 + 4 * i, 4, 2, expected.data());
     EXPECT_TRUE(std::equal(expected.begin(), expected.end(), pooled.descriptor(i))) << "cell " << i;
   }
+}
+
+TEST(PixelRunSums, PoolsTheSameCellsAsPoolSequence) {
+  // Uneven uint8 values make rounding matter; strides and ends reach past both ends of the sequence.
+  const DescriptorSequence sequence = randomSequence(37, 24, 7);
+  for (const int pixel_pooling : {1, 2, 3, 4, 8}) {
+    const PixelRunSums sums(sequence.view(), pixel_pooling);
+    for (const int stride : {1, 2, 4, 8, 16}) {
+      for (const int first_end : {0, 3, 5}) {
+        // As many cells as hold a frame: with most strides the last one ends past the sequence.
+        const int count = (36 + stride - 1 - first_end) / stride + 1;
+        const DescriptorSequence expected = poolSequence(sequence.view(), first_end, stride, count, pixel_pooling);
+        const DescriptorSequence pooled = sums.pool(first_end, stride, count);
+        ASSERT_EQ(pooled.size(), count);
+        ASSERT_EQ(pooled.descriptorSize(), 24 / pixel_pooling);
+        for (int i = 0; i < count; ++i) {
+          EXPECT_TRUE(
+              std::equal(pooled.descriptor(i), pooled.descriptor(i) + 24 / pixel_pooling, expected.descriptor(i)))
+              << "pixel pooling " << pixel_pooling << ", stride " << stride << ", first end " << first_end
+              << ", cell " << i;
+        }
+      }
+    }
+  }
+}
+
+TEST(PixelRunSums, RejectsAPoolingThatDoesNotDivideTheDescriptor) {
+  const DescriptorSequence sequence = randomSequence(3, 24, 8);
+  EXPECT_THROW(PixelRunSums(sequence.view(), 5), std::invalid_argument);
 }
 
 TEST(PooledReference, CellsMatchPoolCellWithOrWithoutKeptCells) {
