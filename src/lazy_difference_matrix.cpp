@@ -26,35 +26,34 @@ const float* LazyDifferenceMatrix::rawRow(int row, int begin, int end) {
     if (segment.begin <= begin && segment.end() >= end) return segment.values.data() + (begin - segment.begin);
   }
   // Merge the request with every segment within reach into one new segment.
+  const auto within_reach = [&](const Segment& segment) {
+    return segment.begin <= end + kMergeGap && segment.end() + kMergeGap >= begin;
+  };
   Segment merged;
-  int merged_begin = begin;
+  merged.begin = begin;
   int merged_end = end;
   for (const Segment& segment : segments) {
-    if (segment.begin <= end + kMergeGap && segment.end() + kMergeGap >= begin) {
-      merged_begin = std::min(merged_begin, segment.begin);
+    if (within_reach(segment)) {
+      merged.begin = std::min(merged.begin, segment.begin);
       merged_end = std::max(merged_end, segment.end());
     }
   }
-  merged.begin = merged_begin;
-  merged.values.assign(static_cast<std::size_t>(merged_end - merged_begin), std::numeric_limits<float>::quiet_NaN());
-  std::vector<Segment> kept;
-  for (Segment& segment : segments) {
-    if (segment.begin >= merged_begin && segment.end() <= merged_end) {
-      std::copy(segment.values.begin(), segment.values.end(), merged.values.begin() + (segment.begin - merged_begin));
-    } else {
-      kept.push_back(std::move(segment));
+  merged.values.assign(static_cast<std::size_t>(merged_end - merged.begin), std::numeric_limits<float>::quiet_NaN());
+  for (const Segment& segment : segments) {
+    if (within_reach(segment)) {
+      std::copy(segment.values.begin(), segment.values.end(), merged.values.begin() + (segment.begin - merged.begin));
     }
   }
+  segments.erase(std::remove_if(segments.begin(), segments.end(), within_reach), segments.end());
   const std::uint8_t* test_frame = query_.frame(row);
-  for (int column = merged_begin; column < merged_end; ++column) {
-    float& value = merged.values[static_cast<std::size_t>(column - merged_begin)];
+  for (int column = merged.begin; column < merged_end; ++column) {
+    float& value = merged.values[static_cast<std::size_t>(column - merged.begin)];
     if (std::isnan(value)) {
       value = descriptorDifference(test_frame, reference_.cell(column), query_.descriptor_size);
       ++comparisons_;
     }
   }
-  kept.push_back(std::move(merged));
-  segments.swap(kept);
+  segments.push_back(std::move(merged));
   const Segment& result = segments.back();
   return result.values.data() + (begin - result.begin);
 }

@@ -13,6 +13,11 @@ EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& le
     : matrix_(&matrix), level_(level), velocities_(std::move(velocities)), known_(level.grid_size, 0) {
   costs_.cost.assign(static_cast<std::size_t>(level.grid_size), std::numeric_limits<float>::infinity());
   costs_.velocity.assign(static_cast<std::size_t>(level.grid_size), 1.0F);
+  // Row r of the trajectory of velocity v through end J is the cell J + round(v * (k_min + r)).
+  for (double velocity : velocities_) {
+    std::vector<int>& offsets = offsets_.emplace_back();
+    for (int k = level.k_min; k <= level.k_max; ++k) offsets.push_back(static_cast<int>(std::lround(velocity * k)));
+  }
 }
 
 Evaluation EndCostTable::bestInWindow(int centre, int radius) {
@@ -38,32 +43,52 @@ Evaluation EndCostTable::bestInWindow(int centre, int radius) {
 }
 
 void EndCostTable::computeEnds(int first, int last) {
-  std::vector<float> sums(static_cast<std::size_t>(last - first + 1));
-  std::vector<float> row(sums.size());
-  for (double velocity : velocities_) {
-    // Ends whose trajectory at this velocity stays inside the grid.
-    const int begin = std::max(first, -static_cast<int>(std::lround(velocity * level_.k_min)));
-    const int end =
-        std::min(last, level_.grid_size - 1 - static_cast<int>(std::lround(velocity * level_.k_max)));
-    if (begin > end) continue;
-    const auto count = static_cast<std::size_t>(end - begin + 1);
-    std::fill(sums.begin(), sums.begin() + static_cast<std::ptrdiff_t>(count), 0.0F);
-    for (int k = level_.k_min; k <= level_.k_max; ++k) {
-      // Neighbouring ends at one velocity visit neighbouring cells of a row: one contiguous request.
-      const int offset = static_cast<int>(std::lround(velocity * k));
-      matrix_->enhancedRow(k - level_.k_min, begin + offset, end + offset + 1, row.data());
-      for (std::size_t e = 0; e < count; ++e) sums[e] += row[e];
+  std::fill(known_.begin() + first, known_.begin() + last + 1, 1);
+  // The velocities with ends in [first, last] whose trajectory stays inside the grid.
+  struct Fan {
+    std::size_t velocity;
+    int begin;
+    int end;
+  };
+  std::vector<Fan> fans;
+  for (std::size_t v = 0; v < velocities_.size(); ++v) {
+    const int begin = std::max(first, -offsets_[v].front());
+    const int end = std::min(last, level_.grid_size - 1 - offsets_[v].back());
+    if (begin <= end) fans.push_back({v, begin, end});
+  }
+  if (fans.empty()) return;  // No trajectory through these ends fits.
+  const auto span = static_cast<std::size_t>(last - first + 1);
+  std::vector<float> sums(fans.size() * span, 0.0F);
+  std::vector<float> row;
+  for (int r = 0; r < level_.rows(); ++r) {
+    const auto offset = [&](const Fan& fan) { return offsets_[fan.velocity][static_cast<std::size_t>(r)]; };
+    // The fans' cells of one row lie in one short span: one request for all of them.
+    int low = level_.grid_size;
+    int high = 0;
+    for (const Fan& fan : fans) {
+      low = std::min(low, fan.begin + offset(fan));
+      high = std::max(high, fan.end + offset(fan) + 1);
     }
-    for (std::size_t e = 0; e < count; ++e) {
-      const float cost = sums[e] / static_cast<float>(level_.rows());
-      const auto i = static_cast<std::size_t>(begin) + e;
+    row.resize(static_cast<std::size_t>(high - low));
+    matrix_->enhancedRow(r, low, high, row.data());
+    for (std::size_t f = 0; f < fans.size(); ++f) {
+      const float* values = row.data() + (fans[f].begin + offset(fans[f]) - low);
+      float* fan_sums = sums.data() + f * span;
+      const int count = fans[f].end - fans[f].begin + 1;
+      for (int e = 0; e < count; ++e) fan_sums[e] += values[e];
+    }
+  }
+  for (std::size_t f = 0; f < fans.size(); ++f) {
+    for (int index = fans[f].begin; index <= fans[f].end; ++index) {
+      const float sum = sums[f * span + static_cast<std::size_t>(index - fans[f].begin)];
+      const float cost = sum / static_cast<float>(level_.rows());
+      const auto i = static_cast<std::size_t>(index);
       if (cost < costs_.cost[i]) {
         costs_.cost[i] = cost;
-        costs_.velocity[i] = static_cast<float>(velocity);
+        costs_.velocity[i] = static_cast<float>(velocities_[fans[f].velocity]);
       }
     }
   }
-  std::fill(known_.begin() + first, known_.begin() + last + 1, 1);
 }
 
 std::vector<double> velocitiesNear(const std::vector<double>& all, double centre, double spread) {

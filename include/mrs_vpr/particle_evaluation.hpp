@@ -40,6 +40,7 @@ class EndCostTable {
   LazyDifferenceMatrix* matrix_ = nullptr;
   SamplingLevel level_;
   std::vector<double> velocities_;
+  std::vector<std::vector<int>> offsets_;  ///< offsets_[v][r]: row r's column offset at velocity v.
   AnchorCosts costs_;
   std::vector<char> known_;
 };
