@@ -74,45 +74,60 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
   }
   const int columns = enhanced.cols;
   const int length = rows.last - rows.first + 1;
+  // offsets[v][t - first]: the column of row t, relative to the anchor's, at velocity v.
+  std::vector<std::vector<int>> offsets(velocities.size(), std::vector<int>(static_cast<std::size_t>(length)));
+  for (std::size_t v = 0; v < velocities.size(); ++v) {
+    for (int t = rows.first; t <= rows.last; ++t) {
+      offsets[v][static_cast<std::size_t>(t - rows.first)] =
+          static_cast<int>(std::lround(velocities[v] * (t - rows.anchor)));
+    }
+  }
   AnchorCosts costs;
   costs.cost.assign(columns, std::numeric_limits<float>::infinity());
   costs.velocity.assign(columns, 0.0F);
-  std::vector<float> sum(columns);
-  std::vector<int> offsets(length);
-  for (double velocity : velocities) {
-    for (int t = rows.first; t <= rows.last; ++t) {
-      offsets[t - rows.first] = static_cast<int>(std::lround(velocity * (t - rows.anchor)));
-    }
-    // Anchors whose whole trajectory lies inside the reference.
-    const int begin = std::max(0, -offsets.front());
-    const int end = std::min(columns, columns - offsets.back());
-    if (begin >= end) continue;
-    std::fill(sum.begin() + begin, sum.begin() + end, 0.0F);
-    // Four rows at a time, so that the inner loop is a contiguous, vectorisable add that loads
-    // and stores the sums a quarter as often.
-    const auto row_at = [&](int t) { return enhanced.ptr<float>(t) + offsets[t - rows.first]; };
-    int t = rows.first;
-    for (; t + 3 <= rows.last; t += 4) {
-      const float* __restrict r0 = row_at(t);
-      const float* __restrict r1 = row_at(t + 1);
-      const float* __restrict r2 = row_at(t + 2);
-      const float* __restrict r3 = row_at(t + 3);
-      float* __restrict s = sum.data();
-      for (int j = begin; j < end; ++j) s[j] += (r0[j] + r1[j]) + (r2[j] + r3[j]);
-    }
-    for (; t <= rows.last; ++t) {
-      const float* __restrict row = row_at(t);
-      float* __restrict s = sum.data();
-      for (int j = begin; j < end; ++j) s[j] += row[j];
-    }
-    for (int j = begin; j < end; ++j) {
-      const float mean = sum[j] / static_cast<float>(length);
-      if (mean < costs.cost[j]) {
-        costs.cost[j] = mean;
-        costs.velocity[j] = static_cast<float>(velocity);
+  // Blocks of anchors are independent: each writes only its own costs, so threads share the work
+  // and the result does not depend on how it is split.
+  constexpr int kBlock = 256;
+  const int blocks = (columns + kBlock - 1) / kBlock;
+  cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
+    std::vector<float> sums(kBlock);
+    for (int block = range.start; block < range.end; ++block) {
+      const int block_begin = block * kBlock;
+      const int block_end = std::min(columns, block_begin + kBlock);
+      for (std::size_t v = 0; v < velocities.size(); ++v) {
+        // Anchors of this block whose whole trajectory lies inside the reference.
+        const int begin = std::max(block_begin, -offsets[v].front());
+        const int end = std::min(block_end, columns - offsets[v].back());
+        if (begin >= end) continue;
+        float* __restrict sum = sums.data() - begin;  // sum[j] for anchors j in [begin, end).
+        std::fill(sum + begin, sum + end, 0.0F);
+        // Four rows at a time, so that the inner loop is a contiguous, vectorisable add that
+        // loads and stores the sums a quarter as often.
+        const auto row_at = [&](int t) {
+          return enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)];
+        };
+        int t = rows.first;
+        for (; t + 3 <= rows.last; t += 4) {
+          const float* __restrict r0 = row_at(t);
+          const float* __restrict r1 = row_at(t + 1);
+          const float* __restrict r2 = row_at(t + 2);
+          const float* __restrict r3 = row_at(t + 3);
+          for (int j = begin; j < end; ++j) sum[j] += (r0[j] + r1[j]) + (r2[j] + r3[j]);
+        }
+        for (; t <= rows.last; ++t) {
+          const float* __restrict row = row_at(t);
+          for (int j = begin; j < end; ++j) sum[j] += row[j];
+        }
+        for (int j = begin; j < end; ++j) {
+          const float mean = sum[j] / static_cast<float>(length);
+          if (mean < costs.cost[j]) {
+            costs.cost[j] = mean;
+            costs.velocity[j] = static_cast<float>(velocities[v]);
+          }
+        }
       }
     }
-  }
+  });
   return costs;
 }
 
