@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 #include "mrs_vpr/mrs_search.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
@@ -168,6 +170,26 @@ TEST(MrsSearch, SameSeedGivesIdenticalMatches) {
   expectIdentical(first, matcher->match(route.reference.view(), query));
   expectIdentical(first, makeMatcher("mrs", globalSearchParams())->match(route.reference.view(), query));
   EXPECT_GT(first.comparisons, 0);
+}
+
+TEST(MrsSearch, ThreadCountDoesNotChangeTheMatch) {
+  const auto& route = longRoute();
+  const Parameters params = globalSearchParams();
+  DescriptorSequence with_pyramid = route.reference;
+  with_pyramid.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+  const auto matcher = makeMatcher("mrs", params);
+  const int threads = cv::getNumThreads();
+  const SequenceView query = route.query.view(0, 300);
+  // The coarsest level's matrix and trajectory sums are split over threads; their results, and so
+  // the particles' path, must not depend on the split. With cells pooled per query and kept ones.
+  for (const DescriptorSequence* reference : std::vector<const DescriptorSequence*>{&route.reference, &with_pyramid}) {
+    cv::setNumThreads(1);
+    const Match serial = matcher->match(reference->view(), query);
+    cv::setNumThreads(4);
+    const Match parallel = matcher->match(reference->view(), query);
+    cv::setNumThreads(threads);
+    expectIdentical(serial, parallel);
+  }
 }
 
 TEST(MrsSearch, MakesFarFewerComparisonsThanSeqSlamOnALongReference) {
