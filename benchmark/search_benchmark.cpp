@@ -2,10 +2,12 @@
 //
 // Prints figures; it is not a test. Both methods answer the same seeded global-localisation queries
 // (test sequences of N frames at random places of a generated route) and are timed side by side in
-// one run, so the ratio holds on a loaded machine even when the absolute times do not.
+// one run, so the ratio holds on a loaded machine even when the absolute times do not. Short runs are
+// repeated (see runQueries) so that a pause of the machine does not pass for a query's time.
 //
 //   mrs_vpr_benchmark [--reference-frames 9000] [--sequence-length 300] [--queries 40]
 //                     [--velocity-step 0.02] [--tolerance 5] [--threads 1,2] [--seed 7]
+//                     [--min-time 1]
 
 #include <algorithm>
 #include <chrono>
@@ -38,6 +40,7 @@ struct Options {
   int tolerance = 5;
   std::vector<int> threads = {1, 2};
   std::uint64_t seed = 7;
+  double min_time_s = 1.0;
 };
 
 Options parse(int argc, char** argv) {
@@ -46,7 +49,8 @@ Options parse(int argc, char** argv) {
     const std::string flag = argv[i];
     if (flag == "--help") {
       std::puts("mrs_vpr_benchmark [--reference-frames M] [--sequence-length N] [--queries K]\n"
-                "                  [--velocity-step S] [--tolerance T] [--threads 1,2] [--seed S]");
+                "                  [--velocity-step S] [--tolerance T] [--threads 1,2] [--seed S]\n"
+                "                  [--min-time SECONDS]");
       std::exit(0);
     }
     if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
@@ -57,6 +61,7 @@ Options parse(int argc, char** argv) {
     else if (flag == "--velocity-step") options.velocity_step = std::stod(value);
     else if (flag == "--tolerance") options.tolerance = std::stoi(value);
     else if (flag == "--seed") options.seed = std::stoull(value);
+    else if (flag == "--min-time") options.min_time_s = std::stod(value);
     else if (flag == "--threads") {
       options.threads.clear();
       std::stringstream list(value);
@@ -76,22 +81,32 @@ struct MethodResult {
   double median() const { return mrs_vpr::median(milliseconds); }
 };
 
+/// Every query with one method, in passes over all queries until the method has run for at least
+/// options.min_time_s (as Google Benchmark repeats short runs): a query's time is the median of its
+/// runs, so that a pause of the shared machine during a run of a millisecond does not count.
 MethodResult runQueries(const mrs_vpr::SequenceMatcher& matcher, const mrs_vpr::DescriptorSequence& reference,
                         const mrs_vpr::DescriptorSequence& query, const std::vector<int>& starts,
                         const std::vector<int>& truth, const Options& options) {
   MethodResult result;
-  for (int start : starts) {
-    const auto begin = std::chrono::steady_clock::now();
-    const mrs_vpr::Match match =
-        matcher.match(reference.view(), query.view(start, start + options.sequence_length));
-    const auto end = std::chrono::steady_clock::now();
-    result.milliseconds.push_back(std::chrono::duration<double, std::milli>(end - begin).count());
-    result.comparisons += match.comparisons;
-    const int expected = truth[static_cast<std::size_t>(start + options.sequence_length - 1)];
-    if (match.reference_index >= 0 && std::abs(match.reference_index - expected) <= options.tolerance) {
-      ++result.successes;
+  std::vector<std::vector<double>> runs(starts.size());
+  double elapsed_s = 0.0;
+  for (int pass = 0; pass == 0 || elapsed_s < options.min_time_s; ++pass) {
+    for (std::size_t q = 0; q < starts.size(); ++q) {
+      const auto begin = std::chrono::steady_clock::now();
+      const mrs_vpr::Match match =
+          matcher.match(reference.view(), query.view(starts[q], starts[q] + options.sequence_length));
+      const auto end = std::chrono::steady_clock::now();
+      runs[q].push_back(std::chrono::duration<double, std::milli>(end - begin).count());
+      elapsed_s += runs[q].back() / 1000.0;
+      if (pass > 0) continue;  // Runs repeat the same answer.
+      result.comparisons += match.comparisons;
+      const int expected = truth[static_cast<std::size_t>(starts[q] + options.sequence_length - 1)];
+      if (match.reference_index >= 0 && std::abs(match.reference_index - expected) <= options.tolerance) {
+        ++result.successes;
+      }
     }
   }
+  for (const std::vector<double>& query_runs : runs) result.milliseconds.push_back(mrs_vpr::median(query_runs));
   return result;
 }
 
@@ -130,8 +145,10 @@ int main(int argc, char** argv) {
     std::printf("MRS-VPR vs brute-force SeqSLAM on the same %d queries (synthetic route, seed %llu)\n",
                 options.queries, static_cast<unsigned long long>(options.seed));
     std::printf("M = %d reference frames, N = %d frame test sequences, velocity step %.2f, "
-                "success = within %d frames\n\n",
+                "success = within %d frames\n",
                 reference.size(), options.sequence_length, options.velocity_step, options.tolerance);
+    std::printf("each method repeats the queries until it has run %.1f s; a query's time is the median of its runs\n\n",
+                options.min_time_s);
     std::printf("%-8s %-8s %8s %14s %18s\n", "threads", "method", "success", "median ms/query",
                 "comparisons/query");
     for (int threads : options.threads) {
