@@ -9,17 +9,11 @@
 
 namespace mrs_vpr {
 
-namespace {
-
-/// Sums of absolute differences become mean differences in patch standard deviations by one
-/// multiplication; every path uses this factor, so that they agree to the bit.
-float sumToDifference(int size) { return 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd); }
-
-}  // namespace
-
 float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size) {
-  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8.
-  return static_cast<float>(cv::hal::normL1_(a, b, size)) * sumToDifference(size);
+  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8. One
+  // multiplication turns it into a mean in patch standard deviations.
+  const float scale = 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd);
+  return static_cast<float>(cv::hal::normL1_(a, b, size)) * scale;
 }
 
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
@@ -38,7 +32,6 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
   // Blocks of reference frames are swept for all query frames so that a block stays in cache.
   constexpr int kBlock = 64;
   const int blocks = (reference.count + kBlock - 1) / kBlock;
-  const float scale = sumToDifference(query.descriptor_size);
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
     for (int block = range.start; block < range.end; ++block) {
       const int begin = block * kBlock;
@@ -47,7 +40,7 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
         float* row = differences.ptr<float>(t);
         const std::uint8_t* q = query.frame(t);
         for (int r = begin; r < end; ++r) {
-          row[r] = static_cast<float>(cv::hal::normL1_(q, reference.frame(r), query.descriptor_size)) * scale;
+          row[r] = descriptorDifference(q, reference.frame(r), query.descriptor_size);
         }
       }
     }
