@@ -30,6 +30,13 @@ void expectIdentical(const Match& a, const Match& b) {
   EXPECT_EQ(a.comparisons, b.comparisons);
 }
 
+/// A copy of `reference` that keeps the pooled cells MRS reads, as the node's map does.
+DescriptorSequence withKeptCells(const DescriptorSequence& reference, const MrsParams& mrs) {
+  DescriptorSequence kept = reference;
+  kept.keepPooledCells(mrs.levels, mrs.pixel_pooling);
+  return kept;
+}
+
 TEST(MrsSearch, LevelsForKeepsEnoughCoarseFrames) {
   const MrsSearch search(SequenceParams{}, MrsParams{});  // levels 3, min_coarse_frames 32
   EXPECT_EQ(search.levelsFor(10), 0);
@@ -146,8 +153,7 @@ TEST(MrsSearch, CentredMatchEveryFrameLocalisesTheFrameItself) {
 TEST(MrsSearch, KeptPyramidGivesTheSameAnswer) {
   const auto& route = standardRoute();
   const Parameters params = globalSearchParams();
-  DescriptorSequence with_pyramid = route.reference;
-  with_pyramid.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+  const DescriptorSequence with_pyramid = withKeptCells(route.reference, params.mrs);
   const auto matcher = makeMatcher("mrs", params);
   for (int start : {0, 120, 200}) {
     const SequenceView query = route.query.view(start, start + 200);
@@ -175,8 +181,7 @@ TEST(MrsSearch, SameSeedGivesIdenticalMatches) {
 TEST(MrsSearch, ThreadCountDoesNotChangeTheMatch) {
   const auto& route = longRoute();
   const Parameters params = globalSearchParams();
-  DescriptorSequence with_pyramid = route.reference;
-  with_pyramid.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+  const DescriptorSequence with_pyramid = withKeptCells(route.reference, params.mrs);
   const auto matcher = makeMatcher("mrs", params);
   const int threads = cv::getNumThreads();
   const SequenceView query = route.query.view(0, 300);
