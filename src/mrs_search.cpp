@@ -160,19 +160,12 @@ class CoarseToFineSearch {
     return moved;
   }
 
-  /// A level of L rows tells velocities apart to about 1 / L (one cell of drift over the sequence).
-  /// A finer level searches +-2 / L around the velocity of the heaviest particle of the previous
-  /// level, so the fan of trajectories (and the cells to compute) narrows level by level, and at
-  /// least a few steps of the velocity grid either side: two after the coarsest level, whose short
-  /// sequence can miss the velocity by two steps, one once a finer level has refined it (on Nordland
-  /// with steps 0.1, 0.05 and 0.02 and N = 64 to 300, one step after the coarsest level lost up to
-  /// 1.5 points; one step after a finer level lost nothing and saved a fifth to a third of the
-  /// comparisons at N = 300). Around every particle's own velocity instead, the union is wider and
-  /// costs 15% more time for the same success (measured).
+  /// A finer level searches the velocities within fanSpread() of the heaviest particle's on the
+  /// previous level. Around every particle's own velocity instead, the union is wider and costs 15%
+  /// more time for the same success (measured).
   std::vector<double> levelVelocities() const {
-    const bool previous_level_refined = 2 * level_.stride < (1 << levels_);  // It was not the coarsest.
-    const double grid_steps = previous_level_refined ? 1.0 : 2.0;
-    const double spread = std::max(grid_steps * sequence_.velocity_step, 2.0 / previous_rows_);
+    const bool after_coarsest = 2 * level_.stride == (1 << levels_);
+    const double spread = fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest);
     const auto heaviest = std::max_element(particles_.begin(), particles_.end(),
                                            [](const Particle& a, const Particle& b) { return a.weight < b.weight; });
     return velocitiesNear(velocities_, heaviest->velocity, spread);

@@ -91,6 +91,11 @@ void EndCostTable::computeEnds(int first, int last) {
   }
 }
 
+double fanSpread(double velocity_step, int previous_rows, bool after_coarsest) {
+  const double grid_steps = after_coarsest ? 2.0 : 1.0;
+  return std::max(grid_steps * velocity_step, 2.0 / previous_rows);
+}
+
 std::vector<double> velocitiesNear(const std::vector<double>& all, double centre, double spread) {
   std::vector<double> near;
   for (double velocity : all) {

@@ -282,6 +282,14 @@ TEST(EndCostTable, LazyCostsEqualTheDenseSearchOnTheEndsAsked) {
   EXPECT_EQ(matrix.comparisons(), after_first);
 }
 
+TEST(FanSpread, TwoOverTheRowsAndAtLeastTwoGridStepsAfterTheCoarsestLevelOneAfterAFinerOne) {
+  EXPECT_DOUBLE_EQ(fanSpread(0.02, 38, true), 2.0 / 38);  // 2 / L beyond two steps.
+  EXPECT_DOUBLE_EQ(fanSpread(0.02, 75, true), 0.04);      // Two steps.
+  EXPECT_DOUBLE_EQ(fanSpread(0.02, 75, false), 2.0 / 75);
+  EXPECT_DOUBLE_EQ(fanSpread(0.02, 150, false), 0.02);  // One step.
+  EXPECT_DOUBLE_EQ(fanSpread(0.1, 50, false), 0.1);
+}
+
 TEST(VelocitiesNear, KeepsTheFanWithinTheSpreadOrTheNearest) {
   const std::vector<double> all{0.8, 0.9, 1.0, 1.1, 1.2};
   const std::vector<double> near = velocitiesNear(all, 1.0, 0.1);
