@@ -133,12 +133,22 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   std::vector<double> errors;
   std::vector<double> times;
   double total_ms = 0.0;
+  int accepted_correct = 0;
   for (const QueryRecord& record : records) {
+    if (record.accepted) {
+      ++summary.accepted;
+      if (isCorrect(record, tolerance)) ++accepted_correct;
+    }
     const int error = absoluteError(record);
     if (error >= 0) errors.push_back(error);
     times.push_back(record.time_ms);
     total_ms += record.time_ms;
   }
+  if (!records.empty()) {
+    summary.accepted_rate = static_cast<double>(summary.accepted) / static_cast<double>(records.size());
+    summary.accepted_recall = static_cast<double>(accepted_correct) / static_cast<double>(records.size());
+  }
+  if (summary.accepted > 0) summary.accepted_precision = static_cast<double>(accepted_correct) / summary.accepted;
   summary.median_abs_error = median(errors);
   summary.median_time_ms = median(times);
   summary.total_time_s = total_ms / 1000.0;

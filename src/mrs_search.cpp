@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/lazy_difference_matrix.hpp"
@@ -184,8 +185,8 @@ class CoarseToFineSearch {
     }
   }
 
-  /// The best end seen at full resolution. Its confidence is OpenSeqSLAM's best / runner-up ratio,
-  /// read on the coarse table, which covers the whole map.
+  /// The best end seen at full resolution. Its confidence is read on the coarse table, the one level
+  /// that scores every end of the map: the answer's coarse cell against its best rival there.
   Match finish() {
     if (best_.index < 0) return result_;
     result_.reference_index = best_.index;
@@ -195,6 +196,7 @@ class CoarseToFineSearch {
                                      std::max(2, sequence_.match_exclusion / coarse_stride));
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
+    applyAcceptance(result_, sequence_.accept_threshold);
     return result_;
   }
 

@@ -49,6 +49,7 @@ void SequenceParams::validate() const {
     requireInRange("sequence/contrast_window", contrast_window, 2, 1000, "0 (off) or [2, 1000]");
   }
   requireInRange("sequence/match_exclusion", match_exclusion, 0, 10000, "[0, 10000]");
+  requireInRange("sequence/accept_threshold", accept_threshold, 0.0, 1000.0, "[0, 1000]");
 }
 
 void MrsParams::validate() const {

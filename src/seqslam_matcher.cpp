@@ -1,5 +1,6 @@
 #include "mrs_vpr/seqslam_matcher.hpp"
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
@@ -12,7 +13,9 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
   const cv::Mat enhanced =
       enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
-  return searchTrajectories(enhanced, wholeSequenceRows(query.count, sequence_.alignment), sequence_);
+  Match match = searchTrajectories(enhanced, wholeSequenceRows(query.count, sequence_.alignment), sequence_);
+  applyAcceptance(match, sequence_.accept_threshold);
+  return match;
 }
 
 std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
@@ -27,6 +30,7 @@ std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, Seque
       if (rows.first < 0 || rows.last >= query.count) continue;
       matches[frame] = searchTrajectories(enhanced, rows, sequence_);
       matches[frame].comparisons = static_cast<long long>(reference.count);  // One new row per frame.
+      applyAcceptance(matches[frame], sequence_.accept_threshold);
     }
   });
   return matches;

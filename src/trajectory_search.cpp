@@ -5,6 +5,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "mrs_vpr/acceptance.hpp"
+
 namespace mrs_vpr {
 
 std::vector<double> velocities(const SequenceParams& params) {
@@ -56,7 +58,7 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
   match.score = (std::isfinite(best) && std::isfinite(runner_up) && runner_up > 0.0F)
                     ? std::clamp(best / runner_up, 0.0F, 1.0F)
                     : 1.0F;
-  match.confidence = 1.0F - match.score;
+  match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor));
   return match;
 }
 

@@ -20,7 +20,8 @@ struct QueryRecord {
   std::vector<int> true_indices;  ///< Reference frames that are correct answers (empty: none is).
   int predicted_index = -1;       ///< Reference frame returned; -1 when the method returned none.
   float score = 1.0F;             ///< Best / runner-up, lower is better.
-  float confidence = 0.0F;        ///< 0..1, higher is surer; the PR curve sweeps a threshold on it.
+  float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
+  bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
   double time_ms = 0.0;           ///< Time spent on this query.
 };
 
@@ -38,6 +39,11 @@ struct EvaluationSummary {
   double top1 = 0.0;
   double pr_auc = 0.0;
   double recall_at_100_precision = 0.0;
+  int accepted = 0;                ///< Answers that passed the acceptance rule.
+  double accepted_rate = 0.0;      ///< accepted / queries: for queries outside the map, the false-closure rate.
+  /// Correct accepted / accepted: NaN when nothing was accepted.
+  double accepted_precision = std::numeric_limits<double>::quiet_NaN();
+  double accepted_recall = 0.0;    ///< Correct accepted / queries.
   double median_abs_error = std::numeric_limits<double>::quiet_NaN();
   double median_time_ms = std::numeric_limits<double>::quiet_NaN();
   double total_time_s = 0.0;  ///< Sum of the queries' times; a caller may replace it by a wall time.

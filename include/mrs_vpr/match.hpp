@@ -8,8 +8,16 @@ struct Match {
   int reference_index = -1;
   /// OpenSeqSLAM's match score: best / runner-up sequence difference, in [0, 1]; lower is better.
   float score = 1.0F;
-  /// 1 - score: how much better the best sequence is than the runner-up; higher is surer.
+  /**
+   * Distinctiveness: by how many standard deviations of the costs of all ends the best sequence
+   * beats its best rival (the lowest cost farther than match_exclusion / 2 from it), >= 0; higher is
+   * surer. Unlike the ratio of `score`, it is measured in the noise of this very query, so a threshold
+   * means the same for every method, sequence length and map size (see acceptance.hpp).
+   */
   float confidence = 0.0F;
+  /// Whether the answer passes the acceptance rule: a match was found and confidence >=
+  /// SequenceParams::accept_threshold. Only accepted answers should be used as loop closures.
+  bool accepted = false;
   /// Mean (shifted, contrast-enhanced) difference along the best trajectory; lower is more similar.
   float sequence_difference = 0.0F;
   /// Difference cells evaluated (image comparisons); a machine-independent measure of cost.

@@ -30,6 +30,10 @@ struct SequenceParams {
   int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 (off) or 2..1000.
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up, 0..10000.
   WindowAlignment alignment = WindowAlignment::kCausal;
+  /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
+  /// deviations of the query's own end costs) reaches this, 0..1000. 3 is a three-sigma rule, not a
+  /// value fitted to a data set; see acceptance.hpp for its derivation and the README for checks.
+  double accept_threshold = 3.0;
 
   void validate() const;
 };

@@ -40,17 +40,17 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
  * Brute-force straight-trajectory search through an enhanced difference matrix (test frames x
  * reference frames): for every anchor reference column j and velocity v, the trajectory visits
  * column j + round(v * (t - anchor)) at row t; its cost is the mean of the cells it visits. Only
- * trajectories that stay inside the matrix count. Returns the best anchor column with OpenSeqSLAM's
- * best / runner-up score (runner-up outside +-match_exclusion/2 of the best).
+ * trajectories that stay inside the matrix count. Returns the best anchor column scored by
+ * scoreFromCosts (runner-up outside +-match_exclusion/2 of the best); acceptance is the caller's.
  */
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
 
 /// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
-/// cost farther away; score = best / runner-up, confidence = 1 - score.
+/// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all).
 Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion);
 
 /// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than
-/// exclusion/2 frames away: score = best / runner-up, confidence = 1 - score.
+/// exclusion/2 frames away, as scoreAround does.
 Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion);
 
 }  // namespace mrs_vpr

@@ -38,6 +38,8 @@ void forEachParameter(Params& p, Visitor&& visit) {
         "Frames around the best match excluded when looking for the runner-up.");
   visit("sequence/alignment", s.alignment, "causal, centred",
         "causal: the test sequence ends at the frame localised; centred: it is in the middle.");
+  visit("sequence/accept_threshold", s.accept_threshold, "0..1000",
+        "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this.");
   visit("mrs/levels", m.levels, "0..8", "Coarsest temporal stride is 2^levels.");
   visit("mrs/min_coarse_frames", m.min_coarse_frames, "2..1000",
         "Fewer levels are used when the coarsest level would keep fewer test frames.");
@@ -65,10 +67,6 @@ void forEachParameter(Params& p, Visitor&& visit) {
         "Map frames just before a recent_frames test sequence that are not searched.");
   visit("default_method", p.default_method, "mrs, seqslam",
         "Method for requests with an empty method and for continuous mode.");
-  visit("accept_threshold/mrs", p.accept_threshold_mrs, "0..1",
-        "An mrs match is accepted when its confidence reaches this.");
-  visit("accept_threshold/seqslam", p.accept_threshold_seqslam, "0..1",
-        "A seqslam match is accepted when its confidence reaches this.");
   visit("auto_query_period", p.auto_query_period, ">= 0",
         "Continuous mode: query with the newest frames every this many seconds; 0 = off.");
   visit("auto_query_frames", p.auto_query_frames, "0 or 2..1000000",
@@ -189,19 +187,11 @@ void NodeParameters::validate() const {
           format(recent_exclusion));
   require(default_method == "mrs" || default_method == "seqslam", "default_method", "mrs or seqslam",
           "'" + default_method + "'");
-  require(accept_threshold_mrs >= 0.0 && accept_threshold_mrs <= 1.0, "accept_threshold/mrs", "in 0..1",
-          format(accept_threshold_mrs));
-  require(accept_threshold_seqslam >= 0.0 && accept_threshold_seqslam <= 1.0, "accept_threshold/seqslam",
-          "in 0..1", format(accept_threshold_seqslam));
   require(auto_query_period >= 0.0, "auto_query_period", ">= 0 (0 = off)", format(auto_query_period));
   require(auto_query_frames == 0 || (auto_query_frames >= 2 && auto_query_frames <= 1000000),
           "auto_query_frames", "0 or 2..1000000", format(auto_query_frames));
   require(map_info_rate > 0.0 && map_info_rate <= 1000.0, "map_info_rate", "in (0, 1000]",
           format(map_info_rate));
-}
-
-double NodeParameters::acceptThreshold(const std::string& method) const {
-  return method == "seqslam" ? accept_threshold_seqslam : accept_threshold_mrs;
 }
 
 int NodeParameters::autoQueryFrames() const {
@@ -244,7 +234,7 @@ std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh) {
     const std::string relative = name.substr(prefix.size());
     // Transport plugins read their own parameters (image_transport, compressed/..., theora/...).
     const bool core_group = relative.rfind("descriptor/", 0) == 0 || relative.rfind("sequence/", 0) == 0 ||
-                            relative.rfind("mrs/", 0) == 0 || relative.rfind("accept_threshold/", 0) == 0;
+                            relative.rfind("mrs/", 0) == 0;
     const bool transport =
         relative == "image_transport" || (relative.find('/') != std::string::npos && !core_group);
     if (!transport && std::find(known.begin(), known.end(), name) == known.end()) {

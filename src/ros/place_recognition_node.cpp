@@ -303,10 +303,9 @@ void PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& re
     response.confidence = match.confidence;
     response.reference_stamp =
         match.reference_index >= 0 ? toRosTime(map_.stamp(match.reference_index)) : ros::Time();
-    response.accepted =
-        match.reference_index >= 0 && match.confidence >= params_.acceptThreshold(matcher->first);
+    response.accepted = match.accepted;
     response.message = match.reference_index >= 0
-                           ? (response.accepted ? "accepted" : "below ~accept_threshold/" + matcher->first)
+                           ? (response.accepted ? "accepted" : "not accepted: confidence below ~sequence/accept_threshold")
                            : "no match found";
   }
   flushPending();

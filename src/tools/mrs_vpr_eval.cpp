@@ -38,6 +38,7 @@ constexpr const char* kUsage =
     "Usage: mrs_vpr_eval --reference DIR|BAG --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
     "                    --method mrs|seqslam --protocol per-frame|global --sequence-length N\n"
     "                    [--queries K] [--tolerance T] [--seed S] [--output FILE.json]\n"
+    "                    [--accept-threshold C] [--threads T] [--out-of-map]\n"
     "\n"
     "Evaluates visual place recognition of a query traversal against a reference traversal.\n"
     "Image folders are read in file-name order; bags (*.bag) give the sensor_msgs/Image or\n"
@@ -48,8 +49,10 @@ constexpr const char* kUsage =
     "             PR curve over a threshold on confidence, PR-AUC, recall at 100% precision, top-1\n"
     "  global     K test sequences of N frames at random start positions (seeded); each returns\n"
     "             the reference frame of its newest frame (its middle when centred)\n"
-    "A prediction is correct within --tolerance frames of a true index. The summary is printed on\n"
-    "stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n";
+    "A prediction is correct within --tolerance frames of a true index. Every answer is accepted or\n"
+    "not by the core's acceptance rule (confidence >= --accept-threshold); with --out-of-map no query\n"
+    "frame is in the reference, so every accepted answer is a false loop closure. The summary is\n"
+    "printed on stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n";
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -68,6 +71,8 @@ struct Options {
   std::string output;
   int queries = 200;
   int tolerance = 2;
+  int threads = 0;
+  bool out_of_map = false;
   std::uint64_t seed = 42;
   mrs_vpr::Parameters params;
 };
@@ -93,6 +98,10 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
       ("seed", po::value(&options.seed)->default_value(options.seed), "seed of the global start positions and of mrs")
       ("output", po::value(&options.output), "JSON file with parameters, records, summary and PR curve")
+      ("accept-threshold", po::value(&params.sequence.accept_threshold)->default_value(params.sequence.accept_threshold),
+       "answers are accepted at this confidence (distinctiveness, in spreads of the query's end costs)")
+      ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
+      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods; 0 = OpenCV's default")
       ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
       ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
       ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau")
@@ -114,6 +123,10 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   }
   if (options.tolerance < 0) throw std::invalid_argument("--tolerance must be >= 0");
   if (options.queries < 1) throw std::invalid_argument("--queries must be >= 1");
+  if (options.threads < 0) throw std::invalid_argument("--threads must be >= 0");
+  if (options.out_of_map && !options.ground_truth.empty()) {
+    throw std::invalid_argument("--out-of-map and --ground-truth exclude each other");
+  }
   if ((mrs_vpr::bag::isBagPath(options.reference) || mrs_vpr::bag::isBagPath(options.query)) &&
       options.topic.empty()) {
     throw std::invalid_argument("reading a bag needs --topic");
@@ -187,6 +200,7 @@ mrs_vpr::QueryRecord makeRecord(int query_index, const std::vector<int>& truth, 
   record.predicted_index = match.reference_index;
   record.score = match.score;
   record.confidence = match.confidence;
+  record.accepted = match.accepted;
   record.time_ms = time_ms;
   return record;
 }
@@ -262,6 +276,8 @@ json parametersToJson(const Options& options) {
       {"queries", options.queries},
       {"tolerance", options.tolerance},
       {"seed", options.seed},
+      {"threads", options.threads},
+      {"out_of_map", options.out_of_map},
       {"descriptor",
        {{"image_width", p.descriptor.image_width},
         {"image_height", p.descriptor.image_height},
@@ -273,7 +289,8 @@ json parametersToJson(const Options& options) {
         {"velocity_step", p.sequence.velocity_step},
         {"contrast_window", p.sequence.contrast_window},
         {"match_exclusion", p.sequence.match_exclusion},
-        {"alignment", mrs_vpr::toString(p.sequence.alignment)}}},
+        {"alignment", mrs_vpr::toString(p.sequence.alignment)},
+        {"accept_threshold", p.sequence.accept_threshold}}},
       {"mrs",
        {{"levels", p.mrs.levels},
         {"min_coarse_frames", p.mrs.min_coarse_frames},
@@ -294,6 +311,10 @@ json summaryToJson(const mrs_vpr::EvaluationSummary& summary) {
           {"top1", summary.top1},
           {"pr_auc", summary.pr_auc},
           {"recall_at_100_precision", summary.recall_at_100_precision},
+          {"accepted", summary.accepted},
+          {"accepted_rate", summary.accepted_rate},
+          {"accepted_precision", number(summary.accepted_precision)},
+          {"accepted_recall", summary.accepted_recall},
           {"median_abs_error", number(summary.median_abs_error)},
           {"median_time_ms", number(summary.median_time_ms)},
           {"total_time_s", summary.total_time_s}};
@@ -309,6 +330,7 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
                     {"predicted_index", record.predicted_index},
                     {"score", record.score},
                     {"confidence", record.confidence},
+                    {"accepted", record.accepted},
                     {"time_ms", record.time_ms},
                     {"correct", mrs_vpr::isCorrect(record, tolerance)}});
   }
@@ -323,6 +345,7 @@ int run(int argc, char** argv) {
   const mrs_vpr::SequenceParams& sequence = options.params.sequence;
   const std::unique_ptr<mrs_vpr::SequenceMatcher> matcher = mrs_vpr::makeMatcher(options.method, options.params);
 
+  if (options.threads > 0) cv::setNumThreads(options.threads);
   std::optional<mrs_vpr::GroundTruth> truth;
   if (!options.ground_truth.empty()) truth = mrs_vpr::readGroundTruthCsv(options.ground_truth);
 
@@ -348,6 +371,10 @@ int run(int argc, char** argv) {
   }
   const double describe_s = secondsSince(start);
 
+  if (options.out_of_map) {
+    truth.emplace();  // Every query frame, none of them in the reference.
+    for (int frame = 0; frame < query.descriptors.size(); ++frame) (*truth)[frame] = {};
+  }
   const mrs_vpr::GroundTruth* truth_ptr = truth ? &*truth : nullptr;
   const Clock::time_point match_start = Clock::now();
   const std::vector<mrs_vpr::QueryRecord> records =

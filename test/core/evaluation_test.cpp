@@ -168,6 +168,24 @@ TEST(Evaluation, SummaryByHand) {
   EXPECT_DOUBLE_EQ(summary.median_abs_error, 1.0);  // Errors 0, 4, 1.
   EXPECT_DOUBLE_EQ(summary.median_time_ms, 5.0);
   EXPECT_DOUBLE_EQ(summary.total_time_s, 0.022);
+  EXPECT_EQ(summary.accepted, 0);
+  EXPECT_TRUE(std::isnan(summary.accepted_precision));  // Nothing accepted: precision undefined.
+  EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.0);
+}
+
+TEST(Evaluation, AcceptedPrecisionRecallAndRate) {
+  std::vector<QueryRecord> records = {record(0, {0}, 0, 9.0F), record(1, {1}, 5, 8.0F), record(2, {2}, 2, 7.0F),
+                                      record(3, {}, 40, 1.0F)};  // The last place is not in the map.
+  records[0].accepted = true;
+  records[1].accepted = true;  // Wrong by 4 frames.
+  records[3].accepted = false;
+  const EvaluationSummary summary = summarise(records, 1);
+  EXPECT_EQ(summary.accepted, 2);
+  EXPECT_DOUBLE_EQ(summary.accepted_rate, 0.5);
+  EXPECT_DOUBLE_EQ(summary.accepted_precision, 0.5);
+  EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.25);
+  records[3].accepted = true;  // An answer about a place outside the map is always false.
+  EXPECT_DOUBLE_EQ(summarise(records, 1).accepted_precision, 1.0 / 3.0);
 }
 
 // ------------------------------------------------------------------------------------------------

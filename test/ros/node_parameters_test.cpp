@@ -26,8 +26,8 @@ TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
   EXPECT_EQ(errorOf(params), "~frame_stride must be in 1..10000, got 0");
 
   params = NodeParameters{};
-  params.accept_threshold_mrs = 1.5;
-  EXPECT_EQ(errorOf(params), "~accept_threshold/mrs must be in 0..1, got 1.5");
+  params.core.sequence.accept_threshold = -1.0;
+  EXPECT_EQ(errorOf(params), "parameter 'sequence/accept_threshold' = -1 is out of range [0, 1000]");
 
   params = NodeParameters{};
   params.default_method = "fast";

@@ -23,12 +23,6 @@ struct NodeParameters {
   int max_pending_frames = 600;     ///< Keyframes buffered while a query reads the map, 1..1000000.
   int recent_exclusion = 100;       ///< Frames before the recent test sequence that are not searched, 0..1000000.
   std::string default_method = "mrs";  ///< Method for requests with an empty method and continuous mode.
-  /// A match is accepted when its confidence reaches the threshold of its method, 0..1. The two
-  /// methods' confidences have different scales (MRS reads its runner-up on pooled coarse cells,
-  /// where differences are less contrasted); the defaults give 100% precision on Nordland
-  /// summer -> winter (seqslam with 10-frame sequences; mrs with 64-frame ones).
-  double accept_threshold_mrs = 0.05;
-  double accept_threshold_seqslam = 0.15;
   double auto_query_period = 0.0;   ///< Continuous mode period [s], >= 0; 0 = off.
   int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
   double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz], (0, 1000].
@@ -37,8 +31,6 @@ struct NodeParameters {
   void validate() const;
   /// auto_query_frames, or sequence/sequence_length when it is 0.
   int autoQueryFrames() const;
-  /// accept_threshold/<method>.
-  double acceptThreshold(const std::string& method) const;
 };
 
 /**
