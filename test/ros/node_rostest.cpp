@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <cv_bridge/cv_bridge.h>
@@ -178,7 +179,7 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
     ASSERT_TRUE(response.success) << response.message;
     EXPECT_NEAR(response.reference_index, truth, kTolerance);
     EXPECT_NEAR(response.reference_stamp.toSec(), kReferenceStart + response.reference_index * kFramePeriod, 1e-3);
-    // A stretch of the mapped route: distinct, so accepted (config/default.yaml: accept_threshold 3).
+    // A stretch of the mapped route: distinct, so accepted (config/default.yaml: sequence/accept_threshold 3).
     EXPECT_GE(response.confidence, 3.0F);
     EXPECT_TRUE(response.accepted) << response.message;
     EXPECT_GT(response.elapsed_ms, 0.0F);
@@ -194,6 +195,48 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
     EXPECT_FLOAT_EQ(closure.confidence, response.confidence);
     EXPECT_EQ(closure.header.stamp, srv.request.images.back().header.stamp);
     EXPECT_EQ(closure.header.frame_id, "camera");
+  }
+}
+
+TEST_F(NodeTest, PlacesNotInTheMapAreAnsweredButNotAccepted) {
+  // A route generated from another seed (none of its places is mapped) and uniform noise: the search
+  // still has a best end, but it does not stand out from the query's own costs.
+  mrs_vpr::SyntheticRouteParams unmapped_params;
+  unmapped_params.seed = 8;
+  const mrs_vpr::SyntheticRoute unmapped = mrs_vpr::generateSyntheticRoute(unmapped_params);
+  cv::RNG noise(99);
+  std::vector<std::pair<std::string, std::vector<cv::Mat>>> sequences{
+      {"unmapped route", {unmapped.query.begin() + 100, unmapped.query.begin() + 140}}, {"noise", {}}};
+  for (int i = 0; i < 10; ++i) {
+    cv::Mat image(64, 128, CV_8UC1);
+    noise.fill(image, cv::RNG::UNIFORM, 0, 256);
+    sequences[1].second.push_back(image);
+  }
+
+  double stamp = 20000.0;  // Stamps of their own, so each query's loop closure can be told apart.
+  for (const auto& [name, images] : sequences) {
+    for (const std::string method : {"", "mrs", "seqslam"}) {
+      SCOPED_TRACE(name + ", method '" + method + "'");
+      mrs_vpr::QuerySequence srv;
+      for (const cv::Mat& image : images) {
+        srv.request.images.push_back(toMessage(image, stamp, image.channels() == 1 ? "mono8" : "bgr8"));
+        stamp += kFramePeriod;
+      }
+      srv.request.method = method;
+      const auto response = call(srv);
+      ASSERT_TRUE(response.success) << response.message;
+      EXPECT_FALSE(response.accepted) << "confidence " << response.confidence;
+
+      const ros::Time newest = srv.request.images.back().header.stamp;
+      mrs_vpr::LoopClosure closure;
+      ASSERT_TRUE(loop_closures_.waitFor([&](const mrs_vpr::LoopClosure& m) { return m.header.stamp == newest; },
+                                         closure, 5.0));
+      EXPECT_FALSE(closure.accepted);
+      EXPECT_EQ(closure.reference_index, response.reference_index);
+      EXPECT_FLOAT_EQ(closure.confidence, response.confidence);
+      EXPECT_EQ(closure.query_length, static_cast<std::uint32_t>(images.size()));
+      EXPECT_EQ(closure.method, method.empty() ? "mrs" : method);
+    }
   }
 }
 
