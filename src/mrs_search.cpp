@@ -52,14 +52,15 @@ class CoarseToFineSearch {
         velocities_(velocities(sequence)), rng_(mrs.seed),
         query_runs_(levels > 0 ? query : SequenceView{}, mrs.pixel_pooling) {}
 
-  Match run() {
+  Match run(std::vector<MrsLevelTrace>* trace) {
     level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
     if (level_.empty()) return result_;  // No trajectory fits in the reference.
     scoreCoarsestLevel();
     spreadParticles();
     for (int level_number = 0; level_number <= levels_ && !particles_.empty(); ++level_number) {
-      iterateLevel(level_number == 0, level_number == levels_);
-      if (level_number < levels_) descend();
+      iterateLevel(level_number == 0, level_number == 1, level_number == levels_);
+      if (trace != nullptr) trace->push_back(traceLevel(level_number == 0));
+      if (level_number < levels_) descend(level_number == 0);
     }
     return finish();
   }
@@ -103,24 +104,40 @@ class CoarseToFineSearch {
     first_radius_ = std::max(mrs_.index_shift, (span + count) / (2 * count));
   }
 
-  /// Evaluate, weight, resample until the coverage shrinks (the paper's loop) or nothing changes.
-  void iterateLevel(bool coarsest, bool finest) {
+  /**
+   * The coarsest level runs the paper's loop: evaluate, weight, resample until the coverage shrinks
+   * or nothing changes. Below it the particles are distinct hypotheses that each settle on the best
+   * end near them with a velocity fan of their own; none is resampled away, so that the level below
+   * the coarsest (`comparing`) can decide among them with contrast-enhanced costs, the only ones
+   * that compare places far apart fairly. Deeper levels only localise the winner, on raw
+   * differences: ends a few frames apart have nearly the same local contrast statistics, so
+   * enhancement would not change their order but would cost window/2 extra cells on either side.
+   */
+  void iterateLevel(bool coarsest, bool comparing, bool finest) {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
     DescriptorSequence query_cells(1);
     const SequenceView query_rows = coarsest ? SequenceView{} : levelQuery(query_cells);
-    // Finer levels compare ends a few frames apart, whose local contrast statistics are nearly the
-    // same: enhancement would not change their order but would cost window/2 extra cells on each
-    // side of every cell. Raw differences are used there (same success on Nordland, measured).
-    LazyDifferenceMatrix matrix(query_rows, reference_, level_.stride, pixel_pooling, 0);
-    std::unique_ptr<EndCostTable> lazy_costs;
-    if (!coarsest) lazy_costs = std::make_unique<EndCostTable>(matrix, level_, levelVelocities());
-    EndCostTable& costs = coarsest ? *coarse_costs_ : *lazy_costs;
+    LazyDifferenceMatrix matrix(query_rows, reference_, level_.stride, pixel_pooling,
+                                comparing ? sequence_.contrast_window : 0);
+    if (coarsest) {
+      iterateParticleFilter(*coarse_costs_, finest);
+    } else {
+      for (Particle& particle : particles_) {
+        EndCostTable costs(matrix, level_, levelVelocities(particle));
+        settle(particle, costs, finest);
+      }
+      dropInfeasible();
+    }
+    result_.comparisons += matrix.comparisons() / pixel_pooling;
+    previous_rows_ = level_.rows();
+  }
 
+  /// The paper's loop on the coarsest level's table.
+  void iterateParticleFilter(EndCostTable& costs, bool finest) {
     bool resampled = false;
     for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
       const int coverage_before = coverage(particles_, mrs_.index_shift);
-      const bool moved =
-          moveParticles(costs, coarsest && iteration == 0 ? first_radius_ : mrs_.index_shift, finest);
+      const bool moved = moveParticles(costs, iteration == 0 ? first_radius_ : mrs_.index_shift, finest);
       if (particles_.empty()) break;
       updateWeights(particles_);
       resampled = effectiveSampleSize(particles_) < mrs_.resample_threshold * static_cast<double>(particles_.size());
@@ -133,13 +150,51 @@ class CoarseToFineSearch {
     }
     if (resampled && !particles_.empty()) {
       // Resampling jittered the particles away from the ends their costs belong to; let them settle
-      // on this level before the heaviest are chosen, or the ranking would go by stale costs.
+      // before the level ends.
       moveParticles(costs, mrs_.index_shift, finest);
       for (Particle& particle : particles_) particle.weight = 1.0 / static_cast<double>(particles_.size());
       updateWeights(particles_);
     }
-    result_.comparisons += matrix.comparisons() / pixel_pooling;
-    previous_rows_ = level_.rows();
+  }
+
+  /// Moves a hypothesis to the best end within +-Id_shift until it stays (at most max_iterations).
+  void settle(Particle& particle, EndCostTable& costs, bool finest) {
+    for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
+      const Evaluation evaluation = costs.bestInWindow(particle.index, mrs_.index_shift);
+      particle.cost = evaluation.cost;
+      if (evaluation.index < 0) return;
+      const bool moved = evaluation.index != particle.index;
+      particle.index = evaluation.index;
+      particle.velocity = evaluation.velocity;
+      if (finest && evaluation.cost < best_.cost) best_ = evaluation;
+      if (!moved) return;
+    }
+  }
+
+  void dropInfeasible() {
+    particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
+                                    [](const Particle& p) { return !std::isfinite(p.cost); }),
+                     particles_.end());
+  }
+
+  /// The level's hypotheses as reference frames, lowest cost first.
+  MrsLevelTrace traceLevel(bool coarsest) const {
+    MrsLevelTrace trace;
+    trace.stride = level_.stride;
+    std::vector<Particle> sorted = particles_;
+    std::sort(sorted.begin(), sorted.end(), [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
+    for (const Particle& particle : sorted) trace.candidates.push_back(particle.index * level_.stride);
+    if (coarsest) {
+      for (int index : distinctMinima(coarse_costs_->costs(), hypothesisSeparation(), MrsLevelTrace::kTracedMinima)) {
+        trace.table_minima.push_back(index * level_.stride);
+      }
+    }
+    return trace;
+  }
+
+  /// Hypotheses closer than this (in cells of the coarsest level) would settle on the same end.
+  int hypothesisSeparation() const {
+    return std::max(2 * mrs_.index_shift + 1, sequence_.match_exclusion / (1 << levels_));
   }
 
   /// Algorithm 2 for every particle: move to the best end within `radius`. Particles where no
@@ -161,24 +216,35 @@ class CoarseToFineSearch {
     return moved;
   }
 
-  /// A finer level searches the velocities within fanSpread() of the heaviest particle's on the
-  /// previous level. Around every particle's own velocity instead, the union is wider and costs 15%
-  /// more time for the same success (measured).
-  std::vector<double> levelVelocities() const {
+  /// A hypothesis searches the velocities within fanSpread() of its own from the level above.
+  std::vector<double> levelVelocities(const Particle& particle) const {
     const bool after_coarsest = 2 * level_.stride == (1 << levels_);
-    const double spread = fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest);
-    const auto heaviest = std::max_element(particles_.begin(), particles_.end(),
-                                           [](const Particle& a, const Particle& b) { return a.weight < b.weight; });
-    return velocitiesNear(velocities_, heaviest->velocity, spread);
+    return velocitiesNear(velocities_, particle.velocity, fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest));
   }
 
-  /// Next level: half the stride, indices double, fewer particles survive (N_eff of them, at most
-  /// half, at least min_particles).
-  void descend() {
-    const int half = std::max(mrs_.min_particles, (static_cast<int>(particles_.size()) + 1) / 2);
-    const int survivors =
-        std::clamp(static_cast<int>(std::ceil(effectiveSampleSize(particles_))), mrs_.min_particles, half);
-    keepHeaviest(particles_, survivors);
+  /**
+   * Next level: half the stride, indices double. Leaving the coarsest level, the hypotheses are the
+   * mrs/hypotheses lowest distinct minima of its table, where the particles have settled and where
+   * any minimum they missed lies: the truth can rank below the first on a short coarse sequence,
+   * and the level below, with twice the rows, tells them apart. Below that only the winner goes on.
+   */
+  void descend(bool from_coarsest) {
+    if (from_coarsest) {
+      const std::vector<float>& table = coarse_costs_->costs();
+      particles_.clear();
+      for (int index : distinctMinima(table, hypothesisSeparation(), mrs_.hypotheses)) {
+        Particle particle;
+        particle.index = index;
+        particle.cost = table[static_cast<std::size_t>(index)];
+        particle.velocity = coarse_costs_->velocityAt(index);
+        particles_.push_back(particle);
+      }
+    } else {
+      const auto winner = std::min_element(particles_.begin(), particles_.end(),
+                                           [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
+      particles_ = {*winner};
+    }
+    for (Particle& particle : particles_) particle.weight = 1.0 / static_cast<double>(particles_.size());
     level_ = SamplingLevel::make(level_.stride / 2, rows_, reference_.count, velocities_.front());
     for (Particle& particle : particles_) {
       particle.index = std::clamp(particle.index * 2, level_.lowest_end, level_.highest_end);
@@ -232,7 +298,9 @@ int MrsSearch::levelsFor(int query_length) const {
   return levels;
 }
 
-Match MrsSearch::match(SequenceView reference, SequenceView query) const {
+Match MrsSearch::match(SequenceView reference, SequenceView query) const { return match(reference, query, nullptr); }
+
+Match MrsSearch::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);
   if (reference.descriptor_size % mrs_.pixel_pooling != 0) {
     throw std::invalid_argument("mrs/pixel_pooling " + std::to_string(mrs_.pixel_pooling) +
@@ -240,7 +308,7 @@ Match MrsSearch::match(SequenceView reference, SequenceView query) const {
   }
   return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment),
                             levelsFor(query.count), sequence_, mrs_)
-      .run();
+      .run(trace);
 }
 
 }  // namespace mrs_vpr

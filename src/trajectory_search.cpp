@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "mrs_vpr/acceptance.hpp"
 
@@ -66,6 +67,27 @@ Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
   const auto best = std::min_element(cost_by_anchor.begin(), cost_by_anchor.end());
   if (best == cost_by_anchor.end() || !std::isfinite(*best)) return Match{};  // No trajectory fits.
   return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion);
+}
+
+std::vector<int> distinctMinima(const std::vector<float>& cost_by_anchor, int separation, int count) {
+  std::vector<std::pair<float, int>> heap;
+  for (std::size_t j = 0; j < cost_by_anchor.size(); ++j) {
+    if (std::isfinite(cost_by_anchor[j])) heap.emplace_back(cost_by_anchor[j], static_cast<int>(j));
+  }
+  // A min-heap: popping costs O(log n) per end, and each chosen end suppresses at most
+  // 2 * separation + 1 others, so few are popped whatever the size of the table.
+  const auto greater = [](const std::pair<float, int>& a, const std::pair<float, int>& b) { return a > b; };
+  std::make_heap(heap.begin(), heap.end(), greater);
+  std::vector<int> chosen;
+  while (!heap.empty() && static_cast<int>(chosen.size()) < count) {
+    std::pop_heap(heap.begin(), heap.end(), greater);
+    const int index = heap.back().second;
+    heap.pop_back();
+    const bool near_chosen = std::any_of(chosen.begin(), chosen.end(),
+                                         [&](int other) { return std::abs(other - index) <= separation; });
+    if (!near_chosen) chosen.push_back(index);
+  }
+  return chosen;
 }
 
 AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities) {

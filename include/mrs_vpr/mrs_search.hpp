@@ -4,12 +4,25 @@
 
 namespace mrs_vpr {
 
+/// What the search kept at one level of one query: where the truth was lost, if it was.
+struct MrsLevelTrace {
+  int stride = 1;
+  /// Reference frames (end of each cell) of the level's hypotheses when it ended, lowest cost first.
+  std::vector<int> candidates;
+  /// Coarsest level only: the distinct minima of its table of every end, lowest cost first (at most
+  /// kTracedMinima), i.e. the ranking the search could have had before any particle moved.
+  std::vector<int> table_minima;
+  static constexpr int kTracedMinima = 50;
+};
+
 /// MRS-VPR: coarse-to-fine particle search over temporally subsampled sequences (Yin et al.).
 class MrsSearch : public SequenceMatcher {
  public:
   MrsSearch(const SequenceParams& sequence, const MrsParams& mrs);
 
   Match match(SequenceView reference, SequenceView query) const override;
+  /// The same search, recording each level, coarsest first, into `trace` (when not null).
+  Match match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
   std::string name() const override { return "mrs"; }
 
   /// Levels actually used for a test sequence of `query_length` frames (l_max capped so that the

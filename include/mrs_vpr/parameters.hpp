@@ -41,7 +41,9 @@ struct SequenceParams {
 /// The coarse-to-fine particle search of MRS-VPR. Defaults follow the paper where it gives one.
 struct MrsParams {
   int levels = 3;               ///< l_max: the coarsest stride is 2^levels, 0..8.
-  int min_coarse_frames = 32;   ///< Fewer levels are used when N / 2^levels would drop below this, 2..1000.
+  /// Fewer levels are used when N / 2^levels would drop below this, 2..1000. Below about 64 coarse
+  /// rows the true place is too often not the coarse level's first minimum (README).
+  int min_coarse_frames = 64;
   double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau, 1..16.
   int pixel_pooling = 4;        ///< Levels coarser than full resolution average runs of this many pixels, 1..64.
   int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames, 0..1000.
@@ -49,6 +51,8 @@ struct MrsParams {
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none), 1..1000.
   double resample_threshold = 0.5;  ///< Resample when N_eff < this fraction of the particle count, (0, 1].
   int min_particles = 4;            ///< Particles never drop below this when a level halves them, 1..100000.
+  /// Distinct minima of the coarsest level carried to the level below, which decides among them, 1..1000.
+  int hypotheses = 8;
   std::uint64_t seed = 42;          ///< Seed of the search's random generator: same seed, same answer.
 
   void validate() const;

@@ -33,6 +33,8 @@ class EndCostTable {
   Evaluation bestInWindow(int centre, int radius);
   /// Costs of every end; infinity where none was computed or no trajectory fits.
   const std::vector<float>& costs() const { return costs_.cost; }
+  /// Velocity of the best trajectory through end `index` (where it was computed).
+  float velocityAt(int index) const { return costs_.velocity[static_cast<std::size_t>(index)]; }
 
  private:
   void computeEnds(int first, int last);

@@ -53,4 +53,8 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
 /// exclusion/2 frames away, as scoreAround does.
 Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion);
 
+/// Up to `count` ends with the lowest finite costs, lowest first, each more than `separation`
+/// ends from every one chosen before it: the distinct places a table of end costs suggests.
+std::vector<int> distinctMinima(const std::vector<float>& cost_by_anchor, int separation, int count);
+
 }  // namespace mrs_vpr

@@ -301,6 +301,7 @@ json parametersToJson(const Options& options) {
         {"max_iterations", p.mrs.max_iterations},
         {"resample_threshold", p.mrs.resample_threshold},
         {"min_particles", p.mrs.min_particles},
+        {"hypotheses", p.mrs.hypotheses},
         {"seed", p.mrs.seed}}},
   };
 }

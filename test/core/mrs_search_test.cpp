@@ -38,15 +38,15 @@ DescriptorSequence withKeptCells(const DescriptorSequence& reference, const MrsP
 }
 
 TEST(MrsSearch, LevelsForKeepsEnoughCoarseFrames) {
-  const MrsSearch search(SequenceParams{}, MrsParams{});  // levels 3, min_coarse_frames 32
+  const MrsSearch search(SequenceParams{}, MrsParams{});  // levels 3, min_coarse_frames 64
   EXPECT_EQ(search.levelsFor(10), 0);
-  EXPECT_EQ(search.levelsFor(62), 0);   // 31 cells at stride 2: too few ...
-  EXPECT_EQ(search.levelsFor(63), 1);   // ... 32 cells at stride 2 (frames 0, 2, ..., 62).
-  EXPECT_EQ(search.levelsFor(100), 1);  // 25 cells at stride 4: too few.
-  EXPECT_EQ(search.levelsFor(200), 2);  // 50 at stride 4, 25 at stride 8.
-  EXPECT_EQ(search.levelsFor(248), 2);  // 31 cells at stride 8: too few ...
-  EXPECT_EQ(search.levelsFor(249), 3);  // ... 32 at stride 8.
-  EXPECT_EQ(search.levelsFor(300), 3);
+  EXPECT_EQ(search.levelsFor(126), 0);  // 63 cells at stride 2: too few ...
+  EXPECT_EQ(search.levelsFor(127), 1);  // ... 64 cells at stride 2 (frames 0, 2, ..., 126).
+  EXPECT_EQ(search.levelsFor(200), 1);  // 50 cells at stride 4: too few.
+  EXPECT_EQ(search.levelsFor(252), 1);  // 63 cells at stride 4 ...
+  EXPECT_EQ(search.levelsFor(253), 2);  // ... 64.
+  EXPECT_EQ(search.levelsFor(300), 2);  // 75 at stride 4, 38 at stride 8.
+  EXPECT_EQ(search.levelsFor(505), 3);  // 64 at stride 8.
   EXPECT_EQ(search.levelsFor(5000), 3);  // Never more than mrs/levels.
   MrsParams fewer;
   fewer.min_coarse_frames = 10;
