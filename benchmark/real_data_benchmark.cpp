@@ -1,0 +1,411 @@
+// Real-data benchmark: MRS-VPR against this package's brute-force SeqSLAM on real frames.
+//
+// Prints figures; it is not a test. It reads the Nordland summer/winter halves and the corridor set
+// from a data folder at run time and builds:
+//   - references of M ~ 1.8k (summer) and M ~ 9k (summer plus real distractors: both seasons
+//     mirrored, summer played backwards, winter mirrored and backwards, the corridor frames);
+//   - known-ground queries from winter (global protocol, N = 100, 200, 300; per-frame, ds = 10, 50);
+//   - out-of-map queries: winter frames of one half of the route against a reference built from the
+//     other half only (its summer frames and the same kinds of distractors), so every accepted
+//     answer is a false loop closure.
+// The route is split in two parts, "tune" (first half) and "check" (second half): design choices are
+// made on one and reported on the other (--part). Both methods answer the same queries in one run.
+//
+//   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
+//                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
+//                          [--skip-per-frame] [--skip-global] [--diagnose]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/evaluation.hpp"
+#include "mrs_vpr/image_folder.hpp"
+#include "mrs_vpr/mrs_search.hpp"
+#include "mrs_vpr/sequence_matcher.hpp"
+
+namespace {
+
+using mrs_vpr::DescriptorSequence;
+using mrs_vpr::QueryRecord;
+
+struct Options {
+  std::string data;
+  std::string part = "check";
+  int queries = 100;
+  std::vector<int> lengths = {100, 200, 300};
+  std::vector<std::string> references = {"1.8k", "9k"};
+  int threads = 1;
+  int tolerance = 5;
+  std::uint64_t seed = 42;
+  bool per_frame = true;
+  bool global = true;
+  bool diagnose = false;
+  int pixel_pooling = mrs_vpr::MrsParams{}.pixel_pooling;
+  int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
+  std::vector<std::string> methods = {"seqslam", "mrs"};
+};
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) items.push_back(item);
+  return items;
+}
+
+Options parse(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--help") {
+      std::puts("mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
+                "                       [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
+                "                       [--skip-per-frame] [--skip-global] [--diagnose]\n"
+                "                       [--pixel-pooling P] [--hypotheses K]   (mrs settings to explore)\n"
+                "                       [--methods seqslam,mrs]\n"
+                "DIR holds nordland/{summer,winter} and corridor/{ref,query}.");
+      std::exit(0);
+    }
+    if (flag == "--skip-per-frame") { options.per_frame = false; continue; }
+    if (flag == "--skip-global") { options.global = false; continue; }
+    if (flag == "--diagnose") { options.diagnose = true; continue; }
+    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
+    const std::string value = argv[++i];
+    if (flag == "--data") options.data = value;
+    else if (flag == "--part") options.part = value;
+    else if (flag == "--queries") options.queries = std::stoi(value);
+    else if (flag == "--threads") options.threads = std::stoi(value);
+    else if (flag == "--tolerance") options.tolerance = std::stoi(value);
+    else if (flag == "--seed") options.seed = std::stoull(value);
+    else if (flag == "--pixel-pooling") options.pixel_pooling = std::stoi(value);
+    else if (flag == "--hypotheses") options.hypotheses = std::stoi(value);
+    else if (flag == "--references") options.references = splitList(value);
+    else if (flag == "--methods") options.methods = splitList(value);
+    else if (flag == "--lengths") {
+      options.lengths.clear();
+      for (const std::string& item : splitList(value)) options.lengths.push_back(std::stoi(item));
+    } else {
+      throw std::invalid_argument("unknown flag " + flag);
+    }
+  }
+  if (options.data.empty()) throw std::invalid_argument("--data DIR is required (the folder with nordland/ and corridor/)");
+  if (options.part != "tune" && options.part != "check" && options.part != "all") {
+    throw std::invalid_argument("--part must be tune, check or all");
+  }
+  if (options.queries < 1 || options.threads < 1 || options.tolerance < 0) {
+    throw std::invalid_argument("--queries and --threads must be >= 1, --tolerance >= 0");
+  }
+  return options;
+}
+
+/// The images of a folder, as loaded (BGR or grayscale).
+std::vector<cv::Mat> images(const std::string& folder) { return mrs_vpr::loadImageFolder(folder); }
+
+cv::Mat mirrored(const cv::Mat& image) {
+  cv::Mat flipped;
+  cv::flip(image, flipped, 1);
+  return flipped;
+}
+
+/// Real frames of the route and of the corridor, described once.
+struct RealFrames {
+  std::vector<cv::Mat> summer;
+  std::vector<cv::Mat> winter;
+  std::vector<cv::Mat> corridor;
+};
+
+/// A reference: descriptors, and for each of its frames the route frame it shows (-1 for distractors).
+struct Reference {
+  std::string name;
+  DescriptorSequence descriptors;
+  std::vector<int> route_frame;
+};
+
+/// Appends frames [begin, end) of `frames` (optionally mirrored, optionally backwards) as distractors.
+void appendFrames(Reference& reference, const mrs_vpr::DescriptorExtractor& extractor, const std::vector<cv::Mat>& frames,
+                  int begin, int end, bool mirror, bool backwards, bool true_place) {
+  for (int i = 0; i < end - begin; ++i) {
+    const int frame = backwards ? end - 1 - i : begin + i;
+    const cv::Mat& image = frames[static_cast<std::size_t>(frame)];
+    reference.descriptors.append(extractor.compute(mirror ? mirrored(image) : image));
+    reference.route_frame.push_back(true_place ? frame : -1);
+  }
+}
+
+/// The summer frames [begin, end) as true places, then (for "9k") real distractors derived from the
+/// same frames and from the corridor set.
+Reference buildReference(const RealFrames& frames, const mrs_vpr::DescriptorExtractor& extractor, int begin, int end,
+                         bool distractors, const std::string& name) {
+  Reference reference{name, DescriptorSequence(extractor.size()), {}};
+  appendFrames(reference, extractor, frames.summer, begin, end, false, false, true);
+  if (distractors) {
+    appendFrames(reference, extractor, frames.summer, begin, end, true, false, false);
+    appendFrames(reference, extractor, frames.winter, begin, end, true, false, false);
+    appendFrames(reference, extractor, frames.summer, begin, end, false, true, false);
+    appendFrames(reference, extractor, frames.winter, begin, end, true, true, false);
+    appendFrames(reference, extractor, frames.corridor, 0, static_cast<int>(frames.corridor.size()), false, false,
+                 false);
+  }
+  return reference;
+}
+
+DescriptorSequence describe(const std::vector<cv::Mat>& frames, const mrs_vpr::DescriptorExtractor& extractor) {
+  DescriptorSequence sequence(extractor.size());
+  for (const cv::Mat& image : frames) sequence.append(extractor.compute(image));
+  return sequence;
+}
+
+/// The reference index showing route frame `frame`, or -1 (out of map).
+std::vector<int> truthOf(const Reference& reference, int frame) {
+  std::vector<int> truth;
+  for (std::size_t j = 0; j < reference.route_frame.size(); ++j) {
+    if (reference.route_frame[j] == frame) truth.push_back(static_cast<int>(j));
+  }
+  return truth;
+}
+
+void printHeader() {
+  std::printf("%-34s %-8s %7s %7s %7s %7s %9s %8s %8s %10s\n", "setting", "method", "queries", "success", "R@100P",
+              "PR-AUC", "accepted", "acc.P", "acc.R", "median ms");
+}
+
+void printRow(const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& s) {
+  std::printf("%-34s %-8s %7d %7.3f %7.3f %7.3f %9d %8.3f %8.3f %10.3f\n", setting.c_str(), method.c_str(), s.queries,
+              s.top1, s.recall_at_100_precision, s.pr_auc, s.accepted, s.accepted_precision, s.accepted_recall,
+              s.median_time_ms);
+}
+
+/// Where MRS kept the truth: per level, how often a hypothesis lay within tolerance of it and at
+/// which rank; for the coarsest level also the rank among the distinct minima of its table.
+class Diagnosis {
+ public:
+  void add(const std::vector<mrs_vpr::MrsLevelTrace>& trace, const std::vector<int>& truth, int tolerance) {
+    if (levels_.size() < trace.size()) levels_.resize(trace.size());
+    for (std::size_t l = 0; l < trace.size(); ++l) {
+      LevelCounts& counts = levels_[l];
+      counts.stride = trace[l].stride;
+      ++counts.queries;
+      const int rank = rankOf(trace[l].candidates, truth, tolerance + trace[l].stride);
+      counts.ranks[rank]++;
+      if (l == 0) counts.table_ranks[rankOf(trace[l].table_minima, truth, tolerance + trace[l].stride)]++;
+    }
+  }
+
+  void print(const std::string& setting) const {
+    for (const LevelCounts& counts : levels_) {
+      std::printf("  diagnose %-24s stride %2d: truth among hypotheses at rank", setting.c_str(), counts.stride);
+      printRanks(counts.ranks, counts.queries);
+      if (!counts.table_ranks.empty()) {
+        std::printf("  diagnose %-24s stride %2d: truth among the table's distinct minima at rank", setting.c_str(),
+                    counts.stride);
+        printRanks(counts.table_ranks, counts.queries);
+      }
+    }
+  }
+
+ private:
+  struct LevelCounts {
+    int stride = 1;
+    int queries = 0;
+    std::map<int, int> ranks;        ///< rank (1-based; 0 = lost) -> queries
+    std::map<int, int> table_ranks;  ///< the same among the coarse table's minima
+  };
+
+  static int rankOf(const std::vector<int>& candidates, const std::vector<int>& truth, int tolerance) {
+    for (std::size_t r = 0; r < candidates.size(); ++r) {
+      for (int t : truth) {
+        if (std::abs(candidates[r] - t) <= tolerance) return static_cast<int>(r) + 1;
+      }
+    }
+    return 0;
+  }
+
+  static void printRanks(const std::map<int, int>& ranks, int queries) {
+    int cumulative = 0;
+    for (int top : {1, 2, 3, 5, 8, 20, 50}) {
+      cumulative = 0;
+      for (const auto& [rank, count] : ranks) {
+        if (rank >= 1 && rank <= top) cumulative += count;
+      }
+      std::printf(" top%d %.2f", top, static_cast<double>(cumulative) / queries);
+    }
+    const auto lost = ranks.find(0);
+    std::printf(" lost %.2f\n", lost == ranks.end() ? 0.0 : static_cast<double>(lost->second) / queries);
+  }
+
+  std::vector<LevelCounts> levels_;
+};
+
+/// Runs one method on test sequences ending at the given query frames.
+std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                   const DescriptorSequence& query, const std::vector<int>& ends, int length,
+                                   bool out_of_map, Diagnosis* diagnosis, int tolerance) {
+  std::vector<QueryRecord> records;
+  const auto* mrs = dynamic_cast<const mrs_vpr::MrsSearch*>(&matcher);
+  for (int end : ends) {
+    const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
+    std::vector<mrs_vpr::MrsLevelTrace> trace;
+    const auto start = std::chrono::steady_clock::now();
+    const mrs_vpr::Match match = (mrs != nullptr && diagnosis != nullptr)
+                                     ? mrs->match(reference.descriptors.view(), test, &trace)
+                                     : matcher.match(reference.descriptors.view(), test);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    QueryRecord record;
+    record.query_index = end;
+    if (!out_of_map) record.true_indices = truthOf(reference, end);
+    record.predicted_index = match.reference_index;
+    record.score = match.score;
+    record.confidence = match.confidence;
+    record.accepted = match.accepted;
+    record.time_ms = ms;
+    records.push_back(record);
+    if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance);
+  }
+  return records;
+}
+
+std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                     const DescriptorSequence& query, int first, int last, bool out_of_map) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<mrs_vpr::Match> matches =
+      matcher.matchEveryFrame(reference.descriptors.view(), query.view(first, last));
+  const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::vector<QueryRecord> records;
+  for (int i = 0; i < last - first; ++i) {
+    const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
+    if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
+    QueryRecord record;
+    record.query_index = first + i;
+    if (!out_of_map) record.true_indices = truthOf(reference, first + i);
+    record.predicted_index = match.reference_index;
+    record.score = match.score;
+    record.confidence = match.confidence;
+    record.accepted = match.accepted;
+    record.time_ms = total_ms / (last - first);
+    records.push_back(record);
+  }
+  return records;
+}
+
+/// Seeded query ends inside [low, high] with a full sequence of `length` frames before them.
+std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
+  const int first_end = std::max(low, length - 1);
+  const std::vector<mrs_vpr::TestSequence> tests =
+      mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
+  std::vector<int> ends;
+  for (const mrs_vpr::TestSequence& test : tests) ends.push_back(first_end + test.start);
+  return ends;
+}
+
+int run(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  cv::setNumThreads(options.threads);
+  mrs_vpr::Parameters params;
+  // Velocity step 0.02 for both methods: 0.1 leaves up to 15 frames of drift at N = 300, so neither
+  // could align long sequences whose speed lies between two steps.
+  params.sequence.velocity_step = 0.02;
+  params.mrs.pixel_pooling = options.pixel_pooling;
+  params.mrs.hypotheses = options.hypotheses;
+  params.validate();
+  const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
+
+  std::fprintf(stderr, "reading %s ...\n", options.data.c_str());
+  RealFrames frames;
+  frames.summer = images(options.data + "/nordland/summer");
+  frames.winter = images(options.data + "/nordland/winter");
+  frames.corridor = images(options.data + "/corridor/ref");
+  for (const cv::Mat& image : images(options.data + "/corridor/query")) frames.corridor.push_back(image);
+  const int route = static_cast<int>(std::min(frames.summer.size(), frames.winter.size()));
+  const int half = route / 2;
+  const DescriptorSequence winter = describe(frames.winter, extractor);
+
+  // The part whose queries are reported; out-of-map references come from the other part.
+  const int part_begin = options.part == "check" ? half : 0;
+  const int part_end = options.part == "tune" ? half : route;
+  const int other_begin = options.part == "check" ? 0 : half;
+  const int other_end = options.part == "check" ? half : route;
+
+  std::printf("Real-data benchmark: Nordland summer (reference) / winter (query), corridor; part '%s' "
+              "(route frames %d..%d of %d), threads %d, tolerance %d, velocity step %.2f, seed %llu\n",
+              options.part.c_str(), part_begin, part_end - 1, route, options.threads, options.tolerance,
+              params.sequence.velocity_step, static_cast<unsigned long long>(options.seed));
+  std::printf("success = top-1 within tolerance; accepted = the core's acceptance rule at its default (%.1f)\n\n",
+              params.sequence.accept_threshold);
+  printHeader();
+
+  std::vector<std::unique_ptr<mrs_vpr::SequenceMatcher>> matchers;
+  for (const std::string& method : options.methods) matchers.push_back(mrs_vpr::makeMatcher(method, params));
+  for (const std::string& size : options.references) {
+    if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");
+    const bool distractors = size == "9k";
+    Reference known = buildReference(frames, extractor, 0, route, distractors, size);
+    known.descriptors.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+    // The out-of-map reference: the other part of the route (with its own distractors), so that no
+    // query frame of this part is in it.
+    Reference unknown = buildReference(frames, extractor, other_begin, other_end, distractors, size + "-other");
+    unknown.descriptors.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+    const std::string m = " M=" + std::to_string(known.descriptors.size());
+    const std::string m_other = " M=" + std::to_string(unknown.descriptors.size());
+
+    if (options.global) {
+      for (int length : options.lengths) {
+        const std::vector<int> ends = queryEnds(part_begin, part_end - 1, length, options.queries, options.seed);
+        Diagnosis diagnosis;
+        for (const auto& matcher : matchers) {
+          const bool diagnose = options.diagnose && matcher->name() == "mrs";
+          const auto records = runGlobal(*matcher, known, winter, ends, length, false,
+                                         diagnose ? &diagnosis : nullptr, options.tolerance);
+          printRow("global N=" + std::to_string(length) + m, matcher->name(),
+                   mrs_vpr::summarise(records, options.tolerance));
+          std::fflush(stdout);
+        }
+        if (options.diagnose) diagnosis.print("N=" + std::to_string(length) + m);
+        for (const auto& matcher : matchers) {
+          const auto records = runGlobal(*matcher, unknown, winter, ends, length, true, nullptr, options.tolerance);
+          printRow("out-of-map global N=" + std::to_string(length) + m_other, matcher->name(),
+                   mrs_vpr::summarise(records, options.tolerance));
+          std::fflush(stdout);
+        }
+      }
+    }
+    if (options.per_frame) {
+      for (int length : {10, 50}) {
+        mrs_vpr::Parameters per_frame = params;
+        per_frame.sequence.sequence_length = length;
+        per_frame.sequence.velocity_step = 0.1;  // OpenSeqSLAM's, enough for short sequences.
+        for (const std::string& method : options.methods) {
+          const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+          const auto known_records = runPerFrame(*matcher, known, winter, part_begin, part_end, false);
+          printRow("per-frame ds=" + std::to_string(length) + m + " tol 2", method,
+                   mrs_vpr::summarise(known_records, 2));
+          const auto unknown_records = runPerFrame(*matcher, unknown, winter, part_begin, part_end, true);
+          printRow("out-of-map per-frame ds=" + std::to_string(length) + m_other, method,
+                   mrs_vpr::summarise(unknown_records, 2));
+          std::fflush(stdout);
+        }
+      }
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "mrs_vpr_real_benchmark: error: %s\n", error.what());
+    return 1;
+  }
+}
