@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -270,6 +271,11 @@ std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, cons
     record.time_ms = ms;
     records.push_back(record);
     if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance);
+    if (out_of_map && match.accepted && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+      std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
+                   matcher.name().c_str(), length, end, match.reference_index,
+                   reference.route_frame[static_cast<std::size_t>(match.reference_index)], match.confidence);
+    }
   }
   return records;
 }
@@ -297,9 +303,10 @@ std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, co
   return records;
 }
 
-/// Seeded query ends inside [low, high] with a full sequence of `length` frames before them.
+/// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
+/// out-of-map queries share no frame with the other part's reference.
 std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
-  const int first_end = std::max(low, length - 1);
+  const int first_end = low + length - 1;
   const std::vector<mrs_vpr::TestSequence> tests =
       mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
   std::vector<int> ends;
