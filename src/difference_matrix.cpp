@@ -1,5 +1,6 @@
 #include "mrs_vpr/difference_matrix.hpp"
 
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -8,12 +9,28 @@
 #include "mrs_vpr/descriptor.hpp"
 
 namespace mrs_vpr {
+namespace {
+
+// Below this many bytes the call into OpenCV costs more than the sum itself (pooled cells of the
+// coarse levels: 128 bytes take 4.6 ns a pair through cv::hal::normL1_, 3.0 ns inline).
+constexpr int kInlineSumBelow = 1024;
+
+/// The sum of absolute differences as a plain loop, which GCC and Clang vectorise (psadbw on x86).
+inline int inlineSumOfAbsoluteDifferences(const std::uint8_t* __restrict a, const std::uint8_t* __restrict b,
+                                          int size) {
+  int sum = 0;
+  for (int i = 0; i < size; ++i) sum += std::abs(static_cast<int>(a[i]) - static_cast<int>(b[i]));
+  return sum;
+}
+
+}  // namespace
 
 float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size) {
-  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8. One
-  // multiplication turns it into a mean in patch standard deviations.
+  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8; short (pooled)
+  // rows are summed inline. One multiplication turns the sum into a mean in patch standard deviations.
   const float scale = 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd);
-  return static_cast<float>(cv::hal::normL1_(a, b, size)) * scale;
+  const int sum = size < kInlineSumBelow ? inlineSumOfAbsoluteDifferences(a, b, size) : cv::hal::normL1_(a, b, size);
+  return static_cast<float>(sum) * scale;
 }
 
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {

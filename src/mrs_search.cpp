@@ -15,6 +15,7 @@
 #include "mrs_vpr/particle_evaluation.hpp"
 #include "mrs_vpr/particle_filter.hpp"
 #include "mrs_vpr/sampling_level.hpp"
+#include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/temporal_pooling.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -192,6 +193,11 @@ class CoarseToFineSearch {
     return trace;
   }
 
+  /// The rival of the answer on the coarsest level is another place: an end outside the answer's
+  /// basin, which on pooled cells is wider than match_exclusion (the hypotheses' separation). At full
+  /// resolution it is match_exclusion, as for the brute force.
+  int rivalExclusion() const { return levels_ == 0 ? sequence_.match_exclusion : 2 * hypothesisSeparation(); }
+
   /// Hypotheses closer than this (in cells of the coarsest level) would settle on the same end.
   int hypothesisSeparation() const {
     return std::max(2 * mrs_.index_shift + 1, sequence_.match_exclusion / (1 << levels_));
@@ -258,8 +264,7 @@ class CoarseToFineSearch {
     result_.reference_index = best_.index;
     result_.sequence_difference = best_.cost;
     const int coarse_stride = 1 << levels_;
-    const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride,
-                                     std::max(2, sequence_.match_exclusion / coarse_stride));
+    const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion());
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
     applyAcceptance(result_, sequence_.accept_threshold);
@@ -299,6 +304,13 @@ int MrsSearch::levelsFor(int query_length) const {
 }
 
 Match MrsSearch::match(SequenceView reference, SequenceView query) const { return match(reference, query, nullptr); }
+
+std::vector<Match> MrsSearch::matchEveryFrame(SequenceView reference, SequenceView query) const {
+  // Without a coarser level MRS scores every end at full resolution, as the brute force does; the
+  // brute force's per-frame path computes the difference matrix once for all frames.
+  if (levelsFor(sequence_.sequence_length) == 0) return SeqSlamMatcher(sequence_).matchEveryFrame(reference, query);
+  return SequenceMatcher::matchEveryFrame(reference, query);
+}
 
 Match MrsSearch::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);

@@ -23,6 +23,9 @@ class MrsSearch : public SequenceMatcher {
   Match match(SequenceView reference, SequenceView query) const override;
   /// The same search, recording each level, coarsest first, into `trace` (when not null).
   Match match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
+  /// Per-frame protocol; with no coarser level for sequence_length frames, the brute force's shared
+  /// difference matrix gives the same answers once for all frames.
+  std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const override;
   std::string name() const override { return "mrs"; }
 
   /// Levels actually used for a test sequence of `query_length` frames (l_max capped so that the
