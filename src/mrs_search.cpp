@@ -232,20 +232,13 @@ class CoarseToFineSearch {
    * Next level: half the stride, indices double. Leaving the coarsest level, the hypotheses are the
    * mrs/hypotheses lowest distinct minima of its table, where the particles have settled and where
    * any minimum they missed lies: the truth can rank below the first on a short coarse sequence,
-   * and the level below, with twice the rows, tells them apart. A minimum more than accept_threshold
-   * spreads above the lowest is left out: were it the truth, the answer could not be accepted
-   * anyway, and a distinct answer then goes down alone. Below that only the winner goes on.
+   * and the level below, with twice the rows, tells them apart. Below that only the winner goes on.
    */
   void descend(bool from_coarsest) {
     if (from_coarsest) {
       const std::vector<float>& table = coarse_costs_->costs();
-      const std::vector<int> minima = distinctMinima(table, hypothesisSeparation(), mrs_.hypotheses);
-      const float highest = minima.empty() ? 0.0F
-                                           : table[static_cast<std::size_t>(minima.front())] +
-                                                 static_cast<float>(sequence_.accept_threshold) * costSpread(table);
       particles_.clear();
-      for (int index : minima) {
-        if (table[static_cast<std::size_t>(index)] > highest) break;  // Minima come lowest first.
+      for (int index : distinctMinima(table, hypothesisSeparation(), mrs_.hypotheses)) {
         Particle particle;
         particle.index = index;
         particle.cost = table[static_cast<std::size_t>(index)];
