@@ -54,6 +54,7 @@ struct Options {
   bool diagnose = false;
   int pixel_pooling = mrs_vpr::MrsParams{}.pixel_pooling;
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
+  int min_coarse_frames = mrs_vpr::MrsParams{}.min_coarse_frames;
   std::vector<std::string> methods = {"seqslam", "mrs"};
 };
 
@@ -72,7 +73,7 @@ Options parse(int argc, char** argv) {
       std::puts("mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
                 "                       [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
                 "                       [--skip-per-frame] [--skip-global] [--diagnose]\n"
-                "                       [--pixel-pooling P] [--hypotheses K]   (mrs settings to explore)\n"
+                "                       [--pixel-pooling P] [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
                 "                       [--methods seqslam,mrs]\n"
                 "DIR holds nordland/{summer,winter} and corridor/{ref,query}.");
       std::exit(0);
@@ -90,6 +91,7 @@ Options parse(int argc, char** argv) {
     else if (flag == "--seed") options.seed = std::stoull(value);
     else if (flag == "--pixel-pooling") options.pixel_pooling = std::stoi(value);
     else if (flag == "--hypotheses") options.hypotheses = std::stoi(value);
+    else if (flag == "--min-coarse-frames") options.min_coarse_frames = std::stoi(value);
     else if (flag == "--references") options.references = splitList(value);
     else if (flag == "--methods") options.methods = splitList(value);
     else if (flag == "--lengths") {
@@ -190,7 +192,8 @@ void printRow(const std::string& setting, const std::string& method, const mrs_v
 /// which rank; for the coarsest level also the rank among the distinct minima of its table.
 class Diagnosis {
  public:
-  void add(const std::vector<mrs_vpr::MrsLevelTrace>& trace, const std::vector<int>& truth, int tolerance) {
+  void add(const std::vector<mrs_vpr::MrsLevelTrace>& trace, const std::vector<int>& truth, int tolerance,
+           double accept_threshold) {
     if (levels_.size() < trace.size()) levels_.resize(trace.size());
     for (std::size_t l = 0; l < trace.size(); ++l) {
       LevelCounts& counts = levels_[l];
@@ -198,11 +201,18 @@ class Diagnosis {
       ++counts.queries;
       const int rank = rankOf(trace[l].candidates, truth, tolerance + trace[l].stride);
       counts.ranks[rank]++;
-      if (l == 0) counts.table_ranks[rankOf(trace[l].table_minima, truth, tolerance + trace[l].stride)]++;
+      if (l == 0) {
+        const int table_rank = rankOf(trace[l].table_minima, truth, tolerance + trace[l].stride);
+        counts.table_ranks[table_rank]++;
+        // The coarse table alone would have accepted a wrong place: the finer levels had to catch it.
+        if (table_rank != 1 && trace[l].table_confidence >= accept_threshold) ++confidently_wrong_;
+      }
     }
   }
 
   void print(const std::string& setting) const {
+    std::printf("  diagnose %-24s coarse table's lowest minimum wrong at an accepted confidence: %d queries\n",
+                setting.c_str(), confidently_wrong_);
     for (const LevelCounts& counts : levels_) {
       std::printf("  diagnose %-24s stride %2d: truth among hypotheses at rank", setting.c_str(), counts.stride);
       printRanks(counts.ranks, counts.queries);
@@ -245,12 +255,13 @@ class Diagnosis {
   }
 
   std::vector<LevelCounts> levels_;
+  int confidently_wrong_ = 0;
 };
 
 /// Runs one method on test sequences ending at the given query frames.
 std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
                                    const DescriptorSequence& query, const std::vector<int>& ends, int length,
-                                   bool out_of_map, Diagnosis* diagnosis, int tolerance) {
+                                   bool out_of_map, Diagnosis* diagnosis, int tolerance, double accept_threshold) {
   std::vector<QueryRecord> records;
   const auto* mrs = dynamic_cast<const mrs_vpr::MrsSearch*>(&matcher);
   for (int end : ends) {
@@ -270,7 +281,7 @@ std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, cons
     record.accepted = match.accepted;
     record.time_ms = ms;
     records.push_back(record);
-    if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance);
+    if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
     if (out_of_map && match.accepted && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
       std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
                    matcher.name().c_str(), length, end, match.reference_index,
@@ -323,6 +334,7 @@ int run(int argc, char** argv) {
   params.sequence.velocity_step = 0.02;
   params.mrs.pixel_pooling = options.pixel_pooling;
   params.mrs.hypotheses = options.hypotheses;
+  params.mrs.min_coarse_frames = options.min_coarse_frames;
   params.validate();
   const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
 
@@ -371,14 +383,16 @@ int run(int argc, char** argv) {
         for (const auto& matcher : matchers) {
           const bool diagnose = options.diagnose && matcher->name() == "mrs";
           const auto records = runGlobal(*matcher, known, winter, ends, length, false,
-                                         diagnose ? &diagnosis : nullptr, options.tolerance);
+                                         diagnose ? &diagnosis : nullptr, options.tolerance,
+                                         params.sequence.accept_threshold);
           printRow("global N=" + std::to_string(length) + m, matcher->name(),
                    mrs_vpr::summarise(records, options.tolerance));
           std::fflush(stdout);
         }
         if (options.diagnose) diagnosis.print("N=" + std::to_string(length) + m);
         for (const auto& matcher : matchers) {
-          const auto records = runGlobal(*matcher, unknown, winter, ends, length, true, nullptr, options.tolerance);
+          const auto records = runGlobal(*matcher, unknown, winter, ends, length, true, nullptr, options.tolerance,
+                                         params.sequence.accept_threshold);
           printRow("out-of-map global N=" + std::to_string(length) + m_other, matcher->name(),
                    mrs_vpr::summarise(records, options.tolerance));
           std::fflush(stdout);

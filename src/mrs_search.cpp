@@ -186,8 +186,11 @@ class CoarseToFineSearch {
     std::sort(sorted.begin(), sorted.end(), [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
     for (const Particle& particle : sorted) trace.candidates.push_back(particle.index * level_.stride);
     if (coarsest) {
-      for (int index : distinctMinima(coarse_costs_->costs(), hypothesisSeparation(), MrsLevelTrace::kTracedMinima)) {
-        trace.table_minima.push_back(index * level_.stride);
+      const std::vector<int> minima =
+          distinctMinima(coarse_costs_->costs(), hypothesisSeparation(), MrsLevelTrace::kTracedMinima);
+      for (int index : minima) trace.table_minima.push_back(index * level_.stride);
+      if (!minima.empty()) {
+        trace.table_confidence = scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion()).confidence;
       }
     }
     return trace;

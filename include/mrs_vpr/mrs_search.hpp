@@ -12,6 +12,8 @@ struct MrsLevelTrace {
   /// Coarsest level only: the distinct minima of its table of every end, lowest cost first (at most
   /// kTracedMinima), i.e. the ranking the search could have had before any particle moved.
   std::vector<int> table_minima;
+  /// Coarsest level only: the confidence the table alone gives its lowest minimum.
+  float table_confidence = 0.0F;
   static constexpr int kTracedMinima = 50;
 };
 

@@ -45,10 +45,10 @@ struct MrsParams {
   /// rows the true place is too often not the coarse level's first minimum (README).
   int min_coarse_frames = 64;
   double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau, 1..16.
-  /// Levels coarser than full resolution average runs of this many pixels, 1..64. 16 (128-byte cells)
-  /// keeps the truth among the coarsest level's first two minima on Nordland at N = 300 and makes it
-  /// 1.6x faster than 4 (README), at a lower confidence: fewer answers reach the threshold.
-  int pixel_pooling = 16;
+  /// Levels coarser than full resolution average runs of this many pixels, 1..64. 16 is 1.6x faster
+  /// at N = 300 but its coarse table sometimes ranks a wrong place first at an accepted confidence,
+  /// which the finer levels then have to catch; 4 never did (README).
+  int pixel_pooling = 4;
   int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames, 0..1000.
   double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio, (0, 1).
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none), 1..1000.
