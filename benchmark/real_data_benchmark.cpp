@@ -314,6 +314,29 @@ std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, co
   return records;
 }
 
+/// Out-of-map queries from another world: the corridor's frames against a map of the Nordland summer
+/// frames, and Nordland winter frames of the reported part against a map of the corridor.
+void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, const mrs_vpr::DescriptorExtractor& extractor,
+                   const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end) {
+  const int route = static_cast<int>(frames.summer.size());
+  const Reference nordland = buildReference(frames, extractor, 0, route, false, "nordland");
+  Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
+  corridor.route_frame.assign(static_cast<std::size_t>(corridor.descriptors.size()), -1);
+  for (int length : {10, 50}) {
+    mrs_vpr::Parameters per_frame = params;
+    per_frame.sequence.sequence_length = length;
+    per_frame.sequence.velocity_step = 0.1;
+    for (const std::string& method : options.methods) {
+      const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+      printRow("corridor in Nordland map ds=" + std::to_string(length), method,
+               mrs_vpr::summarise(runPerFrame(*matcher, nordland, corridor.descriptors, 0, corridor.descriptors.size(), true), 2));
+      printRow("Nordland in corridor map ds=" + std::to_string(length), method,
+               mrs_vpr::summarise(runPerFrame(*matcher, corridor, winter, part_begin, part_end, true), 2));
+      std::fflush(stdout);
+    }
+  }
+}
+
 /// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
 /// out-of-map queries share no frame with the other part's reference.
 std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
@@ -417,6 +440,7 @@ int run(int argc, char** argv) {
       }
     }
   }
+  if (options.per_frame) runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end);
   return 0;
 }
 
