@@ -14,7 +14,10 @@ DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation
   nlohmann-json3-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
   python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash catkin-lint
 
-.PHONY: all deps link build test demo bench lint clean
+# The real frames of the benchmark: read at run time, never copied into the repository.
+DATA ?= $(CURDIR)/../shared/data
+
+.PHONY: all deps link build test demo bench bench-real lint clean
 
 all: build
 
@@ -58,6 +61,11 @@ demo: build
 
 bench: build
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_benchmark
+
+# Both methods on real frames: the figures of the README's "Measured results".
+bench-real: build
+	@test -d "$(DATA)/nordland" || { echo "No real data at $(DATA): run make bench-real DATA=/path/to/data"; exit 1; }
+	@$(SETUP) && rosrun mrs_vpr mrs_vpr_real_benchmark --data "$(DATA)" --part check --diagnose
 
 # Checked on the workspace link, whose folder carries the package's name as catkin_lint expects.
 lint: deps link
