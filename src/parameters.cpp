@@ -1,6 +1,7 @@
 #include "mrs_vpr/parameters.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 
@@ -45,6 +46,14 @@ void SequenceParams::validate() const {
   requireOpen("sequence/velocity_min", velocity_min, 0.0, 10.0, "(0, 10)");
   requireInRange("sequence/velocity_max", velocity_max, velocity_min, 10.0, "[velocity_min, 10]");
   requireOpen("sequence/velocity_step", velocity_step, 0.0, 10.0, "(0, 10)");
+  const double velocity_count = std::floor((velocity_max - velocity_min) / velocity_step + 1e-9) + 1.0;
+  if (velocity_count > kMaxVelocities) {
+    std::ostringstream message;
+    message << "parameter 'sequence/velocity_step' = " << velocity_step << " gives " << velocity_count
+            << " velocities between velocity_min " << velocity_min << " and velocity_max " << velocity_max
+            << "; at most " << kMaxVelocities << " are allowed";
+    throw std::invalid_argument(message.str());
+  }
   if (contrast_window != 0) {
     requireInRange("sequence/contrast_window", contrast_window, 2, 1000, "0 (off) or [2, 1000]");
   }

@@ -21,12 +21,16 @@ enum class WindowAlignment {
   kCentred, ///< The query frame is in the middle of the sequence (OpenSeqSLAM).
 };
 
+/// Velocities a search may try: each one costs a pass over the difference matrix, and a step so fine
+/// that their count overflows would crash a search rather than just slow it.
+constexpr int kMaxVelocities = 1000;
+
 /// Sequence matching shared by brute-force SeqSLAM and MRS-VPR. Defaults are OpenSeqSLAM's.
 struct SequenceParams {
   int sequence_length = 10;    ///< ds: frames per test sequence in the per-frame protocol, 2..10000.
   double velocity_min = 0.8;   ///< Slowest reference frames per test frame, (0, velocity_max].
   double velocity_max = 1.2;   ///< Fastest reference frames per test frame, [velocity_min, 10].
-  double velocity_step = 0.1;  ///< Step between tried velocities, > 0.
+  double velocity_step = 0.1;  ///< Step between tried velocities, (0, 10); at most kMaxVelocities of them.
   int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 (off) or 2..1000.
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up, 0..10000.
   WindowAlignment alignment = WindowAlignment::kCausal;

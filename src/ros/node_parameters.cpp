@@ -31,7 +31,8 @@ void forEachParameter(Params& p, Visitor&& visit) {
         "Slowest reference frames per test frame.");
   visit("sequence/velocity_max", s.velocity_max, "[velocity_min, 10]",
         "Fastest reference frames per test frame.");
-  visit("sequence/velocity_step", s.velocity_step, "> 0", "Step between the velocities tried.");
+  visit("sequence/velocity_step", s.velocity_step, "(0, 10), at most 1000 velocities",
+        "Step between the velocities tried.");
   visit("sequence/contrast_window", s.contrast_window, "0 (off) or 2..1000",
         "Reference frames in the local contrast-enhancement window.");
   visit("sequence/match_exclusion", s.match_exclusion, "0..10000",

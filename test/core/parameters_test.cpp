@@ -80,6 +80,18 @@ TEST(SequenceParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("sequence/velocity_max", [](Parameters& p) { p.sequence.velocity_max = 0.7; });
   EXPECT_REJECTED("sequence/velocity_max", [](Parameters& p) { p.sequence.velocity_max = 11.0; });
   EXPECT_REJECTED("sequence/velocity_step", [](Parameters& p) { p.sequence.velocity_step = 0.0; });
+  // Steps so fine that the velocities would number billions (and their count overflow an int).
+  EXPECT_REJECTED("sequence/velocity_step", [](Parameters& p) { p.sequence.velocity_step = 1e-10; });
+  EXPECT_REJECTED("sequence/velocity_step", [](Parameters& p) {
+    p.sequence.velocity_min = 0.0001;
+    p.sequence.velocity_max = 10.0;
+    p.sequence.velocity_step = 1e-9;
+  });
+  EXPECT_TRUE(accepted([](Parameters& p) {  // Exactly kMaxVelocities.
+    p.sequence.velocity_min = 0.001;
+    p.sequence.velocity_max = 1.0;
+    p.sequence.velocity_step = 0.001;
+  }));
   EXPECT_REJECTED("sequence/contrast_window", [](Parameters& p) { p.sequence.contrast_window = 1; });
   EXPECT_REJECTED("sequence/contrast_window", [](Parameters& p) { p.sequence.contrast_window = 1001; });
   EXPECT_REJECTED("sequence/match_exclusion", [](Parameters& p) { p.sequence.match_exclusion = -1; });
