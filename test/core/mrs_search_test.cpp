@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -9,6 +12,8 @@
 
 #include "mrs_vpr/mrs_search.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/seqslam_matcher.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "route_fixture.hpp"
 #include "error_message.hpp"
@@ -250,6 +255,212 @@ TEST(MrsSearch, ShortQueriesUseFullResolutionAndStillMatch) {
   const Match match = matcher->match(route.reference.view(), route.query.view(250, 270));
   EXPECT_TRUE(within(match.reference_index, route.query_to_reference[269], 3))
       << match.reference_index << " vs " << route.query_to_reference[269];
+}
+
+/// Rank of `truth` among reference frames `minima` (cells ending within a cell of it), -1 if absent.
+int rankOf(const std::vector<int>& minima, int truth, int stride) {
+  for (std::size_t i = 0; i < minima.size(); ++i) {
+    if (within(minima[i], truth, stride + 1)) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+TEST(MrsSearch, TraceRecordsEveryLevelCoarsestFirstWithDistinctTableMinima) {
+  const auto& route = standardRoute();
+  const Parameters params = globalSearchParams();
+  const MrsSearch search(params.sequence, params.mrs);
+  for (int length : {150, 200, 300}) {
+    const int levels = search.levelsFor(length);
+    ASSERT_GT(levels, 0) << "N = " << length;
+    // The separation of the coarse minima, in cells of the coarsest level (see hypothesisSeparation).
+    const int separation = std::max(2 * params.mrs.index_shift + 1, params.sequence.match_exclusion >> levels);
+    for (int start : {0, 50, 99}) {
+      const int end = start + length - 1;
+      if (end >= route.query.size()) continue;
+      const int truth = route.query_to_reference[static_cast<std::size_t>(end)];
+      const SequenceView query = route.query.view(start, end + 1);
+      std::vector<MrsLevelTrace> trace;
+      const Match traced = search.match(route.reference.view(), query, &trace);
+      const std::string where = "N = " + std::to_string(length) + ", start " + std::to_string(start);
+
+      // One entry per level, coarsest first, the stride halving down to full resolution.
+      ASSERT_EQ(static_cast<int>(trace.size()), levels + 1) << where;
+      for (int level = 0; level <= levels; ++level) {
+        EXPECT_EQ(trace[static_cast<std::size_t>(level)].stride, 1 << (levels - level)) << where;
+      }
+
+      // The coarse table's minima are cell ends, distinct places, and the truth is among the first.
+      const MrsLevelTrace& coarsest = trace.front();
+      ASSERT_FALSE(coarsest.table_minima.empty()) << where;
+      EXPECT_LE(static_cast<int>(coarsest.table_minima.size()), MrsLevelTrace::kTracedMinima) << where;
+      for (std::size_t a = 0; a < coarsest.table_minima.size(); ++a) {
+        EXPECT_EQ(coarsest.table_minima[a] % coarsest.stride, 0) << where;
+        for (std::size_t b = 0; b < a; ++b) {
+          EXPECT_GT(std::abs(coarsest.table_minima[a] - coarsest.table_minima[b]), separation * coarsest.stride)
+              << where << ": minima " << coarsest.table_minima[b] << " and " << coarsest.table_minima[a];
+        }
+      }
+      const int rank = rankOf(coarsest.table_minima, truth, coarsest.stride);
+      EXPECT_GE(rank, 0) << where << ": truth " << truth;
+      EXPECT_LE(rank, 2) << where << ": truth " << truth;
+      // Only the coarsest level ranks the whole table.
+      for (std::size_t level = 1; level < trace.size(); ++level) EXPECT_TRUE(trace[level].table_minima.empty());
+
+      // Below the coarsest level: at most mrs/hypotheses places; below the one comparing them, only the winner.
+      ASSERT_GE(trace.size(), 2U);
+      EXPECT_GE(trace[1].candidates.size(), 1U) << where;
+      EXPECT_LE(static_cast<int>(trace[1].candidates.size()), params.mrs.hypotheses) << where;
+      for (std::size_t level = 2; level < trace.size(); ++level) EXPECT_EQ(trace[level].candidates.size(), 1U) << where;
+      // The finest level's best hypothesis is the answer.
+      EXPECT_EQ(trace.back().candidates.front(), traced.reference_index) << where;
+
+      // Tracing only observes: the same answer as without it.
+      const Match plain = search.match(route.reference.view(), query);
+      expectIdentical(plain, traced);
+      EXPECT_EQ(plain.accepted, traced.accepted) << where;
+      EXPECT_TRUE(within(traced.reference_index, truth, 3)) << where << ": " << traced.reference_index << " vs " << truth;
+    }
+  }
+}
+
+TEST(MrsSearch, HypothesesCountIsRespectedBelowTheCoarsestLevel) {
+  const auto& route = standardRoute();
+  Parameters params = globalSearchParams();
+  const SequenceView query = route.query.view(40, 190);
+  for (int hypotheses : {1, 2, 3, 8}) {
+    params.mrs.hypotheses = hypotheses;
+    std::vector<MrsLevelTrace> trace;
+    MrsSearch(params.sequence, params.mrs).match(route.reference.view(), query, &trace);
+    ASSERT_EQ(trace.size(), 2U);
+    EXPECT_GE(trace[1].candidates.size(), 1U) << hypotheses;
+    EXPECT_LE(static_cast<int>(trace[1].candidates.size()), hypotheses) << hypotheses;
+  }
+}
+
+TEST(MrsSearch, OneOrEightHypothesesBothFindThePlantedTruthOnTheRoute) {
+  // On the generated route the truth is the coarse table's first minimum, so a single hypothesis
+  // already suffices; more must not lose it (nor change how sure the answer is).
+  const auto& route = standardRoute();
+  Parameters one = globalSearchParams();
+  one.mrs.hypotheses = 1;
+  Parameters eight = globalSearchParams();
+  eight.mrs.hypotheses = 8;
+  const auto single = makeMatcher("mrs", one);
+  const auto several = makeMatcher("mrs", eight);
+  for (int length : {150, 300}) {
+    for (int start : {0, 60, 99}) {
+      const int end = start + length - 1;
+      const int truth = route.query_to_reference[static_cast<std::size_t>(end)];
+      const SequenceView query = route.query.view(start, end + 1);
+      const Match a = single->match(route.reference.view(), query);
+      const Match b = several->match(route.reference.view(), query);
+      EXPECT_TRUE(within(a.reference_index, truth, 3)) << "N = " << length << ", start " << start << ": " << a.reference_index;
+      EXPECT_TRUE(within(b.reference_index, truth, 3)) << "N = " << length << ", start " << start << ": " << b.reference_index;
+      EXPECT_TRUE(a.accepted);
+      EXPECT_TRUE(b.accepted);
+    }
+  }
+}
+
+/// The route's reference with frames [at, at + count) replaced by the query's frames
+/// [from, from + count), each pair (from + 2i, from + 2i + 1) swapped: averaged over the pair (a
+/// stride-2 cell) the copy is the query itself, frame by frame it is never the right frame.
+DescriptorSequence withPairSwappedCopy(const DescriptorSequence& reference, const DescriptorSequence& query, int from,
+                                       int at, int count) {
+  DescriptorSequence result(reference.descriptorSize());
+  for (int frame = 0; frame < reference.size(); ++frame) {
+    int source_frame = frame;
+    const DescriptorSequence* source = &reference;
+    if (frame >= at && frame < at + count) {
+      const int i = frame - at;
+      source_frame = from + (i % 2 == 0 ? i + 1 : i - 1);
+      source = &query;
+    }
+    result.append(cv::Mat(1, reference.descriptorSize(), CV_8U, const_cast<std::uint8_t*>(source->descriptor(source_frame)))
+                      .clone(),
+                  reference.stamp(frame));
+  }
+  return result;
+}
+
+TEST(MrsSearch, MoreHypothesesRecoverATruthTheCoarseTableRanksSecond) {
+  // A decoy that looks exactly like the query at stride 2 but wrong at every single frame: the
+  // coarse table ranks it first, the truth below it. Only a search that carries more than one coarse
+  // minimum down to full resolution can find the truth.
+  const auto& route = standardRoute();
+  const int start = 250;
+  const int length = 150;  // One level: stride 2, then full resolution.
+  const int end = start + length - 1;
+  const int truth = route.query_to_reference[static_cast<std::size_t>(end)];
+  ASSERT_GT(truth, 300);
+  // Odd: the query's pairs (start + 2i, start + 2i + 1), whose last frame is the anchor, then fill
+  // the reference's stride-2 cells (2J - 1, 2J) exactly.
+  const int at = 41;
+  const int decoy_end = at + length - 1;
+  const DescriptorSequence reference = withPairSwappedCopy(route.reference, route.query, start, at, length);
+  const SequenceView query = route.query.view(start, end + 1);
+
+  Parameters params = globalSearchParams();
+  ASSERT_EQ(MrsSearch(params.sequence, params.mrs).levelsFor(length), 1);
+  params.mrs.hypotheses = 8;
+  std::vector<MrsLevelTrace> trace;
+  const Match several = MrsSearch(params.sequence, params.mrs).match(reference.view(), query, &trace);
+  ASSERT_EQ(trace.size(), 2U);
+  EXPECT_EQ(rankOf(trace.front().table_minima, decoy_end, 2), 0) << "the decoy is not the coarse minimum";
+  EXPECT_EQ(rankOf(trace.front().table_minima, truth, 2), 1) << "truth " << truth;
+  EXPECT_TRUE(within(several.reference_index, truth, 3)) << several.reference_index << " vs " << truth;
+
+  params.mrs.hypotheses = 1;
+  const Match single = MrsSearch(params.sequence, params.mrs).match(reference.view(), query);
+  EXPECT_FALSE(within(single.reference_index, truth, 3)) << single.reference_index;
+  EXPECT_TRUE(within(single.reference_index, decoy_end, 3)) << single.reference_index << " vs decoy " << decoy_end;
+
+  // The brute force, which sees every frame, agrees with the search that kept the truth.
+  EXPECT_TRUE(within(makeMatcher("seqslam", params)->match(reference.view(), query).reference_index, truth, 3));
+  // The confidence is read on the coarse table, where the decoy beats the truth: the right answer is
+  // reported but not claimed as a loop closure.
+  EXPECT_FALSE(several.accepted) << "confidence " << several.confidence;
+}
+
+TEST(MrsSearch, PerFrameWithoutCoarserLevelsEqualsTheBruteForceFrameByFrame) {
+  // Sequence lengths that leave no coarser level (levelsFor(N) == 0, e.g. the default 10 and 40):
+  // MRS must give the brute force's answers frame by frame, and its own search of each sequence the
+  // same place and confidence.
+  const auto& route = standardRoute();
+  const SequenceView query = route.query.view(150, 250);
+  for (int length : {10, 40}) {
+    for (WindowAlignment alignment : {WindowAlignment::kCausal, WindowAlignment::kCentred}) {
+      Parameters params;
+      params.sequence.sequence_length = length;
+      params.sequence.alignment = alignment;
+      const MrsSearch mrs(params.sequence, params.mrs);
+      ASSERT_EQ(mrs.levelsFor(length), 0);
+      const std::vector<Match> fast = mrs.matchEveryFrame(route.reference.view(), query);
+      const std::vector<Match> brute = SeqSlamMatcher(params.sequence).matchEveryFrame(route.reference.view(), query);
+      ASSERT_EQ(fast.size(), brute.size());
+      const std::string where = "N = " + std::to_string(length) + (alignment == WindowAlignment::kCausal ? " causal" : " centred");
+      int found = 0;
+      int accepted = 0;
+      for (std::size_t frame = 0; frame < fast.size(); ++frame) {
+        EXPECT_EQ(fast[frame].reference_index, brute[frame].reference_index) << where << ", frame " << frame;
+        EXPECT_EQ(fast[frame].confidence, brute[frame].confidence) << where << ", frame " << frame;
+        EXPECT_EQ(fast[frame].accepted, brute[frame].accepted) << where << ", frame " << frame;
+        found += fast[frame].reference_index >= 0 ? 1 : 0;
+        accepted += fast[frame].accepted ? 1 : 0;
+      }
+      EXPECT_EQ(found, query.count - length + 1) << where;  // Every complete sequence is answered.
+      // At N = 40 the comparison covers accepted answers too, not only rejected ones.
+      if (length == 40) EXPECT_GT(accepted, 0) << where;
+      for (int frame : {length, query.count / 2, query.count - length / 2 - 1}) {
+        const SequenceRows rows = sequenceRowsFor(frame, params.sequence);
+        const Match single = mrs.match(route.reference.view(), query.slice(rows.first, rows.last + 1));
+        const Match& every = fast[static_cast<std::size_t>(frame)];
+        EXPECT_EQ(single.reference_index, every.reference_index) << where << ", frame " << frame;
+        EXPECT_FLOAT_EQ(single.confidence, every.confidence) << where << ", frame " << frame;
+        EXPECT_EQ(single.accepted, every.accepted) << where << ", frame " << frame;
+      }
+    }
+  }
 }
 
 }  // namespace

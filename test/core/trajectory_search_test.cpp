@@ -208,6 +208,41 @@ TEST(ScoreAround, ScoresAGivenWinner) {
   EXPECT_EQ(scoreAround(costs, -1, 2).reference_index, -1);
 }
 
+TEST(DistinctMinima, LowestFirstEachMoreThanTheSeparationFromTheOnesBefore) {
+  std::vector<float> costs(40, 9.0F);
+  costs[20] = 1.0F;
+  costs[23] = 2.0F;  // |23 - 20| = 3 = separation: the same place as 20, skipped.
+  costs[24] = 3.0F;  // 4 = separation + 1: a distinct place.
+  costs[5] = 2.5F;
+  costs[35] = 4.0F;
+  EXPECT_EQ(distinctMinima(costs, 3, 4), (std::vector<int>{20, 5, 24, 35}));
+  // The separation is measured from every end chosen so far, not only the first: 27 lies beyond 20's
+  // reach but within 24's.
+  costs[27] = 3.5F;
+  EXPECT_EQ(distinctMinima(costs, 3, 4), (std::vector<int>{20, 5, 24, 35}));
+  // Separation 0: only the very same end is excluded, so neighbours count.
+  EXPECT_EQ(distinctMinima(costs, 0, 3), (std::vector<int>{20, 23, 5}));
+}
+
+TEST(DistinctMinima, CountLimitsTheResult) {
+  const std::vector<float> costs{5.0F, 9.0F, 4.0F, 9.0F, 3.0F, 9.0F, 2.0F, 9.0F, 1.0F};
+  EXPECT_EQ(distinctMinima(costs, 1, 2), (std::vector<int>{8, 6}));
+  EXPECT_EQ(distinctMinima(costs, 1, 1), (std::vector<int>{8}));
+  EXPECT_TRUE(distinctMinima(costs, 1, 0).empty());
+  // Fewer distinct places than asked for: all of them, no padding.
+  EXPECT_EQ(distinctMinima(costs, 1, 100), (std::vector<int>{8, 6, 4, 2, 0}));
+}
+
+TEST(DistinctMinima, InfiniteCostsAreNoPlaceAndEmptyTablesGiveNothing) {
+  // Ends where no trajectory fits never count, however few finite ends remain.
+  const std::vector<float> costs{kInf, 3.0F, kInf, kInf, kInf, kInf, 2.0F, kInf};
+  EXPECT_EQ(distinctMinima(costs, 2, 5), (std::vector<int>{6, 1}));
+  EXPECT_TRUE(distinctMinima({}, 2, 5).empty());
+  EXPECT_TRUE(distinctMinima({kInf, kInf, kInf}, 2, 5).empty());
+  // An infinite end does not block a finite neighbour either.
+  EXPECT_EQ(distinctMinima({kInf, 1.0F}, 5, 2), (std::vector<int>{1}));
+}
+
 TEST(SamplingLevel, MakeComputesRowsGridAndFeasibleEnds) {
   // Causal sequence of 100 frames, stride 4, reference of 600 frames, slowest velocity 0.8.
   const SamplingLevel level = SamplingLevel::make(4, SequenceRows{0, 99, 99}, 600, 0.8);
