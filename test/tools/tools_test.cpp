@@ -179,6 +179,154 @@ TEST_F(ToolsTest, BadInputGivesOneLineAndExitCodeOne) {
               "query images are 10x10 but reference images are 128x64");
 }
 
+/// Records of `records` whose boolean `field` is true.
+int countTrue(const json& records, const char* field) {
+  int count = 0;
+  for (const json& record : records) count += record.at(field).get<bool>() ? 1 : 0;
+  return count;
+}
+
+TEST_F(ToolsTest, RecordsCarryTheAcceptanceRuleAndTheSummaryCountsIt) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 20 " +
+                                "--tolerance 2 --output ";
+  ASSERT_EQ(run(eval(arguments + path("accept_default.json"))).status, 0);
+  const json document = json::parse(readText(path("accept_default.json")));
+  EXPECT_DOUBLE_EQ(document.at("parameters").at("sequence").at("accept_threshold").get<double>(), 3.0);
+  const json& records = document.at("records");
+  const json& summary = document.at("summary");
+  for (const char* field : {"accepted", "accepted_rate", "accepted_precision", "accepted_recall"}) {
+    EXPECT_TRUE(summary.contains(field)) << field;
+  }
+  int accepted = 0;
+  int accepted_correct = 0;
+  for (const json& record : records) {
+    ASSERT_TRUE(record.at("accepted").is_boolean()) << record;
+    // The core's rule, the same for every method: found and confidence >= the threshold.
+    const bool expected = record.at("predicted_index").get<int>() >= 0 && record.at("confidence").get<double>() >= 3.0;
+    EXPECT_EQ(record.at("accepted").get<bool>(), expected) << record;
+    accepted += expected ? 1 : 0;
+    accepted_correct += expected && record.at("correct").get<bool>() ? 1 : 0;
+  }
+  const int queries = summary.at("queries").get<int>();
+  ASSERT_EQ(queries, static_cast<int>(records.size()));
+  EXPECT_EQ(summary.at("accepted").get<int>(), accepted);
+  EXPECT_GT(accepted, 0);  // 20 frames of the route stand out of the noise often enough.
+  EXPECT_DOUBLE_EQ(summary.at("accepted_rate").get<double>(), static_cast<double>(accepted) / queries);
+  EXPECT_DOUBLE_EQ(summary.at("accepted_precision").get<double>(), static_cast<double>(accepted_correct) / accepted);
+  EXPECT_DOUBLE_EQ(summary.at("accepted_recall").get<double>(), static_cast<double>(accepted_correct) / queries);
+}
+
+TEST_F(ToolsTest, AcceptThresholdZeroAcceptsEveryAnswerAndAThousandNone) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 " +
+                                "--tolerance 2 --output ";
+  ASSERT_EQ(run(eval(arguments + path("accept_all.json") + " --accept-threshold 0")).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("accept_none.json") + " --accept-threshold 1000")).status, 0);
+  const json all = json::parse(readText(path("accept_all.json")));
+  const json none = json::parse(readText(path("accept_none.json")));
+  EXPECT_DOUBLE_EQ(all.at("parameters").at("sequence").at("accept_threshold").get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(none.at("parameters").at("sequence").at("accept_threshold").get<double>(), 1000.0);
+
+  // Threshold 0: every found answer is accepted (every complete sequence has one here).
+  const json& every = all.at("records");
+  ASSERT_EQ(every.size(), 91U);
+  for (const json& record : every) {
+    ASSERT_GE(record.at("predicted_index").get<int>(), 0) << record;
+    EXPECT_TRUE(record.at("accepted").get<bool>()) << record;
+  }
+  const json& summary_all = all.at("summary");
+  EXPECT_EQ(summary_all.at("accepted").get<int>(), 91);
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_rate").get<double>(), 1.0);
+  // Accepting everything, precision and recall are the top-1 rate.
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_precision").get<double>(), summary_all.at("top1").get<double>());
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_recall").get<double>(), summary_all.at("top1").get<double>());
+
+  // Threshold 1000: nothing is accepted; precision is undefined (null), not 0 or 1.
+  EXPECT_EQ(countTrue(none.at("records"), "accepted"), 0);
+  const json& summary_none = none.at("summary");
+  EXPECT_EQ(summary_none.at("accepted").get<int>(), 0);
+  EXPECT_DOUBLE_EQ(summary_none.at("accepted_rate").get<double>(), 0.0);
+  EXPECT_TRUE(summary_none.at("accepted_precision").is_null()) << summary_none;
+  EXPECT_DOUBLE_EQ(summary_none.at("accepted_recall").get<double>(), 0.0);
+  // The threshold decides acceptance only: the answers themselves are the same.
+  ASSERT_EQ(none.at("records").size(), every.size());
+  for (std::size_t i = 0; i < every.size(); ++i) {
+    EXPECT_EQ(none["records"][i]["predicted_index"], every[i]["predicted_index"]) << i;
+    EXPECT_EQ(none["records"][i]["confidence"], every[i]["confidence"]) << i;
+  }
+}
+
+TEST_F(ToolsTest, OutOfMapQueriesHaveNoTrueIndexAndEveryAcceptedAnswerIsFalse) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") +
+                                " --out-of-map --method seqslam --protocol per-frame --sequence-length 20 --output ";
+  // At the default threshold, and at 0 where every answer is accepted (the route's query is in fact
+  // in the map, so only --out-of-map makes them false).
+  for (const std::string threshold : {"3", "0"}) {
+    const std::string output = path("out_of_map_" + threshold + ".json");
+    const Result result = run(eval(arguments + output + " --accept-threshold " + threshold));
+    ASSERT_EQ(result.status, 0) << result.err;
+    const json document = json::parse(readText(output));
+    EXPECT_TRUE(document.at("parameters").at("out_of_map").get<bool>());
+    const json& records = document.at("records");
+    const json& summary = document.at("summary");
+    EXPECT_EQ(summary.at("queries").get<int>(), 81) << threshold;  // Every frame 19..99 is a query.
+    ASSERT_EQ(records.size(), 81U);
+    for (const json& record : records) {
+      EXPECT_TRUE(record.at("true_index").is_null()) << record;
+      EXPECT_TRUE(record.at("true_indices").empty()) << record;
+      EXPECT_FALSE(record.at("correct").get<bool>()) << record;
+      EXPECT_TRUE(record.at("accepted").is_boolean()) << record;
+    }
+    const int accepted = countTrue(records, "accepted");
+    EXPECT_EQ(summary.at("accepted").get<int>(), accepted) << threshold;
+    // The false loop-closure rate.
+    EXPECT_DOUBLE_EQ(summary.at("accepted_rate").get<double>(), static_cast<double>(accepted) / 81) << threshold;
+    EXPECT_DOUBLE_EQ(summary.at("accepted_recall").get<double>(), 0.0) << threshold;
+    EXPECT_DOUBLE_EQ(summary.at("top1").get<double>(), 0.0) << threshold;
+    if (accepted == 0) {
+      EXPECT_TRUE(summary.at("accepted_precision").is_null()) << summary;
+    } else {
+      EXPECT_DOUBLE_EQ(summary.at("accepted_precision").get<double>(), 0.0) << summary;
+    }
+    if (threshold == "0") EXPECT_EQ(accepted, 81);
+  }
+}
+
+TEST_F(ToolsTest, AcceptanceOptionsAreChecked) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query") +
+                              " --method seqslam --protocol per-frame --sequence-length 10";
+  // A query cannot be both outside the map and have a true place in it.
+  expectError(folders + " --out-of-map --ground-truth " + path("truth.csv"),
+              "--out-of-map and --ground-truth exclude each other");
+  expectError(folders + " --threads -1", "--threads must be >= 0");
+  expectError(folders + " --accept-threshold -1", "sequence/accept_threshold");
+  expectError(folders + " --accept-threshold 1001", "sequence/accept_threshold");
+  // Nothing is written for rejected options.
+  EXPECT_FALSE(fs::exists(path("rejected.json")));
+  expectError(folders + " --threads -1 --output " + path("rejected.json"), "--threads must be >= 0");
+  EXPECT_FALSE(fs::exists(path("rejected.json")));
+}
+
+TEST_F(ToolsTest, ThreadCountDoesNotChangeTheAnswers) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method mrs --protocol global --sequence-length 64 " +
+                                "--queries 6 --seed 5 --output ";
+  ASSERT_EQ(run(eval(arguments + path("threads_1.json") + " --threads 1")).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("threads_2.json") + " --threads 2")).status, 0);
+  const json one = json::parse(readText(path("threads_1.json")));
+  const json two = json::parse(readText(path("threads_2.json")));
+  EXPECT_EQ(one.at("parameters").at("threads").get<int>(), 1);
+  EXPECT_EQ(two.at("parameters").at("threads").get<int>(), 2);
+  ASSERT_EQ(one.at("records").size(), 6U);
+  ASSERT_EQ(two.at("records").size(), 6U);
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (const char* field : {"query_index", "predicted_index", "confidence", "accepted"}) {
+      EXPECT_EQ(one["records"][i][field], two["records"][i][field]) << i << " " << field;
+    }
+  }
+}
+
 TEST_F(ToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) {
   for (const char* traversal : {"reference", "query"}) {
     const Result result = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path(traversal) + " --bag " +
