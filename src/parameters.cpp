@@ -71,7 +71,8 @@ void MrsParams::validate() const {
   requireInRange("mrs/max_iterations", max_iterations, 1, 1000, "[1, 1000]");
   requireInRange("mrs/resample_threshold", resample_threshold, 1e-9, 1.0, "(0, 1]");
   requireInRange("mrs/min_particles", min_particles, 1, 100000, "[1, 100000]");
-  requireInRange("mrs/hypotheses", hypotheses, 1, 1000, "[1, 1000]");
+  // Two at least: the second is the rival against which the finer level checks the coarse answer.
+  requireInRange("mrs/hypotheses", hypotheses, 2, 1000, "[2, 1000]");
 }
 
 void Parameters::validate() const {

@@ -58,7 +58,9 @@ struct MrsParams {
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none), 1..1000.
   double resample_threshold = 0.5;  ///< Resample when N_eff < this fraction of the particle count, (0, 1].
   int min_particles = 4;            ///< Particles never drop below this when a level halves them, 1..100000.
-  /// Distinct minima of the coarsest level carried to the level below, which decides among them, 1..1000.
+  /// Distinct minima of the coarsest level carried to the level below, which decides among them,
+  /// 2..1000. With one, nothing would check the coarse answer at a finer level, and a place that only
+  /// looks right when pooled would be accepted (MrsSearch tests).
   int hypotheses = 8;
   std::uint64_t seed = 42;          ///< Seed of the search's random generator: same seed, same answer.
 

@@ -55,7 +55,7 @@ void forEachParameter(Params& p, Visitor&& visit) {
   visit("mrs/resample_threshold", m.resample_threshold, "(0, 1]",
         "Resample when the effective particle count falls below this fraction.");
   visit("mrs/min_particles", m.min_particles, "1..100000", "Particles never drop below this.");
-  visit("mrs/hypotheses", m.hypotheses, "1..1000",
+  visit("mrs/hypotheses", m.hypotheses, "2..1000",
         "Distinct minima of the coarsest level carried to the level below, which decides among them.");
   visit("mrs/seed", m.seed, "0..2147483647", "Seed of the particle search: same seed, same answer.");
   visit("min_frame_interval", p.min_frame_interval, ">= 0",

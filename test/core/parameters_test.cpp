@@ -115,6 +115,8 @@ TEST(MrsParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("mrs/resample_threshold", [](Parameters& p) { p.mrs.resample_threshold = 0.0; });
   EXPECT_REJECTED("mrs/resample_threshold", [](Parameters& p) { p.mrs.resample_threshold = 1.5; });
   EXPECT_REJECTED("mrs/min_particles", [](Parameters& p) { p.mrs.min_particles = 0; });
+  EXPECT_REJECTED("mrs/hypotheses", [](Parameters& p) { p.mrs.hypotheses = 1; });
+  EXPECT_REJECTED("mrs/hypotheses", [](Parameters& p) { p.mrs.hypotheses = 1001; });
   EXPECT_TRUE(accepted([](Parameters& p) { p.mrs.resample_threshold = 1.0; }));
   EXPECT_TRUE(accepted([](Parameters& p) { p.mrs.levels = 0; }));
 }
