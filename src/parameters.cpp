@@ -1,6 +1,5 @@
 #include "mrs_vpr/parameters.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -8,72 +7,219 @@
 namespace mrs_vpr {
 namespace {
 
-template <typename T>
-void requireInRange(const char* name, T value, T low, T high, const char* range_text) {
-  if (!(value >= low && value <= high)) {
-    std::ostringstream message;
-    message << "parameter '" << name << "' = " << value << " is out of range " << range_text;
-    throw std::invalid_argument(message.str());
+/// Whole numbers as integers (1000000, not 1e+06), others as the stream writes them (1e-10, 0.5).
+std::string formatNumber(double value) {
+  if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 1e15) {
+    return std::to_string(static_cast<long long>(value));
   }
+  std::ostringstream out;
+  out << value;
+  return out.str();
 }
 
-void requireOpen(const char* name, double value, double low, double high, const char* range_text) {
-  if (!(value > low && value < high)) {
-    std::ostringstream message;
-    message << "parameter '" << name << "' = " << value << " is out of range " << range_text;
-    throw std::invalid_argument(message.str());
+std::string join(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& word : words) {
+    text += (text.empty() ? "" : ", ") + word;
   }
+  return text;
 }
 
 }  // namespace
 
+// --- The tables: every range of the core, written once ---------------------------------------------
+
+const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters() {
+  using P = DescriptorParams;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"descriptor/image_width", Range::closed(4, 1024), {}, "", "Width the image is resized to [px]."},
+       &P::image_width},
+      {{"descriptor/image_height", Range::closed(4, 1024), {}, "", "Height the image is resized to [px]."},
+       &P::image_height},
+      {{"descriptor/patch_size", Range::closed(1, 1024), {}, "dividing image_width and image_height",
+        "Side of the patch-normalisation patches [px]."},
+       &P::patch_size},
+  };
+  return table;
+}
+
+const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
+  using P = SequenceParams;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"sequence/sequence_length", Range::closed(2, 10000), {}, "",
+        "Frames per test sequence in the per-frame protocol (continuous mode default)."},
+       &P::sequence_length},
+      {{"sequence/velocity_min", Range::open(0, 10), {}, "", "Slowest reference frames per test frame."},
+       &P::velocity_min},
+      {{"sequence/velocity_max", Range::openClosed(0, 10), {}, ">= velocity_min",
+        "Fastest reference frames per test frame."},
+       &P::velocity_max},
+      // The bound on the count keeps it an int and each search's passes over the table finite.
+      {{"sequence/velocity_step", Range::open(0, 10), {},
+        "at most " + std::to_string(kMaxVelocities) + " velocities", "Step between the velocities tried."},
+       &P::velocity_step},
+      {{"sequence/contrast_window", Range::closed(2, 1000).orZero("off"), {}, "",
+        "Reference frames in the local contrast-enhancement window."},
+       &P::contrast_window},
+      {{"sequence/match_exclusion", Range::closed(0, 10000), {}, "",
+        "Frames around the best match excluded when looking for the runner-up."},
+       &P::match_exclusion},
+      {{"sequence/alignment", {}, {"causal", "centred"}, "",
+        "causal: the test sequence ends at the frame localised; centred: it is in the middle."},
+       &P::alignment},
+      {{"sequence/accept_threshold", Range::closed(0, 1000), {}, "",
+        "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this."},
+       &P::accept_threshold},
+  };
+  return table;
+}
+
+const std::vector<ParameterSpec<MrsParams>>& mrsParameters() {
+  using P = MrsParams;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"mrs/levels", Range::closed(0, 8), {}, "", "Coarsest temporal stride is 2^levels."}, &P::levels},
+      {{"mrs/min_coarse_frames", Range::closed(2, 1000), {}, "",
+        "Fewer levels are used when the coarsest level would keep fewer test frames."},
+       &P::min_coarse_frames},
+      // Checked by Parameters::validate(), which knows the descriptor size.
+      {{"mrs/pixel_pooling", Range::closed(1, 64), {}, "dividing image_width * image_height",
+        "Levels coarser than full resolution average runs of this many pixels."},
+       &P::pixel_pooling},
+      {{"mrs/tau", Range::closed(1, 16), {}, "", "Particle overlap factor: initial particles = (M / N) * tau."},
+       &P::tau},
+      {{"mrs/index_shift", Range::closed(0, 1000), {}, "",
+        "End-index search radius of a particle [frames of its level]."},
+       &P::index_shift},
+      {{"mrs/coverage_threshold", Range::open(0, 1), {}, "",
+        "Go to the next level once particle coverage shrinks below this ratio."},
+       &P::coverage_threshold},
+      {{"mrs/max_iterations", Range::closed(1, 1000), {}, "", "Cap on particle iterations per level."},
+       &P::max_iterations},
+      {{"mrs/resample_threshold", Range::openClosed(0, 1), {}, "",
+        "Resample when the effective particle count falls below this fraction."},
+       &P::resample_threshold},
+      {{"mrs/min_particles", Range::closed(1, 100000), {}, "", "Particles never drop below this."},
+       &P::min_particles},
+      // Two at least: the second is the rival against which the finer level checks the coarse answer.
+      {{"mrs/hypotheses", Range::closed(2, 1000), {}, "",
+        "Distinct minima of the coarsest level carried to the level below, which decides among them."},
+       &P::hypotheses},
+      {{"mrs/seed", Range::atLeast(0), {}, "", "Seed of the particle search: same seed, same answer."}, &P::seed},
+  };
+  return table;
+}
+
+// --- Range and ParameterInfo --------------------------------------------------------------------------
+
+Range Range::closed(double low, double high) {
+  Range range;
+  range.low = low;
+  range.high = high;
+  return range;
+}
+
+Range Range::open(double low, double high) {
+  Range range = closed(low, high);
+  range.low_open = range.high_open = true;
+  return range;
+}
+
+Range Range::openClosed(double low, double high) {
+  Range range = closed(low, high);
+  range.low_open = true;
+  return range;
+}
+
+Range Range::atLeast(double low) { return closed(low, kNone); }
+
+Range Range::orZero(std::string meaning) const {
+  Range range = *this;
+  range.zero_allowed = true;
+  range.zero_means = std::move(meaning);
+  return range;
+}
+
+bool Range::contains(double value) const {
+  if (zero_allowed && value == 0.0) return true;
+  // Written so that NaN is outside every range.
+  const bool above_low = low_open ? value > low : value >= low;
+  const bool below_high = high_open ? value < high : value <= high;
+  return above_low && below_high;
+}
+
+std::string Range::text() const {
+  std::string text;
+  if (zero_allowed) {
+    text = zero_means.empty() ? "0 or " : "0 (" + zero_means + ") or ";
+  }
+  if (high == kNone) {
+    return text + (low_open ? "> " : ">= ") + formatNumber(low);
+  }
+  if (!low_open && !high_open) {
+    return text + formatNumber(low) + ".." + formatNumber(high);
+  }
+  return text + (low_open ? "(" : "[") + formatNumber(low) + ", " + formatNumber(high) + (high_open ? ")" : "]");
+}
+
+std::string ParameterInfo::allowed() const {
+  const std::string values = choices.empty() ? range.text() : join(choices);
+  return rule.empty() ? values : values + ", " + rule;
+}
+
+std::string ParameterInfo::rejection(const std::string& value, const std::string& detail) const {
+  // "must be in 1..10", "must be >= 0", "must be 0 (off) or 2..1000", "must be one of a, b".
+  const bool interval = std::isfinite(range.low) && std::isfinite(range.high) && !range.zero_allowed;
+  const std::string verb = !choices.empty() ? " must be one of " : interval ? " must be in " : " must be ";
+  std::string message = name + verb + allowed() + ", got " + value;
+  if (!detail.empty()) {
+    message += " (" + detail + ")";
+  }
+  return message;
+}
+
+void ParameterInfo::require(double value) const {
+  if (!range.contains(value)) {
+    throw std::invalid_argument(rejection(formatNumber(value)));
+  }
+}
+
+void ParameterInfo::require(const std::string& value) const {
+  for (const auto& choice : choices) {
+    if (value == choice) return;
+  }
+  throw std::invalid_argument(rejection("'" + value + "'"));
+}
+
+// --- Validation: the ranges of the tables, then the rules that involve several parameters ------------
+
 void DescriptorParams::validate() const {
-  requireInRange("descriptor/image_width", image_width, 4, 1024, "[4, 1024]");
-  requireInRange("descriptor/image_height", image_height, 4, 1024, "[4, 1024]");
-  requireInRange("descriptor/patch_size", patch_size, 1, std::min(image_width, image_height),
-                 "[1, min(image_width, image_height)]");
+  requireInRange(descriptorParameters(), *this);
   if (image_width % patch_size != 0 || image_height % patch_size != 0) {
-    std::ostringstream message;
-    message << "parameter 'descriptor/patch_size' = " << patch_size
-            << " must divide descriptor/image_width (" << image_width << ") and descriptor/image_height ("
-            << image_height << ")";
-    throw std::invalid_argument(message.str());
+    throw std::invalid_argument(parameterInfo(descriptorParameters(), "descriptor/patch_size")
+                                    .rejection(std::to_string(patch_size),
+                                               "image_width " + std::to_string(image_width) +
+                                                   ", image_height " + std::to_string(image_height)));
   }
 }
 
 void SequenceParams::validate() const {
-  requireInRange("sequence/sequence_length", sequence_length, 2, 10000, "[2, 10000]");
-  requireOpen("sequence/velocity_min", velocity_min, 0.0, 10.0, "(0, 10)");
-  requireInRange("sequence/velocity_max", velocity_max, velocity_min, 10.0, "[velocity_min, 10]");
-  requireOpen("sequence/velocity_step", velocity_step, 0.0, 10.0, "(0, 10)");
+  requireInRange(sequenceParameters(), *this);
+  if (velocity_max < velocity_min) {
+    throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_max")
+                                    .rejection(formatNumber(velocity_max),
+                                               "velocity_min " + formatNumber(velocity_min)));
+  }
   const double velocity_count = std::floor((velocity_max - velocity_min) / velocity_step + 1e-9) + 1.0;
   if (velocity_count > kMaxVelocities) {
-    std::ostringstream message;
-    message << "parameter 'sequence/velocity_step' = " << velocity_step << " gives " << velocity_count
-            << " velocities between velocity_min " << velocity_min << " and velocity_max " << velocity_max
-            << "; at most " << kMaxVelocities << " are allowed";
-    throw std::invalid_argument(message.str());
+    throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_step")
+                                    .rejection(formatNumber(velocity_step),
+                                               formatNumber(velocity_count) + " velocities from velocity_min " +
+                                                   formatNumber(velocity_min) + " to velocity_max " +
+                                                   formatNumber(velocity_max)));
   }
-  if (contrast_window != 0) {
-    requireInRange("sequence/contrast_window", contrast_window, 2, 1000, "0 (off) or [2, 1000]");
-  }
-  requireInRange("sequence/match_exclusion", match_exclusion, 0, 10000, "[0, 10000]");
-  requireInRange("sequence/accept_threshold", accept_threshold, 0.0, 1000.0, "[0, 1000]");
 }
 
-void MrsParams::validate() const {
-  requireInRange("mrs/levels", levels, 0, 8, "[0, 8]");
-  requireInRange("mrs/min_coarse_frames", min_coarse_frames, 2, 1000, "[2, 1000]");
-  requireInRange("mrs/tau", tau, 1.0, 16.0, "[1, 16]");
-  requireInRange("mrs/pixel_pooling", pixel_pooling, 1, 64, "[1, 64]");
-  requireInRange("mrs/index_shift", index_shift, 0, 1000, "[0, 1000]");
-  requireOpen("mrs/coverage_threshold", coverage_threshold, 0.0, 1.0, "(0, 1)");
-  requireInRange("mrs/max_iterations", max_iterations, 1, 1000, "[1, 1000]");
-  requireInRange("mrs/resample_threshold", resample_threshold, 1e-9, 1.0, "(0, 1]");
-  requireInRange("mrs/min_particles", min_particles, 1, 100000, "[1, 100000]");
-  // Two at least: the second is the rival against which the finer level checks the coarse answer.
-  requireInRange("mrs/hypotheses", hypotheses, 2, 1000, "[2, 1000]");
-}
+void MrsParams::validate() const { requireInRange(mrsParameters(), *this); }
 
 void Parameters::validate() const {
   descriptor.validate();
@@ -81,17 +227,17 @@ void Parameters::validate() const {
   mrs.validate();
   const int descriptor_size = descriptor.image_width * descriptor.image_height;
   if (descriptor_size % mrs.pixel_pooling != 0) {
-    std::ostringstream message;
-    message << "parameter 'mrs/pixel_pooling' = " << mrs.pixel_pooling
-            << " must divide the descriptor size image_width * image_height = " << descriptor_size;
-    throw std::invalid_argument(message.str());
+    throw std::invalid_argument(
+        parameterInfo(mrsParameters(), "mrs/pixel_pooling")
+            .rejection(std::to_string(mrs.pixel_pooling),
+                       "image_width * image_height = " + std::to_string(descriptor_size)));
   }
 }
 
 WindowAlignment parseWindowAlignment(const std::string& text) {
   if (text == "causal") return WindowAlignment::kCausal;
   if (text == "centred" || text == "centered") return WindowAlignment::kCentred;
-  throw std::invalid_argument("alignment '" + text + "' is not one of: causal, centred");
+  throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/alignment").rejection("'" + text + "'"));
 }
 
 std::string toString(WindowAlignment alignment) {

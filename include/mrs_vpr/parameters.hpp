@@ -1,14 +1,23 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 namespace mrs_vpr {
 
+// Each parameter's allowed values are written once, as data, in the tables at the end of this file
+// (defined in parameters.cpp): validate() checks them and the node prints them with --help, so the
+// message and the reference cannot disagree. The field comments below give meanings only.
+
 /// Image pre-processing (OpenSeqSLAM front end). Defaults are OpenSeqSLAM's.
 struct DescriptorParams {
-  int image_width = 64;  ///< Width after resizing [px], 4..1024.
-  int image_height = 32; ///< Height after resizing [px], 4..1024.
+  int image_width = 64;  ///< Width after resizing [px].
+  int image_height = 32; ///< Height after resizing [px].
   int patch_size = 8;    ///< Side of the normalisation patches [px]; divides width and height.
 
   /// Throws std::invalid_argument naming the first parameter out of range.
@@ -27,16 +36,16 @@ constexpr int kMaxVelocities = 1000;
 
 /// Sequence matching shared by brute-force SeqSLAM and MRS-VPR. Defaults are OpenSeqSLAM's.
 struct SequenceParams {
-  int sequence_length = 10;    ///< ds: frames per test sequence in the per-frame protocol, 2..10000.
-  double velocity_min = 0.8;   ///< Slowest reference frames per test frame, (0, velocity_max].
-  double velocity_max = 1.2;   ///< Fastest reference frames per test frame, [velocity_min, 10].
-  double velocity_step = 0.1;  ///< Step between tried velocities, (0, 10); at most kMaxVelocities of them.
-  int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 (off) or 2..1000.
-  int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up, 0..10000.
+  int sequence_length = 10;    ///< ds: frames per test sequence in the per-frame protocol.
+  double velocity_min = 0.8;   ///< Slowest reference frames per test frame.
+  double velocity_max = 1.2;   ///< Fastest reference frames per test frame, >= velocity_min.
+  double velocity_step = 0.1;  ///< Step between tried velocities; at most kMaxVelocities of them.
+  int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 = off.
+  int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up.
   WindowAlignment alignment = WindowAlignment::kCausal;
   /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
-  /// deviations of the query's own end costs) reaches this, 0..1000. 3 is a three-sigma rule, not a
-  /// value fitted to a data set; see acceptance.hpp for its derivation and the README for checks.
+  /// deviations of the query's own end costs) reaches this. 3 is a three-sigma rule, not a value
+  /// fitted to a data set; see acceptance.hpp for its derivation and the README for checks.
   double accept_threshold = 3.0;
 
   void validate() const;
@@ -44,22 +53,22 @@ struct SequenceParams {
 
 /// The coarse-to-fine particle search of MRS-VPR. Defaults follow the paper where it gives one.
 struct MrsParams {
-  int levels = 3;               ///< l_max: the coarsest stride is 2^levels, 0..8.
-  /// Fewer levels are used when N / 2^levels would drop below this, 2..1000. Below about 64 coarse
+  int levels = 3;               ///< l_max: the coarsest stride is 2^levels.
+  /// Fewer levels are used when N / 2^levels would drop below this. Below about 64 coarse
   /// rows the true place is too often not the coarse level's first minimum (README).
   int min_coarse_frames = 64;
-  double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau, 1..16.
-  /// Levels coarser than full resolution average runs of this many pixels, 1..64. 16 is 1.6x faster
+  double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau.
+  /// Levels coarser than full resolution average runs of this many pixels. 16 is 1.6x faster
   /// at N = 300 but its coarse table sometimes ranks a wrong place first at an accepted confidence,
   /// which the finer levels then have to catch; 4 never did (README).
   int pixel_pooling = 4;
-  int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames, 0..1000.
-  double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio, (0, 1).
-  int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none), 1..1000.
-  double resample_threshold = 0.5;  ///< Resample when N_eff < this fraction of the particle count, (0, 1].
-  int min_particles = 4;            ///< Particles never drop below this when a level halves them, 1..100000.
-  /// Distinct minima of the coarsest level carried to the level below, which decides among them,
-  /// 2..1000. With one, nothing would check the coarse answer at a finer level, and a place that only
+  int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames.
+  double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio.
+  int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none).
+  double resample_threshold = 0.5;  ///< Resample when N_eff < this fraction of the particle count.
+  int min_particles = 4;            ///< Particles never drop below this when a level halves them.
+  /// Distinct minima of the coarsest level carried to the level below, which decides among them, at
+  /// least 2. With one, nothing would check the coarse answer at a finer level, and a place that only
   /// looks right when pooled would be accepted (MrsSearch tests).
   int hypotheses = 8;
   std::uint64_t seed = 42;          ///< Seed of the search's random generator: same seed, same answer.
@@ -79,5 +88,90 @@ struct Parameters {
 /// Parses "causal" / "centred" (also "centered"); throws std::invalid_argument otherwise.
 WindowAlignment parseWindowAlignment(const std::string& text);
 std::string toString(WindowAlignment alignment);
+
+/// The numbers a parameter may take: an interval, and optionally 0 as well (a switch-off value).
+struct Range {
+  static constexpr double kNone = std::numeric_limits<double>::infinity();
+
+  double low = -kNone;
+  double high = kNone;
+  bool low_open = false;
+  bool high_open = false;
+  bool zero_allowed = false;
+  std::string zero_means;  ///< Shown as "0 (zero_means) or ..."; may be empty.
+
+  static Range closed(double low, double high);      ///< [low, high]
+  static Range open(double low, double high);        ///< (low, high)
+  static Range openClosed(double low, double high);  ///< (low, high]
+  static Range atLeast(double low);                  ///< [low, infinity)
+  /// This range with 0 allowed as well.
+  Range orZero(std::string meaning = "") const;
+
+  bool contains(double value) const;
+  /// "4..1024" (closed), "(0, 1]" (an open end), ">= 0" (no upper bound), "0 (off) or 2..1000".
+  std::string text() const;
+};
+
+/// One parameter, described once: its name, allowed values and meaning.
+struct ParameterInfo {
+  std::string name;                  ///< As the node reads it, e.g. "sequence/velocity_step".
+  Range range;                       ///< Numbers allowed (numeric parameters).
+  std::vector<std::string> choices;  ///< Words allowed (text parameters); none for numbers.
+  /// A condition on other parameters that validate() checks after the ranges, e.g. "dividing
+  /// image_width and image_height"; empty when there is none.
+  std::string rule;
+  std::string meaning;               ///< One sentence for the parameter reference.
+
+  /// The allowed values as the parameter reference prints them, e.g. "(0, 10), at most 1000 velocities".
+  std::string allowed() const;
+  /// The message for a rejected value: "<name> must be in <allowed()>, got <value>[ (<detail>)]".
+  /// Every validation message starts with the parameter's name, so callers may qualify it.
+  std::string rejection(const std::string& value, const std::string& detail = "") const;
+  /// Throws std::invalid_argument with rejection() unless `value` is in range.
+  void require(double value) const;
+  /// Throws std::invalid_argument with rejection() unless `value` is one of the choices.
+  void require(const std::string& value) const;
+};
+
+/// A parameter of the group `Group`: its description and the field it sets.
+template <typename Group>
+struct ParameterSpec {
+  using Member = std::variant<int Group::*, double Group::*, std::uint64_t Group::*,
+                              WindowAlignment Group::*, std::string Group::*>;
+  ParameterInfo info;
+  Member member;
+};
+
+/// The tables of the core's parameters, in the order of the parameter reference.
+const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters();
+const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters();
+const std::vector<ParameterSpec<MrsParams>>& mrsParameters();
+
+/// The entry of `specs` named `name`; throws std::logic_error when there is none.
+template <typename Group>
+const ParameterInfo& parameterInfo(const std::vector<ParameterSpec<Group>>& specs, const std::string& name) {
+  for (const auto& spec : specs) {
+    if (spec.info.name == name) return spec.info;
+  }
+  throw std::logic_error("no parameter " + name);
+}
+
+/// Checks every field of `group` against the range or choices of its entry in `specs`, in table
+/// order; throws std::invalid_argument with the first rejection. Rules are left to the caller.
+template <typename Group>
+void requireInRange(const std::vector<ParameterSpec<Group>>& specs, const Group& group) {
+  for (const auto& spec : specs) {
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(group.*member)>;
+          if constexpr (std::is_same_v<Value, std::string>) {
+            spec.info.require(group.*member);
+          } else if constexpr (!std::is_same_v<Value, WindowAlignment>) {  // every enumerator is valid
+            spec.info.require(static_cast<double>(group.*member));
+          }
+        },
+        spec.member);
+  }
+}
 
 }  // namespace mrs_vpr

@@ -2,79 +2,82 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <iomanip>
-#include <limits>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 
 #include <XmlRpcValue.h>
 #include <ros/param.h>
 
 namespace mrs_vpr {
 namespace node {
+
+const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
+  using P = NodeParameters;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"min_frame_interval", Range::atLeast(0), {}, "",
+        "Seconds (by header stamp) between keyframes; 0 = no limit."},
+       &P::min_frame_interval},
+      {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
+      // One frame is not a sequence: a map of one could never answer a query.
+      {{"max_frames", Range::atLeast(2).orZero("unbounded"), {}, "",
+        "Reference map capacity [frames]; further keyframes are dropped and counted."},
+       &P::max_frames},
+      {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
+       &P::image_queue_size},
+      {{"max_pending_frames", Range::closed(1, 1000000), {}, "",
+        "Keyframes buffered while a query holds the map; more are dropped and counted."},
+       &P::max_pending_frames},
+      {{"recent_exclusion", Range::closed(0, 1000000), {}, "",
+        "Map frames just before a recent_frames test sequence that are not searched."},
+       &P::recent_exclusion},
+      {{"default_method", {}, {"mrs", "seqslam"}, "",
+        "Method for requests with an empty method and for continuous mode."},
+       &P::default_method},
+      {{"auto_query_period", Range::atLeast(0), {}, "",
+        "Continuous mode: query with the newest frames every this many seconds; 0 = off."},
+       &P::auto_query_period},
+      {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
+        "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
+       &P::auto_query_frames},
+      {{"map_info_rate", Range::openClosed(0, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
+       &P::map_info_rate},
+  };
+  return table;
+}
+
 namespace {
 
-/// Calls `visit(name, field, range, meaning)` for every parameter of `p`: the one list from which
-/// the loader, the `--help` reference and the unknown-parameter check are built.
-template <typename Params, typename Visitor>
-void forEachParameter(Params& p, Visitor&& visit) {
-  auto& d = p.core.descriptor;
-  auto& s = p.core.sequence;
-  auto& m = p.core.mrs;
-  visit("descriptor/image_width", d.image_width, "4..1024", "Width the image is resized to [px].");
-  visit("descriptor/image_height", d.image_height, "4..1024", "Height the image is resized to [px].");
-  visit("descriptor/patch_size", d.patch_size, "divides width and height",
-        "Side of the patch-normalisation patches [px].");
-  visit("sequence/sequence_length", s.sequence_length, "2..10000",
-        "Frames per test sequence in the per-frame protocol (continuous mode default).");
-  visit("sequence/velocity_min", s.velocity_min, "(0, velocity_max]",
-        "Slowest reference frames per test frame.");
-  visit("sequence/velocity_max", s.velocity_max, "[velocity_min, 10]",
-        "Fastest reference frames per test frame.");
-  visit("sequence/velocity_step", s.velocity_step, "(0, 10), at most 1000 velocities",
-        "Step between the velocities tried.");
-  visit("sequence/contrast_window", s.contrast_window, "0 (off) or 2..1000",
-        "Reference frames in the local contrast-enhancement window.");
-  visit("sequence/match_exclusion", s.match_exclusion, "0..10000",
-        "Frames around the best match excluded when looking for the runner-up.");
-  visit("sequence/alignment", s.alignment, "causal, centred",
-        "causal: the test sequence ends at the frame localised; centred: it is in the middle.");
-  visit("sequence/accept_threshold", s.accept_threshold, "0..1000",
-        "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this.");
-  visit("mrs/levels", m.levels, "0..8", "Coarsest temporal stride is 2^levels.");
-  visit("mrs/min_coarse_frames", m.min_coarse_frames, "2..1000",
-        "Fewer levels are used when the coarsest level would keep fewer test frames.");
-  visit("mrs/pixel_pooling", m.pixel_pooling, "1..64, divides image_width * image_height",
-        "Levels coarser than full resolution average runs of this many pixels.");
-  visit("mrs/tau", m.tau, "1..16", "Particle overlap factor: initial particles = (M / N) * tau.");
-  visit("mrs/index_shift", m.index_shift, "0..1000",
-        "End-index search radius of a particle [frames of its level].");
-  visit("mrs/coverage_threshold", m.coverage_threshold, "(0, 1)",
-        "Go to the next level once particle coverage shrinks below this ratio.");
-  visit("mrs/max_iterations", m.max_iterations, "1..1000", "Cap on particle iterations per level.");
-  visit("mrs/resample_threshold", m.resample_threshold, "(0, 1]",
-        "Resample when the effective particle count falls below this fraction.");
-  visit("mrs/min_particles", m.min_particles, "1..100000", "Particles never drop below this.");
-  visit("mrs/hypotheses", m.hypotheses, "2..1000",
-        "Distinct minima of the coarsest level carried to the level below, which decides among them.");
-  visit("mrs/seed", m.seed, "0..2147483647", "Seed of the particle search: same seed, same answer.");
-  visit("min_frame_interval", p.min_frame_interval, ">= 0",
-        "Seconds (by header stamp) between keyframes; 0 = no limit.");
-  visit("frame_stride", p.frame_stride, "1..10000", "Keep at most every n-th image.");
-  visit("max_frames", p.max_frames, "0 (unbounded) or >= 2",
-        "Reference map capacity [frames]; further keyframes are dropped and counted.");
-  visit("image_queue_size", p.image_queue_size, "1..10000", "Subscriber queue of the image topic.");
-  visit("max_pending_frames", p.max_pending_frames, "1..1000000",
-        "Keyframes buffered while a query holds the map; more are dropped and counted.");
-  visit("recent_exclusion", p.recent_exclusion, "0..1000000",
-        "Map frames just before a recent_frames test sequence that are not searched.");
-  visit("default_method", p.default_method, "mrs, seqslam",
-        "Method for requests with an empty method and for continuous mode.");
-  visit("auto_query_period", p.auto_query_period, ">= 0",
-        "Continuous mode: query with the newest frames every this many seconds; 0 = off.");
-  visit("auto_query_frames", p.auto_query_frames, "0 or 2..1000000",
-        "Test sequence length in continuous mode; 0 = sequence/sequence_length.");
-  visit("map_info_rate", p.map_info_rate, "(0, 1000]", "Highest rate of ~map_info updates [Hz].");
+/// A field of NodeParameters, whichever group it is in.
+using FieldPtr = std::variant<int*, double*, std::uint64_t*, WindowAlignment*, std::string*>;
+
+/// One row of the node's table: the description, written once in a table above or in the core, and
+/// where the value goes. The loader, `--help` and the unknown-parameter check are built from it.
+struct Entry {
+  const ParameterInfo* info;
+  std::function<FieldPtr(NodeParameters&)> field;
+};
+
+template <typename Group, typename Select>
+void append(std::vector<Entry>& entries, const std::vector<ParameterSpec<Group>>& specs, Select select) {
+  for (const auto& spec : specs) {
+    entries.push_back({&spec.info, [member = spec.member, select](NodeParameters& p) {
+                         return std::visit([&](auto m) -> FieldPtr { return &(select(p).*m); }, member);
+                       }});
+  }
+}
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = [] {
+    std::vector<Entry> all;
+    append(all, descriptorParameters(), [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
+    append(all, sequenceParameters(), [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
+    append(all, mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
+    append(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+    return all;
+  }();
+  return table;
 }
 
 std::string typeName(XmlRpc::XmlRpcValue::Type type) {
@@ -103,47 +106,53 @@ bool lookup(const ros::NodeHandle& nh, const std::string& name, XmlRpc::XmlRpcVa
                               typeName(value.getType()));
 }
 
-void read(const ros::NodeHandle& nh, const std::string& name, int& field) {
+/// Validation messages start with the parameter's name; the node's user knows it as ~name.
+[[noreturn]] void throwPrivate(const std::invalid_argument& error) {
+  throw std::invalid_argument("~" + std::string(error.what()));
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) {
   XmlRpc::XmlRpcValue value;
-  if (lookup(nh, name, value, XmlRpc::XmlRpcValue::TypeInt)) {
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
     field = static_cast<int>(value);
   }
 }
 
-void read(const ros::NodeHandle& nh, const std::string& name, double& field) {
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, double& field) {
   XmlRpc::XmlRpcValue value;
-  if (lookup(nh, name, value, XmlRpc::XmlRpcValue::TypeDouble, true)) {
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeDouble, true)) {
     field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value)
                                                              : static_cast<double>(value);
   }
 }
 
-void read(const ros::NodeHandle& nh, const std::string& name, std::string& field) {
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::string& field) {
   XmlRpc::XmlRpcValue value;
-  if (lookup(nh, name, value, XmlRpc::XmlRpcValue::TypeString)) {
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeString)) {
     field = static_cast<std::string>(value);
   }
 }
 
-void read(const ros::NodeHandle& nh, const std::string& name, std::uint64_t& field) {
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::uint64_t& field) {
   XmlRpc::XmlRpcValue value;
-  if (lookup(nh, name, value, XmlRpc::XmlRpcValue::TypeInt)) {
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
     const int seed = static_cast<int>(value);
-    if (seed < 0) {
-      throw std::invalid_argument("~" + name + " must be in 0..2147483647, got " + std::to_string(seed));
+    try {
+      info.require(seed);  // checked before the conversion, which would wrap a negative seed round
+    } catch (const std::invalid_argument& error) {
+      throwPrivate(error);
     }
     field = static_cast<std::uint64_t>(seed);
   }
 }
 
-void read(const ros::NodeHandle& nh, const std::string& name, WindowAlignment& field) {
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, WindowAlignment& field) {
   XmlRpc::XmlRpcValue value;
-  if (lookup(nh, name, value, XmlRpc::XmlRpcValue::TypeString)) {
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeString)) {
     try {
       field = parseWindowAlignment(static_cast<std::string>(value));
-    } catch (const std::invalid_argument&) {
-      throw std::invalid_argument("~" + name + " must be causal or centred, got '" +
-                                  static_cast<std::string>(value) + "'");
+    } catch (const std::invalid_argument& error) {
+      throwPrivate(error);
     }
   }
 }
@@ -168,33 +177,15 @@ std::string type(double) { return "double"; }
 std::string type(const std::string&) { return "string"; }
 std::string type(WindowAlignment) { return "string"; }
 
-void require(bool condition, const std::string& name, const std::string& range, const std::string& got) {
-  if (!condition) {
-    throw std::invalid_argument("~" + name + " must be " + range + ", got " + got);
-  }
-}
-
 }  // namespace
 
 void NodeParameters::validate() const {
-  // The core's messages already name the parameter as group/name with its range.
-  core.validate();
-  require(min_frame_interval >= 0.0, "min_frame_interval", ">= 0", format(min_frame_interval));
-  require(frame_stride >= 1 && frame_stride <= 10000, "frame_stride", "in 1..10000", format(frame_stride));
-  require(max_frames == 0 || max_frames >= 2, "max_frames", "0 (unbounded) or >= 2", format(max_frames));
-  require(image_queue_size >= 1 && image_queue_size <= 10000, "image_queue_size", "in 1..10000",
-          format(image_queue_size));
-  require(max_pending_frames >= 1 && max_pending_frames <= 1000000, "max_pending_frames", "in 1..1000000",
-          format(max_pending_frames));
-  require(recent_exclusion >= 0 && recent_exclusion <= 1000000, "recent_exclusion", "in 0..1000000",
-          format(recent_exclusion));
-  require(default_method == "mrs" || default_method == "seqslam", "default_method", "mrs or seqslam",
-          "'" + default_method + "'");
-  require(auto_query_period >= 0.0, "auto_query_period", ">= 0 (0 = off)", format(auto_query_period));
-  require(auto_query_frames == 0 || (auto_query_frames >= 2 && auto_query_frames <= 1000000),
-          "auto_query_frames", "0 or 2..1000000", format(auto_query_frames));
-  require(map_info_rate > 0.0 && map_info_rate <= 1000.0, "map_info_rate", "in (0, 1000]",
-          format(map_info_rate));
+  try {
+    core.validate();
+    requireInRange(nodeParameters(), *this);
+  } catch (const std::invalid_argument& error) {
+    throwPrivate(error);
+  }
 }
 
 int NodeParameters::autoQueryFrames() const {
@@ -203,19 +194,24 @@ int NodeParameters::autoQueryFrames() const {
 
 NodeParameters loadParameters(const ros::NodeHandle& private_nh) {
   NodeParameters params;
-  forEachParameter(params, [&](const char* name, auto& field, const char*, const char*) {
-    read(private_nh, name, field);
-  });
+  for (const auto& entry : entries()) {
+    std::visit([&](auto* field) { read(private_nh, *entry.info, *field); }, entry.field(params));
+  }
   params.validate();
   return params;
 }
 
 std::vector<ParameterDescription> describeParameters() {
   std::vector<ParameterDescription> descriptions;
-  const NodeParameters defaults;
-  forEachParameter(defaults, [&](const char* name, const auto& field, const char* range, const char* meaning) {
-    descriptions.push_back({name, type(field), format(field), range, meaning});
-  });
+  NodeParameters defaults;
+  for (const auto& entry : entries()) {
+    std::visit(
+        [&](auto* field) {
+          descriptions.push_back(
+              {entry.info->name, type(*field), format(*field), entry.info->allowed(), entry.info->meaning});
+        },
+        entry.field(defaults));
+  }
   return descriptions;
 }
 

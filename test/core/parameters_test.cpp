@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <limits>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 #include "mrs_vpr/parameters.hpp"
 
@@ -62,14 +67,14 @@ TEST(DescriptorParams, OutOfRangeValuesNameTheParameter) {
   // 6 divides neither 64 nor 32.
   const std::string message = rejection([](Parameters& p) { p.descriptor.patch_size = 6; });
   EXPECT_NE(message.find("descriptor/patch_size"), std::string::npos) << message;
-  EXPECT_NE(message.find("divide"), std::string::npos) << message;
+  EXPECT_NE(message.find("dividing"), std::string::npos) << message;
   EXPECT_TRUE(accepted([](Parameters& p) { p.descriptor.patch_size = 32; }));
 }
 
 TEST(DescriptorParams, MessageGivesTheValueAndTheRange) {
   const std::string message = rejection([](Parameters& p) { p.descriptor.image_width = 2000; });
   EXPECT_NE(message.find("2000"), std::string::npos) << message;
-  EXPECT_NE(message.find("[4, 1024]"), std::string::npos) << message;
+  EXPECT_NE(message.find("4..1024"), std::string::npos) << message;
 }
 
 TEST(SequenceParams, OutOfRangeValuesNameTheParameter) {
@@ -145,6 +150,108 @@ TEST(Parameters, ValidateChecksEveryBlock) {
   EXPECT_REJECTED("mrs/", [](Parameters& p) { p.mrs.levels = 100; });
 }
 
+TEST(Range, TextSaysWhichEndsAreOpen) {
+  EXPECT_EQ(Range::closed(4, 1024).text(), "4..1024");
+  EXPECT_EQ(Range::closed(1, 1000000).text(), "1..1000000");  // not 1e+06
+  EXPECT_EQ(Range::open(0, 1).text(), "(0, 1)");
+  EXPECT_EQ(Range::openClosed(0, 0.5).text(), "(0, 0.5]");
+  EXPECT_EQ(Range::atLeast(0).text(), ">= 0");
+  EXPECT_EQ(Range::closed(2, 1000).orZero("off").text(), "0 (off) or 2..1000");
+  EXPECT_EQ(Range::closed(2, 10).orZero().text(), "0 or 2..10");
+}
+
+TEST(Range, ContainsFollowsTheOpenAndClosedEnds) {
+  EXPECT_TRUE(Range::closed(1, 2).contains(1.0));
+  EXPECT_TRUE(Range::closed(1, 2).contains(2.0));
+  EXPECT_FALSE(Range::open(1, 2).contains(1.0));
+  EXPECT_FALSE(Range::open(1, 2).contains(2.0));
+  EXPECT_TRUE(Range::openClosed(0, 1).contains(1.0));
+  EXPECT_FALSE(Range::openClosed(0, 1).contains(0.0));
+  EXPECT_TRUE(Range::atLeast(0).contains(1e300));
+  EXPECT_TRUE(Range::closed(2, 10).orZero().contains(0.0));
+  EXPECT_FALSE(Range::closed(2, 10).orZero().contains(1.0));
+  EXPECT_FALSE(Range::closed(-1, 1).contains(kNaN));
+  EXPECT_FALSE(Range::atLeast(0).contains(kNaN));
+}
+
+/// Values of a field of type `Value` just outside `range` at each bounded end.
+template <typename Value>
+std::vector<double> justOutside(const Range& range) {
+  std::vector<double> values;
+  const bool integer = std::is_integral_v<Value>;
+  if (std::isfinite(range.low)) {
+    values.push_back(range.low_open ? range.low : integer ? range.low - 1 : std::nextafter(range.low, -1e300));
+  }
+  if (std::isfinite(range.high)) {
+    values.push_back(range.high_open ? range.high : integer ? range.high + 1 : std::nextafter(range.high, 1e300));
+  }
+  return values;
+}
+
+/// Sets each int or double field of one group just outside its table range and expects the message to
+/// name the parameter and to give its allowed values exactly as the parameter reference prints them.
+template <typename Group>
+void expectEachRangeInItsMessage(const std::vector<ParameterSpec<Group>>& specs, Group Parameters::*group) {
+  for (const auto& spec : specs) {
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(Parameters{}.*group.*member)>;
+          if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, double>) {
+            for (double outside : justOutside<Value>(spec.info.range)) {
+              const std::string message = rejection([&](Parameters& p) { (p.*group).*member = Value(outside); });
+              EXPECT_EQ(message.rfind(spec.info.name + " must be", 0), 0U) << outside << ": " << message;
+              EXPECT_NE(message.find(spec.info.allowed()), std::string::npos) << message;
+            }
+          }
+        },
+        spec.member);
+  }
+}
+
+TEST(Parameters, EachMessageGivesTheRangeOfTheTable) {
+  expectEachRangeInItsMessage(descriptorParameters(), &Parameters::descriptor);
+  expectEachRangeInItsMessage(sequenceParameters(), &Parameters::sequence);
+  expectEachRangeInItsMessage(mrsParameters(), &Parameters::mrs);
+}
+
+TEST(Parameters, RuleMessagesGiveTheWholeAllowedText) {
+  const auto expectAllowed = [](const ParameterInfo& info, const std::function<void(Parameters&)>& change) {
+    const std::string message = rejection(change);
+    EXPECT_EQ(message.rfind(info.name + " must be in " + info.allowed() + ", got ", 0), 0U) << message;
+  };
+  expectAllowed(parameterInfo(descriptorParameters(), "descriptor/patch_size"),
+                [](Parameters& p) { p.descriptor.patch_size = 6; });
+  expectAllowed(parameterInfo(sequenceParameters(), "sequence/velocity_max"),
+                [](Parameters& p) { p.sequence.velocity_max = 0.7; });
+  expectAllowed(parameterInfo(sequenceParameters(), "sequence/velocity_step"),
+                [](Parameters& p) { p.sequence.velocity_step = 1e-10; });
+  expectAllowed(parameterInfo(mrsParameters(), "mrs/pixel_pooling"), [](Parameters& p) { p.mrs.pixel_pooling = 3; });
+}
+
+TEST(Parameters, VelocityStepIsDocumentedAsChecked) {
+  // It was documented as "> 0" but checked as (0, 10).
+  const ParameterInfo& step = parameterInfo(sequenceParameters(), "sequence/velocity_step");
+  EXPECT_EQ(step.allowed(), "(0, 10), at most " + std::to_string(kMaxVelocities) + " velocities");
+  EXPECT_EQ(rejection([](Parameters& p) { p.sequence.velocity_step = 10.0; }),
+            "sequence/velocity_step must be in " + step.allowed() + ", got 10");
+}
+
+TEST(Parameters, TablesNameEveryParameterOnceUnderItsGroup) {
+  std::set<std::string> names;
+  const auto add = [&](const auto& specs, const std::string& group) {
+    for (const auto& spec : specs) {
+      EXPECT_EQ(spec.info.name.rfind(group + "/", 0), 0U) << spec.info.name;
+      EXPECT_TRUE(names.insert(spec.info.name).second) << spec.info.name;
+      EXPECT_FALSE(spec.info.meaning.empty()) << spec.info.name;
+    }
+  };
+  add(descriptorParameters(), "descriptor");
+  add(sequenceParameters(), "sequence");
+  add(mrsParameters(), "mrs");
+  // Every field of DescriptorParams, SequenceParams and MrsParams.
+  EXPECT_EQ(names.size(), 3U + 8U + 11U);
+}
+
 TEST(WindowAlignment, ParsesBothSpellingsAndRoundTrips) {
   EXPECT_EQ(parseWindowAlignment("causal"), WindowAlignment::kCausal);
   EXPECT_EQ(parseWindowAlignment("centred"), WindowAlignment::kCentred);
@@ -165,6 +272,9 @@ TEST(WindowAlignment, UnknownTextThrowsNamingItAndTheChoices) {
     EXPECT_NE(message.find("'sideways'"), std::string::npos) << message;
     EXPECT_NE(message.find("causal"), std::string::npos) << message;
     EXPECT_NE(message.find("centred"), std::string::npos) << message;
+    // The same words as the parameter reference.
+    EXPECT_NE(message.find(parameterInfo(sequenceParameters(), "sequence/alignment").allowed()), std::string::npos)
+        << message;
   }
   EXPECT_THROW(parseWindowAlignment(""), std::invalid_argument);
   EXPECT_THROW(parseWindowAlignment("Causal"), std::invalid_argument);

@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <map>
 #include <set>
 #include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
 
 #include "mrs_vpr/ros/node_parameters.hpp"
 
@@ -18,6 +23,14 @@ std::string errorOf(const NodeParameters& params) {
   return "";
 }
 
+std::map<std::string, ParameterDescription> descriptionsByName() {
+  std::map<std::string, ParameterDescription> byName;
+  for (const auto& description : describeParameters()) {
+    byName[description.name] = description;
+  }
+  return byName;
+}
+
 TEST(NodeParameters, DefaultsAreValid) { EXPECT_NO_THROW(NodeParameters{}.validate()); }
 
 TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
@@ -27,11 +40,15 @@ TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
 
   params = NodeParameters{};
   params.core.sequence.accept_threshold = -1.0;
-  EXPECT_EQ(errorOf(params), "parameter 'sequence/accept_threshold' = -1 is out of range [0, 1000]");
+  EXPECT_EQ(errorOf(params), "~sequence/accept_threshold must be in 0..1000, got -1");
 
   params = NodeParameters{};
   params.default_method = "fast";
-  EXPECT_EQ(errorOf(params), "~default_method must be mrs or seqslam, got 'fast'");
+  EXPECT_EQ(errorOf(params), "~default_method must be one of mrs, seqslam, got 'fast'");
+
+  params = NodeParameters{};
+  params.max_frames = 1;
+  EXPECT_EQ(errorOf(params), "~max_frames must be 0 (unbounded) or >= 2, got 1");
 
   params = NodeParameters{};
   params.core.descriptor.image_width = 2;
@@ -61,6 +78,59 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("descriptor/image_width"), 1U);
   EXPECT_EQ(names.count("min_frame_interval"), 1U);
   EXPECT_EQ(descriptions.size(), 32U);
+}
+
+/// Sets each int or double field of one table just outside its range, at each bounded end, and
+/// expects validate() to name it as ~name with the range `--help` prints for it.
+template <typename Group, typename Select>
+void expectHelpRangeInEachMessage(const std::vector<ParameterSpec<Group>>& specs, Select select) {
+  const auto help = descriptionsByName();
+  for (const auto& spec : specs) {
+    ASSERT_EQ(help.count(spec.info.name), 1U) << spec.info.name;
+    const std::string& range = help.at(spec.info.name).range;
+    EXPECT_EQ(range, spec.info.allowed());
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(select(std::declval<NodeParameters&>()).*member)>;
+          if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, double>) {
+            const Range& r = spec.info.range;
+            std::vector<double> outside;
+            const double step = std::is_same_v<Value, int> ? 1.0 : 1e-9 * std::max(1.0, std::fabs(r.high));
+            if (std::isfinite(r.low)) outside.push_back(r.low_open ? r.low : r.low - step);
+            if (std::isfinite(r.high)) outside.push_back(r.high_open ? r.high : r.high + step);
+            for (double value : outside) {
+              NodeParameters params;
+              select(params).*member = static_cast<Value>(value);
+              const std::string message = errorOf(params);
+              EXPECT_EQ(message.rfind("~" + spec.info.name + " must be", 0), 0U) << value << ": " << message;
+              EXPECT_NE(message.find(range), std::string::npos) << message;
+            }
+          }
+        },
+        spec.member);
+  }
+}
+
+TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
+  expectHelpRangeInEachMessage(descriptorParameters(),
+                               [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
+  expectHelpRangeInEachMessage(sequenceParameters(),
+                               [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
+  expectHelpRangeInEachMessage(mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
+  expectHelpRangeInEachMessage(nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+
+  // The text parameter and a rule involving two parameters, with the words of --help too.
+  const auto help = descriptionsByName();
+  NodeParameters params;
+  params.default_method = "fast";
+  EXPECT_NE(errorOf(params).find(help.at("default_method").range), std::string::npos) << errorOf(params);
+  params = NodeParameters{};
+  params.core.descriptor.patch_size = 6;
+  EXPECT_NE(errorOf(params).find(help.at("descriptor/patch_size").range), std::string::npos) << errorOf(params);
+}
+
+TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {
+  EXPECT_EQ(descriptionsByName().at("sequence/velocity_step").range, "(0, 10), at most 1000 velocities");
 }
 
 }  // namespace

@@ -11,27 +11,33 @@ namespace mrs_vpr {
 namespace node {
 
 /// Everything the node is configured with: the core's parameters plus the node's own. Each default
-/// is written once, here or in mrs_vpr/parameters.hpp, and mirrored in config/default.yaml.
+/// is written once, here or in mrs_vpr/parameters.hpp, and mirrored in config/default.yaml (a test
+/// checks it). Allowed values are written once, in the tables of node_parameters.cpp and of the core.
 struct NodeParameters {
   /// The core's parameters, read from ~descriptor/*, ~sequence/* and ~mrs/*.
   Parameters core;
 
-  double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp), >= 0; 0 = off.
-  int frame_stride = 1;             ///< Keep at most every n-th frame, 1..10000.
-  int max_frames = 500000;          ///< Reference map capacity [frames], 0 (unbounded) or >= 2.
-  int image_queue_size = 10;        ///< Subscriber queue of the image topic, 1..10000.
-  int max_pending_frames = 600;     ///< Keyframes buffered while a query reads the map, 1..1000000.
-  int recent_exclusion = 100;       ///< Frames before the recent test sequence that are not searched, 0..1000000.
+  double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp); 0 = off.
+  int frame_stride = 1;             ///< Keep at most every n-th frame.
+  int max_frames = 500000;          ///< Reference map capacity [frames]; 0 = unbounded.
+  int image_queue_size = 10;        ///< Subscriber queue of the image topic.
+  int max_pending_frames = 600;     ///< Keyframes buffered while a query reads the map.
+  int recent_exclusion = 100;       ///< Frames before the recent test sequence that are not searched.
   std::string default_method = "mrs";  ///< Method for requests with an empty method and continuous mode.
-  double auto_query_period = 0.0;   ///< Continuous mode period [s], >= 0; 0 = off.
+  double auto_query_period = 0.0;   ///< Continuous mode period [s]; 0 = off.
   int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
-  double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz], (0, 1000].
+  double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz].
 
-  /// Throws std::invalid_argument naming the first parameter out of range and its allowed range.
+  /// Throws std::invalid_argument naming the first parameter out of range (as ~group/name) and the
+  /// values it allows, in the words of `--help`.
   void validate() const;
   /// auto_query_frames, or sequence/sequence_length when it is 0.
   int autoQueryFrames() const;
 };
+
+/// The node's own parameters (the core's are in descriptorParameters(), sequenceParameters() and
+/// mrsParameters()): each one's name, allowed values and meaning, written once.
+const std::vector<ParameterSpec<NodeParameters>>& nodeParameters();
 
 /**
  * Reads every parameter that is set under `private_nh` over the defaults (kiss-icp style: an unset
@@ -45,7 +51,7 @@ struct ParameterDescription {
   std::string name;           ///< Private name, e.g. "mrs/tau".
   std::string type;           ///< "int", "double", "string".
   std::string default_value;  ///< As written in config/default.yaml.
-  std::string range;          ///< Allowed values.
+  std::string range;          ///< Allowed values, as validate()'s messages give them.
   std::string meaning;
 };
 
