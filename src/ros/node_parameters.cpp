@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -177,6 +178,23 @@ std::string type(double) { return "double"; }
 std::string type(const std::string&) { return "string"; }
 std::string type(WindowAlignment) { return "string"; }
 
+/// Namespaces of the image transport plugins of image_transport_plugins, which read their own
+/// parameters under the subscriber's private namespace. Only these are let through: letting every
+/// name with a '/' through hid typos such as ~sequnce/sequence_length.
+const char* const kTransportNamespaces[] = {"compressed", "compressedDepth", "theora"};
+
+bool isTransportParameter(const std::string& name) {
+  if (name == "image_transport") {
+    return true;  // the transport hint, read by image_transport itself
+  }
+  const std::string group = name.substr(0, name.find('/'));
+  if (group == name) {
+    return false;  // no namespace
+  }
+  return std::find(std::begin(kTransportNamespaces), std::end(kTransportNamespaces), group) !=
+         std::end(kTransportNamespaces);
+}
+
 }  // namespace
 
 void NodeParameters::validate() const {
@@ -216,28 +234,27 @@ std::vector<ParameterDescription> describeParameters() {
 }
 
 std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh) {
-  std::vector<std::string> known;
-  for (const auto& description : describeParameters()) {
-    known.push_back(private_nh.resolveName(description.name));
-  }
   const std::string prefix = private_nh.getNamespace() + "/";
   std::vector<std::string> names;
-  std::vector<std::string> unknown;
   if (!ros::param::getParamNames(names)) {
-    return unknown;
+    return {};
   }
+  std::vector<std::string> relative;
   for (const auto& name : names) {
-    if (name.compare(0, prefix.size(), prefix) != 0) {
-      continue;
+    if (name.compare(0, prefix.size(), prefix) == 0) {
+      relative.push_back(name.substr(prefix.size()));
     }
-    const std::string relative = name.substr(prefix.size());
-    // Transport plugins read their own parameters (image_transport, compressed/..., theora/...).
-    const bool core_group = relative.rfind("descriptor/", 0) == 0 || relative.rfind("sequence/", 0) == 0 ||
-                            relative.rfind("mrs/", 0) == 0;
-    const bool transport =
-        relative == "image_transport" || (relative.find('/') != std::string::npos && !core_group);
-    if (!transport && std::find(known.begin(), known.end(), name) == known.end()) {
-      unknown.push_back("~" + relative);
+  }
+  return unknownParameters(relative);
+}
+
+std::vector<std::string> unknownParameters(const std::vector<std::string>& names) {
+  std::vector<std::string> unknown;
+  for (const auto& name : names) {
+    const bool known = std::any_of(entries().begin(), entries().end(),
+                                   [&](const Entry& entry) { return entry.info->name == name; });
+    if (!known && !isTransportParameter(name)) {
+      unknown.push_back("~" + name);
     }
   }
   return unknown;

@@ -133,6 +133,30 @@ TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {
   EXPECT_EQ(descriptionsByName().at("sequence/velocity_step").range, "(0, 10), at most 1000 velocities");
 }
 
+TEST(UnknownParameters, ReportsTyposAlsoInGroups) {
+  const std::vector<std::string> names = {"mrs/tau", "frame_stride", "sequnce/sequence_length",
+                                          "sequence/lenght", "framestride", "descriptor/image_width"};
+  const std::vector<std::string> expected = {"~sequnce/sequence_length", "~sequence/lenght", "~framestride"};
+  EXPECT_EQ(unknownParameters(names), expected);
+}
+
+TEST(UnknownParameters, IgnoresImageTransportAndItsPlugins) {
+  const std::vector<std::string> names = {"image_transport", "compressed/mode", "compressedDepth/depth_max",
+                                          "theora/quality", "theora/optimize_for"};
+  EXPECT_TRUE(unknownParameters(names).empty());
+  // Only the plugins' namespaces: a name merely containing one is not let through.
+  EXPECT_EQ(unknownParameters({"compressed", "my_compressed/mode", "image_transport/raw"}),
+            (std::vector<std::string>{"~compressed", "~my_compressed/mode", "~image_transport/raw"}));
+}
+
+TEST(UnknownParameters, KnowsEveryDescribedParameter) {
+  std::vector<std::string> names;
+  for (const auto& description : describeParameters()) {
+    names.push_back(description.name);
+  }
+  EXPECT_TRUE(unknownParameters(names).empty());
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

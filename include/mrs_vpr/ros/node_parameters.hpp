@@ -62,5 +62,10 @@ std::vector<ParameterDescription> describeParameters();
 /// image transport plugins are not reported.
 std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh);
 
+/// Of `names`, relative to the private namespace (e.g. "mrs/tau"), those the node does not know, as
+/// "~name": neither in describeParameters() nor "image_transport" nor under the namespace of a known
+/// image transport plugin (compressed/, compressedDepth/, theora/).
+std::vector<std::string> unknownParameters(const std::vector<std::string>& names);
+
 }  // namespace node
 }  // namespace mrs_vpr
