@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -131,6 +132,69 @@ TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
 
 TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {
   EXPECT_EQ(descriptionsByName().at("sequence/velocity_step").range, "(0, 10), at most 1000 velocities");
+}
+
+/// `name: value  # comment` entries of a YAML file with at most one level of groups, as
+/// "group/name" -> value; the comment, with its indented continuation lines, goes to `comments`.
+std::map<std::string, std::string> readTwoLevelYaml(std::istream& in, std::map<std::string, std::string>& comments) {
+  const auto trim = [](const std::string& text) {
+    const auto first = text.find_first_not_of(" \t");
+    const auto last = text.find_last_not_of(" \t");
+    return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+  };
+  std::map<std::string, std::string> values;
+  std::string group;
+  std::string last_key;
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    const std::string comment = hash == std::string::npos ? "" : trim(line.substr(hash + 1));
+    const std::string content = line.substr(0, hash);
+    const bool indented = !line.empty() && line[0] == ' ';
+    if (trim(content).empty()) {
+      if (indented && !last_key.empty()) {
+        comments[last_key] += " " + comment;  // a continuation of the comment above
+      } else {
+        last_key.clear();
+      }
+      continue;
+    }
+    const auto colon = content.find(':');
+    EXPECT_NE(colon, std::string::npos) << line;
+    const std::string key = trim(content.substr(0, colon));
+    const std::string value = trim(content.substr(colon + 1));
+    if (!indented) {
+      group.clear();
+    }
+    if (value.empty()) {
+      group = key;  // a group's heading
+      last_key.clear();
+      continue;
+    }
+    last_key = group.empty() ? key : group + "/" + key;
+    EXPECT_EQ(values.count(last_key), 0U) << "listed twice: " << last_key;
+    values[last_key] = value;
+    comments[last_key] = comment;
+  }
+  return values;
+}
+
+TEST(NodeParameters, DefaultYamlListsEveryParameterWithItsDefaultAndRange) {
+  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/config/default.yaml");
+  ASSERT_TRUE(file.good());
+  std::map<std::string, std::string> comments;
+  const auto yaml = readTwoLevelYaml(file, comments);
+  const auto help = descriptionsByName();
+  for (const auto& [name, description] : help) {
+    ASSERT_EQ(yaml.count(name), 1U) << "config/default.yaml does not list " << name;
+    EXPECT_EQ(yaml.at(name), description.default_value) << name;
+    // The comment gives the range in the words of --help, so it cannot drift from the check.
+    EXPECT_NE(comments.at(name).find(description.range), std::string::npos)
+        << name << ": comment '" << comments.at(name) << "' does not give the range " << description.range;
+  }
+  for (const auto& [name, value] : yaml) {
+    EXPECT_EQ(help.count(name), 1U) << "config/default.yaml lists " << name << ", which the node does not know";
+  }
 }
 
 TEST(UnknownParameters, ReportsTyposAlsoInGroups) {
