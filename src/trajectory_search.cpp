@@ -123,27 +123,31 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
         const int begin = std::max(block_begin, -offsets[v].front());
         const int end = std::min(block_end, columns - offsets[v].back());
         if (begin >= end) continue;
-        float* __restrict sum = sums.data() - begin;  // sum[j] for anchors j in [begin, end).
-        std::fill(sum + begin, sum + end, 0.0F);
+        const int count = end - begin;
+        float* __restrict sum = sums.data();  // sum[i] for the anchor begin + i.
+        std::fill(sum, sum + count, 0.0F);
+        // Row t's cells of anchors [begin, end): inside the row, as begin and end keep every
+        // trajectory inside the matrix.
+        const auto row_at = [&](int t) {
+          return enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)] + begin;
+        };
         // Four rows at a time, so that the inner loop is a contiguous, vectorisable add that
         // loads and stores the sums a quarter as often.
-        const auto row_at = [&](int t) {
-          return enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)];
-        };
         int t = rows.first;
         for (; t + 3 <= rows.last; t += 4) {
           const float* __restrict r0 = row_at(t);
           const float* __restrict r1 = row_at(t + 1);
           const float* __restrict r2 = row_at(t + 2);
           const float* __restrict r3 = row_at(t + 3);
-          for (int j = begin; j < end; ++j) sum[j] += (r0[j] + r1[j]) + (r2[j] + r3[j]);
+          for (int i = 0; i < count; ++i) sum[i] += (r0[i] + r1[i]) + (r2[i] + r3[i]);
         }
         for (; t <= rows.last; ++t) {
           const float* __restrict row = row_at(t);
-          for (int j = begin; j < end; ++j) sum[j] += row[j];
+          for (int i = 0; i < count; ++i) sum[i] += row[i];
         }
-        for (int j = begin; j < end; ++j) {
-          const float mean = sum[j] / static_cast<float>(length);
+        for (int i = 0; i < count; ++i) {
+          const float mean = sum[i] / static_cast<float>(length);
+          const auto j = static_cast<std::size_t>(begin + i);
           if (mean < costs.cost[j]) {
             costs.cost[j] = mean;
             costs.velocity[j] = static_cast<float>(velocities[v]);
