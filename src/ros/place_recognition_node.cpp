@@ -116,8 +116,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
 
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
-    const int queued = map_frames_.load() + static_cast<int>(pending_.size());
-    if (params_.max_frames > 0 && queued >= params_.max_frames) {
+    if (params_.max_frames > 0 && frames_admitted_ >= params_.max_frames) {
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
                         params_.max_frames);
@@ -131,6 +130,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
       return;
     }
     pending_.push_back({descriptor, stamp});
+    ++frames_admitted_;
     keyframe_policy_.keep(stamp);
     camera_frame_id_ = message->header.frame_id;
     const double elapsed_ms =
@@ -341,15 +341,12 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
   input.recent_frames = recent;
   input.method = params_.default_method;
   QuerySequence::Response response;
-  const auto start = std::chrono::steady_clock::now();
   try {
     answer(input, response);
-    response.success = true;
   } catch (const std::exception& error) {
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
     return;
   }
-  response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
   publishLoopClosure(input.header, recent, input.method, response);
 }
 
@@ -366,6 +363,7 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
     map_.clear();
     keyframe_policy_.reset();
     map_frames_ = 0;
+    frames_admitted_ = 0;
     reserved_frames_ = 0;
     ++map_version_;
   }

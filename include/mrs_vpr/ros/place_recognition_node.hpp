@@ -91,6 +91,9 @@ class PlaceRecognitionNode {
   std::shared_mutex map_mutex_;
   ReferenceMap map_;
   std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
+  // Frames in the map or pending for it, under pending_mutex_: the capacity check counts both in
+  // one place, so that no frame slips in while a flush has emptied pending_ but not yet grown the map.
+  int frames_admitted_ = 0;
   int reserved_frames_ = 0;         // capacity requested by reserveAhead()
 
   // Keyframes waiting for the map lock, and the keyframe policy. Both under pending_mutex_, which is
