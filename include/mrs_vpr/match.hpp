@@ -18,7 +18,9 @@ struct Match {
   /// Whether the answer passes the acceptance rule: a match was found and confidence >=
   /// SequenceParams::accept_threshold. Only accepted answers should be used as loop closures.
   bool accepted = false;
-  /// Mean (shifted, contrast-enhanced) difference along the best trajectory; lower is more similar.
+  /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
+  /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
+  /// similar. Compare it between answers of one method and sequence length only.
   float sequence_difference = 0.0F;
   /// Difference cells evaluated (image comparisons); a machine-independent measure of cost.
   long long comparisons = 0;
