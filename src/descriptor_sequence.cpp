@@ -67,10 +67,7 @@ void DescriptorSequence::appendPooledCells(int last) {
 }
 
 void DescriptorSequence::keepPooledCells(int levels, int pixel_pooling) {
-  if (pixel_pooling < 1 || descriptor_size_ % pixel_pooling != 0) {
-    throw std::invalid_argument("pixel pooling " + std::to_string(pixel_pooling) +
-                                " does not divide the descriptor size " + std::to_string(descriptor_size_));
-  }
+  requirePixelPoolingDivides(pixel_pooling, descriptor_size_);
   pooled_.pixel_pooling = pixel_pooling;
   pooled_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
   for (int frame = 0; frame < size(); ++frame) appendPooledCells(frame);

@@ -317,10 +317,7 @@ std::vector<Match> MrsSearch::matchEveryFrame(SequenceView reference, SequenceVi
 
 Match MrsSearch::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);
-  if (reference.descriptor_size % mrs_.pixel_pooling != 0) {
-    throw std::invalid_argument("mrs/pixel_pooling " + std::to_string(mrs_.pixel_pooling) +
-                                " does not divide the descriptor size " + std::to_string(reference.descriptor_size));
-  }
+  requirePixelPoolingDivides(mrs_.pixel_pooling, reference.descriptor_size, "mrs/pixel_pooling");
   return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment),
                             levelsFor(query.count), sequence_, mrs_)
       .run(trace);

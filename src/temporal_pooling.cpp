@@ -45,13 +45,6 @@ void meanOfTotals(const std::uint32_t* __restrict totals, int count, int samples
   for (int o = 0; o < count; ++o) out[o] = static_cast<std::uint8_t>(static_cast<float>(totals[o]) * scale + 0.5F);
 }
 
-void requireDivides(int pixel_pooling, int size) {
-  if (pixel_pooling < 1 || size % pixel_pooling != 0) {
-    throw std::invalid_argument("pixel pooling " + std::to_string(pixel_pooling) +
-                                " does not divide the descriptor size " + std::to_string(size));
-  }
-}
-
 /// The first and last frame of the cell ending at `end` over `stride` frames of a view of `count`
 /// frames. A cell may end past the view: it pools the frames that exist.
 std::pair<int, int> cellFrames(int end, int stride, int count) {
@@ -60,9 +53,16 @@ std::pair<int, int> cellFrames(int end, int stride, int count) {
 
 }  // namespace
 
+void requirePixelPoolingDivides(int pixel_pooling, int descriptor_size, const std::string& name) {
+  if (pixel_pooling < 1 || descriptor_size % pixel_pooling != 0) {
+    throw std::invalid_argument(name + " " + std::to_string(pixel_pooling) + " does not divide the descriptor size " +
+                                std::to_string(descriptor_size));
+  }
+}
+
 void poolCell(SequenceView view, int end, int stride, int pixel_pooling, std::uint8_t* out) {
   const int size = view.descriptor_size;
-  requireDivides(pixel_pooling, size);
+  requirePixelPoolingDivides(pixel_pooling, size);
   const auto [first, last] = cellFrames(end, stride, view.count);
   if (first == last && pixel_pooling == 1) {
     std::copy(view.frame(last), view.frame(last) + size, out);
@@ -111,7 +111,7 @@ const std::uint8_t* PooledReference::cell(int grid_index) {
 
 PixelRunSums::PixelRunSums(SequenceView view, int pixel_pooling)
     : frames_(view.count), pixel_pooling_(pixel_pooling) {
-  requireDivides(pixel_pooling, view.descriptor_size);
+  requirePixelPoolingDivides(pixel_pooling, view.descriptor_size);
   cell_size_ = view.descriptor_size / pixel_pooling;
   // uint16 holds the sum of up to 257 uint8 pixels; pixel pooling is at most 64.
   sums_.resize(static_cast<std::size_t>(frames_) * static_cast<std::size_t>(cell_size_));

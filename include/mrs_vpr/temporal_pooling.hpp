@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -22,6 +23,10 @@ namespace mrs_vpr {
  * exhaustive coarse level cheaper without costing accuracy (Nordland N = 300: 96% -> 98.5% with 4).
  */
 void poolCell(SequenceView view, int end, int stride, int pixel_pooling, std::uint8_t* out);
+
+/// Throws std::invalid_argument ("<name> P does not divide the descriptor size S") unless
+/// pixel_pooling >= 1 divides descriptor_size.
+void requirePixelPoolingDivides(int pixel_pooling, int descriptor_size, const std::string& name = "pixel pooling");
 
 /// Cells ending at first_end, first_end + stride, ... (count of them), as a new sequence of
 /// descriptors of view.descriptor_size / pixel_pooling bytes.
