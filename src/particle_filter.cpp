@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
+
 namespace mrs_vpr {
+namespace {
 
 Eigen::VectorXd weightsOf(const std::vector<Particle>& particles) {
   Eigen::VectorXd weights(static_cast<Eigen::Index>(particles.size()));
   for (std::size_t i = 0; i < particles.size(); ++i) weights[static_cast<Eigen::Index>(i)] = particles[i].weight;
   return weights;
 }
-
-namespace {
 
 void setWeights(std::vector<Particle>& particles, const Eigen::VectorXd& weights) {
   const double total = weights.sum();

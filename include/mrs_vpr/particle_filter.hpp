@@ -3,8 +3,6 @@
 #include <random>
 #include <vector>
 
-#include <Eigen/Core>
-
 namespace mrs_vpr {
 
 /// A hypothesis of MRS-VPR: where the test sequence ends in the current level's reference grid.
@@ -40,7 +38,5 @@ int coverage(const std::vector<Particle>& particles, int radius);
 /// Keeps the `count` heaviest particles (one per index; the last cost breaks ties), renormalised.
 void keepHeaviest(std::vector<Particle>& particles, int count);
 
-/// The weights as an Eigen vector.
-Eigen::VectorXd weightsOf(const std::vector<Particle>& particles);
 
 }  // namespace mrs_vpr

@@ -153,12 +153,5 @@ TEST(KeepHeaviest, OneParticlePerIndexAndCostBreaksTies) {
   EXPECT_DOUBLE_EQ(few[0].weight, 1.0);
 }
 
-TEST(WeightsOf, ReturnsTheWeightsInOrder) {
-  const Eigen::VectorXd w = weightsOf({particle(0, 0.2), particle(1, 0.8)});
-  ASSERT_EQ(w.size(), 2);
-  EXPECT_DOUBLE_EQ(w[0], 0.2);
-  EXPECT_DOUBLE_EQ(w[1], 0.8);
-}
-
 }  // namespace
 }  // namespace mrs_vpr
