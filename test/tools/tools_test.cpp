@@ -382,8 +382,3 @@ TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
 }
 
 }  // namespace
-
-int main(int argc, char** argv) {
-  ::testing::InitGoogleTest(&argc, argv);
-  return RUN_ALL_TESTS();
-}
