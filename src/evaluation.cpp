@@ -200,6 +200,21 @@ std::vector<TestSequence> globalQueries(int query_frames, int length, int count,
   return sequences;
 }
 
+void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int reference_frames) {
+  for (const auto& [query_index, matches] : ground_truth) {
+    const std::string row = "ground truth row of query frame " + std::to_string(query_index);
+    if (query_index < 0 || query_index >= query_frames) {
+      throw std::invalid_argument(row + ": the query has " + std::to_string(query_frames) + " frames");
+    }
+    for (int reference_index : matches) {
+      if (reference_index < 0 || reference_index >= reference_frames) {
+        throw std::invalid_argument(row + " lists reference frame " + std::to_string(reference_index) +
+                                    ", but the reference has " + std::to_string(reference_frames) + " frames");
+      }
+    }
+  }
+}
+
 std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames) {
   if (ground_truth != nullptr) {
     const auto entry = ground_truth->find(query_index);

@@ -108,6 +108,13 @@ std::vector<TestSequence> globalQueries(int query_frames, int length, int count,
                                         WindowAlignment alignment = WindowAlignment::kCausal);
 
 /**
+ * Throws std::invalid_argument naming the query row when ground truth lists a query frame outside
+ * [0, query_frames) or a reference frame outside [0, reference_frames): a file for other traversals
+ * would otherwise give a summary that looks meaningful and is not.
+ */
+void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int reference_frames);
+
+/**
  * Truth for a query frame: its ground-truth entry when `ground_truth` is given (nothing when the frame
  * has no entry), else the identity alignment {query_index} (nothing when query_index >= reference_frames).
  */

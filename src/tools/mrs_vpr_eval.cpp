@@ -73,7 +73,7 @@ struct Options {
   int tolerance = 2;
   int threads = 0;
   bool out_of_map = false;
-  std::uint64_t seed = 42;
+  std::int64_t seed = 42;  // Signed, so that a negative seed is seen and refused, not wrapped.
   mrs_vpr::Parameters params;
 };
 
@@ -132,7 +132,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
     throw std::invalid_argument("reading a bag needs --topic");
   }
   params.sequence.alignment = mrs_vpr::parseWindowAlignment(alignment);
-  params.mrs.seed = options.seed;
+  if (options.seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(options.seed));
+  params.mrs.seed = static_cast<std::uint64_t>(options.seed);
   params.validate();
   return options;
 }
@@ -240,7 +241,8 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matc
                                 " is larger than the query of " + std::to_string(query.descriptors.size()) + " frames");
   }
   const std::vector<mrs_vpr::TestSequence> tests = mrs_vpr::globalQueries(
-      query.descriptors.size(), sequence.sequence_length, options.queries, options.seed, sequence.alignment);
+      query.descriptors.size(), sequence.sequence_length, options.queries, static_cast<std::uint64_t>(options.seed),
+      sequence.alignment);
   std::vector<mrs_vpr::QueryRecord> records;
   int done = 0;
   int skipped = 0;
@@ -372,6 +374,7 @@ int run(int argc, char** argv) {
   }
   const double describe_s = secondsSince(start);
 
+  if (truth) mrs_vpr::checkGroundTruth(*truth, query.descriptors.size(), reference.descriptors.size());
   if (options.out_of_map) {
     truth.emplace();  // Every query frame, none of them in the reference.
     for (int frame = 0; frame < query.descriptors.size(); ++frame) (*truth)[frame] = {};

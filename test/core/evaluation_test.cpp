@@ -323,6 +323,21 @@ TEST(ImageFolder, ClearErrors) {
 // ------------------------------------------------------------------------------------------------
 // Ground-truth CSV
 
+TEST(Evaluation, GroundTruthOutsideTheTraversalsIsRefusedNamingTheRow) {
+  const GroundTruth fits = {{0, {0, 1}}, {4, {}}, {9, {49}}};
+  EXPECT_NO_THROW(checkGroundTruth(fits, 10, 50));
+  try {
+    checkGroundTruth({{3, {1000, 1001}}}, 10, 50);
+    FAIL() << "a reference frame beyond the reference passed";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("query frame 3"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("reference frame 1000"), std::string::npos) << error.what();
+    EXPECT_NE(std::string(error.what()).find("50 frames"), std::string::npos) << error.what();
+  }
+  EXPECT_THROW(checkGroundTruth({{0, {999999999}}}, 10, 50), std::invalid_argument);
+  EXPECT_THROW(checkGroundTruth({{10, {1}}}, 10, 50), std::invalid_argument);  // Query frame 10 of 10.
+}
+
 TEST(GroundTruthCsv, ReadsSeveralMatchesPerQuery) {
   TempFolder folder;
   const std::string path =

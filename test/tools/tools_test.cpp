@@ -308,6 +308,24 @@ TEST_F(ToolsTest, AcceptanceOptionsAreChecked) {
   EXPECT_FALSE(fs::exists(path("rejected.json")));
 }
 
+TEST_F(ToolsTest, BadSeedAndGroundTruthOfOtherTraversalsAreRefused) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query") +
+                              " --method seqslam --protocol global --sequence-length 10";
+  // A negative seed used to wrap silently to 2^64 - 1.
+  expectError(folders + " --seed -1", "--seed must be >= 0");
+  // Reference frames beyond the reference (a file for other traversals) used to give a summary.
+  {
+    std::ofstream beyond(path("beyond.csv"));
+    beyond << "query_index,matching_ref_indices\n0,0\n1,1000 1001\n";
+  }
+  expectError(folders + " --ground-truth " + path("beyond.csv"), "query frame 1 lists reference frame 1000");
+  {
+    std::ofstream huge(path("huge.csv"));
+    huge << "query_index,matching_ref_indices\n0,999999999\n";
+  }
+  expectError(folders + " --ground-truth " + path("huge.csv"), "reference frame 999999999");
+}
+
 TEST_F(ToolsTest, ThreadCountDoesNotChangeTheAnswers) {
   const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
                                 path("truth.csv") + " --method mrs --protocol global --sequence-length 64 " +
