@@ -4,6 +4,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -177,6 +178,27 @@ std::map<std::string, std::string> readTwoLevelYaml(std::istream& in, std::map<s
     comments[last_key] = comment;
   }
   return values;
+}
+
+TEST(NodeParameters, ReadmeTableListsEveryParameterWithItsDefaultAndRange) {
+  // Rows "| `name` | default | range | meaning |" of the README's parameter table.
+  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/README.md");
+  ASSERT_TRUE(file.good());
+  std::map<std::string, std::pair<std::string, std::string>> rows;
+  for (std::string line; std::getline(file, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream row(line.substr(1));
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell.substr(1, cell.size() - 2));
+    if (cells.size() != 4) continue;
+    const std::string name = cells[0].substr(1, cells[0].size() - 2);  // Without the backticks.
+    rows[name] = {cells[1], cells[2]};
+  }
+  for (const auto& [name, description] : descriptionsByName()) {
+    ASSERT_EQ(rows.count(name), 1U) << "README.md's parameter table does not list " << name;
+    EXPECT_EQ(rows.at(name).first, description.default_value) << name;
+    EXPECT_EQ(rows.at(name).second, description.range) << name;
+  }
 }
 
 TEST(NodeParameters, DefaultYamlListsEveryParameterWithItsDefaultAndRange) {
