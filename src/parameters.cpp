@@ -221,6 +221,28 @@ void SequenceParams::validate() const {
 
 void MrsParams::validate() const { requireInRange(mrsParameters(), *this); }
 
+void RecognizerParams::validate() const { requireInRange(recognizerParameters(), *this); }
+
+const std::vector<ParameterSpec<RecognizerParams>>& recognizerParameters() {
+  using P = RecognizerParams;
+  static const std::vector<ParameterSpec<P>> table = {
+      // One frame is not a sequence: a map of one could never answer a query.
+      {{"max_frames", Range::atLeast(2).orZero("unbounded"), {}, "",
+        "Reference map capacity [frames]; further keyframes are dropped and counted."},
+       &P::max_frames},
+      {{"max_pending_frames", Range::closed(1, 1000000), {}, "",
+        "Keyframes buffered while a query holds the map; more are dropped and counted."},
+       &P::max_pending_frames},
+      {{"recent_exclusion", Range::closed(0, 1000000), {}, "",
+        "Map frames just before a recent_frames test sequence that are not searched."},
+       &P::recent_exclusion},
+      {{"default_method", {}, {"mrs", "seqslam"}, "",
+        "Method for requests with an empty method and for continuous mode."},
+       &P::default_method},
+  };
+  return table;
+}
+
 void Parameters::validate() const {
   descriptor.validate();
   sequence.validate();

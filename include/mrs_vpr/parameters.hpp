@@ -76,6 +76,16 @@ struct MrsParams {
   void validate() const;
 };
 
+/// How a PlaceRecognizer holds its map and answers, besides the search's own Parameters.
+struct RecognizerParams {
+  int max_frames = 500000;             ///< Map capacity [frames], 0 = unbounded (about 1 GB at 64 x 32).
+  int max_pending_frames = 600;        ///< Frames held back while a query reads the map (20 s at 30 Hz).
+  int recent_exclusion = 100;          ///< matchRecent does not search this many frames before the test sequence.
+  std::string default_method = "mrs";  ///< Method of a query that names none: "mrs" or "seqslam".
+
+  void validate() const;
+};
+
 /// Every tunable of the core in one place.
 struct Parameters {
   DescriptorParams descriptor;
@@ -146,6 +156,7 @@ struct ParameterSpec {
 const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters();
 const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters();
 const std::vector<ParameterSpec<MrsParams>>& mrsParameters();
+const std::vector<ParameterSpec<RecognizerParams>>& recognizerParameters();
 
 /// The entry of `specs` named `name`; throws std::logic_error when there is none.
 template <typename Group>

@@ -21,21 +21,8 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
         "Seconds (by header stamp) between keyframes; 0 = no limit."},
        &P::min_frame_interval},
       {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
-      // One frame is not a sequence: a map of one could never answer a query.
-      {{"max_frames", Range::atLeast(2).orZero("unbounded"), {}, "",
-        "Reference map capacity [frames]; further keyframes are dropped and counted."},
-       &P::max_frames},
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
-      {{"max_pending_frames", Range::closed(1, 1000000), {}, "",
-        "Keyframes buffered while a query holds the map; more are dropped and counted."},
-       &P::max_pending_frames},
-      {{"recent_exclusion", Range::closed(0, 1000000), {}, "",
-        "Map frames just before a recent_frames test sequence that are not searched."},
-       &P::recent_exclusion},
-      {{"default_method", {}, {"mrs", "seqslam"}, "",
-        "Method for requests with an empty method and for continuous mode."},
-       &P::default_method},
       {{"auto_query_period", Range::atLeast(0), {}, "",
         "Continuous mode: query with the newest frames every this many seconds; 0 = off."},
        &P::auto_query_period},
@@ -75,6 +62,7 @@ const std::vector<Entry>& entries() {
     append(all, descriptorParameters(), [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
     append(all, sequenceParameters(), [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
     append(all, mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
+    append(all, recognizerParameters(), [](NodeParameters& p) -> RecognizerParams& { return p.recognizer; });
     append(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
     return all;
   }();
@@ -200,6 +188,7 @@ bool isTransportParameter(const std::string& name) {
 void NodeParameters::validate() const {
   try {
     core.validate();
+    recognizer.validate();
     requireInRange(nodeParameters(), *this);
   } catch (const std::invalid_argument& error) {
     throwPrivate(error);

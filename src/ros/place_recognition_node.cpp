@@ -24,20 +24,12 @@ ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) 
 PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
                                            const NodeParameters& params)
     : params_(params),
-      extractor_(params.core.descriptor),
-      map_(extractor_.size()),
+      recognizer_(params.core, params.recognizer),
       keyframe_policy_(params.min_frame_interval, params.frame_stride),
       nh_(nh),
       private_nh_(private_nh),
       query_nh_(private_nh),
       image_transport_(nh) {
-  for (const char* method : {"mrs", "seqslam"}) {
-    matchers_[method] = makeMatcher(method, params_.core);
-  }
-  // The map keeps MRS's pooled coarse levels up to date as frames arrive, so that a query does not
-  // pool the whole map again.
-  map_.keepPooledCells(params_.core.mrs.levels, params_.core.mrs.pixel_pooling);
-
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
   loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
@@ -50,7 +42,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
     auto_query_timer_ = query_nh_.createTimer(ros::Duration(params_.auto_query_period),
                                               &PlaceRecognitionNode::autoQueryCallback, this);
   }
-  reserveAhead();
+  recognizer_.reserveAhead();
   publishMapInfoIfChanged();
 
   // The transport ("raw", "compressed", ...) comes from ~image_transport.
@@ -64,7 +56,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   ROS_INFO("mrs_vpr: listening on %s (transport %s); descriptor %d x %d, default method %s%s",
            image_sub_.getTopic().c_str(), image_sub_.getTransport().c_str(),
            params_.core.descriptor.image_width, params_.core.descriptor.image_height,
-           params_.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
+           params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
 }
 
 PlaceRecognitionNode::~PlaceRecognitionNode() {
@@ -89,7 +81,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
     stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
   }
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::lock_guard<std::mutex> lock(state_mutex_);
     if (!keyframe_policy_.wants(stamp)) {
       keyframe_policy_.skip();
       ++frames_skipped_;
@@ -101,11 +93,11 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
   const auto start = std::chrono::steady_clock::now();
   cv::Mat descriptor;
   try {
-    descriptor = describeImage(extractor_, *message, message);
+    descriptor = describeImage(recognizer_.extractor(), *message, message);
   } catch (const std::exception& error) {
     ++frames_failed_;
     {
-      std::lock_guard<std::mutex> lock(pending_mutex_);
+      std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip();
     }
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%u x %u, %s): %s",
@@ -114,77 +106,29 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
     return;
   }
 
-  {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
-    if (params_.max_frames > 0 && frames_admitted_ >= params_.max_frames) {
+  switch (recognizer_.addDescriptor(descriptor, stamp)) {
+    case FrameAdmission::kMapFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
-                        params_.max_frames);
+                        params_.recognizer.max_frames);
       return;
-    }
-    if (static_cast<int>(pending_.size()) >= params_.max_pending_frames) {
+    case FrameAdmission::kPendingFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod,
-                        "mrs_vpr: %zu keyframes wait for a long query (~max_pending_frames); dropping frames",
-                        pending_.size());
+                        "mrs_vpr: %d keyframes wait for a long query (~max_pending_frames); dropping frames",
+                        params_.recognizer.max_pending_frames);
       return;
-    }
-    pending_.push_back({descriptor, stamp});
-    ++frames_admitted_;
-    keyframe_policy_.keep(stamp);
-    camera_frame_id_ = message->header.frame_id;
-    const double elapsed_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    frame_time_total_ms_ += elapsed_ms;
-    ++frames_timed_;
-    frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+    case FrameAdmission::kAdmitted:
+      break;
   }
-
-  // Never wait for a query: if one holds the map, the frame stays pending until the map is free.
-  std::unique_lock<std::shared_mutex> map_lock(map_mutex_, std::try_to_lock);
-  if (map_lock.owns_lock()) {
-    flushPendingLocked();
-  }
-}
-
-void PlaceRecognitionNode::flushPendingLocked() {
-  std::vector<PendingFrame> frames;
-  {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
-    frames.swap(pending_);
-  }
-  if (frames.empty()) {
-    return;
-  }
-  for (const auto& frame : frames) {
-    map_.append(frame.descriptor, frame.stamp);
-  }
-  map_frames_ = map_.size();
   ++map_version_;
-}
-
-void PlaceRecognitionNode::flushPending() {
-  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-  flushPendingLocked();
-}
-
-void PlaceRecognitionNode::reserveAhead() {
-  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
-  const int frames = map_frames_.load();
-  if (frames < reserved_frames_ - reserved_frames_ / 4) {
-    return;
-  }
-  int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));
-  if (params_.max_frames > 0) {
-    target = std::min(target, params_.max_frames);
-  }
-  if (target <= reserved_frames_) {
-    return;
-  }
-  // Copying a large map takes a while; meanwhile the image callback parks frames in pending_.
-  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-  map_.reserve(target);
-  reserved_frames_ = target;
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  keyframe_policy_.keep(stamp);
+  camera_frame_id_ = message->header.frame_id;
+  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame_time_total_ms_ += elapsed_ms;
+  ++frames_timed_;
+  frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
 }
 
 // ---------------------------------------------------------------------------------------------------
@@ -195,7 +139,8 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   response.success = false;
   response.reference_index = -1;
   QueryInput input;
-  input.method = request.method.empty() ? params_.default_method : request.method;
+  input.method = request.method;  // Empty: the recognizer's default method.
+  PlaceAnswer answered;
   try {
     if (!request.images.empty()) {
       if (request.recent_frames > 0) {
@@ -206,12 +151,12 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
       if (request.images.size() < 2) {
         throw std::invalid_argument("a test sequence needs at least 2 images, got 1");
       }
-      input.images = std::make_unique<DescriptorSequence>(extractor_.size());
+      input.images = std::make_unique<DescriptorSequence>(recognizer_.extractor().size());
       input.images->reserve(static_cast<int>(request.images.size()));
       for (std::size_t i = 0; i < request.images.size(); ++i) {
         const sensor_msgs::Image& image = request.images[i];
         try {
-          input.images->append(describeImage(extractor_, image), image.header.stamp.toSec());
+          input.images->append(describeImage(recognizer_.extractor(), image), image.header.stamp.toSec());
         } catch (const std::exception& error) {
           throw std::invalid_argument("images[" + std::to_string(i) + "] (" + std::to_string(image.width) +
                                       " x " + std::to_string(image.height) + ", encoding " +
@@ -224,9 +169,9 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
           "newest map frames");
     } else {
-      input.recent_frames = static_cast<int>(std::min<std::uint32_t>(request.recent_frames, 1U << 30U));
+      input.recent_frames = request.recent_frames;
     }
-    answer(input, response);
+    answered = answer(input, response);
     response.success = true;
   } catch (const std::exception& error) {
     response.success = false;
@@ -236,137 +181,82 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   }
   response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (response.success) {
-    const int length = input.images ? input.images->size() : input.recent_frames;
-    publishLoopClosure(input.header, length, input.method, response);
-    ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", input.method.c_str(), length,
-              response.reference_index, response.confidence, response.elapsed_ms);
+    publishLoopClosure(input.header, answered, response);
+    ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
+              answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
   } else {
     ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"
 }
 
-void PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {
-  const auto matcher = matchers_.find(input.method);
-  if (matcher == matchers_.end()) {
-    throw std::invalid_argument("unknown method " + inQuotes(input.method) + ": use 'mrs' or 'seqslam'");
+PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {
+  // The search may take a while; frames arriving meanwhile wait in the recognizer's pending buffer.
+  PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method)
+                                      : recognizer_.matchRecent(input.recent_frames, input.method);
+  if (!input.images) {
+    input.header.stamp = toRosTime(answered.newest_stamp);
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    input.header.frame_id = camera_frame_id_;
   }
-  if (input.recent_frames > 0) {
-    flushPending();  // the newest frames must be in the map before they can be the test sequence
-  }
-
-  {
-    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    const int frames = map_.size();
-    if (frames == 0) {
-      throw std::invalid_argument("the reference map is empty: publish images on " + image_sub_.getTopic() +
-                                  " first");
-    }
-    SequenceView reference;
-    SequenceView query;
-    if (input.images) {
-      if (input.images->size() > frames) {
-        throw std::invalid_argument("the test sequence has " + std::to_string(input.images->size()) +
-                                    " images but the reference map only " + std::to_string(frames) +
-                                    " frames");
-      }
-      reference = map_.view();
-      query = input.images->view();
-    } else {
-      const int recent = input.recent_frames;
-      if (recent < 2) {
-        throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(recent));
-      }
-      if (recent > frames) {
-        throw std::invalid_argument("recent_frames " + std::to_string(recent) + " is more than the " +
-                                    std::to_string(frames) + " frames in the reference map");
-      }
-      const int searchable = frames - recent - params_.recent_exclusion;
-      if (searchable < recent) {
-        throw std::invalid_argument(
-            "recent_frames " + std::to_string(recent) + " leaves " + std::to_string(std::max(searchable, 0)) +
-            " searchable frames (map " + std::to_string(frames) + " - recent " + std::to_string(recent) +
-            " - ~recent_exclusion " + std::to_string(params_.recent_exclusion) + "); the search needs at least " +
-            std::to_string(recent));
-      }
-      reference = map_.view(0, searchable);
-      query = map_.view(frames - recent, frames);
-      input.header.stamp = toRosTime(map_.stamp(frames - 1));
-      std::lock_guard<std::mutex> lock(pending_mutex_);
-      input.header.frame_id = camera_frame_id_;
-    }
-
-    // The search may take a while; frames arriving meanwhile wait in the pending buffer.
-    const Match match = matcher->second->match(reference, query);
-    response.reference_index = match.reference_index;
-    response.score = match.score;
-    response.confidence = match.confidence;
-    response.reference_stamp =
-        match.reference_index >= 0 ? toRosTime(map_.stamp(match.reference_index)) : ros::Time();
-    response.accepted = match.accepted;
-    response.message = match.reference_index >= 0
-                           ? (response.accepted ? "accepted" : "not accepted: confidence below ~sequence/accept_threshold")
-                           : "no match found";
-  }
-  flushPending();
+  const Match& match = answered.match;
+  response.reference_index = match.reference_index;
+  response.score = match.score;
+  response.confidence = match.confidence;
+  response.reference_stamp = toRosTime(answered.reference_stamp);
+  response.accepted = match.accepted;
+  response.message = match.reference_index >= 0
+                         ? (response.accepted ? "accepted" : "not accepted: confidence below ~sequence/accept_threshold")
+                         : "no match found";
+  return answered;
 }
 
-void PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, int query_length,
-                                              const std::string& method,
+void PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
                                               const QuerySequence::Response& response) {
   LoopClosure message;
   message.header = header;
   message.reference_index = response.reference_index;
   message.reference_stamp = response.reference_stamp;
-  message.query_length = static_cast<std::uint32_t>(query_length);
+  message.query_length = static_cast<std::uint32_t>(answer.query_length);
   message.score = response.score;
   message.confidence = response.confidence;
   message.accepted = response.accepted;
-  message.method = method;
+  message.method = answer.method;
   loop_closure_pub_.publish(message);
 }
 
 void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
-  flushPending();
+  recognizer_.flush();
   const std::uint64_t version = map_version_.load();
   if (version == auto_query_version_) {
     return;  // nothing new since the last answer
   }
   const int recent = params_.autoQueryFrames();
-  if (map_frames_.load() < 2 * recent + params_.recent_exclusion) {
+  if (recognizer_.size() < 2 * recent + params_.recognizer.recent_exclusion) {
     return;  // too early: not enough older frames to search yet
   }
   auto_query_version_ = version;
   QueryInput input;
   input.recent_frames = recent;
-  input.method = params_.default_method;
   QuerySequence::Response response;
   try {
-    answer(input, response);
+    const PlaceAnswer answered = answer(input, response);
+    publishLoopClosure(input.header, answered, response);
   } catch (const std::exception& error) {
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
-    return;
   }
-  publishLoopClosure(input.header, recent, input.method, response);
 }
 
 // ---------------------------------------------------------------------------------------------------
 // Housekeeping
 
 bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  int cleared = 0;
+  const int cleared = recognizer_.reset();
   {
-    std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-    std::lock_guard<std::mutex> lock(pending_mutex_);
-    cleared = map_.size() + static_cast<int>(pending_.size());
-    pending_.clear();
-    map_.clear();
+    std::lock_guard<std::mutex> lock(state_mutex_);
     keyframe_policy_.reset();
-    map_frames_ = 0;
-    frames_admitted_ = 0;
-    reserved_frames_ = 0;
-    ++map_version_;
   }
+  ++map_version_;
   response.success = true;
   response.message = "cleared " + std::to_string(cleared) + " frames";
   ROS_INFO("mrs_vpr: reference map reset (%s)", response.message.c_str());
@@ -376,20 +266,18 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
 
 MapInfo PlaceRecognitionNode::makeMapInfo() {
   MapInfo info;
-  {
-    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    info.frames = static_cast<std::uint32_t>(map_.size());
-    info.memory_bytes = map_.memoryBytes();
-    info.descriptor_size = static_cast<std::uint32_t>(map_.descriptorSize());
-    if (!map_.empty()) {
-      info.first_stamp = toRosTime(map_.stamp(0));
-      info.last_stamp = toRosTime(map_.stamp(map_.size() - 1));
-    }
+  const PlaceRecognizer::MapState state = recognizer_.state();
+  info.frames = static_cast<std::uint32_t>(state.frames);
+  info.memory_bytes = state.memory_bytes;
+  info.descriptor_size = static_cast<std::uint32_t>(state.descriptor_size);
+  if (state.frames > 0) {
+    info.first_stamp = toRosTime(state.first_stamp);
+    info.last_stamp = toRosTime(state.last_stamp);
   }
-  info.max_frames = static_cast<std::uint32_t>(params_.max_frames);
+  info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
+  info.frames_pending = static_cast<std::uint32_t>(state.pending);
   {
-    std::lock_guard<std::mutex> lock(pending_mutex_);
-    info.frames_pending = static_cast<std::uint32_t>(pending_.size());
+    std::lock_guard<std::mutex> lock(state_mutex_);
     info.frame_time_mean_ms =
         frames_timed_ > 0 ? static_cast<float>(frame_time_total_ms_ / static_cast<double>(frames_timed_)) : 0.0F;
     info.frame_time_max_ms = static_cast<float>(frame_time_max_ms_);
@@ -415,13 +303,13 @@ void PlaceRecognitionNode::publishMapInfoIfChanged() {
   map_info_pub_.publish(info);
   last_map_info_ = info;
   map_info_published_ = true;
-  std::lock_guard<std::mutex> lock(pending_mutex_);
+  std::lock_guard<std::mutex> lock(state_mutex_);
   frame_time_max_ms_ = 0.0;
 }
 
 void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
-  flushPending();  // frames parked during a query show up even when no new image arrives
-  reserveAhead();
+  recognizer_.flush();  // frames parked during a query show up even when no new image arrives
+  recognizer_.reserveAhead();
   publishMapInfoIfChanged();
 }
 

@@ -45,11 +45,11 @@ TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
   EXPECT_EQ(errorOf(params), "~sequence/accept_threshold must be in 0..1000, got -1");
 
   params = NodeParameters{};
-  params.default_method = "fast";
+  params.recognizer.default_method = "fast";
   EXPECT_EQ(errorOf(params), "~default_method must be one of mrs, seqslam, got 'fast'");
 
   params = NodeParameters{};
-  params.max_frames = 1;
+  params.recognizer.max_frames = 1;
   EXPECT_EQ(errorOf(params), "~max_frames must be 0 (unbounded) or >= 2, got 1");
 
   params = NodeParameters{};
@@ -124,7 +124,7 @@ TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
   // The text parameter and a rule involving two parameters, with the words of --help too.
   const auto help = descriptionsByName();
   NodeParameters params;
-  params.default_method = "fast";
+  params.recognizer.default_method = "fast";
   EXPECT_NE(errorOf(params).find(help.at("default_method").range), std::string::npos) << errorOf(params);
   params = NodeParameters{};
   params.core.descriptor.patch_size = 6;

@@ -16,14 +16,13 @@ namespace node {
 struct NodeParameters {
   /// The core's parameters, read from ~descriptor/*, ~sequence/* and ~mrs/*.
   Parameters core;
+  /// The map's capacity and how queries are answered: ~max_frames, ~max_pending_frames,
+  /// ~recent_exclusion, ~default_method.
+  RecognizerParams recognizer;
 
   double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp); 0 = off.
   int frame_stride = 1;             ///< Keep at most every n-th frame.
-  int max_frames = 500000;          ///< Reference map capacity [frames]; 0 = unbounded.
   int image_queue_size = 10;        ///< Subscriber queue of the image topic.
-  int max_pending_frames = 600;     ///< Keyframes buffered while a query reads the map.
-  int recent_exclusion = 100;       ///< Frames before the recent test sequence that are not searched.
-  std::string default_method = "mrs";  ///< Method for requests with an empty method and continuous mode.
   double auto_query_period = 0.0;   ///< Continuous mode period [s]; 0 = off.
   int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
   double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz].

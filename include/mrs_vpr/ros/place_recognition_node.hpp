@@ -2,12 +2,9 @@
 
 #include <atomic>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <mutex>
-#include <shared_mutex>
 #include <string>
-#include <vector>
 
 #include <image_transport/image_transport.h>
 #include <ros/callback_queue.h>
@@ -17,11 +14,10 @@
 
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
-#include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/ros/keyframe_policy.hpp"
 #include "mrs_vpr/ros/node_parameters.hpp"
-#include "mrs_vpr/sequence_matcher.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -34,9 +30,9 @@ namespace node {
  * Threading: image callbacks run on the queue of `nh` (the caller spins it: ros::spin() in the node,
  * the manager's single-threaded queue in the nodelet). Services and timers run on a private callback
  * queue served by this object's own spinner thread, so a query that takes seconds never delays a
- * camera frame. The map is guarded by a shared mutex: a query holds it shared for the whole search;
- * the image callback only ever try_locks it exclusively and otherwise parks the new keyframe in a small
- * pending buffer that the next successful writer flushes into the map.
+ * camera frame. The map, its locking and the search are the ROS-free PlaceRecognizer's: a query
+ * reads the map under a shared lock, and a new keyframe never waits for one (it is parked in a small
+ * pending buffer that the next writer moves into the map).
  */
 class PlaceRecognitionNode {
  public:
@@ -50,15 +46,10 @@ class PlaceRecognitionNode {
   PlaceRecognitionNode& operator=(const PlaceRecognitionNode&) = delete;
 
  private:
-  struct PendingFrame {
-    cv::Mat descriptor;
-    double stamp = 0.0;
-  };
-
   /// What a query needs besides the map: the test sequence, when given explicitly.
   struct QueryInput {
     std::unique_ptr<DescriptorSequence> images;  ///< Explicit test sequence, or null.
-    int recent_frames = 0;                       ///< Otherwise the map's newest frames.
+    long long recent_frames = 0;                 ///< Otherwise the map's newest frames.
     std::string method;
     std_msgs::Header header;  ///< Stamp and frame of the newest test frame (filled for images).
   };
@@ -70,36 +61,18 @@ class PlaceRecognitionNode {
   void mapInfoCallback(const ros::TimerEvent& event);
 
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
-  void answer(QueryInput& input, QuerySequence::Response& response);
-  void publishLoopClosure(const std_msgs::Header& header, int query_length, const std::string& method,
+  PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
+  void publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
                           const QuerySequence::Response& response);
-  /// Moves pending keyframes into the map; the caller holds map_mutex_ exclusively.
-  void flushPendingLocked();
-  /// Blocks for the exclusive lock and flushes (query thread only).
-  void flushPending();
-  /// Grows the map's storage ahead of need (query thread only), so that the reallocation happens
-  /// here rather than in the image callback.
-  void reserveAhead();
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 
   NodeParameters params_;
-  DescriptorExtractor extractor_;
-  std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
+  PlaceRecognizer recognizer_;  ///< The map and both methods; thread-safe.
 
-  // The reference map. Read by queries under a shared lock, written under an exclusive one.
-  std::shared_mutex map_mutex_;
-  ReferenceMap map_;
-  std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
-  // Frames in the map or pending for it, under pending_mutex_: the capacity check counts both in
-  // one place, so that no frame slips in while a flush has emptied pending_ but not yet grown the map.
-  int frames_admitted_ = 0;
-  int reserved_frames_ = 0;         // capacity requested by reserveAhead()
-
-  // Keyframes waiting for the map lock, and the keyframe policy. Both under pending_mutex_, which is
+  // The keyframe policy, the camera's frame id and the frame timings, under state_mutex_, which is
   // only ever held for a few instructions.
-  std::mutex pending_mutex_;
-  std::vector<PendingFrame> pending_;
+  std::mutex state_mutex_;
   KeyframePolicy keyframe_policy_;
   std::string camera_frame_id_;
   double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info

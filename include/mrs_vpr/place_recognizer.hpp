@@ -1,0 +1,136 @@
+#pragma once
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/match.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/sequence_matcher.hpp"
+
+namespace mrs_vpr {
+
+/// The answer to a query.
+struct PlaceAnswer {
+  Match match;                 ///< Reference frame, confidence, acceptance (see Match).
+  double reference_stamp = 0;  ///< Stamp of the matched reference frame (0 when none).
+  double newest_stamp = 0;     ///< Stamp of the test sequence's newest frame (matchRecent; else 0).
+  int query_length = 0;        ///< Frames of the test sequence.
+  std::string method;          ///< The method that answered.
+};
+
+/// What became of a frame handed to addFrame.
+enum class FrameAdmission {
+  kAdmitted,     ///< In the map, or waiting for a query to release it (see addFrame).
+  kMapFull,      ///< Dropped: the map holds RecognizerParams::max_frames.
+  kPendingFull,  ///< Dropped: max_pending_frames are already waiting for a long query.
+};
+
+/**
+ * The one object a C++ user needs for sequence-based place recognition: the descriptor extractor,
+ * the reference map (with the pooled levels MRS keeps for it) and both methods.
+ *
+ *   mrs_vpr::PlaceRecognizer recognizer;                 // the documented defaults
+ *   for (...) recognizer.addFrame(image, stamp);         // build the map
+ *   const auto answer = recognizer.match(last_images);   // where do these frames lie?
+ *   if (answer.match.accepted) use(answer.match.reference_index);
+ *
+ * Thread safety: every member may be called from any thread. Queries read the map under a shared
+ * lock; addFrame never waits for one: when a query holds the map, the new frame waits in a small
+ * pending buffer that the next writer moves into the map. Bad input throws std::invalid_argument
+ * with a message for the user; the object stays usable.
+ */
+class PlaceRecognizer {
+ public:
+  /// Throws std::invalid_argument naming the first parameter out of range.
+  explicit PlaceRecognizer(const Parameters& params = Parameters{}, const RecognizerParams& recognizer = {});
+
+  PlaceRecognizer(const PlaceRecognizer&) = delete;
+  PlaceRecognizer& operator=(const PlaceRecognizer&) = delete;
+
+  /// The descriptor of an image (8UC1, 16UC1, 8UC3, 8UC4 in `order`), without touching the map.
+  cv::Mat describe(const cv::Mat& image, ChannelOrder order = ChannelOrder::kBgr) const;
+
+  /// Appends a frame to the map (described here). Never waits for a running query.
+  FrameAdmission addFrame(const cv::Mat& image, double stamp = 0.0, ChannelOrder order = ChannelOrder::kBgr);
+  /// The same with a descriptor from describe(), for callers that describe outside their own locks.
+  FrameAdmission addDescriptor(const cv::Mat& descriptor, double stamp = 0.0);
+
+  /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
+  PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
+                    ChannelOrder order = ChannelOrder::kBgr);
+  /// The same with a test sequence of descriptors.
+  PlaceAnswer match(const DescriptorSequence& test_sequence, const std::string& method = "");
+  /**
+   * Where the map's own `frames` newest frames lie among its older ones: only frames
+   * [0, size - frames - recent_exclusion) are searched, so that the answer is a loop closure and not
+   * the place just passed.
+   */
+  PlaceAnswer matchRecent(long long frames, const std::string& method = "");
+
+  /// Frames in the map (not counting pending ones).
+  int size() const { return map_frames_.load(); }
+  /// Frames waiting for the map.
+  int pending() const;
+  /// Removes every frame; returns how many there were (pending ones included).
+  int reset();
+
+  /// Moves pending frames into the map, waiting for running queries.
+  void flush();
+  /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation.
+  void reserveAhead();
+
+  /// A consistent look at the map.
+  struct MapState {
+    int frames = 0;
+    int pending = 0;
+    std::size_t memory_bytes = 0;
+    int descriptor_size = 0;
+    double first_stamp = 0.0;
+    double last_stamp = 0.0;
+  };
+  MapState state() const;
+
+  const Parameters& parameters() const { return params_; }
+  const DescriptorExtractor& extractor() const { return extractor_; }
+  const RecognizerParams& recognizerParameters() const { return recognizer_; }
+
+ private:
+  struct PendingFrame {
+    cv::Mat descriptor;
+    double stamp = 0.0;
+  };
+
+  const SequenceMatcher& matcherFor(const std::string& method) const;
+  PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method) const;
+  /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
+  void flushLocked();
+
+  Parameters params_;
+  RecognizerParams recognizer_;
+  DescriptorExtractor extractor_;
+  std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
+
+  // Read by queries under a shared lock, written under an exclusive one.
+  mutable std::shared_mutex map_mutex_;
+  DescriptorSequence map_;
+  std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
+  int reserved_frames_ = 0;         // under map_mutex_
+
+  // Under pending_mutex_, held for a few instructions only. frames_admitted_ counts the map and the
+  // pending frames in one place, so that a frame arriving while a flush has emptied the buffer but not
+  // yet grown the map cannot push the map past max_frames.
+  mutable std::mutex pending_mutex_;
+  std::vector<PendingFrame> pending_;
+  int frames_admitted_ = 0;
+};
+
+}  // namespace mrs_vpr

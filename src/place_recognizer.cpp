@@ -1,0 +1,191 @@
+#include "mrs_vpr/place_recognizer.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace mrs_vpr {
+
+PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParams& recognizer)
+    : params_(params), recognizer_(recognizer), extractor_(params.descriptor), map_(extractor_.size()) {
+  params_.validate();
+  recognizer_.validate();
+  for (const char* method : {"mrs", "seqslam"}) matchers_[method] = makeMatcher(method, params_);
+  // The map keeps MRS's pooled coarse levels up to date as frames arrive, so that a query does not
+  // pool the whole map again.
+  map_.keepPooledCells(params_.mrs.levels, params_.mrs.pixel_pooling);
+}
+
+cv::Mat PlaceRecognizer::describe(const cv::Mat& image, ChannelOrder order) const {
+  return extractor_.compute(image, order);
+}
+
+FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, double stamp, ChannelOrder order) {
+  return addDescriptor(describe(image, order), stamp);  // Described before any lock is taken.
+}
+
+FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, double stamp) {
+  if (descriptor.type() != CV_8UC1 || static_cast<int>(descriptor.total()) != extractor_.size()) {
+    throw std::invalid_argument("a descriptor must be " + std::to_string(extractor_.size()) + " bytes of CV_8UC1, got " +
+                                std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()));
+  }
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    if (recognizer_.max_frames > 0 && frames_admitted_ >= recognizer_.max_frames) return FrameAdmission::kMapFull;
+    if (static_cast<int>(pending_.size()) >= recognizer_.max_pending_frames) return FrameAdmission::kPendingFull;
+    pending_.push_back({descriptor, stamp});
+    ++frames_admitted_;
+  }
+  // Never wait for a query: if one holds the map, the frame stays pending until the map is free.
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_, std::try_to_lock);
+  if (map_lock.owns_lock()) flushLocked();
+  return FrameAdmission::kAdmitted;
+}
+
+void PlaceRecognizer::flushLocked() {
+  std::vector<PendingFrame> frames;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    frames.swap(pending_);
+  }
+  for (const PendingFrame& frame : frames) map_.append(frame.descriptor, frame.stamp);
+  map_frames_ = map_.size();
+}
+
+void PlaceRecognizer::flush() {
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  flushLocked();
+}
+
+void PlaceRecognizer::reserveAhead() {
+  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  const int frames = map_.size();
+  if (frames < reserved_frames_ - reserved_frames_ / 4) return;
+  int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));
+  if (recognizer_.max_frames > 0) target = std::min(target, recognizer_.max_frames);
+  if (target <= reserved_frames_) return;
+  // Copying a large map takes a while; meanwhile addFrame parks frames in the pending buffer.
+  map_.reserve(target);
+  reserved_frames_ = target;
+}
+
+int PlaceRecognizer::pending() const {
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  return static_cast<int>(pending_.size());
+}
+
+int PlaceRecognizer::reset() {
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  const int cleared = map_.size() + static_cast<int>(pending_.size());
+  pending_.clear();
+  map_.clear();
+  map_frames_ = 0;
+  frames_admitted_ = 0;
+  reserved_frames_ = 0;
+  return cleared;
+}
+
+PlaceRecognizer::MapState PlaceRecognizer::state() const {
+  MapState state;
+  {
+    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    state.frames = map_.size();
+    state.memory_bytes = map_.memoryBytes();
+    state.descriptor_size = map_.descriptorSize();
+    if (!map_.empty()) {
+      state.first_stamp = map_.stamp(0);
+      state.last_stamp = map_.stamp(map_.size() - 1);
+    }
+  }
+  state.pending = pending();
+  return state;
+}
+
+const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) const {
+  const std::string& name = method.empty() ? recognizer_.default_method : method;
+  const auto matcher = matchers_.find(name);
+  if (matcher == matchers_.end()) {
+    throw std::invalid_argument("unknown method '" + name + "': use 'mrs' or 'seqslam'");
+  }
+  return *matcher->second;
+}
+
+PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, const std::string& method) const {
+  const SequenceMatcher& matcher = matcherFor(method);
+  PlaceAnswer answer;
+  answer.method = matcher.name();
+  answer.query_length = query.count;
+  answer.match = matcher.match(reference, query);
+  if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
+  return answer;
+}
+
+PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, const std::string& method,
+                                   ChannelOrder order) {
+  DescriptorSequence descriptors(extractor_.size());
+  descriptors.reserve(static_cast<int>(test_sequence.size()));
+  for (std::size_t i = 0; i < test_sequence.size(); ++i) {
+    try {
+      descriptors.append(describe(test_sequence[i], order));
+    } catch (const std::exception& error) {
+      throw std::invalid_argument("image " + std::to_string(i) + " of the test sequence: " + error.what());
+    }
+  }
+  return match(descriptors, method);
+}
+
+PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, const std::string& method) {
+  matcherFor(method);  // An unknown method is reported before anything else.
+  if (test_sequence.size() < 2) {
+    throw std::invalid_argument("a test sequence needs at least 2 images, got " +
+                                std::to_string(test_sequence.size()));
+  }
+  PlaceAnswer result;
+  {
+    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    const int frames = map_.size();
+    if (frames == 0) throw std::invalid_argument("the reference map is empty: add frames first");
+    if (test_sequence.size() > frames) {
+      throw std::invalid_argument("the test sequence has " + std::to_string(test_sequence.size()) +
+                                  " images but the reference map only " + std::to_string(frames) + " frames");
+    }
+    // The search may take a while; frames arriving meanwhile wait in the pending buffer.
+    result = answer(map_.view(), test_sequence.view(), method);
+  }
+  flush();
+  return result;
+}
+
+PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method) {
+  matcherFor(method);
+  if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
+  flush();  // The newest frames must be in the map before they can be the test sequence.
+  PlaceAnswer result;
+  {
+    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    const int size = map_.size();
+    if (size == 0) throw std::invalid_argument("the reference map is empty: add frames first");
+    if (frames > size) {
+      throw std::invalid_argument("recent_frames " + std::to_string(frames) + " is more than the " +
+                                  std::to_string(size) + " frames in the reference map");
+    }
+    const int recent = static_cast<int>(frames);
+    const int searchable = size - recent - recognizer_.recent_exclusion;
+    if (searchable < recent) {
+      throw std::invalid_argument("recent_frames " + std::to_string(recent) + " leaves " +
+                                  std::to_string(std::max(searchable, 0)) + " searchable frames (map " +
+                                  std::to_string(size) + " - recent " + std::to_string(recent) +
+                                  " - recent_exclusion " + std::to_string(recognizer_.recent_exclusion) +
+                                  "); the search needs at least " + std::to_string(recent));
+    }
+    result = answer(map_.view(0, searchable), map_.view(size - recent, size), method);
+    result.newest_stamp = map_.stamp(size - 1);
+  }
+  flush();
+  return result;
+}
+
+}  // namespace mrs_vpr

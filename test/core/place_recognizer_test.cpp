@@ -1,0 +1,172 @@
+#include <atomic>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+#include "route_fixture.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+using testing_support::globalSearchParams;
+using testing_support::within;
+
+/// The generated route's images, once per test run: the recognizer takes images, not descriptors.
+const SyntheticRoute& route() {
+  static const SyntheticRoute route = [] {
+    SyntheticRouteParams params;
+    params.reference_frames = 600;
+    params.query_frames = 400;
+    return generateSyntheticRoute(params);
+  }();
+  return route;
+}
+
+std::vector<cv::Mat> queryImages(int first, int count) {
+  return {route().query.begin() + first, route().query.begin() + first + count};
+}
+
+/// A recognizer whose map is the route's reference traversal, stamped 100 + frame / 10.
+void mapReference(PlaceRecognizer& recognizer) {
+  for (std::size_t i = 0; i < route().reference.size(); ++i) {
+    ASSERT_EQ(recognizer.addFrame(route().reference[i], 100.0 + static_cast<double>(i) / 10.0),
+              FrameAdmission::kAdmitted);
+  }
+}
+
+std::string errorOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "(no error)";
+}
+
+TEST(PlaceRecognizer, DefaultConstructedWithTheDocumentedDefaults) {
+  const PlaceRecognizer recognizer;
+  EXPECT_EQ(recognizer.size(), 0);
+  EXPECT_EQ(recognizer.parameters().sequence.accept_threshold, SequenceParams{}.accept_threshold);
+  EXPECT_EQ(recognizer.recognizerParameters().default_method, "mrs");
+  EXPECT_EQ(recognizer.describe(route().reference[0]).total(), 64U * 32U);
+}
+
+TEST(PlaceRecognizer, FindsAndAcceptsAStretchOfTheMappedRouteWithBothMethods) {
+  PlaceRecognizer recognizer(globalSearchParams());
+  mapReference(recognizer);
+  EXPECT_EQ(recognizer.size(), 600);
+  const int first = 100;
+  const int count = 150;  // One coarser level for mrs.
+  const int truth = route().query_to_reference[first + count - 1];
+  for (const std::string method : {"", "mrs", "seqslam"}) {
+    const PlaceAnswer answer = recognizer.match(queryImages(first, count), method);
+    EXPECT_TRUE(within(answer.match.reference_index, truth, 3)) << method << ": " << answer.match.reference_index;
+    EXPECT_TRUE(answer.match.accepted) << method << ": confidence " << answer.match.confidence;
+    EXPECT_DOUBLE_EQ(answer.reference_stamp, 100.0 + answer.match.reference_index / 10.0);
+    EXPECT_EQ(answer.query_length, count);
+    EXPECT_EQ(answer.method, method.empty() ? "mrs" : method);
+  }
+}
+
+TEST(PlaceRecognizer, MatchRecentSearchesOnlyOlderFramesBeyondTheExclusion) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(globalSearchParams(), limits);
+  mapReference(recognizer);
+  // The second traversal's frames 100..249 follow the first one: they are the newest 150 frames.
+  for (int i = 100; i < 250; ++i) recognizer.addFrame(route().query[static_cast<std::size_t>(i)], 1000.0 + i);
+  const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[249], 3)) << answer.match.reference_index;
+  EXPECT_LT(answer.match.reference_index, 750 - 150 - 50);  // Only [0, 550) is searched.
+  EXPECT_DOUBLE_EQ(answer.newest_stamp, 1249.0);
+}
+
+TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {
+  PlaceRecognizer recognizer;
+  EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10)); }).find("reference map is empty"), std::string::npos);
+  mapReference(recognizer);
+  EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10), "fast"); }).find("unknown method 'fast'"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 1)); }).find("at least 2 images"), std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.match({route().query[0], cv::Mat()}); }).find("image 1 of the test sequence"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.matchRecent(1); }).find("at least 2"), std::string::npos);
+  // A request larger than any int is reported as it was made, not wrapped or clamped.
+  EXPECT_NE(errorOf([&] { recognizer.matchRecent(2147483647LL); }).find("recent_frames 2147483647 is more than"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.matchRecent(300); }).find("leaves 200 searchable frames"), std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.addDescriptor(cv::Mat(1, 10, CV_8U)); }).find("2048 bytes"), std::string::npos);
+  // Still answers.
+  EXPECT_GE(recognizer.match(queryImages(0, 20)).match.reference_index, 0);
+}
+
+TEST(PlaceRecognizer, InvalidParametersAreRefusedAtConstruction) {
+  RecognizerParams limits;
+  limits.max_frames = 1;
+  EXPECT_THROW(PlaceRecognizer(Parameters{}, limits), std::invalid_argument);
+  limits = RecognizerParams{};
+  limits.default_method = "fast";
+  EXPECT_THROW(PlaceRecognizer(Parameters{}, limits), std::invalid_argument);
+  Parameters params;
+  params.mrs.hypotheses = 1;
+  EXPECT_THROW(PlaceRecognizer{params}, std::invalid_argument);
+}
+
+TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
+  RecognizerParams limits;
+  limits.max_frames = 5;
+  PlaceRecognizer recognizer(Parameters{}, limits);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(recognizer.addFrame(route().reference[i]), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.addFrame(route().reference[5]), FrameAdmission::kMapFull);
+  EXPECT_EQ(recognizer.size(), 5);
+  EXPECT_EQ(recognizer.reset(), 5);
+  EXPECT_EQ(recognizer.size(), 0);
+  EXPECT_EQ(recognizer.addFrame(route().reference[0]), FrameAdmission::kAdmitted);
+}
+
+TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacity) {
+  // One thread adds frames while another queries without pause: every frame is either in the map or
+  // reported dropped, and the map never grows past max_frames, however the two interleave.
+  RecognizerParams limits;
+  limits.max_frames = 700;
+  limits.max_pending_frames = 1000;
+  limits.recent_exclusion = 0;
+  PlaceRecognizer recognizer(Parameters{}, limits);
+  for (int i = 0; i < 100; ++i) recognizer.addFrame(route().reference[static_cast<std::size_t>(i)]);
+
+  std::atomic<bool> adding{true};
+  std::atomic<int> queries{0};
+  std::thread querying([&] {
+    while (adding.load()) {
+      recognizer.matchRecent(10, "seqslam");
+      ++queries;
+    }
+  });
+  int admitted = 100;
+  int dropped = 0;
+  for (int i = 100; i < 1000; ++i) {
+    const cv::Mat& image = route().reference[static_cast<std::size_t>(i % 600)];
+    if (recognizer.addFrame(image) == FrameAdmission::kAdmitted) {
+      ++admitted;
+    } else {
+      ++dropped;
+    }
+    EXPECT_LE(recognizer.size() + recognizer.pending(), limits.max_frames);
+  }
+  adding = false;
+  querying.join();
+  recognizer.flush();
+  EXPECT_GT(queries.load(), 0);
+  EXPECT_EQ(admitted, 700);
+  EXPECT_EQ(dropped, 300);
+  EXPECT_EQ(recognizer.size(), 700);
+  EXPECT_EQ(recognizer.pending(), 0);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
