@@ -1,0 +1,94 @@
+// A package that depends on mrs_vpr, built against this package's devel space as a user builds it
+// (test/downstream/mrs_vpr_downstream): it compiles with the exported include folders, runs, and links
+// the core without ROS.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;
+  std::string output;  // stdout and stderr
+};
+
+// A path as one word of the command that run() hands to bash in single quotes.
+std::string quoted(const std::string& path) { return "\"" + path + "\""; }
+
+// Runs a bash command in the devel space's environment.
+Outcome run(const std::string& command) {
+  const std::string line = "bash -c 'source " + quoted(MRS_VPR_DEVEL_SETUP) + " && " + command + "' 2>&1";
+  Outcome result;
+  FILE* pipe = popen(line.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  std::size_t read = 0;
+  while ((read = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) result.output.append(buffer, read);
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+class DownstreamPackage : public ::testing::Test {
+ protected:
+  // One build for every test of the suite.
+  static void SetUpTestSuite() {
+    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_downstream.XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) return;
+    workspace_ = pattern;
+    const std::string script = quoted(MRS_VPR_DOWNSTREAM_DIR "/build_downstream.sh");
+    const std::string package = quoted(MRS_VPR_DOWNSTREAM_DIR "/mrs_vpr_downstream");
+    const std::string setup = quoted(MRS_VPR_DEVEL_SETUP);
+    build_ = run(script + " " + setup + " " + package + " " + quoted(workspace_.string()));
+    executable_ = workspace_ / "devel" / "lib" / "mrs_vpr_downstream" / "mrs_vpr_downstream";
+  }
+
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    if (!workspace_.empty()) fs::remove_all(workspace_, ignored);
+  }
+
+  void SetUp() override {
+    ASSERT_FALSE(workspace_.empty()) << "could not create a temporary folder";
+    ASSERT_EQ(build_.status, 0) << build_.output;
+    ASSERT_TRUE(fs::is_regular_file(executable_)) << executable_ << " was not built\n" << build_.output;
+  }
+
+  static fs::path workspace_;
+  static fs::path executable_;
+  static Outcome build_;
+};
+
+fs::path DownstreamPackage::workspace_;
+fs::path DownstreamPackage::executable_;
+Outcome DownstreamPackage::build_;
+
+TEST_F(DownstreamPackage, BuildsAgainstTheDevelSpace) {}
+
+TEST_F(DownstreamPackage, RunsTheCore) {
+  const Outcome program = run(quoted(executable_.string()));
+  EXPECT_EQ(program.status, 0) << program.output;
+  EXPECT_NE(program.output.find("reference_index 29 accepted 1"), std::string::npos) << program.output;
+}
+
+TEST_F(DownstreamPackage, LinksTheCoreAndNoRos) {
+  const Outcome ldd = run("ldd " + quoted(executable_.string()));
+  ASSERT_EQ(ldd.status, 0) << ldd.output;
+  EXPECT_NE(ldd.output.find("libmrs_vpr_core.so"), std::string::npos) << ldd.output;
+  EXPECT_NE(ldd.output.find("libopencv_core.so"), std::string::npos) << ldd.output;
+  EXPECT_EQ(ldd.output.find("not found"), std::string::npos) << ldd.output;
+  for (const char* library : {"libroscpp.so", "librosbag", "libnodeletlib", "libclass_loader", "libcv_bridge",
+                              "libimage_transport", "libmrs_vpr_ros", "libmrs_vpr_nodelet", "libmrs_vpr_bag",
+                              "libmrs_vpr_evaluation"}) {
+    EXPECT_EQ(ldd.output.find(library), std::string::npos) << library << " is linked:\n" << ldd.output;
+  }
+}
+
+}  // namespace
