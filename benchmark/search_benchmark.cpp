@@ -24,7 +24,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation.hpp"
-#include "mrs_vpr/sequence_matcher.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 
 namespace {
@@ -84,7 +84,7 @@ struct MethodResult {
 /// Every query with one method, in passes over all queries until the method has run for at least
 /// options.min_time_s (as Google Benchmark repeats short runs): a query's time is the median of its
 /// runs, so that a pause of the shared machine during a run of a millisecond does not count.
-MethodResult runQueries(const mrs_vpr::SequenceMatcher& matcher, const mrs_vpr::DescriptorSequence& reference,
+MethodResult runQueries(mrs_vpr::PlaceRecognizer& reference, const std::string& method,
                         const mrs_vpr::DescriptorSequence& query, const std::vector<int>& starts,
                         const std::vector<int>& truth, const Options& options) {
   MethodResult result;
@@ -94,7 +94,7 @@ MethodResult runQueries(const mrs_vpr::SequenceMatcher& matcher, const mrs_vpr::
     for (std::size_t q = 0; q < starts.size(); ++q) {
       const auto begin = std::chrono::steady_clock::now();
       const mrs_vpr::Match match =
-          matcher.match(reference.view(), query.view(starts[q], starts[q] + options.sequence_length));
+          reference.match(query.view(starts[q], starts[q] + options.sequence_length), method).match;
       const auto end = std::chrono::steady_clock::now();
       runs[q].push_back(std::chrono::duration<double, std::milli>(end - begin).count());
       elapsed_s += runs[q].back() / 1000.0;
@@ -128,20 +128,18 @@ int main(int argc, char** argv) {
                  route_params.query_frames);
     const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
 
-    const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
-    mrs_vpr::DescriptorSequence reference(extractor.size());
-    mrs_vpr::DescriptorSequence query(extractor.size());
-    reference.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);  // As the node's map does.
-    for (const cv::Mat& image : route.reference) reference.append(extractor.compute(image));
-    for (const cv::Mat& image : route.query) query.append(extractor.compute(image));
+    mrs_vpr::RecognizerParams unbounded;
+    unbounded.max_frames = 0;
+    mrs_vpr::PlaceRecognizer reference(params, unbounded);
+    mrs_vpr::DescriptorSequence query(reference.extractor().size());
+    for (const cv::Mat& image : route.reference) reference.addFrame(image);
+    for (const cv::Mat& image : route.query) query.append(reference.describe(image));
 
     std::mt19937_64 rng(options.seed);
     std::uniform_int_distribution<int> start_at(0, query.size() - options.sequence_length);
     std::vector<int> starts;
     for (int i = 0; i < options.queries; ++i) starts.push_back(start_at(rng));
 
-    const auto seqslam = mrs_vpr::makeMatcher("seqslam", params);
-    const auto mrs = mrs_vpr::makeMatcher("mrs", params);
     std::printf("MRS-VPR vs brute-force SeqSLAM on the same %d queries (synthetic route, seed %llu)\n",
                 options.queries, static_cast<unsigned long long>(options.seed));
     std::printf("M = %d reference frames, N = %d frame test sequences, velocity step %.2f, "
@@ -153,8 +151,8 @@ int main(int argc, char** argv) {
                 "comparisons/query");
     for (int threads : options.threads) {
       cv::setNumThreads(threads);
-      const MethodResult brute = runQueries(*seqslam, reference, query, starts, route.query_to_reference, options);
-      const MethodResult fast = runQueries(*mrs, reference, query, starts, route.query_to_reference, options);
+      const MethodResult brute = runQueries(reference, "seqslam", query, starts, route.query_to_reference, options);
+      const MethodResult fast = runQueries(reference, "mrs", query, starts, route.query_to_reference, options);
       for (const auto& [name, result] : {std::pair{"seqslam", &brute}, std::pair{"mrs", &fast}}) {
         std::printf("%-8d %-8s %8.3f %14.3f %18lld\n", threads, name,
                     static_cast<double>(result->successes) / options.queries, result->median(),

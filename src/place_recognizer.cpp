@@ -138,25 +138,40 @@ PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, co
 }
 
 PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, const std::string& method) {
+  return match(test_sequence.view(), method);
+}
+
+PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string& method) {
   matcherFor(method);  // An unknown method is reported before anything else.
-  if (test_sequence.size() < 2) {
-    throw std::invalid_argument("a test sequence needs at least 2 images, got " +
-                                std::to_string(test_sequence.size()));
+  if (test_sequence.count < 2) {
+    throw std::invalid_argument("a test sequence needs at least 2 images, got " + std::to_string(test_sequence.count));
   }
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     const int frames = map_.size();
     if (frames == 0) throw std::invalid_argument("the reference map is empty: add frames first");
-    if (test_sequence.size() > frames) {
-      throw std::invalid_argument("the test sequence has " + std::to_string(test_sequence.size()) +
+    if (test_sequence.count > frames) {
+      throw std::invalid_argument("the test sequence has " + std::to_string(test_sequence.count) +
                                   " images but the reference map only " + std::to_string(frames) + " frames");
     }
     // The search may take a while; frames arriving meanwhile wait in the pending buffer.
-    result = answer(map_.view(), test_sequence.view(), method);
+    result = answer(map_.view(), test_sequence, method);
   }
   flush();
   return result;
+}
+
+std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, const std::string& method) {
+  const SequenceMatcher& matcher = matcherFor(method);
+  std::vector<Match> matches;
+  {
+    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    if (map_.empty()) throw std::invalid_argument("the reference map is empty: add frames first");
+    matches = matcher.matchEveryFrame(map_.view(), traversal);
+  }
+  flush();
+  return matches;
 }
 
 PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method) {

@@ -69,6 +69,12 @@ class PlaceRecognizer {
                     ChannelOrder order = ChannelOrder::kBgr);
   /// The same with a test sequence of descriptors.
   PlaceAnswer match(const DescriptorSequence& test_sequence, const std::string& method = "");
+  PlaceAnswer match(SequenceView test_sequence, const std::string& method = "");
+  /**
+   * The per-frame protocol over a whole traversal of descriptors: for every frame, the sequence of
+   * sequence_length frames that localises it (Match::reference_index -1 where it is incomplete).
+   */
+  std::vector<Match> matchEveryFrame(SequenceView traversal, const std::string& method = "");
   /**
    * Where the map's own `frames` newest frames lie among its older ones: only frames
    * [0, size - frames - recent_exclusion) are searched, so that the answer is a loop closure and not

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -23,9 +24,9 @@
 #include "mrs_vpr/evaluation.hpp"
 #include "mrs_vpr/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/ros/bag_images.hpp"
 #include "mrs_vpr/ros/image_conversion.hpp"
-#include "mrs_vpr/sequence_matcher.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -103,6 +104,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
       ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods; 0 = OpenCV's default")
       ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
+      ("velocity-step", po::value(&params.sequence.velocity_step)->default_value(params.sequence.velocity_step),
+       "step between the velocities tried (0.02 for sequences in the hundreds)")
       ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
       ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau")
       ("image-width", po::value(&params.descriptor.image_width)->default_value(params.descriptor.image_width),
@@ -138,23 +141,25 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   return options;
 }
 
-/// A described traversal and the size of its images.
+/// What was read of a traversal: how many frames, and the size of its images.
 struct Traversal {
-  mrs_vpr::DescriptorSequence descriptors;
+  int frames = 0;
   cv::Size image_size;
-  std::string source;
 };
 
-/// Reads and describes every image of a folder or bag, reporting progress on stderr.
+/// Reads and describes every image of a folder or bag, handing each descriptor with its stamp to
+/// `append`, and reports progress on stderr.
 Traversal describe(const std::string& source, const std::string& topic, const std::string& what,
-                   const mrs_vpr::DescriptorExtractor& extractor) {
+                   const mrs_vpr::DescriptorExtractor& extractor,
+                   const std::function<void(const cv::Mat& descriptor, double stamp)>& append) {
   const Clock::time_point start = Clock::now();
-  Traversal traversal{mrs_vpr::DescriptorSequence(extractor.size()), cv::Size(), source};
-  const auto progress = [&](int frames) {
-    if (frames % 500 == 0) std::cerr << "  " << what << ": " << frames << " frames\n";
+  Traversal traversal;
+  const auto add = [&](const cv::Mat& descriptor, double stamp) {
+    append(descriptor, stamp);
+    if (++traversal.frames % 500 == 0) std::cerr << "  " << what << ": " << traversal.frames << " frames\n";
   };
   const auto checkSize = [&](const cv::Size& size, const std::string& image_name) {
-    if (traversal.descriptors.empty()) {
+    if (traversal.frames == 0) {
       traversal.image_size = size;
     } else if (size != traversal.image_size) {
       throw std::runtime_error(image_name + " is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
@@ -168,26 +173,23 @@ Traversal describe(const std::string& source, const std::string& topic, const st
       const std::string name = what + " message " + std::to_string(index) + " of '" + source + "'";
       checkSize(cv::Size(static_cast<int>(image->width), static_cast<int>(image->height)), name);
       try {
-        traversal.descriptors.append(mrs_vpr::node::describeImage(extractor, *image, image),
-                                     image->header.stamp.toSec());
+        add(mrs_vpr::node::describeImage(extractor, *image, image), image->header.stamp.toSec());
       } catch (const std::invalid_argument& error) {
         throw std::runtime_error(name + ": " + error.what());
       }
-      progress(traversal.descriptors.size());
     });
   } else {
     mrs_vpr::forEachImage(source, [&](int index, const std::string& path, const cv::Mat& image) {
       checkSize(image.size(), "image '" + path + "'");
       try {
         // cv::imread gives BGR; the frame index is the stamp, as a folder has no times.
-        traversal.descriptors.append(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), index);
+        add(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), index);
       } catch (const std::invalid_argument& error) {
         throw std::runtime_error("image '" + path + "': " + error.what());
       }
-      progress(traversal.descriptors.size());
     });
   }
-  std::cerr << "  " << what << ": " << traversal.descriptors.size() << " frames of " << traversal.image_size.width
+  std::cerr << "  " << what << ": " << traversal.frames << " frames of " << traversal.image_size.width
             << "x" << traversal.image_size.height << " px described in " << std::fixed << std::setprecision(2)
             << secondsSince(start) << " s\n";
   return traversal;
@@ -209,22 +211,23 @@ mrs_vpr::QueryRecord makeRecord(int query_index, const std::vector<int>& truth, 
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
-std::vector<mrs_vpr::QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Traversal& reference,
-                                              const Traversal& query, const mrs_vpr::GroundTruth* truth,
+std::vector<mrs_vpr::QueryRecord> runPerFrame(mrs_vpr::PlaceRecognizer& reference, const std::string& method,
+                                              const mrs_vpr::DescriptorSequence& query,
+                                              const mrs_vpr::GroundTruth* truth,
                                               const mrs_vpr::SequenceParams& sequence) {
-  const std::vector<int> frames = mrs_vpr::perFrameQueries(query.descriptors.size(), sequence);
+  const std::vector<int> frames = mrs_vpr::perFrameQueries(query.size(), sequence);
   if (frames.empty()) {
-    throw std::invalid_argument("the query has " + std::to_string(query.descriptors.size()) +
+    throw std::invalid_argument("the query has " + std::to_string(query.size()) +
                                 " frames, fewer than the sequence length " + std::to_string(sequence.sequence_length));
   }
-  std::cerr << "  matching " << frames.size() << " query frames with " << matcher.name() << "\n";
+  std::cerr << "  matching " << frames.size() << " query frames with " << method << "\n";
   const Clock::time_point start = Clock::now();
-  const std::vector<mrs_vpr::Match> matches = matcher.matchEveryFrame(reference.descriptors.view(), query.descriptors.view());
+  const std::vector<mrs_vpr::Match> matches = reference.matchEveryFrame(query.view(), method);
   const double per_query_ms = 1000.0 * secondsSince(start) / static_cast<double>(frames.size());
 
   std::vector<mrs_vpr::QueryRecord> records;
   for (int frame : frames) {
-    const auto true_indices = mrs_vpr::truthFor(frame, truth, reference.descriptors.size());
+    const auto true_indices = mrs_vpr::truthFor(frame, truth, reference.size());
     if (!true_indices) continue;
     records.push_back(makeRecord(frame, *true_indices, matches.at(static_cast<std::size_t>(frame)), per_query_ms));
   }
@@ -232,33 +235,32 @@ std::vector<mrs_vpr::QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& ma
 }
 
 /// Global localisation protocol: each test sequence is searched on its own and timed.
-std::vector<mrs_vpr::QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Traversal& reference,
-                                            const Traversal& query, const mrs_vpr::GroundTruth* truth,
-                                            const Options& options) {
+std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference, const mrs_vpr::DescriptorSequence& query,
+                                            const mrs_vpr::GroundTruth* truth, const Options& options) {
   const mrs_vpr::SequenceParams& sequence = options.params.sequence;
-  if (sequence.sequence_length > query.descriptors.size()) {
+  if (sequence.sequence_length > query.size()) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
-                                " is larger than the query of " + std::to_string(query.descriptors.size()) + " frames");
+                                " is larger than the query of " + std::to_string(query.size()) + " frames");
   }
   const std::vector<mrs_vpr::TestSequence> tests = mrs_vpr::globalQueries(
-      query.descriptors.size(), sequence.sequence_length, options.queries, static_cast<std::uint64_t>(options.seed),
+      query.size(), sequence.sequence_length, options.queries, static_cast<std::uint64_t>(options.seed),
       sequence.alignment);
   std::vector<mrs_vpr::QueryRecord> records;
   int done = 0;
   int skipped = 0;
   for (const mrs_vpr::TestSequence& test : tests) {
     ++done;
-    const auto true_indices = mrs_vpr::truthFor(test.query_index, truth, reference.descriptors.size());
+    const auto true_indices = mrs_vpr::truthFor(test.query_index, truth, reference.size());
     if (!true_indices) {
       ++skipped;
       continue;
     }
     const Clock::time_point start = Clock::now();
     const mrs_vpr::Match match =
-        matcher.match(reference.descriptors.view(), query.descriptors.view(test.start, test.start + test.length));
+        reference.match(query.view(test.start, test.start + test.length), options.method).match;
     records.push_back(makeRecord(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
     if (done % std::max(1, static_cast<int>(tests.size()) / 10) == 0) {
-      std::cerr << "  " << matcher.name() << ": " << done << "/" << tests.size() << " test sequences\n";
+      std::cerr << "  " << options.method << ": " << done << "/" << tests.size() << " test sequences\n";
     }
   }
   if (skipped > 0) std::cerr << "  " << skipped << " test sequences skipped: their frame has no ground truth\n";
@@ -346,26 +348,31 @@ int run(int argc, char** argv) {
   if (!parsed) return 0;
   const Options& options = *parsed;
   const mrs_vpr::SequenceParams& sequence = options.params.sequence;
-  const std::unique_ptr<mrs_vpr::SequenceMatcher> matcher = mrs_vpr::makeMatcher(options.method, options.params);
 
   if (options.threads > 0) cv::setNumThreads(options.threads);
   std::optional<mrs_vpr::GroundTruth> truth;
   if (!options.ground_truth.empty()) truth = mrs_vpr::readGroundTruthCsv(options.ground_truth);
 
-  const mrs_vpr::DescriptorExtractor extractor(options.params.descriptor);
+  // The reference is the recognizer's map; unbounded, as an offline traversal may be of any length.
+  mrs_vpr::RecognizerParams unbounded;
+  unbounded.max_frames = 0;
+  mrs_vpr::PlaceRecognizer recognizer(options.params, unbounded);
+  const mrs_vpr::DescriptorExtractor& extractor = recognizer.extractor();
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
             << sequence.sequence_length << "\n";
-  Traversal reference = describe(options.reference, options.topic, "reference", extractor);
-  // As the node's map does: keep MRS's pooled levels so that queries do not pool the map again.
-  if (options.method == "mrs") {
-    reference.descriptors.keepPooledCells(options.params.mrs.levels, options.params.mrs.pixel_pooling);
-  }
-  if (sequence.sequence_length > reference.descriptors.size()) {
+  const Traversal reference = describe(options.reference, options.topic, "reference", extractor,
+                                       [&](const cv::Mat& descriptor, double stamp) {
+                                         recognizer.addDescriptor(descriptor, stamp);
+                                       });
+  if (sequence.sequence_length > reference.frames) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
-                                " is larger than the reference of " + std::to_string(reference.descriptors.size()) +
-                                " frames");
+                                " is larger than the reference of " + std::to_string(reference.frames) + " frames");
   }
-  const Traversal query = describe(options.query, options.topic, "query", extractor);
+  mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
+  const Traversal query = describe(options.query, options.topic, "query", extractor,
+                                   [&](const cv::Mat& descriptor, double stamp) {
+                                     query_descriptors.append(descriptor, stamp);
+                                   });
   if (query.image_size != reference.image_size) {
     throw std::invalid_argument(
         "query images are " + std::to_string(query.image_size.width) + "x" + std::to_string(query.image_size.height) +
@@ -374,16 +381,16 @@ int run(int argc, char** argv) {
   }
   const double describe_s = secondsSince(start);
 
-  if (truth) mrs_vpr::checkGroundTruth(*truth, query.descriptors.size(), reference.descriptors.size());
+  if (truth) mrs_vpr::checkGroundTruth(*truth, query.frames, reference.frames);
   if (options.out_of_map) {
     truth.emplace();  // Every query frame, none of them in the reference.
-    for (int frame = 0; frame < query.descriptors.size(); ++frame) (*truth)[frame] = {};
+    for (int frame = 0; frame < query.frames; ++frame) (*truth)[frame] = {};
   }
   const mrs_vpr::GroundTruth* truth_ptr = truth ? &*truth : nullptr;
   const Clock::time_point match_start = Clock::now();
   const std::vector<mrs_vpr::QueryRecord> records =
-      options.protocol == "per-frame" ? runPerFrame(*matcher, reference, query, truth_ptr, sequence)
-                                      : runGlobal(*matcher, reference, query, truth_ptr, options);
+      options.protocol == "per-frame" ? runPerFrame(recognizer, options.method, query_descriptors, truth_ptr, sequence)
+                                      : runGlobal(recognizer, query_descriptors, truth_ptr, options);
   const double match_s = secondsSince(match_start);
   if (records.empty()) throw std::invalid_argument("no query frame has ground truth: nothing to evaluate");
 
@@ -398,8 +405,8 @@ int run(int argc, char** argv) {
     const json document = {
         {"method", options.method},
         {"protocol", options.protocol},
-        {"reference_frames", reference.descriptors.size()},
-        {"query_frames", query.descriptors.size()},
+        {"reference_frames", reference.frames},
+        {"query_frames", query.frames},
         {"parameters", parametersToJson(options)},
         {"summary", summaryToJson(summary)},
         {"timing",
