@@ -30,9 +30,9 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/evaluation.hpp"
-#include "mrs_vpr/image_folder.hpp"
-#include "mrs_vpr/mrs_search.hpp"
+#include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
 namespace {
@@ -263,7 +263,7 @@ std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, cons
                                    const DescriptorSequence& query, const std::vector<int>& ends, int length,
                                    bool out_of_map, Diagnosis* diagnosis, int tolerance, double accept_threshold) {
   std::vector<QueryRecord> records;
-  const auto* mrs = dynamic_cast<const mrs_vpr::MrsSearch*>(&matcher);
+  const auto* mrs = dynamic_cast<const mrs_vpr::MrsMatcher*>(&matcher);
   for (int end : ends) {
     const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
     std::vector<mrs_vpr::MrsLevelTrace> trace;

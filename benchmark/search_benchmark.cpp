@@ -23,7 +23,7 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/evaluation.hpp"
+#include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "mrs_vpr/temporal_pooling.hpp"
+#include "mrs_vpr/mrs/temporal_pooling.hpp"
 
 namespace mrs_vpr {
 

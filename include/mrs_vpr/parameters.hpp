@@ -69,7 +69,7 @@ struct MrsParams {
   int min_particles = 4;            ///< Particles never drop below this when a level halves them.
   /// Distinct minima of the coarsest level carried to the level below, which decides among them, at
   /// least 2. With one, nothing would check the coarse answer at a finer level, and a place that only
-  /// looks right when pooled would be accepted (MrsSearch tests).
+  /// looks right when pooled would be accepted (MrsMatcher tests).
   int hypotheses = 8;
   std::uint64_t seed = 42;          ///< Seed of the search's random generator: same seed, same answer.
 

@@ -1,4 +1,4 @@
-// mrs_vpr_node: live visual place recognition (see mrs_vpr/ros/place_recognition_node.hpp).
+// mrs_vpr_node: live visual place recognition (see mrs_vpr/node/place_recognition_node.hpp).
 
 #include <cstdio>
 #include <cstring>
@@ -7,8 +7,8 @@
 
 #include <ros/ros.h>
 
-#include "mrs_vpr/ros/node_parameters.hpp"
-#include "mrs_vpr/ros/place_recognition_node.hpp"
+#include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/node/place_recognition_node.hpp"
 
 namespace {
 

@@ -9,8 +9,8 @@
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
-#include "mrs_vpr/image_folder.hpp"
-#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;

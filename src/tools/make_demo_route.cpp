@@ -14,7 +14,7 @@
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
-#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "tool_main.hpp"
 

@@ -21,12 +21,12 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/evaluation.hpp"
-#include "mrs_vpr/image_folder.hpp"
+#include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
-#include "mrs_vpr/ros/bag_images.hpp"
-#include "mrs_vpr/ros/image_conversion.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/node/image_conversion.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;

@@ -11,7 +11,7 @@
 #include <ros/ros.h>
 
 #include "mrs_vpr/QuerySequence.h"
-#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;

@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/temporal_pooling.hpp"
+#include "mrs_vpr/mrs/temporal_pooling.hpp"
 
 namespace mrs_vpr {
 namespace {

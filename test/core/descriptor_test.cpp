@@ -8,7 +8,7 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/parameters.hpp"
-#include "error_message.hpp"
+#include "support/error_message.hpp"
 
 namespace mrs_vpr {
 namespace {

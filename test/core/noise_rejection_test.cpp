@@ -19,7 +19,7 @@
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
-#include "route_fixture.hpp"
+#include "support/route_fixture.hpp"
 
 namespace mrs_vpr {
 namespace {

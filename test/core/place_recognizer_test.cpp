@@ -8,7 +8,7 @@
 
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
-#include "route_fixture.hpp"
+#include "support/route_fixture.hpp"
 
 namespace mrs_vpr {
 namespace {

@@ -8,8 +8,8 @@
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
-#include "route_fixture.hpp"
-#include "error_message.hpp"
+#include "support/route_fixture.hpp"
+#include "support/error_message.hpp"
 
 namespace mrs_vpr {
 namespace {

@@ -9,10 +9,10 @@
 
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
-#include "mrs_vpr/lazy_difference_matrix.hpp"
+#include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
 #include "mrs_vpr/parameters.hpp"
-#include "mrs_vpr/particle_evaluation.hpp"
-#include "mrs_vpr/sampling_level.hpp"
+#include "mrs_vpr/mrs/particle_evaluation.hpp"
+#include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {

@@ -16,7 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "mrs_vpr/ros/bag_images.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 
 namespace {

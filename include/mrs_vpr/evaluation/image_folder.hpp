@@ -1,0 +1,44 @@
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/evaluation/evaluation.hpp"
+
+namespace mrs_vpr {
+
+/**
+ * Image files (png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm; any letter case) of a folder, as full
+ * paths in file-name order (byte-wise, so zero-padded numbers sort as numbers).
+ * Throws std::runtime_error when the folder does not exist, is not a folder or holds no image.
+ */
+std::vector<std::string> listImageFiles(const std::string& folder);
+
+/// Reads one image with cv::IMREAD_UNCHANGED. Throws std::runtime_error naming the file when unreadable.
+cv::Mat loadImage(const std::string& path);
+
+/**
+ * Loads the images of a folder one at a time in file-name order and hands each to `visit` (index,
+ * path, image), so that a large folder never has to fit in memory.
+ * Throws std::runtime_error as listImageFiles and loadImage do, and when an image's size differs from
+ * the first one's (naming both files and sizes).
+ */
+void forEachImage(const std::string& folder,
+                  const std::function<void(int index, const std::string& path, const cv::Mat& image)>& visit);
+
+/// All images of a folder (see forEachImage).
+std::vector<cv::Mat> loadImageFolder(const std::string& folder);
+
+/**
+ * Reads a ground-truth CSV: the header `query_index,matching_ref_indices`, then one row per query
+ * frame `i,a b c` (0-based; the reference frames showing the same place, separated by spaces; none
+ * allowed). Blank lines are skipped; Windows line ends are accepted.
+ * Throws std::runtime_error when the file cannot be opened and std::invalid_argument naming the file
+ * and line for a bad header, a malformed or negative index, or a query listed twice.
+ */
+GroundTruth readGroundTruthCsv(const std::string& path);
+
+}  // namespace mrs_vpr

@@ -1,0 +1,41 @@
+#pragma once
+
+#include "mrs_vpr/sequence_matcher.hpp"
+
+namespace mrs_vpr {
+
+/// What the search kept at one level of one query: where the truth was lost, if it was.
+struct MrsLevelTrace {
+  int stride = 1;
+  /// Reference frames (end of each cell) of the level's hypotheses when it ended, lowest cost first.
+  std::vector<int> candidates;
+  /// Coarsest level only: the distinct minima of its table of every end, lowest cost first (at most
+  /// kTracedMinima), i.e. the ranking the search could have had before any particle moved.
+  std::vector<int> table_minima;
+  /// Coarsest level only: the confidence the table alone gives its lowest minimum.
+  float table_confidence = 0.0F;
+  static constexpr int kTracedMinima = 50;
+};
+
+/// MRS-VPR: coarse-to-fine particle search over temporally subsampled sequences (Yin et al.).
+class MrsMatcher : public SequenceMatcher {
+ public:
+  MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs);
+
+  Match match(SequenceView reference, SequenceView query) const override;
+  /// The same search, recording each level, coarsest first, into `trace` (when not null).
+  Match match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
+  /// Per-frame protocol; with no coarser level for sequence_length frames, the brute force's shared
+  /// difference matrix gives the same answers once for all frames.
+  std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const override;
+  std::string name() const override { return "mrs"; }
+
+  /// Levels actually used for a test sequence of `query_length` frames (l_max capped so that the
+  /// coarsest level keeps min_coarse_frames frames).
+  int levelsFor(int query_length) const;
+
+ private:
+  MrsParams mrs_;
+};
+
+}  // namespace mrs_vpr

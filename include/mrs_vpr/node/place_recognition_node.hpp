@@ -1,0 +1,107 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <image_transport/image_transport.h>
+#include <ros/callback_queue.h>
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
+
+#include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/node/keyframe_policy.hpp"
+#include "mrs_vpr/node/node_parameters.hpp"
+
+namespace mrs_vpr {
+namespace node {
+
+/**
+ * The ROS face of the place recogniser: subscribes `image`, keeps keyframe descriptors in a reference
+ * map, answers `~query` (mrs_vpr/QuerySequence), publishes `~loop_closure` and the latched
+ * `~map_info`, offers `~reset`, and optionally queries on its own every `~auto_query_period` seconds.
+ *
+ * Threading: image callbacks run on the queue of `nh` (the caller spins it: ros::spin() in the node,
+ * the manager's single-threaded queue in the nodelet). Services and timers run on a private callback
+ * queue served by this object's own spinner thread, so a query that takes seconds never delays a
+ * camera frame. The map, its locking and the search are the ROS-free PlaceRecognizer's: a query
+ * reads the map under a shared lock, and a new keyframe never waits for one (it is parked in a small
+ * pending buffer that the next writer moves into the map).
+ */
+class PlaceRecognitionNode {
+ public:
+  /// `nh` subscribes the image topic; `private_nh` advertises services and publishers and supplies the
+  /// image transport hints. Parameters must already be validated (see loadParameters).
+  PlaceRecognitionNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                       const NodeParameters& params);
+  ~PlaceRecognitionNode();
+
+  PlaceRecognitionNode(const PlaceRecognitionNode&) = delete;
+  PlaceRecognitionNode& operator=(const PlaceRecognitionNode&) = delete;
+
+ private:
+  /// What a query needs besides the map: the test sequence, when given explicitly.
+  struct QueryInput {
+    std::unique_ptr<DescriptorSequence> images;  ///< Explicit test sequence, or null.
+    long long recent_frames = 0;                 ///< Otherwise the map's newest frames.
+    std::string method;
+    std_msgs::Header header;  ///< Stamp and frame of the newest test frame (filled for images).
+  };
+
+  void imageCallback(const sensor_msgs::ImageConstPtr& message);
+  bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);
+  bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  void autoQueryCallback(const ros::TimerEvent& event);
+  void mapInfoCallback(const ros::TimerEvent& event);
+
+  /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
+  PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
+  void publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
+                          const QuerySequence::Response& response);
+  MapInfo makeMapInfo();
+  void publishMapInfoIfChanged();
+
+  NodeParameters params_;
+  PlaceRecognizer recognizer_;  ///< The map and both methods; thread-safe.
+
+  // The keyframe policy, the camera's frame id and the frame timings, under state_mutex_, which is
+  // only ever held for a few instructions.
+  std::mutex state_mutex_;
+  KeyframePolicy keyframe_policy_;
+  std::string camera_frame_id_;
+  double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
+  std::uint64_t frames_timed_ = 0;
+  double frame_time_max_ms_ = 0.0;    // since the last ~map_info
+
+  std::atomic<std::uint64_t> frames_received_{0};
+  std::atomic<std::uint64_t> frames_skipped_{0};
+  std::atomic<std::uint64_t> frames_dropped_{0};
+  std::atomic<std::uint64_t> frames_failed_{0};
+  std::atomic<std::uint64_t> map_version_{0};  // bumped whenever frames are added or the map is reset
+  std::uint64_t auto_query_version_ = 0;      // map_version_ at the last continuous-mode query
+  MapInfo last_map_info_;
+  bool map_info_published_ = false;
+
+  ros::NodeHandle nh_;
+  ros::NodeHandle private_nh_;
+  ros::CallbackQueue query_queue_;
+  ros::NodeHandle query_nh_;  // private_nh_ bound to query_queue_
+  image_transport::ImageTransport image_transport_;
+  image_transport::Subscriber image_sub_;
+  ros::Publisher loop_closure_pub_;
+  ros::Publisher map_info_pub_;
+  ros::ServiceServer query_srv_;
+  ros::ServiceServer reset_srv_;
+  ros::Timer auto_query_timer_;
+  ros::Timer map_info_timer_;
+  std::unique_ptr<ros::AsyncSpinner> query_spinner_;
+};
+
+}  // namespace node
+}  // namespace mrs_vpr

@@ -1,0 +1,228 @@
+#include "mrs_vpr/evaluation/evaluation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <random>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include "mrs_vpr/trajectory_search.hpp"
+
+namespace mrs_vpr {
+
+namespace {
+
+void checkTolerance(int tolerance) {
+  if (tolerance < 0) {
+    throw std::invalid_argument("tolerance must be >= 0 frames, got " + std::to_string(tolerance));
+  }
+}
+
+/// Uniform integer in [0, n) from the generator's raw output. std::uniform_int_distribution is
+/// implementation-defined, so it would give other positions with another standard library.
+std::uint64_t uniformBelow(std::mt19937_64& generator, std::uint64_t n) {
+  // 2^64 mod n: raw values below it would make small results more likely.
+  const std::uint64_t reject_below = (0 - n) % n;
+  std::uint64_t value = 0;
+  do {
+    value = generator();
+  } while (value < reject_below);
+  return value % n;
+}
+
+}  // namespace
+
+int absoluteError(const QueryRecord& record) {
+  const int nearest = nearestTrueIndex(record);
+  if (record.predicted_index < 0 || nearest < 0) return -1;
+  return std::abs(record.predicted_index - nearest);
+}
+
+int nearestTrueIndex(const QueryRecord& record) {
+  if (record.true_indices.empty()) return -1;
+  if (record.predicted_index < 0) return record.true_indices.front();
+  int nearest = record.true_indices.front();
+  for (int index : record.true_indices) {
+    if (std::abs(index - record.predicted_index) < std::abs(nearest - record.predicted_index)) nearest = index;
+  }
+  return nearest;
+}
+
+bool isCorrect(const QueryRecord& record, int tolerance) {
+  const int error = absoluteError(record);
+  return error >= 0 && error <= tolerance;
+}
+
+double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance) {
+  checkTolerance(tolerance);
+  if (records.empty()) return 0.0;
+  const auto correct = std::count_if(records.begin(), records.end(),
+                                     [tolerance](const QueryRecord& r) { return isCorrect(r, tolerance); });
+  return static_cast<double>(correct) / static_cast<double>(records.size());
+}
+
+std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& records, int tolerance) {
+  checkTolerance(tolerance);
+  std::vector<const QueryRecord*> predicted;
+  for (const QueryRecord& record : records) {
+    if (record.predicted_index >= 0) predicted.push_back(&record);
+  }
+  std::sort(predicted.begin(), predicted.end(),
+            [](const QueryRecord* a, const QueryRecord* b) { return a->confidence > b->confidence; });
+
+  std::vector<PrPoint> curve;
+  const double all_queries = static_cast<double>(records.size());
+  int accepted = 0;
+  int correct = 0;
+  // Queries of equal confidence are accepted together: a threshold cannot separate them.
+  for (std::size_t i = 0; i < predicted.size();) {
+    const float threshold = predicted[i]->confidence;
+    for (; i < predicted.size() && predicted[i]->confidence == threshold; ++i) {
+      ++accepted;
+      if (isCorrect(*predicted[i], tolerance)) ++correct;
+    }
+    PrPoint point;
+    point.threshold = threshold;
+    point.precision = static_cast<double>(correct) / accepted;
+    point.recall = correct / all_queries;
+    curve.push_back(point);
+  }
+  return curve;
+}
+
+double averagePrecision(const std::vector<PrPoint>& curve) {
+  double area = 0.0;
+  double previous_recall = 0.0;
+  for (const PrPoint& point : curve) {
+    area += (point.recall - previous_recall) * point.precision;
+    previous_recall = point.recall;
+  }
+  return area;
+}
+
+double recallAtFullPrecision(const std::vector<PrPoint>& curve) {
+  double best = 0.0;
+  for (const PrPoint& point : curve) {
+    if (point.precision == 1.0) best = std::max(best, point.recall);
+  }
+  return best;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const std::size_t middle = values.size() / 2;
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle), values.end());
+  const double upper = values[middle];
+  if (values.size() % 2 == 1) return upper;
+  const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
+  return 0.5 * (lower + upper);
+}
+
+EvaluationSummary summarise(const std::vector<QueryRecord>& records, int tolerance) {
+  checkTolerance(tolerance);
+  EvaluationSummary summary;
+  summary.tolerance = tolerance;
+  summary.queries = static_cast<int>(records.size());
+  summary.top1 = top1Accuracy(records, tolerance);
+  const std::vector<PrPoint> curve = precisionRecallCurve(records, tolerance);
+  summary.pr_auc = averagePrecision(curve);
+  summary.recall_at_100_precision = recallAtFullPrecision(curve);
+
+  std::vector<double> errors;
+  std::vector<double> times;
+  double total_ms = 0.0;
+  int accepted_correct = 0;
+  for (const QueryRecord& record : records) {
+    if (record.accepted) {
+      ++summary.accepted;
+      if (isCorrect(record, tolerance)) ++accepted_correct;
+    }
+    const int error = absoluteError(record);
+    if (error >= 0) errors.push_back(error);
+    times.push_back(record.time_ms);
+    total_ms += record.time_ms;
+  }
+  if (!records.empty()) {
+    summary.accepted_rate = static_cast<double>(summary.accepted) / static_cast<double>(records.size());
+    summary.accepted_recall = static_cast<double>(accepted_correct) / static_cast<double>(records.size());
+  }
+  if (summary.accepted > 0) summary.accepted_precision = static_cast<double>(accepted_correct) / summary.accepted;
+  summary.median_abs_error = median(errors);
+  summary.median_time_ms = median(times);
+  summary.total_time_s = total_ms / 1000.0;
+  return summary;
+}
+
+std::vector<int> perFrameQueries(int query_frames, const SequenceParams& params) {
+  std::vector<int> frames;
+  for (int frame = 0; frame < query_frames; ++frame) {
+    const SequenceRows rows = sequenceRowsFor(frame, params);
+    if (rows.first >= 0 && rows.last < query_frames) frames.push_back(frame);
+  }
+  return frames;
+}
+
+std::vector<TestSequence> globalQueries(int query_frames, int length, int count, std::uint64_t seed,
+                                        WindowAlignment alignment) {
+  if (length < 1) throw std::invalid_argument("test sequence length must be >= 1, got " + std::to_string(length));
+  if (count < 0) throw std::invalid_argument("query count must be >= 0, got " + std::to_string(count));
+  if (length > query_frames) {
+    throw std::invalid_argument("test sequences of " + std::to_string(length) + " frames do not fit in a query of " +
+                                std::to_string(query_frames) + " frames");
+  }
+  const int positions = query_frames - length + 1;
+  std::mt19937_64 generator(seed);
+  std::multiset<int> starts;
+  if (count <= positions) {
+    // Floyd's algorithm: `count` distinct positions with `count` draws, whatever `positions` is.
+    for (int j = positions - count; j < positions; ++j) {
+      const int candidate = static_cast<int>(uniformBelow(generator, static_cast<std::uint64_t>(j) + 1));
+      starts.insert(starts.count(candidate) > 0 ? j : candidate);
+    }
+  } else {
+    for (int start = 0; start < positions; ++start) starts.insert(start);
+    for (int i = positions; i < count; ++i) {
+      starts.insert(static_cast<int>(uniformBelow(generator, static_cast<std::uint64_t>(positions))));
+    }
+  }
+
+  // The localised frame sits where sequenceRowsFor puts the anchor relative to the first frame.
+  SequenceParams rows_params;
+  rows_params.sequence_length = length;
+  rows_params.alignment = alignment;
+  const int anchor_offset = -sequenceRowsFor(0, rows_params).first;
+
+  std::vector<TestSequence> sequences;
+  sequences.reserve(starts.size());
+  for (int start : starts) sequences.push_back({start, length, start + anchor_offset});
+  return sequences;
+}
+
+void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int reference_frames) {
+  for (const auto& [query_index, matches] : ground_truth) {
+    const std::string row = "ground truth row of query frame " + std::to_string(query_index);
+    if (query_index < 0 || query_index >= query_frames) {
+      throw std::invalid_argument(row + ": the query has " + std::to_string(query_frames) + " frames");
+    }
+    for (int reference_index : matches) {
+      if (reference_index < 0 || reference_index >= reference_frames) {
+        throw std::invalid_argument(row + " lists reference frame " + std::to_string(reference_index) +
+                                    ", but the reference has " + std::to_string(reference_frames) + " frames");
+      }
+    }
+  }
+}
+
+std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames) {
+  if (ground_truth != nullptr) {
+    const auto entry = ground_truth->find(query_index);
+    if (entry == ground_truth->end()) return std::nullopt;
+    return entry->second;
+  }
+  if (query_index < 0 || query_index >= reference_frames) return std::nullopt;
+  return std::vector<int>{query_index};
+}
+
+}  // namespace mrs_vpr

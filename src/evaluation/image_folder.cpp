@@ -1,0 +1,138 @@
+#include "mrs_vpr/evaluation/image_folder.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <opencv2/imgcodecs.hpp>
+
+namespace mrs_vpr {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool isImageFile(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif",
+                                            ".tiff", ".pgm", ".ppm", ".pnm"};
+  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+                     [&extension](const char* known) { return extension == known; });
+}
+
+std::string sizeText(const cv::Mat& image) {
+  return std::to_string(image.cols) + "x" + std::to_string(image.rows);
+}
+
+std::string trim(const std::string& text) {
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return {};
+  const auto last = text.find_last_not_of(" \t\r\n");
+  return text.substr(first, last - first + 1);
+}
+
+/// A non-negative decimal integer, or -1 when `text` is anything else.
+long long parseIndex(const std::string& text) {
+  if (text.empty() || text.size() > 9) return -1;
+  for (char c : text) {
+    if (c < '0' || c > '9') return -1;
+  }
+  return std::stoll(text);
+}
+
+}  // namespace
+
+std::vector<std::string> listImageFiles(const std::string& folder) {
+  std::error_code error;
+  if (!fs::exists(folder, error)) throw std::runtime_error("image folder '" + folder + "' does not exist");
+  if (!fs::is_directory(folder, error)) throw std::runtime_error("'" + folder + "' is not a folder");
+  std::vector<std::string> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (entry.is_regular_file() && isImageFile(entry.path())) files.push_back(entry.path().string());
+  }
+  if (files.empty()) throw std::runtime_error("image folder '" + folder + "' holds no image files");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+cv::Mat loadImage(const std::string& path) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "'");
+  return image;
+}
+
+void forEachImage(const std::string& folder,
+                  const std::function<void(int index, const std::string& path, const cv::Mat& image)>& visit) {
+  const std::vector<std::string> files = listImageFiles(folder);
+  cv::Size first_size;
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const cv::Mat image = loadImage(files[i]);
+    if (i == 0) {
+      first_size = image.size();
+    } else if (image.size() != first_size) {
+      throw std::runtime_error("image '" + files[i] + "' is " + sizeText(image) + " but '" + files[0] + "' is " +
+                               std::to_string(first_size.width) + "x" + std::to_string(first_size.height) +
+                               ": all images of a folder must have one size");
+    }
+    visit(static_cast<int>(i), files[i], image);
+  }
+}
+
+std::vector<cv::Mat> loadImageFolder(const std::string& folder) {
+  std::vector<cv::Mat> images;
+  forEachImage(folder, [&images](int, const std::string&, const cv::Mat& image) { images.push_back(image); });
+  return images;
+}
+
+GroundTruth readGroundTruthCsv(const std::string& path) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error("cannot open ground-truth file '" + path + "'");
+  const auto fail = [&path](int line, const std::string& what) {
+    throw std::invalid_argument(path + ":" + std::to_string(line) + ": " + what);
+  };
+
+  GroundTruth truth;
+  std::string text;
+  int line = 0;
+  bool header_seen = false;
+  while (std::getline(file, text)) {
+    ++line;
+    text = trim(text);
+    if (text.empty()) continue;
+    if (!header_seen) {
+      // A UTF-8 byte-order mark, as spreadsheet programs write, is not part of the header.
+      if (text.rfind("\xEF\xBB\xBF", 0) == 0) text = text.substr(3);
+      if (text != "query_index,matching_ref_indices") {
+        fail(line, "expected the header 'query_index,matching_ref_indices', got '" + text + "'");
+      }
+      header_seen = true;
+      continue;
+    }
+    const auto comma = text.find(',');
+    if (comma == std::string::npos) fail(line, "expected 'query_index,ref ref ...', got '" + text + "'");
+    const std::string query_text = trim(text.substr(0, comma));
+    const long long query = parseIndex(query_text);
+    if (query < 0) fail(line, "query index '" + query_text + "' is not a non-negative integer");
+    if (truth.count(static_cast<int>(query)) > 0) {
+      fail(line, "query index " + query_text + " is listed twice");
+    }
+    std::vector<int> matches;
+    std::istringstream references(text.substr(comma + 1));
+    std::string reference_text;
+    while (references >> reference_text) {
+      const long long reference = parseIndex(reference_text);
+      if (reference < 0) fail(line, "reference index '" + reference_text + "' is not a non-negative integer");
+      matches.push_back(static_cast<int>(reference));
+    }
+    truth.emplace(static_cast<int>(query), std::move(matches));
+  }
+  if (!header_seen) fail(line, "the file is empty (expected the header 'query_index,matching_ref_indices')");
+  return truth;
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,326 @@
+#include "mrs_vpr/mrs_matcher.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mrs_vpr/acceptance.hpp"
+#include "mrs_vpr/contrast_enhancement.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
+#include "mrs_vpr/mrs/particle_evaluation.hpp"
+#include "mrs_vpr/mrs/particle_filter.hpp"
+#include "mrs_vpr/mrs/sampling_level.hpp"
+#include "mrs_vpr/seqslam_matcher.hpp"
+#include "mrs_vpr/mrs/temporal_pooling.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+/// Differences between the test cells and the reference grid of a level. The grid's cells come
+/// from the ones the reference's store keeps (complete cells only), the rest (all of them when it
+/// keeps none, else the last, partial one) are pooled now.
+cv::Mat levelDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
+                         int pixel_pooling) {
+  if (level.stride == 1) return computeDifferenceMatrix(query_cells, reference);  // Full resolution.
+  cv::Mat differences(query_cells.count, level.grid_size, CV_32F);
+  const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
+  const int known = std::min(kept.count, level.grid_size);
+  if (known > 0) {
+    cv::Mat columns = differences.colRange(0, known);
+    computeDifferenceMatrix(query_cells, kept.slice(0, known), columns);
+  }
+  if (known < level.grid_size) {
+    const DescriptorSequence pooled =
+        poolSequence(reference, known * level.stride, level.stride, level.grid_size - known, pixel_pooling);
+    cv::Mat columns = differences.colRange(known, level.grid_size);
+    computeDifferenceMatrix(query_cells, pooled.view(), columns);
+  }
+  return differences;
+}
+
+/// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
+class CoarseToFineSearch {
+ public:
+  CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
+                     const SequenceParams& sequence, const MrsParams& mrs)
+      : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
+        velocities_(velocities(sequence)), rng_(mrs.seed),
+        query_runs_(levels > 0 ? query : SequenceView{}, mrs.pixel_pooling) {}
+
+  Match run(std::vector<MrsLevelTrace>* trace) {
+    level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
+    if (level_.empty()) return result_;  // No trajectory fits in the reference.
+    scoreCoarsestLevel();
+    spreadParticles();
+    for (int level_number = 0; level_number <= levels_ && !particles_.empty(); ++level_number) {
+      iterateLevel(level_number == 0, level_number == 1, level_number == levels_);
+      if (trace != nullptr) trace->push_back(traceLevel(level_number == 0));
+      if (level_number < levels_) descend(level_number == 0);
+    }
+    return finish();
+  }
+
+ private:
+  /// The coarsest level. Uniformly spread particles with their +-Id_shift windows, velocity fans
+  /// and contrast windows would touch nearly every cell of it anyway, so its matrix is computed
+  /// densely (vectorised, on pooled cells) and every end is scored once; particles then read the
+  /// table. The table also gives the runner-up for the confidence.
+  void scoreCoarsestLevel() {
+    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
+    DescriptorSequence query_cells(1);
+    const cv::Mat matrix = enhanceContrast(
+        levelDifferences(levelQuery(query_cells), reference_, level_, pixel_pooling), sequence_.contrast_window);
+    result_.comparisons += static_cast<long long>(matrix.total()) / pixel_pooling;
+    coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
+  }
+
+  /// The test sequence at the current level, row k - k_min ending at frame anchor + k * stride:
+  /// the frames themselves at full resolution, else cells pooled into `storage`.
+  SequenceView levelQuery(DescriptorSequence& storage) const {
+    if (level_.stride == 1) return query_.slice(rows_.first, rows_.last + 1);
+    storage = query_runs_.pool(rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
+    return storage.view();
+  }
+
+  /// P_init = (M / N) * tau particles, uniformly over the ends that fit.
+  void spreadParticles() {
+    const int count = std::max(mrs_.min_particles,
+                               static_cast<int>(std::lround(static_cast<double>(reference_.count) / query_.count *
+                                                            mrs_.tau)));
+    const int span = level_.highest_end - level_.lowest_end + 1;
+    particles_.resize(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) {
+      Particle& particle = particles_[static_cast<std::size_t>(i)];
+      particle.index = level_.lowest_end + static_cast<int>((i + 0.5) * span / count);
+      particle.weight = 1.0 / count;
+    }
+    // The first look gives each particle its share of the map, so that together they see every
+    // coarse end once; later looks search +-Id_shift around where a particle has moved to.
+    first_radius_ = std::max(mrs_.index_shift, (span + count) / (2 * count));
+  }
+
+  /**
+   * The coarsest level runs the paper's loop: evaluate, weight, resample until the coverage shrinks
+   * or nothing changes. Below it the particles are distinct hypotheses that each settle on the best
+   * end near them with a velocity fan of their own; none is resampled away, so that the level below
+   * the coarsest (`comparing`) can decide among them with contrast-enhanced costs, the only ones
+   * that compare places far apart fairly. Deeper levels only localise the winner, on raw
+   * differences: ends a few frames apart have nearly the same local contrast statistics, so
+   * enhancement would not change their order but would cost window/2 extra cells on either side.
+   */
+  void iterateLevel(bool coarsest, bool comparing, bool finest) {
+    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
+    DescriptorSequence query_cells(1);
+    const SequenceView query_rows = coarsest ? SequenceView{} : levelQuery(query_cells);
+    LazyDifferenceMatrix matrix(query_rows, reference_, level_.stride, pixel_pooling,
+                                comparing ? sequence_.contrast_window : 0);
+    if (coarsest) {
+      iterateParticleFilter(*coarse_costs_, finest);
+    } else {
+      for (Particle& particle : particles_) {
+        EndCostTable costs(matrix, level_, levelVelocities(particle));
+        settle(particle, costs, finest);
+      }
+      dropInfeasible();
+    }
+    result_.comparisons += matrix.comparisons() / pixel_pooling;
+    previous_rows_ = level_.rows();
+  }
+
+  /// The paper's loop on the coarsest level's table.
+  void iterateParticleFilter(EndCostTable& costs, bool finest) {
+    bool resampled = false;
+    for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
+      const int coverage_before = coverage(particles_, mrs_.index_shift);
+      const bool moved = moveParticles(costs, iteration == 0 ? first_radius_ : mrs_.index_shift, finest);
+      if (particles_.empty()) break;
+      updateWeights(particles_);
+      resampled = effectiveSampleSize(particles_) < mrs_.resample_threshold * static_cast<double>(particles_.size());
+      if (resampled) {
+        resampleSystematic(particles_, 2 * mrs_.index_shift, level_.lowest_end, level_.highest_end, rng_);
+      }
+      // The paper's rule: stay on a level until the map coverage shrinks below the threshold.
+      if (coverage(particles_, mrs_.index_shift) < mrs_.coverage_threshold * coverage_before) break;
+      if (!moved && !resampled) break;  // Converged: another pass would evaluate the same cells.
+    }
+    if (resampled && !particles_.empty()) {
+      // Resampling jittered the particles away from the ends their costs belong to; let them settle
+      // before the level ends.
+      moveParticles(costs, mrs_.index_shift, finest);
+      for (Particle& particle : particles_) particle.weight = 1.0 / static_cast<double>(particles_.size());
+      updateWeights(particles_);
+    }
+  }
+
+  /// Moves a hypothesis to the best end within +-Id_shift until it stays (at most max_iterations).
+  void settle(Particle& particle, EndCostTable& costs, bool finest) {
+    for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
+      const Evaluation evaluation = costs.bestInWindow(particle.index, mrs_.index_shift);
+      particle.cost = evaluation.cost;
+      if (evaluation.index < 0) return;
+      const bool moved = evaluation.index != particle.index;
+      particle.index = evaluation.index;
+      particle.velocity = evaluation.velocity;
+      if (finest && evaluation.cost < best_.cost) best_ = evaluation;
+      if (!moved) return;
+    }
+  }
+
+  void dropInfeasible() {
+    particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
+                                    [](const Particle& p) { return !std::isfinite(p.cost); }),
+                     particles_.end());
+  }
+
+  /// The level's hypotheses as reference frames, lowest cost first.
+  MrsLevelTrace traceLevel(bool coarsest) const {
+    MrsLevelTrace trace;
+    trace.stride = level_.stride;
+    std::vector<Particle> sorted = particles_;
+    std::sort(sorted.begin(), sorted.end(), [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
+    for (const Particle& particle : sorted) trace.candidates.push_back(particle.index * level_.stride);
+    if (coarsest) {
+      const std::vector<int> minima =
+          distinctMinima(coarse_costs_->costs(), hypothesisSeparation(), MrsLevelTrace::kTracedMinima);
+      for (int index : minima) trace.table_minima.push_back(index * level_.stride);
+      if (!minima.empty()) {
+        trace.table_confidence = scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion()).confidence;
+      }
+    }
+    return trace;
+  }
+
+  /// The rival of the answer on the coarsest level is another place: an end outside the answer's
+  /// basin, which on pooled cells is wider than match_exclusion (the hypotheses' separation). At full
+  /// resolution it is match_exclusion, as for the brute force.
+  int rivalExclusion() const { return levels_ == 0 ? sequence_.match_exclusion : 2 * hypothesisSeparation(); }
+
+  /// Hypotheses closer than this (in cells of the coarsest level) would settle on the same end.
+  int hypothesisSeparation() const {
+    return std::max(2 * mrs_.index_shift + 1, sequence_.match_exclusion / (1 << levels_));
+  }
+
+  /// Algorithm 2 for every particle: move to the best end within `radius`. Particles where no
+  /// trajectory fits are dropped (they carry no weight). Returns whether any particle moved.
+  bool moveParticles(EndCostTable& costs, int radius, bool finest) {
+    bool moved = false;
+    for (Particle& particle : particles_) {
+      const Evaluation evaluation = costs.bestInWindow(particle.index, radius);
+      particle.cost = evaluation.cost;
+      if (evaluation.index < 0) continue;
+      moved = moved || evaluation.index != particle.index;
+      particle.index = evaluation.index;
+      particle.velocity = evaluation.velocity;
+      if (finest && evaluation.cost < best_.cost) best_ = evaluation;
+    }
+    particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
+                                    [](const Particle& p) { return !std::isfinite(p.cost); }),
+                     particles_.end());
+    return moved;
+  }
+
+  /// A hypothesis searches the velocities within fanSpread() of its own from the level above.
+  std::vector<double> levelVelocities(const Particle& particle) const {
+    const bool after_coarsest = 2 * level_.stride == (1 << levels_);
+    return velocitiesNear(velocities_, particle.velocity, fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest));
+  }
+
+  /**
+   * Next level: half the stride, indices double. Leaving the coarsest level, the hypotheses are the
+   * mrs/hypotheses lowest distinct minima of its table, where the particles have settled and where
+   * any minimum they missed lies: the truth can rank below the first on a short coarse sequence,
+   * and the level below, with twice the rows, tells them apart. Below that only the winner goes on.
+   */
+  void descend(bool from_coarsest) {
+    if (from_coarsest) {
+      const std::vector<float>& table = coarse_costs_->costs();
+      particles_.clear();
+      for (int index : distinctMinima(table, hypothesisSeparation(), mrs_.hypotheses)) {
+        Particle particle;
+        particle.index = index;
+        particle.cost = table[static_cast<std::size_t>(index)];
+        particle.velocity = coarse_costs_->velocityAt(index);
+        particles_.push_back(particle);
+      }
+    } else {
+      const auto winner = std::min_element(particles_.begin(), particles_.end(),
+                                           [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
+      particles_ = {*winner};
+    }
+    for (Particle& particle : particles_) particle.weight = 1.0 / static_cast<double>(particles_.size());
+    level_ = SamplingLevel::make(level_.stride / 2, rows_, reference_.count, velocities_.front());
+    for (Particle& particle : particles_) {
+      particle.index = std::clamp(particle.index * 2, level_.lowest_end, level_.highest_end);
+    }
+  }
+
+  /// The best end seen at full resolution. Its confidence is read on the coarse table, the one level
+  /// that scores every end of the map: the answer's coarse cell against its best rival there.
+  Match finish() {
+    if (best_.index < 0) return result_;
+    result_.reference_index = best_.index;
+    result_.sequence_difference = best_.cost;
+    const int coarse_stride = 1 << levels_;
+    const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion());
+    result_.score = coarse.score;
+    result_.confidence = coarse.confidence;
+    applyAcceptance(result_, sequence_.accept_threshold);
+    return result_;
+  }
+
+  SequenceView reference_;
+  SequenceView query_;
+  SequenceRows rows_;
+  int levels_;
+  const SequenceParams& sequence_;
+  const MrsParams& mrs_;
+  std::vector<double> velocities_;
+  std::mt19937_64 rng_;
+  PixelRunSums query_runs_;  ///< Pools the test sequence at every level below full resolution.
+
+  SamplingLevel level_;
+  std::unique_ptr<EndCostTable> coarse_costs_;
+  std::vector<Particle> particles_;
+  int first_radius_ = 0;
+  int previous_rows_ = 1;
+  Evaluation best_;
+  Match result_;
+};
+
+}  // namespace
+
+MrsMatcher::MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs) : SequenceMatcher(sequence), mrs_(mrs) {
+  mrs_.validate();
+}
+
+int MrsMatcher::levelsFor(int query_length) const {
+  // The paper's l_max = 4 failed with ~19 coarse frames: never let the coarsest level get too short.
+  int levels = mrs_.levels;
+  while (levels > 0 && (query_length - 1) / (1 << levels) + 1 < mrs_.min_coarse_frames) --levels;
+  return levels;
+}
+
+Match MrsMatcher::match(SequenceView reference, SequenceView query) const { return match(reference, query, nullptr); }
+
+std::vector<Match> MrsMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
+  // Without a coarser level MRS scores every end at full resolution, as the brute force does; the
+  // brute force's per-frame path computes the difference matrix once for all frames.
+  if (levelsFor(sequence_.sequence_length) == 0) return SeqSlamMatcher(sequence_).matchEveryFrame(reference, query);
+  return SequenceMatcher::matchEveryFrame(reference, query);
+}
+
+Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
+  checkInputs(reference, query);
+  requirePixelPoolingDivides(mrs_.pixel_pooling, reference.descriptor_size, "mrs/pixel_pooling");
+  return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment),
+                            levelsFor(query.count), sequence_, mrs_)
+      .run(trace);
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,253 @@
+#include "mrs_vpr/node/node_parameters.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+#include <variant>
+
+#include <XmlRpcValue.h>
+#include <ros/param.h>
+
+namespace mrs_vpr {
+namespace node {
+
+const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
+  using P = NodeParameters;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"min_frame_interval", Range::atLeast(0), {}, "",
+        "Seconds (by header stamp) between keyframes; 0 = no limit."},
+       &P::min_frame_interval},
+      {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
+      {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
+       &P::image_queue_size},
+      {{"auto_query_period", Range::atLeast(0), {}, "",
+        "Continuous mode: query with the newest frames every this many seconds; 0 = off."},
+       &P::auto_query_period},
+      {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
+        "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
+       &P::auto_query_frames},
+      {{"map_info_rate", Range::openClosed(0, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
+       &P::map_info_rate},
+  };
+  return table;
+}
+
+namespace {
+
+/// A field of NodeParameters, whichever group it is in.
+using FieldPtr = std::variant<int*, double*, std::uint64_t*, WindowAlignment*, std::string*>;
+
+/// One row of the node's table: the description, written once in a table above or in the core, and
+/// where the value goes. The loader, `--help` and the unknown-parameter check are built from it.
+struct Entry {
+  const ParameterInfo* info;
+  std::function<FieldPtr(NodeParameters&)> field;
+};
+
+template <typename Group, typename Select>
+void append(std::vector<Entry>& entries, const std::vector<ParameterSpec<Group>>& specs, Select select) {
+  for (const auto& spec : specs) {
+    entries.push_back({&spec.info, [member = spec.member, select](NodeParameters& p) {
+                         return std::visit([&](auto m) -> FieldPtr { return &(select(p).*m); }, member);
+                       }});
+  }
+}
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = [] {
+    std::vector<Entry> all;
+    append(all, descriptorParameters(), [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
+    append(all, sequenceParameters(), [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
+    append(all, mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
+    append(all, recognizerParameters(), [](NodeParameters& p) -> RecognizerParams& { return p.recognizer; });
+    append(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+    return all;
+  }();
+  return table;
+}
+
+std::string typeName(XmlRpc::XmlRpcValue::Type type) {
+  switch (type) {
+    case XmlRpc::XmlRpcValue::TypeBoolean: return "a boolean";
+    case XmlRpc::XmlRpcValue::TypeInt: return "an integer";
+    case XmlRpc::XmlRpcValue::TypeDouble: return "a number";
+    case XmlRpc::XmlRpcValue::TypeString: return "a string";
+    case XmlRpc::XmlRpcValue::TypeArray: return "a list";
+    case XmlRpc::XmlRpcValue::TypeStruct: return "a dictionary";
+    default: return "an invalid value";
+  }
+}
+
+/// The value of ~name when it is set; throws when it is set but not of the expected type.
+bool lookup(const ros::NodeHandle& nh, const std::string& name, XmlRpc::XmlRpcValue& value,
+            XmlRpc::XmlRpcValue::Type expected, bool also_int = false) {
+  if (!nh.getParam(name, value)) {
+    return false;
+  }
+  if (value.getType() == expected || (also_int && value.getType() == XmlRpc::XmlRpcValue::TypeInt)) {
+    return true;
+  }
+  // Silently keeping the default for `image_width: 64.0` or `tau: "2"` would hide the user's intent.
+  throw std::invalid_argument("~" + name + " must be " + typeName(expected) + ", got " +
+                              typeName(value.getType()));
+}
+
+/// Validation messages start with the parameter's name; the node's user knows it as ~name.
+[[noreturn]] void throwPrivate(const std::invalid_argument& error) {
+  throw std::invalid_argument("~" + std::string(error.what()));
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) {
+  XmlRpc::XmlRpcValue value;
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
+    field = static_cast<int>(value);
+  }
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, double& field) {
+  XmlRpc::XmlRpcValue value;
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeDouble, true)) {
+    field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value)
+                                                             : static_cast<double>(value);
+  }
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::string& field) {
+  XmlRpc::XmlRpcValue value;
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeString)) {
+    field = static_cast<std::string>(value);
+  }
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::uint64_t& field) {
+  XmlRpc::XmlRpcValue value;
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
+    const int seed = static_cast<int>(value);
+    try {
+      info.require(seed);  // checked before the conversion, which would wrap a negative seed round
+    } catch (const std::invalid_argument& error) {
+      throwPrivate(error);
+    }
+    field = static_cast<std::uint64_t>(seed);
+  }
+}
+
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, WindowAlignment& field) {
+  XmlRpc::XmlRpcValue value;
+  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeString)) {
+    try {
+      field = parseWindowAlignment(static_cast<std::string>(value));
+    } catch (const std::invalid_argument& error) {
+      throwPrivate(error);
+    }
+  }
+}
+
+std::string format(int value) { return std::to_string(value); }
+std::string format(std::uint64_t value) { return std::to_string(value); }
+std::string format(const std::string& value) { return value.empty() ? "\"\"" : value; }
+std::string format(WindowAlignment value) { return toString(value); }
+std::string format(double value) {
+  std::ostringstream out;
+  out << value;
+  std::string text = out.str();
+  if (text.find_first_of(".e") == std::string::npos) {
+    text += ".0";  // so that YAML reads it back as a float
+  }
+  return text;
+}
+
+std::string type(int) { return "int"; }
+std::string type(std::uint64_t) { return "int"; }
+std::string type(double) { return "double"; }
+std::string type(const std::string&) { return "string"; }
+std::string type(WindowAlignment) { return "string"; }
+
+/// Namespaces of the image transport plugins of image_transport_plugins, which read their own
+/// parameters under the subscriber's private namespace. Only these are let through: letting every
+/// name with a '/' through hid typos such as ~sequnce/sequence_length.
+const char* const kTransportNamespaces[] = {"compressed", "compressedDepth", "theora"};
+
+bool isTransportParameter(const std::string& name) {
+  if (name == "image_transport") {
+    return true;  // the transport hint, read by image_transport itself
+  }
+  const std::string group = name.substr(0, name.find('/'));
+  if (group == name) {
+    return false;  // no namespace
+  }
+  return std::find(std::begin(kTransportNamespaces), std::end(kTransportNamespaces), group) !=
+         std::end(kTransportNamespaces);
+}
+
+}  // namespace
+
+void NodeParameters::validate() const {
+  try {
+    core.validate();
+    recognizer.validate();
+    requireInRange(nodeParameters(), *this);
+  } catch (const std::invalid_argument& error) {
+    throwPrivate(error);
+  }
+}
+
+int NodeParameters::autoQueryFrames() const {
+  return auto_query_frames > 0 ? auto_query_frames : core.sequence.sequence_length;
+}
+
+NodeParameters loadParameters(const ros::NodeHandle& private_nh) {
+  NodeParameters params;
+  for (const auto& entry : entries()) {
+    std::visit([&](auto* field) { read(private_nh, *entry.info, *field); }, entry.field(params));
+  }
+  params.validate();
+  return params;
+}
+
+std::vector<ParameterDescription> describeParameters() {
+  std::vector<ParameterDescription> descriptions;
+  NodeParameters defaults;
+  for (const auto& entry : entries()) {
+    std::visit(
+        [&](auto* field) {
+          descriptions.push_back(
+              {entry.info->name, type(*field), format(*field), entry.info->allowed(), entry.info->meaning});
+        },
+        entry.field(defaults));
+  }
+  return descriptions;
+}
+
+std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh) {
+  const std::string prefix = private_nh.getNamespace() + "/";
+  std::vector<std::string> names;
+  if (!ros::param::getParamNames(names)) {
+    return {};
+  }
+  std::vector<std::string> relative;
+  for (const auto& name : names) {
+    if (name.compare(0, prefix.size(), prefix) == 0) {
+      relative.push_back(name.substr(prefix.size()));
+    }
+  }
+  return unknownParameters(relative);
+}
+
+std::vector<std::string> unknownParameters(const std::vector<std::string>& names) {
+  std::vector<std::string> unknown;
+  for (const auto& name : names) {
+    const bool known = std::any_of(entries().begin(), entries().end(),
+                                   [&](const Entry& entry) { return entry.info->name == name; });
+    if (!known && !isTransportParameter(name)) {
+      unknown.push_back("~" + name);
+    }
+  }
+  return unknown;
+}
+
+}  // namespace node
+}  // namespace mrs_vpr

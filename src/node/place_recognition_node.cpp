@@ -1,0 +1,317 @@
+#include "mrs_vpr/node/place_recognition_node.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <stdexcept>
+#include <utility>
+
+#include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/node/image_conversion.hpp"
+
+namespace mrs_vpr {
+namespace node {
+namespace {
+
+constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
+
+std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
+
+ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) : ros::Time(); }
+
+}  // namespace
+
+PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
+                                           const NodeParameters& params)
+    : params_(params),
+      recognizer_(params.core, params.recognizer),
+      keyframe_policy_(params.min_frame_interval, params.frame_stride),
+      nh_(nh),
+      private_nh_(private_nh),
+      query_nh_(private_nh),
+      image_transport_(nh) {
+  // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
+  query_nh_.setCallbackQueue(&query_queue_);
+  loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
+  map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
+  query_srv_ = query_nh_.advertiseService("query", &PlaceRecognitionNode::queryCallback, this);
+  reset_srv_ = query_nh_.advertiseService("reset", &PlaceRecognitionNode::resetCallback, this);
+  map_info_timer_ = query_nh_.createTimer(ros::Duration(1.0 / params_.map_info_rate),
+                                          &PlaceRecognitionNode::mapInfoCallback, this);
+  if (params_.auto_query_period > 0.0) {
+    auto_query_timer_ = query_nh_.createTimer(ros::Duration(params_.auto_query_period),
+                                              &PlaceRecognitionNode::autoQueryCallback, this);
+  }
+  recognizer_.reserveAhead();
+  publishMapInfoIfChanged();
+
+  // The transport ("raw", "compressed", ...) comes from ~image_transport.
+  const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh_);
+  image_sub_ = image_transport_.subscribe("image", static_cast<std::uint32_t>(params_.image_queue_size),
+                                          &PlaceRecognitionNode::imageCallback, this, hints);
+
+  query_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &query_queue_);
+  query_spinner_->start();
+
+  ROS_INFO("mrs_vpr: listening on %s (transport %s); descriptor %d x %d, default method %s%s",
+           image_sub_.getTopic().c_str(), image_sub_.getTransport().c_str(),
+           params_.core.descriptor.image_width, params_.core.descriptor.image_height,
+           params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
+}
+
+PlaceRecognitionNode::~PlaceRecognitionNode() {
+  // Stop feeding callbacks first, then join the query thread, so no callback outlives the members.
+  image_sub_.shutdown();
+  auto_query_timer_.stop();
+  map_info_timer_.stop();
+  query_srv_.shutdown();
+  reset_srv_.shutdown();
+  if (query_spinner_) {
+    query_spinner_->stop();
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Frames
+
+void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& message) {
+  ++frames_received_;
+  double stamp = message->header.stamp.toSec();
+  if (stamp <= 0.0) {
+    stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
+  }
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!keyframe_policy_.wants(stamp)) {
+      keyframe_policy_.skip();
+      ++frames_skipped_;
+      return;
+    }
+  }
+
+  // The expensive part runs without any lock.
+  const auto start = std::chrono::steady_clock::now();
+  cv::Mat descriptor;
+  try {
+    descriptor = describeImage(recognizer_.extractor(), *message, message);
+  } catch (const std::exception& error) {
+    ++frames_failed_;
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      keyframe_policy_.skip();
+    }
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%u x %u, %s): %s",
+                      image_sub_.getTopic().c_str(), message->width, message->height,
+                      message->encoding.c_str(), error.what());
+    return;
+  }
+
+  switch (recognizer_.addDescriptor(descriptor, stamp)) {
+    case FrameAdmission::kMapFull:
+      ++frames_dropped_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
+                        params_.recognizer.max_frames);
+      return;
+    case FrameAdmission::kPendingFull:
+      ++frames_dropped_;
+      ROS_WARN_THROTTLE(kWarningPeriod,
+                        "mrs_vpr: %d keyframes wait for a long query (~max_pending_frames); dropping frames",
+                        params_.recognizer.max_pending_frames);
+      return;
+    case FrameAdmission::kAdmitted:
+      break;
+  }
+  ++map_version_;
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  keyframe_policy_.keep(stamp);
+  camera_frame_id_ = message->header.frame_id;
+  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame_time_total_ms_ += elapsed_ms;
+  ++frames_timed_;
+  frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Queries
+
+bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QuerySequence::Response& response) {
+  const auto start = std::chrono::steady_clock::now();
+  response.success = false;
+  response.reference_index = -1;
+  QueryInput input;
+  input.method = request.method;  // Empty: the recognizer's default method.
+  PlaceAnswer answered;
+  try {
+    if (!request.images.empty()) {
+      if (request.recent_frames > 0) {
+        throw std::invalid_argument("give either images or recent_frames, not both (got " +
+                                    std::to_string(request.images.size()) + " images and recent_frames " +
+                                    std::to_string(request.recent_frames) + ")");
+      }
+      if (request.images.size() < 2) {
+        throw std::invalid_argument("a test sequence needs at least 2 images, got 1");
+      }
+      input.images = std::make_unique<DescriptorSequence>(recognizer_.extractor().size());
+      input.images->reserve(static_cast<int>(request.images.size()));
+      for (std::size_t i = 0; i < request.images.size(); ++i) {
+        const sensor_msgs::Image& image = request.images[i];
+        try {
+          input.images->append(describeImage(recognizer_.extractor(), image), image.header.stamp.toSec());
+        } catch (const std::exception& error) {
+          throw std::invalid_argument("images[" + std::to_string(i) + "] (" + std::to_string(image.width) +
+                                      " x " + std::to_string(image.height) + ", encoding " +
+                                      inQuotes(image.encoding) + "): " + error.what());
+        }
+      }
+      input.header = request.images.back().header;
+    } else if (request.recent_frames == 0) {
+      throw std::invalid_argument(
+          "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
+          "newest map frames");
+    } else {
+      input.recent_frames = request.recent_frames;
+    }
+    answered = answer(input, response);
+    response.success = true;
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.message = error.what();
+    response.reference_index = -1;
+    response.accepted = false;
+  }
+  response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (response.success) {
+    publishLoopClosure(input.header, answered, response);
+    ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
+              answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
+  } else {
+    ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
+  }
+  return true;  // failures are reported in the response, never as "service call failed"
+}
+
+PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {
+  // The search may take a while; frames arriving meanwhile wait in the recognizer's pending buffer.
+  PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method)
+                                      : recognizer_.matchRecent(input.recent_frames, input.method);
+  if (!input.images) {
+    input.header.stamp = toRosTime(answered.newest_stamp);
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    input.header.frame_id = camera_frame_id_;
+  }
+  const Match& match = answered.match;
+  response.reference_index = match.reference_index;
+  response.score = match.score;
+  response.confidence = match.confidence;
+  response.reference_stamp = toRosTime(answered.reference_stamp);
+  response.accepted = match.accepted;
+  response.message = match.reference_index >= 0
+                         ? (response.accepted ? "accepted" : "not accepted: confidence below ~sequence/accept_threshold")
+                         : "no match found";
+  return answered;
+}
+
+void PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                              const QuerySequence::Response& response) {
+  LoopClosure message;
+  message.header = header;
+  message.reference_index = response.reference_index;
+  message.reference_stamp = response.reference_stamp;
+  message.query_length = static_cast<std::uint32_t>(answer.query_length);
+  message.score = response.score;
+  message.confidence = response.confidence;
+  message.accepted = response.accepted;
+  message.method = answer.method;
+  loop_closure_pub_.publish(message);
+}
+
+void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
+  recognizer_.flush();
+  const std::uint64_t version = map_version_.load();
+  if (version == auto_query_version_) {
+    return;  // nothing new since the last answer
+  }
+  const int recent = params_.autoQueryFrames();
+  if (recognizer_.size() < 2 * recent + params_.recognizer.recent_exclusion) {
+    return;  // too early: not enough older frames to search yet
+  }
+  auto_query_version_ = version;
+  QueryInput input;
+  input.recent_frames = recent;
+  QuerySequence::Response response;
+  try {
+    const PlaceAnswer answered = answer(input, response);
+    publishLoopClosure(input.header, answered, response);
+  } catch (const std::exception& error) {
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Housekeeping
+
+bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  const int cleared = recognizer_.reset();
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    keyframe_policy_.reset();
+  }
+  ++map_version_;
+  response.success = true;
+  response.message = "cleared " + std::to_string(cleared) + " frames";
+  ROS_INFO("mrs_vpr: reference map reset (%s)", response.message.c_str());
+  publishMapInfoIfChanged();
+  return true;
+}
+
+MapInfo PlaceRecognitionNode::makeMapInfo() {
+  MapInfo info;
+  const PlaceRecognizer::MapState state = recognizer_.state();
+  info.frames = static_cast<std::uint32_t>(state.frames);
+  info.memory_bytes = state.memory_bytes;
+  info.descriptor_size = static_cast<std::uint32_t>(state.descriptor_size);
+  if (state.frames > 0) {
+    info.first_stamp = toRosTime(state.first_stamp);
+    info.last_stamp = toRosTime(state.last_stamp);
+  }
+  info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
+  info.frames_pending = static_cast<std::uint32_t>(state.pending);
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    info.frame_time_mean_ms =
+        frames_timed_ > 0 ? static_cast<float>(frame_time_total_ms_ / static_cast<double>(frames_timed_)) : 0.0F;
+    info.frame_time_max_ms = static_cast<float>(frame_time_max_ms_);
+  }
+  info.frames_received = frames_received_.load();
+  info.frames_skipped = frames_skipped_.load();
+  info.frames_dropped = frames_dropped_.load();
+  info.frames_failed = frames_failed_.load();
+  return info;
+}
+
+void PlaceRecognitionNode::publishMapInfoIfChanged() {
+  MapInfo info = makeMapInfo();
+  // Republish only when the map or a counter changed; the header and timings alone do not count.
+  MapInfo comparable = info;
+  comparable.header = last_map_info_.header;
+  comparable.frame_time_mean_ms = last_map_info_.frame_time_mean_ms;
+  comparable.frame_time_max_ms = last_map_info_.frame_time_max_ms;
+  if (map_info_published_ && comparable == last_map_info_) {
+    return;
+  }
+  info.header.stamp = ros::Time::now();
+  map_info_pub_.publish(info);
+  last_map_info_ = info;
+  map_info_published_ = true;
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  frame_time_max_ms_ = 0.0;
+}
+
+void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
+  recognizer_.flush();  // frames parked during a query show up even when no new image arrives
+  recognizer_.reserveAhead();
+  publishMapInfoIfChanged();
+}
+
+}  // namespace node
+}  // namespace mrs_vpr

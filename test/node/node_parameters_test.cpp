@@ -1,0 +1,248 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string>
+#include <type_traits>
+#include <variant>
+#include <vector>
+
+#include "mrs_vpr/node/node_parameters.hpp"
+
+namespace mrs_vpr {
+namespace node {
+namespace {
+
+std::string errorOf(const NodeParameters& params) {
+  try {
+    params.validate();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+std::map<std::string, ParameterDescription> descriptionsByName() {
+  std::map<std::string, ParameterDescription> byName;
+  for (const auto& description : describeParameters()) {
+    byName[description.name] = description;
+  }
+  return byName;
+}
+
+TEST(NodeParameters, DefaultsAreValid) { EXPECT_NO_THROW(NodeParameters{}.validate()); }
+
+TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
+  NodeParameters params;
+  params.frame_stride = 0;
+  EXPECT_EQ(errorOf(params), "~frame_stride must be in 1..10000, got 0");
+
+  params = NodeParameters{};
+  params.core.sequence.accept_threshold = -1.0;
+  EXPECT_EQ(errorOf(params), "~sequence/accept_threshold must be in 0..1000, got -1");
+
+  params = NodeParameters{};
+  params.recognizer.default_method = "fast";
+  EXPECT_EQ(errorOf(params), "~default_method must be one of mrs, seqslam, got 'fast'");
+
+  params = NodeParameters{};
+  params.recognizer.max_frames = 1;
+  EXPECT_EQ(errorOf(params), "~max_frames must be 0 (unbounded) or >= 2, got 1");
+
+  params = NodeParameters{};
+  params.core.descriptor.image_width = 2;
+  const std::string core = errorOf(params);
+  EXPECT_NE(core.find("descriptor/image_width"), std::string::npos) << core;
+  EXPECT_NE(core.find("4"), std::string::npos) << core;  // the range
+}
+
+TEST(NodeParameters, AutoQueryFramesDefaultsToSequenceLength) {
+  NodeParameters params;
+  params.core.sequence.sequence_length = 17;
+  EXPECT_EQ(params.autoQueryFrames(), 17);
+  params.auto_query_frames = 40;
+  EXPECT_EQ(params.autoQueryFrames(), 40);
+}
+
+TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
+  const auto descriptions = describeParameters();
+  std::set<std::string> names;
+  for (const auto& description : descriptions) {
+    EXPECT_TRUE(names.insert(description.name).second) << description.name;
+    EXPECT_FALSE(description.default_value.empty()) << description.name;
+    EXPECT_FALSE(description.range.empty()) << description.name;
+    EXPECT_FALSE(description.meaning.empty()) << description.name;
+  }
+  EXPECT_EQ(names.count("mrs/tau"), 1U);
+  EXPECT_EQ(names.count("descriptor/image_width"), 1U);
+  EXPECT_EQ(names.count("min_frame_interval"), 1U);
+  EXPECT_EQ(descriptions.size(), 32U);
+}
+
+/// Sets each int or double field of one table just outside its range, at each bounded end, and
+/// expects validate() to name it as ~name with the range `--help` prints for it.
+template <typename Group, typename Select>
+void expectHelpRangeInEachMessage(const std::vector<ParameterSpec<Group>>& specs, Select select) {
+  const auto help = descriptionsByName();
+  for (const auto& spec : specs) {
+    ASSERT_EQ(help.count(spec.info.name), 1U) << spec.info.name;
+    const std::string& range = help.at(spec.info.name).range;
+    EXPECT_EQ(range, spec.info.allowed());
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(select(std::declval<NodeParameters&>()).*member)>;
+          if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, double>) {
+            const Range& r = spec.info.range;
+            std::vector<double> outside;
+            const double step = std::is_same_v<Value, int> ? 1.0 : 1e-9 * std::max(1.0, std::fabs(r.high));
+            if (std::isfinite(r.low)) outside.push_back(r.low_open ? r.low : r.low - step);
+            if (std::isfinite(r.high)) outside.push_back(r.high_open ? r.high : r.high + step);
+            for (double value : outside) {
+              NodeParameters params;
+              select(params).*member = static_cast<Value>(value);
+              const std::string message = errorOf(params);
+              EXPECT_EQ(message.rfind("~" + spec.info.name + " must be", 0), 0U) << value << ": " << message;
+              EXPECT_NE(message.find(range), std::string::npos) << message;
+            }
+          }
+        },
+        spec.member);
+  }
+}
+
+TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
+  expectHelpRangeInEachMessage(descriptorParameters(),
+                               [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
+  expectHelpRangeInEachMessage(sequenceParameters(),
+                               [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
+  expectHelpRangeInEachMessage(mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
+  expectHelpRangeInEachMessage(nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+
+  // The text parameter and a rule involving two parameters, with the words of --help too.
+  const auto help = descriptionsByName();
+  NodeParameters params;
+  params.recognizer.default_method = "fast";
+  EXPECT_NE(errorOf(params).find(help.at("default_method").range), std::string::npos) << errorOf(params);
+  params = NodeParameters{};
+  params.core.descriptor.patch_size = 6;
+  EXPECT_NE(errorOf(params).find(help.at("descriptor/patch_size").range), std::string::npos) << errorOf(params);
+}
+
+TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {
+  EXPECT_EQ(descriptionsByName().at("sequence/velocity_step").range, "(0, 10), at most 1000 velocities");
+}
+
+/// `name: value  # comment` entries of a YAML file with at most one level of groups, as
+/// "group/name" -> value; the comment, with its indented continuation lines, goes to `comments`.
+std::map<std::string, std::string> readTwoLevelYaml(std::istream& in, std::map<std::string, std::string>& comments) {
+  const auto trim = [](const std::string& text) {
+    const auto first = text.find_first_not_of(" \t");
+    const auto last = text.find_last_not_of(" \t");
+    return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
+  };
+  std::map<std::string, std::string> values;
+  std::string group;
+  std::string last_key;
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto hash = line.find('#');
+    const std::string comment = hash == std::string::npos ? "" : trim(line.substr(hash + 1));
+    const std::string content = line.substr(0, hash);
+    const bool indented = !line.empty() && line[0] == ' ';
+    if (trim(content).empty()) {
+      if (indented && !last_key.empty()) {
+        comments[last_key] += " " + comment;  // a continuation of the comment above
+      } else {
+        last_key.clear();
+      }
+      continue;
+    }
+    const auto colon = content.find(':');
+    EXPECT_NE(colon, std::string::npos) << line;
+    const std::string key = trim(content.substr(0, colon));
+    const std::string value = trim(content.substr(colon + 1));
+    if (!indented) {
+      group.clear();
+    }
+    if (value.empty()) {
+      group = key;  // a group's heading
+      last_key.clear();
+      continue;
+    }
+    last_key = group.empty() ? key : group + "/" + key;
+    EXPECT_EQ(values.count(last_key), 0U) << "listed twice: " << last_key;
+    values[last_key] = value;
+    comments[last_key] = comment;
+  }
+  return values;
+}
+
+TEST(NodeParameters, ReadmeTableListsEveryParameterWithItsDefaultAndRange) {
+  // Rows "| `name` | default | range | meaning |" of the README's parameter table.
+  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/README.md");
+  ASSERT_TRUE(file.good());
+  std::map<std::string, std::pair<std::string, std::string>> rows;
+  for (std::string line; std::getline(file, line);) {
+    if (line.rfind("| `", 0) != 0) continue;
+    std::vector<std::string> cells;
+    std::stringstream row(line.substr(1));
+    for (std::string cell; std::getline(row, cell, '|');) cells.push_back(cell.substr(1, cell.size() - 2));
+    if (cells.size() != 4) continue;
+    const std::string name = cells[0].substr(1, cells[0].size() - 2);  // Without the backticks.
+    rows[name] = {cells[1], cells[2]};
+  }
+  for (const auto& [name, description] : descriptionsByName()) {
+    ASSERT_EQ(rows.count(name), 1U) << "README.md's parameter table does not list " << name;
+    EXPECT_EQ(rows.at(name).first, description.default_value) << name;
+    EXPECT_EQ(rows.at(name).second, description.range) << name;
+  }
+}
+
+TEST(NodeParameters, DefaultYamlListsEveryParameterWithItsDefaultAndRange) {
+  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/config/default.yaml");
+  ASSERT_TRUE(file.good());
+  std::map<std::string, std::string> comments;
+  const auto yaml = readTwoLevelYaml(file, comments);
+  const auto help = descriptionsByName();
+  for (const auto& [name, description] : help) {
+    ASSERT_EQ(yaml.count(name), 1U) << "config/default.yaml does not list " << name;
+    EXPECT_EQ(yaml.at(name), description.default_value) << name;
+    // The comment gives the range in the words of --help, so it cannot drift from the check.
+    EXPECT_NE(comments.at(name).find(description.range), std::string::npos)
+        << name << ": comment '" << comments.at(name) << "' does not give the range " << description.range;
+  }
+  for (const auto& [name, value] : yaml) {
+    EXPECT_EQ(help.count(name), 1U) << "config/default.yaml lists " << name << ", which the node does not know";
+  }
+}
+
+TEST(UnknownParameters, ReportsTyposAlsoInGroups) {
+  const std::vector<std::string> names = {"mrs/tau", "frame_stride", "sequnce/sequence_length",
+                                          "sequence/lenght", "framestride", "descriptor/image_width"};
+  const std::vector<std::string> expected = {"~sequnce/sequence_length", "~sequence/lenght", "~framestride"};
+  EXPECT_EQ(unknownParameters(names), expected);
+}
+
+TEST(UnknownParameters, IgnoresImageTransportAndItsPlugins) {
+  const std::vector<std::string> names = {"image_transport", "compressed/mode", "compressedDepth/depth_max",
+                                          "theora/quality", "theora/optimize_for"};
+  EXPECT_TRUE(unknownParameters(names).empty());
+  // Only the plugins' namespaces: a name merely containing one is not let through.
+  EXPECT_EQ(unknownParameters({"compressed", "my_compressed/mode", "image_transport/raw"}),
+            (std::vector<std::string>{"~compressed", "~my_compressed/mode", "~image_transport/raw"}));
+}
+
+TEST(UnknownParameters, KnowsEveryDescribedParameter) {
+  std::vector<std::string> names;
+  for (const auto& description : describeParameters()) {
+    names.push_back(description.name);
+  }
+  EXPECT_TRUE(unknownParameters(names).empty());
+}
+
+}  // namespace
+}  // namespace node
+}  // namespace mrs_vpr
