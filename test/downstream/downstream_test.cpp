@@ -10,6 +10,10 @@
 #include <filesystem>
 #include <string>
 
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/synthetic_route.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -72,10 +76,33 @@ Outcome DownstreamPackage::build_;
 
 TEST_F(DownstreamPackage, BuildsAgainstTheDevelSpace) {}
 
-TEST_F(DownstreamPackage, RunsTheCore) {
+TEST_F(DownstreamPackage, FindsTheRightPlaceInFoldersOfImages) {
+  // The README's example on two traversals of a generated route written as image folders.
+  mrs_vpr::SyntheticRouteParams params;
+  params.reference_frames = 300;
+  params.query_frames = 200;
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
+  for (const auto& [folder, images] : {std::pair{"reference", &route.reference}, std::pair{"query", &route.query}}) {
+    fs::create_directories(workspace_ / folder);
+    for (std::size_t i = 0; i < images->size(); ++i) {
+      char name[32];
+      std::snprintf(name, sizeof(name), "%05zu.png", i);
+      ASSERT_TRUE(cv::imwrite((workspace_ / folder / name).string(), (*images)[i]));
+    }
+  }
+  const Outcome program = run(quoted(executable_.string()) + " " + quoted((workspace_ / "reference").string()) + " " +
+                              quoted((workspace_ / "query").string()) + " 40");
+  ASSERT_EQ(program.status, 0) << program.output;
+  const int truth = route.query_to_reference.back();
+  int answer = -1;
+  ASSERT_EQ(std::sscanf(program.output.c_str(), "query frame 199 is reference frame %d", &answer), 1) << program.output;
+  EXPECT_LE(std::abs(answer - truth), 3) << program.output << "truth " << truth;
+}
+
+TEST_F(DownstreamPackage, ExplainsItsUsage) {
   const Outcome program = run(quoted(executable_.string()));
-  EXPECT_EQ(program.status, 0) << program.output;
-  EXPECT_NE(program.output.find("reference_index 29 accepted 1"), std::string::npos) << program.output;
+  EXPECT_EQ(program.status, 2) << program.output;
+  EXPECT_NE(program.output.find("usage: mrs_vpr_downstream REFERENCE_DIR QUERY_DIR"), std::string::npos);
 }
 
 TEST_F(DownstreamPackage, LinksTheCoreAndNoRos) {

@@ -1,25 +1,35 @@
-// Uses the core alone: describes a synthetic route, matches a stretch of it, prints the answer.
+// The README's example: map one traversal (a folder of images), then find where the last frames of
+// another traversal lie in it. Links mrs_vpr's core alone.
+#include <algorithm>
 #include <iostream>
+#include <string>
+#include <vector>
 
-#include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
+#include <opencv2/imgcodecs.hpp>
 
-#include "mrs_vpr/descriptor.hpp"
-#include "mrs_vpr/sequence_matcher.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
 
-int main() {
-  mrs_vpr::Parameters params;
-  const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
-  mrs_vpr::DescriptorSequence reference(extractor.size());
-  mrs_vpr::DescriptorSequence query(extractor.size());
-  cv::RNG rng(7);
-  for (int frame = 0; frame < 60; ++frame) {
-    cv::Mat image(96, 128, CV_8UC3);
-    rng.fill(image, cv::RNG::UNIFORM, 0, 256);
-    reference.append(extractor.compute(image));
-    if (frame >= 20 && frame < 30) query.append(extractor.compute(image));
+int main(int argc, char** argv) try {
+  if (argc < 3) {
+    std::cerr << "usage: mrs_vpr_downstream REFERENCE_DIR QUERY_DIR [FRAMES]\n";
+    return 2;
   }
-  const auto matcher = mrs_vpr::makeMatcher("seqslam", params);
-  const mrs_vpr::Match match = matcher->match(reference.view(), query.view());
-  std::cout << "reference_index " << match.reference_index << " accepted " << match.accepted << "\n";
-  return match.reference_index == 29 ? 0 : 1;
+  mrs_vpr::PlaceRecognizer recognizer;  // The documented defaults.
+  std::vector<cv::String> files;
+  cv::glob(argv[1], files);  // File-name order.
+  for (const cv::String& file : files) recognizer.addFrame(cv::imread(file), recognizer.size());
+  cv::glob(argv[2], files);
+  const std::size_t frames = argc > 3 ? std::stoul(argv[3]) : 50;
+  std::vector<cv::Mat> test;
+  for (std::size_t i = files.size() - std::min(frames, files.size()); i < files.size(); ++i) {
+    test.push_back(cv::imread(files[i]));
+  }
+  const mrs_vpr::PlaceAnswer answer = recognizer.match(test);
+  std::cout << "query frame " << files.size() - 1 << " is reference frame " << answer.match.reference_index
+            << ", confidence " << answer.match.confidence << (answer.match.accepted ? ", accepted\n" : ", not accepted\n");
+  return 0;
+} catch (const std::exception& error) {
+  std::cerr << "mrs_vpr_downstream: " << error.what() << "\n";
+  return 1;
 }
