@@ -59,6 +59,15 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
            params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
 }
 
+std::unique_ptr<PlaceRecognitionNode> PlaceRecognitionNode::start(const ros::NodeHandle& nh,
+                                                                 const ros::NodeHandle& private_nh) {
+  const NodeParameters params = loadParameters(private_nh);
+  for (const auto& name : unknownParameters(private_nh)) {
+    ROS_WARN("mrs_vpr: unknown parameter %s (ignored; see mrs_vpr_node --help)", name.c_str());
+  }
+  return std::make_unique<PlaceRecognitionNode>(nh, private_nh, params);
+}
+
 PlaceRecognitionNode::~PlaceRecognitionNode() {
   // Stop feeding callbacks first, then join the query thread, so no callback outlives the members.
   image_sub_.shutdown();

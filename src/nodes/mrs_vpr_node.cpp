@@ -3,11 +3,13 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <memory>
+#include <stdexcept>
 #include <string>
 
 #include <ros/ros.h>
 
-#include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/node/node_parameters.hpp"  // describeParameters, for --help
 #include "mrs_vpr/node/place_recognition_node.hpp"
 
 namespace {
@@ -40,23 +42,16 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");
 
-  mrs_vpr::node::NodeParameters params;
+  std::unique_ptr<mrs_vpr::node::PlaceRecognitionNode> node;
   try {
-    params = mrs_vpr::node::loadParameters(private_nh);
-  } catch (const std::exception& error) {
+    node = mrs_vpr::node::PlaceRecognitionNode::start(nh, private_nh);
+  } catch (const std::invalid_argument& error) {
     ROS_FATAL("mrs_vpr: invalid parameters, not starting: %s", error.what());
     return 2;
-  }
-  for (const auto& name : mrs_vpr::node::unknownParameters(private_nh)) {
-    ROS_WARN("mrs_vpr: unknown parameter %s (ignored; see mrs_vpr_node --help)", name.c_str());
-  }
-
-  try {
-    mrs_vpr::node::PlaceRecognitionNode node(nh, private_nh, params);
-    ros::spin();  // image callbacks; queries run on the node's own thread
   } catch (const std::exception& error) {
     ROS_FATAL("mrs_vpr: %s", error.what());
     return 1;
   }
+  ros::spin();  // image callbacks; queries run on the node's own thread
   return 0;
 }

@@ -42,6 +42,13 @@ class PlaceRecognitionNode {
                        const NodeParameters& params);
   ~PlaceRecognitionNode();
 
+  /**
+   * The one start-up path of the node and the nodelet: reads and validates the parameters under
+   * `private_nh`, warns about parameters it does not know, and starts the node. Throws
+   * std::invalid_argument naming the parameter when one is invalid.
+   */
+  static std::unique_ptr<PlaceRecognitionNode> start(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh);
+
   PlaceRecognitionNode(const PlaceRecognitionNode&) = delete;
   PlaceRecognitionNode& operator=(const PlaceRecognitionNode&) = delete;
 
