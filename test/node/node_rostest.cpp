@@ -36,6 +36,16 @@ class Inbox {
   Inbox(ros::NodeHandle& nh, const std::string& topic)
       : sub_(nh.subscribe(topic, 100, &Inbox::callback, this)) {}
 
+  /// Waits until the subscription is connected to a publisher: a message published before that is
+  /// never delivered, and each test makes a new subscription.
+  bool waitConnected(double timeout = 10.0) const {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (sub_.getNumPublishers() == 0 && ros::ok() && ros::WallTime::now() < deadline) {
+      ros::WallDuration(0.02).sleep();
+    }
+    return sub_.getNumPublishers() > 0;
+  }
+
   /// Waits until a message satisfies `predicate`; returns it (or a default message on timeout).
   template <typename Predicate>
   bool waitFor(Predicate predicate, Message& found, double timeout = 20.0) {
@@ -98,6 +108,8 @@ class NodeTest : public ::testing::Test {
       playIntoNodes(route_->reference, 0, static_cast<int>(route_->reference.size()), kReferenceStart);
       reference_published_ = true;
     }
+    ASSERT_TRUE(loop_closures_.waitConnected());
+    ASSERT_TRUE(auto_loop_closures_.waitConnected());
   }
 
   /// Publishes frames [begin, end) of `frames` stamped start + i * period and waits until both nodes
