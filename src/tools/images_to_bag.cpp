@@ -1,9 +1,12 @@
 // images_to_bag: an image folder (file-name order) -> a bag of sensor_msgs/Image at a fixed rate.
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <boost/program_options.hpp>
 #include <ros/time.h>
@@ -19,10 +22,32 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: images_to_bag --images DIR --bag OUT.bag --topic T --rate HZ [--encoding bgr8|mono8]\n"
-    "                     [--start-time SEC] [--frame-id ID]\n"
+    "                     [--start-time SEC] [--frame-id ID] [--force]\n"
     "\n"
     "Writes the images of DIR, in file-name order, as sensor_msgs/Image messages on topic T, one every\n"
-    "1/HZ seconds from --start-time (Unix time; default: now). Header stamp and bag time are equal.\n";
+    "1/HZ seconds from --start-time (Unix time; default: now). Header stamp and bag time are equal.\n"
+    "The bag appears only once every image is in it: a bad image leaves no partial bag. An existing\n"
+    "OUT.bag is replaced only with --force.\n";
+
+/// A file written under a temporary name and renamed to its own on commit(); removed otherwise, so
+/// that a failed run never leaves a file that looks complete.
+class FileInProgress {
+ public:
+  explicit FileInProgress(std::string path) : path_(std::move(path)), temporary_(path_ + ".part") {}
+  ~FileInProgress() {
+    if (!committed_) std::remove(temporary_.c_str());
+  }
+  const std::string& temporary() const { return temporary_; }
+  void commit() {
+    std::filesystem::rename(temporary_, path_);
+    committed_ = true;
+  }
+
+ private:
+  std::string path_;
+  std::string temporary_;
+  bool committed_ = false;
+};
 
 int run(int argc, char** argv) {
   std::string images;
@@ -32,12 +57,14 @@ int run(int argc, char** argv) {
   std::string frame_id = "camera";
   double rate = 0.0;
   double start_time = -1.0;
+  bool force = false;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
       ("help,h", "print this help")
       ("images", po::value(&images)->required(), "folder of images")
-      ("bag", po::value(&bag_path)->required(), "bag to write (overwritten)")
+      ("bag", po::value(&bag_path)->required(), "bag to write")
+      ("force", po::bool_switch(&force), "replace an existing bag")
       ("topic", po::value(&topic)->required(), "topic of the images, e.g. /camera/image_raw")
       ("rate", po::value(&rate)->required(), "frames per second [Hz], > 0")
       ("encoding", po::value(&encoding)->default_value(encoding), "bgr8 | mono8")
@@ -47,6 +74,10 @@ int run(int argc, char** argv) {
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
+  if (topic.empty()) throw std::invalid_argument("--topic must not be empty");
+  if (std::filesystem::exists(bag_path) && !force) {
+    throw std::invalid_argument("'" + bag_path + "' exists; use --force to replace it");
+  }
   if (encoding != "bgr8" && encoding != "mono8") {
     throw std::invalid_argument("unknown encoding '" + encoding + "' (expected bgr8 or mono8)");
   }
@@ -57,8 +88,9 @@ int run(int argc, char** argv) {
 
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
   const std::vector<std::string> files = mrs_vpr::listImageFiles(images);
+  FileInProgress output(bag_path);
   rosbag::Bag bag;
-  bag.open(bag_path, rosbag::bagmode::Write);
+  bag.open(output.temporary(), rosbag::bagmode::Write);
   int written = 0;
   mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
     // Stamps from the frame number, not accumulated, so they never drift.
@@ -72,6 +104,7 @@ int run(int argc, char** argv) {
     if (written % 500 == 0) std::cerr << "  " << written << "/" << files.size() << " images\n";
   });
   bag.close();
+  output.commit();
   std::cerr << "images_to_bag: wrote " << written << " images to " << bag_path << " on " << topic << " at " << rate
             << " Hz\n";
   return 0;

@@ -6,12 +6,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -397,6 +399,39 @@ TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
   EXPECT_EQ(no_folder.status, 1);
   EXPECT_NE(no_folder.err.find("does not exist"), std::string::npos) << no_folder.err;
   EXPECT_FALSE(fs::exists(path("x.bag")));  // Nothing written for a bad folder.
+  const Result no_topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                              path("x.bag") + " --topic '' --rate 5");
+  EXPECT_EQ(no_topic.status, 1);
+  EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
+}
+
+TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
+  const std::string bag = path("route.bag");
+  const std::string arguments = " --images " + path("query") + " --bag " + bag + " --topic /t --rate 5";
+  ASSERT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + arguments).status, 0);
+  const auto size = fs::file_size(bag);
+  // An existing bag is kept unless --force says otherwise.
+  const Result again = run(std::string(IMAGES_TO_BAG_PATH) + arguments);
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("exists; use --force"), std::string::npos) << again.err;
+  EXPECT_EQ(fs::file_size(bag), size);
+  EXPECT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + arguments + " --force").status, 0);
+
+  // A truncated image half way: exit 1, and neither a bag nor its temporary file is left.
+  fs::create_directories(path("broken"));
+  for (const auto& entry : fs::directory_iterator(path("query"))) {
+    fs::copy_file(entry.path(), fs::path(path("broken")) / entry.path().filename());
+  }
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(path("broken"))) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  fs::resize_file(files[files.size() / 2], 20);
+  const std::string broken = path("broken.bag");
+  const Result truncated = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("broken") + " --bag " + broken +
+                               " --topic /t --rate 5");
+  EXPECT_EQ(truncated.status, 1) << truncated.err;
+  EXPECT_FALSE(fs::exists(broken));
+  EXPECT_FALSE(fs::exists(broken + ".part"));
 }
 
 }  // namespace
