@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Summarises the test results of a catkin workspace: catkin_test_results' own report, the names of
-# failed test cases, then one line "N passed, N failed". Exits non-zero when a test failed, a test
-# binary left no result, or no test ran at all.
+# Summarises the test results of a catkin workspace: the names of failed test cases, a RESULT line,
+# then one line "N passed, N failed, N skipped". Exits non-zero when a test failed, a test binary left
+# no result, or no test ran at all.
 #
 # Usage: scripts/test_summary.sh RESULTS_DIR     (e.g. .ws/build/test_results)
 set -u
@@ -14,7 +14,8 @@ if [ ! -d "$results_dir" ]; then
   exit 1
 fi
 
-catkin_test_results "$results_dir"
+# Its exit status only: its counts are doubled (below), and one count is enough.
+catkin_test_results "$results_dir" >/dev/null
 catkin_status=$?
 
 # catkin_test_results adds a gtest file's <testsuites> totals to its <testsuite> counts, so its
@@ -24,7 +25,7 @@ import os
 import sys
 import xml.etree.ElementTree as ElementTree
 
-passed, failed, unreadable = 0, 0, 0
+passed, failed, skipped, unreadable = 0, 0, 0, 0
 for folder, _, files in os.walk(sys.argv[1]):
     for name in sorted(files):
         if not name.endswith(".xml"):
@@ -38,6 +39,7 @@ for folder, _, files in os.walk(sys.argv[1]):
             continue
         for case in root.iter("testcase"):
             if case.get("status") == "notrun" or case.find("skipped") is not None:
+                skipped += 1
                 continue
             if case.find("failure") is not None or case.find("error") is not None:
                 failed += 1
@@ -45,13 +47,16 @@ for folder, _, files in os.walk(sys.argv[1]):
                       file=sys.stderr)
             else:
                 passed += 1
-print(passed, failed + unreadable)
+print(passed, failed + unreadable, skipped)
 EOF
 )
-read -r passed failed <<<"${counts:-0 1}"
+read -r passed failed skipped <<<"${counts:-0 1 0}"
 
-echo "${passed} passed, ${failed} failed"
 if [ "$failed" -ne 0 ] || [ "$catkin_status" -ne 0 ] || [ "$passed" -eq 0 ]; then
+  echo "RESULT: FAILURE"
+  echo "${passed} passed, ${failed} failed, ${skipped} skipped"
   exit 1
 fi
+echo "RESULT: SUCCESS"
+echo "${passed} passed, ${failed} failed, ${skipped} skipped"
 exit 0
