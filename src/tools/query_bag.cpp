@@ -8,6 +8,7 @@
 
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
+#include <ros/console.h>
 #include <ros/ros.h>
 
 #include "mrs_vpr/QuerySequence.h"
@@ -31,6 +32,11 @@ constexpr const char* kUsage =
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
   ros::init(argc, argv, "query_bag", ros::init_options::AnonymousName | ros::init_options::NoRosout);
+  // roscpp prints its informational messages (e.g. while waiting for the service) on stdout, which
+  // must hold nothing but the JSON answer; warnings and errors go to stderr.
+  if (ros::console::set_logger_level(ROSCONSOLE_ROOT_LOGGER_NAME, ros::console::levels::Warn)) {
+    ros::console::notifyLoggerLevelsChanged();
+  }
 
   std::string bag_path;
   std::string topic;
@@ -51,10 +57,14 @@ int run(int argc, char** argv) {
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method)->default_value(method), "mrs | seqslam")
       ("service", po::value(&service)->default_value(service), "the node's query service")
-      ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service");
+      ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service, (0, 3600]");
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  // A negative duration would make roscpp wait for the service for ever.
+  if (!(timeout > 0.0 && timeout <= 3600.0)) {
+    throw std::invalid_argument("--timeout must be in (0, 3600] s, got " + std::to_string(timeout));
+  }
 
   mrs_vpr::QuerySequence query;
   query.request.method = method;

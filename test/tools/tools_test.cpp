@@ -405,6 +405,17 @@ TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
   EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
 }
 
+TEST_F(ToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
+  // No master is needed: the options are checked first. -1 used to wait for the service for ever.
+  for (const char* timeout : {"-1", "0", "1e9"}) {
+    const Result result = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service /nope/query --timeout " +
+                              timeout);
+    EXPECT_EQ(result.status, 1) << timeout;
+    EXPECT_NE(result.err.find("--timeout must be in (0, 3600] s"), std::string::npos) << result.err;
+    EXPECT_TRUE(result.out.empty()) << "stdout holds only the JSON answer: " << result.out;
+  }
+}
+
 TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   const std::string bag = path("route.bag");
   const std::string arguments = " --images " + path("query") + " --bag " + bag + " --topic /t --rate 5";
