@@ -6,6 +6,26 @@
 #include <utility>
 
 namespace mrs_vpr {
+namespace {
+
+/// `text` with control characters written as \xNN, so that a message quoting user input is never
+/// cut short by a NUL on its way to the user (ROS strings, C strings).
+std::string printable(const std::string& text) {
+  std::string result;
+  for (const char c : text) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      const char digits[] = "0123456789abcdef";
+      result += "\\x";
+      result += digits[(static_cast<unsigned char>(c) >> 4) & 0xf];
+      result += digits[static_cast<unsigned char>(c) & 0xf];
+    } else {
+      result += c;
+    }
+  }
+  return result;
+}
+
+}  // namespace
 
 PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParams& recognizer)
     : params_(params), recognizer_(recognizer), extractor_(params.descriptor), map_(extractor_.size()) {
@@ -108,7 +128,7 @@ const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) co
   const std::string& name = method.empty() ? recognizer_.default_method : method;
   const auto matcher = matchers_.find(name);
   if (matcher == matchers_.end()) {
-    throw std::invalid_argument("unknown method '" + name + "': use 'mrs' or 'seqslam'");
+    throw std::invalid_argument("unknown method '" + printable(name) + "': use 'mrs' or 'seqslam'");
   }
   return *matcher->second;
 }

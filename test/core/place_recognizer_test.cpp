@@ -93,6 +93,10 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10), "fast"); }).find("unknown method 'fast'"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 1)); }).find("at least 2 images"), std::string::npos);
+  // A NUL in the method used to cut the message short on its way to the user.
+  const std::string with_nul = errorOf([&] { recognizer.match(queryImages(0, 10), std::string("m\0rs", 4)); });
+  EXPECT_EQ(with_nul.find('\0'), std::string::npos);
+  EXPECT_NE(with_nul.find("unknown method 'm\\x00rs': use 'mrs' or 'seqslam'"), std::string::npos) << with_nul;
   EXPECT_NE(errorOf([&] { recognizer.match({route().query[0], cv::Mat()}); }).find("image 1 of the test sequence"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(1); }).find("at least 2"), std::string::npos);
