@@ -56,6 +56,10 @@ DescriptorExtractor::DescriptorExtractor(const DescriptorParams& params) : param
 }
 
 cv::Mat DescriptorExtractor::compute(const cv::Mat& image, ChannelOrder order) const {
+  if (static_cast<long long>(image.total()) > kMaxImagePixels) {
+    throw std::invalid_argument("image of " + std::to_string(image.cols) + " x " + std::to_string(image.rows) +
+                                " pixels is larger than the " + std::to_string(kMaxImagePixels) + " pixels allowed");
+  }
   cv::Mat gray = toGrayFloat(image, order);
   cv::Mat small;
   cv::resize(gray, small, cv::Size(params_.image_width, params_.image_height), 0.0, 0.0, cv::INTER_AREA);

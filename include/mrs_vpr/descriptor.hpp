@@ -21,6 +21,9 @@ class DescriptorExtractor {
  public:
   /// Quantisation steps per standard deviation of a patch.
   static constexpr float kLevelsPerStd = 32.0F;
+  /// The largest image described [pixels], 6000 x 4000 and more: describing converts the image to
+  /// floats, about 12 bytes a pixel, and one request must not be able to exhaust memory.
+  static constexpr long long kMaxImagePixels = 25000000;
 
   /// Throws std::invalid_argument when the parameters are invalid.
   explicit DescriptorExtractor(const DescriptorParams& params);
@@ -28,7 +31,8 @@ class DescriptorExtractor {
   /**
    * Describes one image: CV_8UC1, CV_16UC1, CV_8UC3 or CV_8UC4 of any size.
    * Returns a continuous 1 x (W*H) CV_8UC1 row.
-   * Throws std::invalid_argument for an empty image or an unsupported type.
+   * Throws std::invalid_argument for an empty image, an unsupported type or an image of more than
+   * kMaxImagePixels pixels.
    */
   cv::Mat compute(const cv::Mat& image, ChannelOrder order = ChannelOrder::kBgr) const;
 

@@ -125,7 +125,8 @@ std::optional<Options> parseOptions(int argc, char** argv) {
     throw std::invalid_argument("unknown protocol '" + options.protocol + "' (expected per-frame or global)");
   }
   if (options.tolerance < 0) throw std::invalid_argument("--tolerance must be >= 0");
-  if (options.queries < 1) throw std::invalid_argument("--queries must be >= 1");
+  // Each test sequence keeps a record; a million of them took 1.7 GB.
+  if (options.queries < 1 || options.queries > 100000) throw std::invalid_argument("--queries must be in 1..100000");
   if (options.threads < 0) throw std::invalid_argument("--threads must be >= 0");
   if (options.out_of_map && !options.ground_truth.empty()) {
     throw std::invalid_argument("--out-of-map and --ground-truth exclude each other");

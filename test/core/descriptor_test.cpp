@@ -42,6 +42,22 @@ TEST(DescriptorExtractor, DefaultDescriptorIsOneContinuousRowOfWTimesHBytes) {
   EXPECT_TRUE(descriptor.isContinuous());
 }
 
+TEST(DescriptorExtractor, RefusesImagesBeyondThePixelLimitBeforeConvertingThem) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  // One row keeps the test's own memory small; the limit counts pixels, whatever the shape.
+  const cv::Mat largest(1, static_cast<int>(DescriptorExtractor::kMaxImagePixels), CV_8UC1, cv::Scalar(7));
+  EXPECT_NO_THROW(extractor.compute(largest));
+  const cv::Mat larger(1, static_cast<int>(DescriptorExtractor::kMaxImagePixels) + 1, CV_8UC1, cv::Scalar(7));
+  try {
+    extractor.compute(larger);
+    FAIL() << "an image beyond the limit was described";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("25000001 x 1 pixels is larger than the 25000000 pixels allowed"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
 TEST(DescriptorExtractor, QuantisesZScoresAs128Plus32Z) {
   // The image already has the descriptor size, so only patch normalisation acts on it.
   const DescriptorExtractor extractor(paramsOf(4, 4, 2));

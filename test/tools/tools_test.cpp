@@ -302,6 +302,7 @@ TEST_F(ToolsTest, AcceptanceOptionsAreChecked) {
   expectError(folders + " --out-of-map --ground-truth " + path("truth.csv"),
               "--out-of-map and --ground-truth exclude each other");
   expectError(folders + " --threads -1", "--threads must be >= 0");
+  expectError(folders + " --queries 1000000", "--queries must be in 1..100000");
   expectError(folders + " --accept-threshold -1", "sequence/accept_threshold");
   expectError(folders + " --accept-threshold 1001", "sequence/accept_threshold");
   // Nothing is written for rejected options.
