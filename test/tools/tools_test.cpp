@@ -430,16 +430,16 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   EXPECT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + arguments + " --force").status, 0);
 
   // A truncated image half way: exit 1, and neither a bag nor its temporary file is left.
-  fs::create_directories(path("broken"));
+  fs::create_directories(path("truncated"));
   for (const auto& entry : fs::directory_iterator(path("query"))) {
-    fs::copy_file(entry.path(), fs::path(path("broken")) / entry.path().filename());
+    fs::copy_file(entry.path(), fs::path(path("truncated")) / entry.path().filename());
   }
   std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(path("broken"))) files.push_back(entry.path());
+  for (const auto& entry : fs::directory_iterator(path("truncated"))) files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   fs::resize_file(files[files.size() / 2], 20);
-  const std::string broken = path("broken.bag");
-  const Result truncated = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("broken") + " --bag " + broken +
+  const std::string broken = path("truncated.bag");
+  const Result truncated = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("truncated") + " --bag " + broken +
                                " --topic /t --rate 5");
   EXPECT_EQ(truncated.status, 1) << truncated.err;
   EXPECT_FALSE(fs::exists(broken));
