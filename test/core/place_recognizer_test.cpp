@@ -16,16 +16,8 @@ namespace {
 using testing_support::globalSearchParams;
 using testing_support::within;
 
-/// The generated route's images, once per test run: the recognizer takes images, not descriptors.
-const SyntheticRoute& route() {
-  static const SyntheticRoute route = [] {
-    SyntheticRouteParams params;
-    params.reference_frames = 600;
-    params.query_frames = 400;
-    return generateSyntheticRoute(params);
-  }();
-  return route;
-}
+/// The recognizer takes images, not descriptors.
+const SyntheticRoute& route() { return testing_support::standardRouteImages(); }
 
 std::vector<cv::Mat> queryImages(int first, int count) {
   return {route().query.begin() + first, route().query.begin() + first + count};

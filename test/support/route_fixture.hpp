@@ -19,8 +19,7 @@ struct DescribedRoute {
   std::vector<int> query_to_reference;
 };
 
-inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
-  const SyntheticRoute route = generateSyntheticRoute(route_params);
+inline DescribedRoute describeRoute(const SyntheticRoute& route) {
   const DescriptorExtractor extractor{DescriptorParams{}};
   DescribedRoute described;
   described.reference = DescriptorSequence(extractor.size());
@@ -35,14 +34,24 @@ inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
   return described;
 }
 
-/// 600 reference frames, 400 query frames, the default seed.
-inline const DescribedRoute& standardRoute() {
-  static const DescribedRoute route = [] {
+inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
+  return describeRoute(generateSyntheticRoute(route_params));
+}
+
+/// The images of the standard route: 600 reference frames, 400 query frames, the default seed.
+inline const SyntheticRoute& standardRouteImages() {
+  static const SyntheticRoute route = [] {
     SyntheticRouteParams params;
     params.reference_frames = 600;
     params.query_frames = 400;
-    return describeRoute(params);
+    return generateSyntheticRoute(params);
   }();
+  return route;
+}
+
+/// The standard route described.
+inline const DescribedRoute& standardRoute() {
+  static const DescribedRoute route = describeRoute(standardRouteImages());
   return route;
 }
 
