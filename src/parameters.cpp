@@ -98,7 +98,8 @@ const std::vector<ParameterSpec<MrsParams>>& mrsParameters() {
       {{"mrs/resample_threshold", Range::openClosed(0, 1), {}, "",
         "Resample when the effective particle count falls below this fraction."},
        &P::resample_threshold},
-      {{"mrs/min_particles", Range::closed(1, 100000), {}, "", "Particles never drop below this."},
+      {{"mrs/min_particles", Range::closed(1, 100000), {}, "",
+        "Fewest particles spread over the coarsest level."},
        &P::min_particles},
       // Two at least: the second is the rival against which the finer level checks the coarse answer.
       {{"mrs/hypotheses", Range::closed(2, 1000), {}, "",

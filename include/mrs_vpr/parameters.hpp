@@ -66,7 +66,7 @@ struct MrsParams {
   double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio.
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none).
   double resample_threshold = 0.5;  ///< Resample when N_eff < this fraction of the particle count.
-  int min_particles = 4;            ///< Particles never drop below this when a level halves them.
+  int min_particles = 4;            ///< Fewest particles spread over the coarsest level.
   /// Distinct minima of the coarsest level carried to the level below, which decides among them, at
   /// least 2. With one, nothing would check the coarse answer at a finer level, and a place that only
   /// looks right when pooled would be accepted (MrsMatcher tests).

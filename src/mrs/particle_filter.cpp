@@ -89,21 +89,4 @@ int coverage(const std::vector<Particle>& particles, int radius) {
   return covered;
 }
 
-void keepHeaviest(std::vector<Particle>& particles, int count) {
-  std::sort(particles.begin(), particles.end(), [](const Particle& a, const Particle& b) {
-    // After a resampling all weights are equal: the last evaluation's cost breaks the tie.
-    if (a.weight != b.weight) return a.weight > b.weight;
-    return a.cost != b.cost ? a.cost < b.cost : a.index < b.index;
-  });
-  std::vector<Particle> kept;
-  for (const Particle& particle : particles) {
-    if (static_cast<int>(kept.size()) >= count) break;
-    const bool duplicate = std::any_of(kept.begin(), kept.end(),
-                                       [&](const Particle& other) { return other.index == particle.index; });
-    if (!duplicate) kept.push_back(particle);
-  }
-  particles.swap(kept);
-  setWeights(particles, weightsOf(particles));
-}
-
 }  // namespace mrs_vpr

@@ -126,32 +126,5 @@ TEST(Coverage, CountsTheUnionOfTheWindows) {
   EXPECT_EQ(coverage({particle(1, 0.5), particle(4, 0.5)}, 1), 6);
 }
 
-TEST(KeepHeaviest, KeepsTheHeaviestDistinctIndicesRenormalised) {
-  std::vector<Particle> particles{particle(1, 0.1), particle(2, 0.4), particle(3, 0.3), particle(4, 0.2)};
-  keepHeaviest(particles, 2);
-  ASSERT_EQ(particles.size(), 2U);
-  EXPECT_EQ(particles[0].index, 2);
-  EXPECT_EQ(particles[1].index, 3);
-  EXPECT_NEAR(particles[0].weight, 4.0 / 7.0, 1e-12);
-  EXPECT_NEAR(particles[1].weight, 3.0 / 7.0, 1e-12);
-}
-
-TEST(KeepHeaviest, OneParticlePerIndexAndCostBreaksTies) {
-  std::vector<Particle> particles{particle(8, 0.25, 3.0F), particle(8, 0.25, 1.0F), particle(9, 0.25, 2.0F),
-                                  particle(7, 0.25, 4.0F)};
-  keepHeaviest(particles, 3);
-  ASSERT_EQ(particles.size(), 3U);
-  EXPECT_EQ(particles[0].index, 8);
-  EXPECT_FLOAT_EQ(particles[0].cost, 1.0F);
-  EXPECT_EQ(particles[1].index, 9);
-  EXPECT_EQ(particles[2].index, 7);
-  EXPECT_NEAR(weightSum(particles), 1.0, 1e-12);
-  // Asking for more than exist keeps every distinct index.
-  std::vector<Particle> few{particle(1, 0.5), particle(1, 0.5)};
-  keepHeaviest(few, 10);
-  ASSERT_EQ(few.size(), 1U);
-  EXPECT_DOUBLE_EQ(few[0].weight, 1.0);
-}
-
 }  // namespace
 }  // namespace mrs_vpr

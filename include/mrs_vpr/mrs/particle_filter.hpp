@@ -35,8 +35,4 @@ void resampleSystematic(std::vector<Particle>& particles, int jitter, int low, i
 /// Number of distinct indices covered by the windows [index - radius, index + radius] of the particles.
 int coverage(const std::vector<Particle>& particles, int radius);
 
-/// Keeps the `count` heaviest particles (one per index; the last cost breaks ties), renormalised.
-void keepHeaviest(std::vector<Particle>& particles, int count);
-
-
 }  // namespace mrs_vpr
