@@ -1,0 +1,81 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/parameters.hpp"
+
+struct sqlite3;
+
+namespace mrs_vpr {
+
+/// A map database that cannot be used: not SQLite, another schema, other descriptor parameters,
+/// corrupt, read-only or locked. The message names the file and the problem.
+class MapDatabaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// One frame as stored: its descriptor and what is known of the image it came from.
+struct StoredFrame {
+  cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
+  double stamp = 0.0;        ///< [s]
+  std::string frame_id;      ///< Camera frame, empty when unknown.
+  std::int64_t sequence = -1;  ///< Camera sequence number, -1 when unknown.
+};
+
+/**
+ * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
+ * that users can inspect with `sqlite3` or Python. Schema (format 1):
+ *
+ *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, image_width, image_height,
+ *                                                patch_size, descriptor_bytes, created, package_version
+ *   frames(id INTEGER PRIMARY KEY, stamp REAL, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *
+ * Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
+ * stored: it is rebuilt when the frames are loaded. The database is held with an exclusive lock while
+ * open, so that two nodes never write one map. Not thread-safe: one owner at a time.
+ */
+class MapDatabase {
+ public:
+  static constexpr int kFormatVersion = 1;
+
+  /**
+   * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
+   * file when it is not an SQLite database, holds another schema, was written for other descriptor
+   * parameters, cannot be written, or is locked by another process. Never replaces a user's file.
+   */
+  MapDatabase(const std::string& path, const DescriptorParams& params);
+  ~MapDatabase();
+
+  MapDatabase(const MapDatabase&) = delete;
+  MapDatabase& operator=(const MapDatabase&) = delete;
+
+  /// Appends frames in one transaction: all of them are on disk when it returns, or none.
+  void append(const std::vector<StoredFrame>& frames);
+  /// Frames stored.
+  std::int64_t size() const;
+  /// Calls `visit` for every frame in map order. Throws MapDatabaseError on a corrupt or foreign row.
+  void forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const;
+  /// Removes every frame (the metadata stays).
+  void clear();
+
+  const std::string& path() const { return path_; }
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) const;
+  void execute(const std::string& sql) const;
+  void createSchema(const DescriptorParams& params);
+  void checkMetadata(const DescriptorParams& params) const;
+
+  std::string path_;
+  int descriptor_bytes_ = 0;
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace mrs_vpr

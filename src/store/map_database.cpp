@@ -1,0 +1,209 @@
+#include "mrs_vpr/store/map_database.hpp"
+
+#include <sqlite3.h>
+
+#include <ctime>
+#include <map>
+#include <memory>
+
+namespace mrs_vpr {
+namespace {
+
+/// A prepared statement that finalises itself.
+using Statement = std::unique_ptr<sqlite3_stmt, decltype(&sqlite3_finalize)>;
+
+/// SQLite's last error, in the words a user of a map needs.
+std::string lastProblem(sqlite3* db) {
+  const int code = sqlite3_errcode(db);
+  const std::string message = sqlite3_errmsg(db);
+  if (code == SQLITE_BUSY || code == SQLITE_LOCKED) return "it is locked by another process (" + message + ")";
+  return message;
+}
+
+std::string utcNow() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+}  // namespace
+
+MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params)
+    : path_(path), descriptor_bytes_(params.image_width * params.image_height) {
+  params.validate();
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+    const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw MapDatabaseError("cannot open map database '" + path + "': " + problem);
+  }
+  try {
+    if (sqlite3_db_readonly(db_, "main") == 1) fail("it is read-only");
+    // Not waiting for another writer: a map held by another node is an error to report, not to queue.
+    sqlite3_busy_timeout(db_, 0);
+    // Reading the schema is the first access to the file: this is where "not a database" shows.
+    Statement tables(nullptr, sqlite3_finalize);
+    sqlite3_stmt* raw = nullptr;
+    if (sqlite3_prepare_v2(db_, "SELECT name FROM sqlite_master WHERE type = 'table'", -1, &raw, nullptr) !=
+        SQLITE_OK) {
+      fail(lastProblem(db_));
+    }
+    tables.reset(raw);
+    std::map<std::string, bool> names;
+    int step = SQLITE_ROW;
+    while ((step = sqlite3_step(tables.get())) == SQLITE_ROW) {
+      names[reinterpret_cast<const char*>(sqlite3_column_text(tables.get(), 0))] = true;
+    }
+    if (step != SQLITE_DONE) fail(lastProblem(db_));
+    tables.reset();
+    // Nothing is written to a file that is not an empty new one or a map of these descriptors.
+    const bool create = names.empty();
+    if (!create && (names.count("metadata") == 0 || names.count("frames") == 0)) {
+      fail("it is an SQLite database of another kind (no mrs_vpr metadata and frames tables)");
+    }
+    if (!create) checkMetadata(params);
+    // Exclusive: the lock taken by the first write is kept until the database is closed.
+    execute("PRAGMA locking_mode = EXCLUSIVE");
+    execute("PRAGMA journal_mode = WAL");
+    if (create) {
+      createSchema(params);
+    } else {
+      // Take the lock now, so that a second node fails at start-up rather than at its first frame.
+      execute("BEGIN IMMEDIATE; COMMIT");
+    }
+  } catch (...) {
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw;
+  }
+}
+
+MapDatabase::~MapDatabase() { sqlite3_close(db_); }
+
+void MapDatabase::fail(const std::string& problem) const {
+  throw MapDatabaseError("map database '" + path_ + "': " + problem);
+}
+
+void MapDatabase::execute(const std::string& sql) const {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &error) != SQLITE_OK) {
+    sqlite3_free(error);
+    fail(lastProblem(db_));
+  }
+}
+
+void MapDatabase::createSchema(const DescriptorParams& params) {
+  execute(
+      "BEGIN IMMEDIATE;"
+      "CREATE TABLE metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
+      "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp REAL NOT NULL, frame_id TEXT NOT NULL,"
+      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
+      "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "'),"
+      " ('image_width', '" + std::to_string(params.image_width) + "'),"
+      " ('image_height', '" + std::to_string(params.image_height) + "'),"
+      " ('patch_size', '" + std::to_string(params.patch_size) + "'),"
+      " ('descriptor_bytes', '" + std::to_string(descriptor_bytes_) + "'),"
+      " ('created', '" + utcNow() + "'),"
+      " ('package_version', '" MRS_VPR_PACKAGE_VERSION "');"
+      "COMMIT");
+}
+
+void MapDatabase::checkMetadata(const DescriptorParams& params) const {
+  std::map<std::string, std::string> stored;
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT key, value FROM metadata", -1, &raw, nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement rows(raw, sqlite3_finalize);
+  int step = SQLITE_ROW;
+  while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
+    const auto* key = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 0));
+    const auto* value = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 1));
+    if (key != nullptr && value != nullptr) stored[key] = value;
+  }
+  if (step != SQLITE_DONE) fail(lastProblem(db_));
+  if (stored["format_version"] != std::to_string(kFormatVersion)) {
+    fail("its format version is '" + stored["format_version"] + "', this package reads " +
+         std::to_string(kFormatVersion));
+  }
+  std::string mismatch;
+  for (const auto& [key, value] : std::map<std::string, int>{{"image_width", params.image_width},
+                                                              {"image_height", params.image_height},
+                                                              {"patch_size", params.patch_size}}) {
+    if (stored[key] != std::to_string(value)) {
+      mismatch += (mismatch.empty() ? "" : ", ") + key + " " + stored[key] + " in the map, " + std::to_string(value) +
+                  " here";
+    }
+  }
+  if (!mismatch.empty()) fail("it was written for other descriptors: " + mismatch);
+}
+
+void MapDatabase::append(const std::vector<StoredFrame>& frames) {
+  for (const StoredFrame& frame : frames) {
+    if (frame.descriptor.type() != CV_8UC1 || !frame.descriptor.isContinuous() ||
+        static_cast<int>(frame.descriptor.total()) != descriptor_bytes_) {
+      throw std::invalid_argument("a stored descriptor must be " + std::to_string(descriptor_bytes_) +
+                                  " continuous bytes of CV_8UC1");
+    }
+  }
+  execute("BEGIN IMMEDIATE");
+  try {
+    sqlite3_stmt* raw = nullptr;
+    if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
+                           &raw, nullptr) != SQLITE_OK) {
+      fail(lastProblem(db_));
+    }
+    const Statement insert(raw, sqlite3_finalize);
+    for (const StoredFrame& frame : frames) {
+      sqlite3_bind_double(insert.get(), 1, frame.stamp);
+      sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
+                        SQLITE_TRANSIENT);
+      sqlite3_bind_int64(insert.get(), 3, frame.sequence);
+      sqlite3_bind_blob(insert.get(), 4, frame.descriptor.data, descriptor_bytes_, SQLITE_STATIC);
+      if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
+      sqlite3_reset(insert.get());
+    }
+    execute("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+std::int64_t MapDatabase::size() const {
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT COUNT(*) FROM frames", -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
+  const Statement count(raw, sqlite3_finalize);
+  if (sqlite3_step(count.get()) != SQLITE_ROW) fail(lastProblem(db_));
+  return sqlite3_column_int64(count.get(), 0);
+}
+
+void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const {
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT id, stamp, frame_id, sequence, descriptor FROM frames ORDER BY id", -1, &raw,
+                         nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement rows(raw, sqlite3_finalize);
+  StoredFrame frame;
+  int step = SQLITE_ROW;
+  while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
+    if (sqlite3_column_bytes(rows.get(), 4) != descriptor_bytes_) {
+      fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " holds a descriptor of " +
+           std::to_string(sqlite3_column_bytes(rows.get(), 4)) + " bytes, not " + std::to_string(descriptor_bytes_));
+    }
+    frame.stamp = sqlite3_column_double(rows.get(), 1);
+    const auto* frame_id = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 2));
+    frame.frame_id = frame_id != nullptr ? frame_id : "";
+    frame.sequence = sqlite3_column_int64(rows.get(), 3);
+    // A view of SQLite's buffer, valid until the next step: the visitor copies what it keeps.
+    frame.descriptor = cv::Mat(1, descriptor_bytes_, CV_8UC1, const_cast<void*>(sqlite3_column_blob(rows.get(), 4)));
+    visit(frame);
+  }
+  if (step != SQLITE_DONE) fail(lastProblem(db_));
+}
+
+void MapDatabase::clear() { execute("DELETE FROM frames"); }
+
+}  // namespace mrs_vpr

@@ -1,0 +1,251 @@
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include "mrs_vpr/store/map_database.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A fresh folder under the system's temporary directory, removed when the test ends.
+class MapDatabaseTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_store_test.XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    folder_ = pattern;
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(folder_, ignored);
+  }
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+
+  /// Frames whose descriptor bytes, stamps and ids all differ.
+  static std::vector<StoredFrame> frames(int count, int first = 0) {
+    std::vector<StoredFrame> result;
+    cv::RNG rng(static_cast<std::uint64_t>(first) + 1);
+    for (int i = first; i < first + count; ++i) {
+      StoredFrame frame;
+      frame.descriptor = cv::Mat(1, 64 * 32, CV_8UC1);
+      rng.fill(frame.descriptor, cv::RNG::UNIFORM, 0, 256);
+      frame.stamp = 1000.0 + 0.1 * i;
+      frame.frame_id = i % 2 == 0 ? "camera" : "";
+      frame.sequence = i % 3 == 0 ? -1 : i;
+      result.push_back(frame);
+    }
+    return result;
+  }
+
+  /// The message of the MapDatabaseError that opening `file` throws, or "(opened)".
+  static std::string openingError(const std::string& file, const DescriptorParams& params = {}) {
+    try {
+      MapDatabase database(file, params);
+    } catch (const MapDatabaseError& error) {
+      return error.what();
+    }
+    return "(opened)";
+  }
+
+  static std::string contents(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
+  const std::vector<StoredFrame> written = frames(120);
+  {
+    MapDatabase database(path("map.db"), DescriptorParams{});
+    database.append({written.begin(), written.begin() + 50});
+    database.append({written.begin() + 50, written.end()});
+    EXPECT_EQ(database.size(), 120);
+  }
+  const MapDatabase database(path("map.db"), DescriptorParams{});
+  std::size_t i = 0;
+  database.forEachFrame([&](const StoredFrame& frame) {
+    ASSERT_LT(i, written.size());
+    EXPECT_EQ(cv::norm(frame.descriptor, written[i].descriptor, cv::NORM_L1), 0.0) << i;
+    EXPECT_DOUBLE_EQ(frame.stamp, written[i].stamp);
+    EXPECT_EQ(frame.frame_id, written[i].frame_id);
+    EXPECT_EQ(frame.sequence, written[i].sequence);
+    ++i;
+  });
+  EXPECT_EQ(i, written.size());
+}
+
+TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
+  { MapDatabase database(path("map.db"), DescriptorParams{}); }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path("map.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  std::map<std::string, std::string> metadata;
+  sqlite3_exec(
+      db, "SELECT key, value FROM metadata",
+      [](void* out, int, char** values, char**) {
+        (*static_cast<std::map<std::string, std::string>*>(out))[values[0]] = values[1];
+        return 0;
+      },
+      &metadata, nullptr);
+  sqlite3_close(db);
+  EXPECT_EQ(metadata["format_version"], "1");
+  EXPECT_EQ(metadata["image_width"], "64");
+  EXPECT_EQ(metadata["image_height"], "32");
+  EXPECT_EQ(metadata["patch_size"], "8");
+  EXPECT_EQ(metadata["descriptor_bytes"], "2048");
+  EXPECT_FALSE(metadata["created"].empty());
+  EXPECT_FALSE(metadata["package_version"].empty());
+}
+
+TEST_F(MapDatabaseTest, AMapOfOtherDescriptorsIsRefusedNamingTheMismatch) {
+  {
+    MapDatabase database(path("map.db"), DescriptorParams{});
+    database.append(frames(3));
+  }
+  DescriptorParams other;
+  other.image_width = 32;
+  const std::string message = openingError(path("map.db"), other);
+  EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("image_width 64 in the map, 32 here"), std::string::npos) << message;
+  EXPECT_EQ(MapDatabase(path("map.db"), DescriptorParams{}).size(), 3);  // Untouched.
+}
+
+TEST_F(MapDatabaseTest, AFileThatIsNotSqliteIsRefusedAndLeftUntouched) {
+  {
+    std::ofstream text(path("notes.db"));
+    text << "my notes, not a map\n";
+  }
+  const std::string message = openingError(path("notes.db"));
+  EXPECT_NE(message.find(path("notes.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("not a database"), std::string::npos) << message;
+  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+}
+
+TEST_F(MapDatabaseTest, AnotherSqliteDatabaseIsRefusedAndLeftUntouched) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("other.db").c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "CREATE TABLE recipes (name TEXT); INSERT INTO recipes VALUES ('bread')", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  const std::string before = contents(path("other.db"));
+  const std::string message = openingError(path("other.db"));
+  EXPECT_NE(message.find("another kind"), std::string::npos) << message;
+  EXPECT_EQ(contents(path("other.db")), before);
+}
+
+TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {
+  {
+    MapDatabase database(path("map.db"), DescriptorParams{});
+    database.append(frames(400));
+  }
+  fs::resize_file(path("map.db"), fs::file_size(path("map.db")) / 2);
+  std::string message;
+  try {
+    const MapDatabase database(path("map.db"), DescriptorParams{});
+    database.forEachFrame([](const StoredFrame&) {});
+    message = "(read " + std::to_string(database.size()) + " frames)";
+  } catch (const MapDatabaseError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("malformed"), std::string::npos) << message;
+}
+
+TEST_F(MapDatabaseTest, ASecondOwnerIsRefusedWhileTheFirstHoldsTheMap) {
+  MapDatabase first(path("map.db"), DescriptorParams{});
+  first.append(frames(2));
+  const std::string message = openingError(path("map.db"));
+  EXPECT_NE(message.find("locked by another process"), std::string::npos) << message;
+  first.append(frames(1, 2));  // The first owner goes on.
+  EXPECT_EQ(first.size(), 3);
+}
+
+TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
+  // A child appends batches and reports each committed total through a pipe; the parent kills it
+  // with SIGKILL at seeded moments. Reopened, the map holds at least every reported frame, bit for
+  // bit, and passes SQLite's integrity check.
+  std::mt19937 rng(3);
+  for (int round = 0; round < 5; ++round) {
+    const std::string file = path("crash" + std::to_string(round) + ".db");
+    int report[2];
+    ASSERT_EQ(pipe(report), 0);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      close(report[0]);
+      MapDatabase database(file, DescriptorParams{});
+      for (int batch = 0;; ++batch) {
+        database.append(frames(10, 10 * batch));
+        const std::int64_t total = 10 * (batch + 1);
+        if (write(report[1], &total, sizeof(total)) != sizeof(total)) _exit(1);
+      }
+    }
+    close(report[1]);
+    usleep(std::uniform_int_distribution<int>(20000, 200000)(rng));
+    kill(child, SIGKILL);
+    waitpid(child, nullptr, 0);
+    std::int64_t persisted = 0;
+    std::int64_t total = 0;
+    while (read(report[0], &total, sizeof(total)) == sizeof(total)) persisted = total;
+    close(report[0]);
+    ASSERT_GT(persisted, 0) << "the child committed nothing in time";
+
+    {
+      const MapDatabase database(file, DescriptorParams{});
+      EXPECT_GE(database.size(), persisted);
+      std::size_t i = 0;
+      database.forEachFrame([&](const StoredFrame& frame) {
+        // Batch b was written as frames(10, 10 b): recompute each batch the same way.
+        const std::vector<StoredFrame> batch = frames(10, static_cast<int>(i / 10) * 10);
+        EXPECT_EQ(cv::norm(frame.descriptor, batch[i % 10].descriptor, cv::NORM_L1), 0.0) << "frame " << i;
+        EXPECT_DOUBLE_EQ(frame.stamp, batch[i % 10].stamp);
+        ++i;
+      });
+    }  // Closed: it holds the map exclusively while open.
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+    std::string integrity;
+    sqlite3_exec(
+        db, "PRAGMA integrity_check",
+        [](void* out, int, char** values, char**) {
+          *static_cast<std::string*>(out) = values[0];
+          return 0;
+        },
+        &integrity, nullptr);
+    sqlite3_close(db);
+    EXPECT_EQ(integrity, "ok");
+  }
+}
+
+TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
+  MapDatabase database(path("map.db"), DescriptorParams{});
+  database.append(frames(5));
+  database.clear();
+  EXPECT_EQ(database.size(), 0);
+  database.append(frames(1));
+  EXPECT_EQ(database.size(), 1);
+}
+
+TEST_F(MapDatabaseTest, BadDescriptorsAreRefusedBeforeAnythingIsWritten) {
+  MapDatabase database(path("map.db"), DescriptorParams{});
+  std::vector<StoredFrame> batch = frames(3);
+  batch[2].descriptor = cv::Mat(1, 10, CV_8UC1);
+  EXPECT_THROW(database.append(batch), std::invalid_argument);
+  EXPECT_EQ(database.size(), 0);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
