@@ -25,9 +25,10 @@
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
-#include "mrs_vpr/node/image_conversion.hpp"
 #include "tool_main.hpp"
+#include "traversal_reader.hpp"
 
 namespace po = boost::program_options;
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
@@ -36,7 +37,7 @@ using Clock = std::chrono::steady_clock;
 namespace {
 
 constexpr const char* kUsage =
-    "Usage: mrs_vpr_eval --reference DIR|BAG --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
+    "Usage: mrs_vpr_eval --reference DIR|BAG|MAP.db --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
     "                    --method mrs|seqslam --protocol per-frame|global --sequence-length N\n"
     "                    [--queries K] [--tolerance T] [--seed S] [--output FILE.json]\n"
     "                    [--accept-threshold C] [--threads T] [--out-of-map]\n"
@@ -142,59 +143,6 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   return options;
 }
 
-/// What was read of a traversal: how many frames, and the size of its images.
-struct Traversal {
-  int frames = 0;
-  cv::Size image_size;
-};
-
-/// Reads and describes every image of a folder or bag, handing each descriptor with its stamp to
-/// `append`, and reports progress on stderr.
-Traversal describe(const std::string& source, const std::string& topic, const std::string& what,
-                   const mrs_vpr::DescriptorExtractor& extractor,
-                   const std::function<void(const cv::Mat& descriptor, double stamp)>& append) {
-  const Clock::time_point start = Clock::now();
-  Traversal traversal;
-  const auto add = [&](const cv::Mat& descriptor, double stamp) {
-    append(descriptor, stamp);
-    if (++traversal.frames % 500 == 0) std::cerr << "  " << what << ": " << traversal.frames << " frames\n";
-  };
-  const auto checkSize = [&](const cv::Size& size, const std::string& image_name) {
-    if (traversal.frames == 0) {
-      traversal.image_size = size;
-    } else if (size != traversal.image_size) {
-      throw std::runtime_error(image_name + " is " + std::to_string(size.width) + "x" + std::to_string(size.height) +
-                               " but the first " + what + " image is " + std::to_string(traversal.image_size.width) +
-                               "x" + std::to_string(traversal.image_size.height));
-    }
-  };
-
-  if (mrs_vpr::bag::isBagPath(source)) {
-    mrs_vpr::bag::forEachImage(source, topic, [&](int index, const sensor_msgs::ImageConstPtr& image) {
-      const std::string name = what + " message " + std::to_string(index) + " of '" + source + "'";
-      checkSize(cv::Size(static_cast<int>(image->width), static_cast<int>(image->height)), name);
-      try {
-        add(mrs_vpr::node::describeImage(extractor, *image, image), image->header.stamp.toSec());
-      } catch (const std::invalid_argument& error) {
-        throw std::runtime_error(name + ": " + error.what());
-      }
-    });
-  } else {
-    mrs_vpr::forEachImage(source, [&](int index, const std::string& path, const cv::Mat& image) {
-      checkSize(image.size(), "image '" + path + "'");
-      try {
-        // cv::imread gives BGR; the frame index is the stamp, as a folder has no times.
-        add(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), index);
-      } catch (const std::invalid_argument& error) {
-        throw std::runtime_error("image '" + path + "': " + error.what());
-      }
-    });
-  }
-  std::cerr << "  " << what << ": " << traversal.frames << " frames of " << traversal.image_size.width
-            << "x" << traversal.image_size.height << " px described in " << std::fixed << std::setprecision(2)
-            << secondsSince(start) << " s\n";
-  return traversal;
-}
 
 mrs_vpr::QueryRecord makeRecord(int query_index, const std::vector<int>& truth, const mrs_vpr::Match& match,
                                 double time_ms) {
@@ -266,6 +214,11 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
   }
   if (skipped > 0) std::cerr << "  " << skipped << " test sequences skipped: their frame has no ground truth\n";
   return records;
+}
+
+/// A reference given as a map database (*.db) rather than as images.
+bool isMapDatabase(const std::string& path) {
+  return path.size() > 3 && path.compare(path.size() - 3, 3, ".db") == 0;
 }
 
 json parametersToJson(const Options& options) {
@@ -361,20 +314,29 @@ int run(int argc, char** argv) {
   const mrs_vpr::DescriptorExtractor& extractor = recognizer.extractor();
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
             << sequence.sequence_length << "\n";
-  const Traversal reference = describe(options.reference, options.topic, "reference", extractor,
-                                       [&](const cv::Mat& descriptor, double stamp) {
-                                         recognizer.addDescriptor(descriptor, stamp);
-                                       });
+  const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) { recognizer.addDescriptor(descriptor, stamp); };
+  mrs_vpr::tools::Traversal reference;
+  if (isMapDatabase(options.reference)) {
+    // A map built by build_map or the node: descriptors already, of the parameters it names.
+    const mrs_vpr::MapDatabase map(options.reference, options.params.descriptor);
+    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { add_to_map(frame.descriptor.clone(), frame.stamp); });
+    reference.frames = recognizer.size();
+    std::cerr << "  reference: " << reference.frames << " frames from the map database " << options.reference << "\n";
+  } else {
+    reference = mrs_vpr::tools::readTraversal(options.reference, options.topic, "reference", extractor, add_to_map);
+  }
   if (sequence.sequence_length > reference.frames) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
                                 " is larger than the reference of " + std::to_string(reference.frames) + " frames");
   }
   mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
-  const Traversal query = describe(options.query, options.topic, "query", extractor,
-                                   [&](const cv::Mat& descriptor, double stamp) {
-                                     query_descriptors.append(descriptor, stamp);
-                                   });
-  if (query.image_size != reference.image_size) {
+  const mrs_vpr::tools::Traversal query =
+      mrs_vpr::tools::readTraversal(options.query, options.topic, "query", extractor,
+                                    [&](const cv::Mat& descriptor, double stamp) {
+                                      query_descriptors.append(descriptor, stamp);
+                                    });
+  // A map database keeps descriptors, not images: there is no image size to compare.
+  if (!isMapDatabase(options.reference) && query.image_size != reference.image_size) {
     throw std::invalid_argument(
         "query images are " + std::to_string(query.image_size.width) + "x" + std::to_string(query.image_size.height) +
         " but reference images are " + std::to_string(reference.image_size.width) + "x" +

@@ -406,6 +406,43 @@ TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
   EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
 }
 
+TEST_F(ToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
+  const std::string map = path("reference.db");
+  const std::string build = std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " + map;
+  const Result built = run(build);
+  ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_NE(built.err.find("150 frames added to 0"), std::string::npos) << built.err;
+  EXPECT_FALSE(fs::exists(map + ".part"));
+
+  const std::string rest = " --query " + path("query") + " --ground-truth " + path("truth.csv") +
+                           " --method seqslam --protocol per-frame --sequence-length 10 --tolerance 2";
+  const Result from_folder = run(eval("--reference " + path("reference") + rest));
+  const Result from_map = run(eval("--reference " + map + rest));
+  ASSERT_EQ(from_folder.status, 0) << from_folder.err;
+  ASSERT_EQ(from_map.status, 0) << from_map.err;
+  const auto summary = [](const Result& result) {
+    nlohmann::json document = nlohmann::json::parse(result.out).at("summary");
+    document.erase("median_time_ms");
+    document.erase("total_time_s");
+    return document;
+  };
+  EXPECT_EQ(summary(from_map), summary(from_folder));
+
+  // An existing map is neither replaced nor extended unless asked.
+  const Result again = run(build);
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("exists; use --append to extend it or --force to replace it"), std::string::npos);
+  const Result appended = run(build + " --append");
+  EXPECT_EQ(appended.status, 0) << appended.err;
+  EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
+
+  // A map of other descriptors is refused, naming the file and the mismatch.
+  const Result other = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                           path("small.db") + " --image-width 32 --image-height 16");
+  ASSERT_EQ(other.status, 0) << other.err;
+  expectError("--reference " + path("small.db") + rest, "image_width 32 in the map, 64 here");
+}
+
 TEST_F(ToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
   // No master is needed: the options are checked first. -1 used to wait for the service for ever.
   for (const char* timeout : {"-1", "0", "1e9"}) {

@@ -1,0 +1,97 @@
+// build_map: a map database from an image folder or a bag, for the node or mrs_vpr_eval to use.
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <boost/program_options.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "tool_main.hpp"
+#include "traversal_reader.hpp"
+
+namespace po = boost::program_options;
+
+namespace {
+
+constexpr const char* kUsage =
+    "Usage: build_map (--images DIR | --bag BAG --topic T) --output MAP.db [--append] [--force]\n"
+    "                 [--image-width W] [--image-height H] [--patch-size P]\n"
+    "\n"
+    "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
+    "with their stamps, in the SQLite map database MAP.db. A new map is written to MAP.db.part and\n"
+    "renamed only when complete; an existing MAP.db is extended with --append or replaced with --force.\n";
+
+/// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
+constexpr std::size_t kBatch = 1000;
+
+int run(int argc, char** argv) {
+  std::string images;
+  std::string bag_path;
+  std::string topic;
+  std::string output;
+  bool append = false;
+  bool force = false;
+  mrs_vpr::DescriptorParams params;
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("images", po::value(&images), "folder of images")
+      ("bag", po::value(&bag_path), "bag of images")
+      ("topic", po::value(&topic), "image topic in the bag")
+      ("output", po::value(&output)->required(), "map database to write (*.db)")
+      ("append", po::bool_switch(&append), "add to an existing map")
+      ("force", po::bool_switch(&force), "replace an existing map")
+      ("image-width", po::value(&params.image_width)->default_value(params.image_width), "descriptor width [px]")
+      ("image-height", po::value(&params.image_height)->default_value(params.image_height), "descriptor height [px]")
+      ("patch-size", po::value(&params.patch_size)->default_value(params.patch_size), "patch normalisation size [px]");
+  // clang-format on
+  po::variables_map variables;
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
+  if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
+  if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  const bool exists = std::filesystem::exists(output);
+  if (exists && !append && !force) {
+    throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
+  }
+  const mrs_vpr::DescriptorExtractor extractor(params);
+
+  // A new map is built aside and renamed when complete; an appended one commits batch by batch.
+  const bool in_place = exists && append;
+  const std::string target = in_place ? output : output + ".part";
+  for (const char* leftover : {".part", ".part-wal", ".part-shm"}) std::filesystem::remove(output + leftover);
+  int stored = 0;
+  try {
+    mrs_vpr::MapDatabase map(target, params);
+    const std::int64_t before = map.size();
+    std::vector<mrs_vpr::StoredFrame> batch;
+    const auto flush = [&] {
+      map.append(batch);
+      stored += static_cast<int>(batch.size());
+      batch.clear();
+    };
+    mrs_vpr::tools::readTraversal(images.empty() ? bag_path : images, topic, "map", extractor,
+                                  [&](const cv::Mat& descriptor, double stamp) {
+                                    batch.push_back({descriptor.clone(), stamp, "", -1});
+                                    if (batch.size() >= kBatch) flush();
+                                  });
+    flush();
+    std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
+  } catch (...) {
+    if (!in_place) std::filesystem::remove(target);
+    throw;
+  }
+  if (!in_place) std::filesystem::rename(target, output);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return mrs_vpr::tools::runTool("build_map", run, argc, argv); }

@@ -1,0 +1,33 @@
+#pragma once
+
+// Reading a traversal for the command-line tools: every image of a folder (file-name order) or of a
+// bag's topic, described, with its stamp.
+
+#include <functional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor.hpp"
+
+namespace mrs_vpr {
+namespace tools {
+
+/// What was read of a traversal: how many frames, and the size of its images.
+struct Traversal {
+  int frames = 0;
+  cv::Size image_size;
+};
+
+/**
+ * Reads and describes every image of a folder or bag (`topic`), handing each descriptor with its
+ * stamp to `append` (a folder's frames are stamped with their index), and reports progress on stderr
+ * as `what`. Throws std::runtime_error naming the image when one cannot be read or described, or
+ * differs in size from the first.
+ */
+Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
+                        const DescriptorExtractor& extractor,
+                        const std::function<void(const cv::Mat& descriptor, double stamp)>& append);
+
+}  // namespace tools
+}  // namespace mrs_vpr
