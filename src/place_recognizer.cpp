@@ -124,6 +124,11 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
   return state;
 }
 
+int PlaceRecognizer::framesToSearchLocked() const {
+  if (map_.empty()) throw std::invalid_argument("the reference map is empty: add frames first");
+  return map_.size();
+}
+
 const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) const {
   const std::string& name = method.empty() ? recognizer_.default_method : method;
   const auto matcher = matchers_.find(name);
@@ -169,8 +174,7 @@ PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    const int frames = map_.size();
-    if (frames == 0) throw std::invalid_argument("the reference map is empty: add frames first");
+    const int frames = framesToSearchLocked();
     if (test_sequence.count > frames) {
       throw std::invalid_argument("the test sequence has " + std::to_string(test_sequence.count) +
                                   " images but the reference map only " + std::to_string(frames) + " frames");
@@ -187,7 +191,7 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
   std::vector<Match> matches;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    if (map_.empty()) throw std::invalid_argument("the reference map is empty: add frames first");
+    framesToSearchLocked();
     matches = matcher.matchEveryFrame(map_.view(), traversal);
   }
   flush();
@@ -201,8 +205,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    const int size = map_.size();
-    if (size == 0) throw std::invalid_argument("the reference map is empty: add frames first");
+    const int size = framesToSearchLocked();
     if (frames > size) {
       throw std::invalid_argument("recent_frames " + std::to_string(frames) + " is more than the " +
                                   std::to_string(size) + " frames in the reference map");

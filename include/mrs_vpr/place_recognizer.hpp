@@ -116,6 +116,8 @@ class PlaceRecognizer {
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;
+  /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
+  int framesToSearchLocked() const;
   PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method) const;
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
   void flushLocked();
