@@ -258,6 +258,20 @@ class Diagnosis {
   int confidently_wrong_ = 0;
 };
 
+/// The record of query frame `frame` answered by `match` (no true place when out of the map).
+QueryRecord recordOf(const Reference& reference, int frame, const mrs_vpr::Match& match, double time_ms,
+                     bool out_of_map) {
+  QueryRecord record;
+  record.query_index = frame;
+  if (!out_of_map) record.true_indices = truthOf(reference, frame);
+  record.predicted_index = match.reference_index;
+  record.score = match.score;
+  record.confidence = match.confidence;
+  record.accepted = match.accepted;
+  record.time_ms = time_ms;
+  return record;
+}
+
 /// Runs one method on test sequences ending at the given query frames.
 std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
                                    const DescriptorSequence& query, const std::vector<int>& ends, int length,
@@ -272,15 +286,7 @@ std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, cons
                                      ? mrs->match(reference.descriptors.view(), test, &trace)
                                      : matcher.match(reference.descriptors.view(), test);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    QueryRecord record;
-    record.query_index = end;
-    if (!out_of_map) record.true_indices = truthOf(reference, end);
-    record.predicted_index = match.reference_index;
-    record.score = match.score;
-    record.confidence = match.confidence;
-    record.accepted = match.accepted;
-    record.time_ms = ms;
-    records.push_back(record);
+    const QueryRecord& record = records.emplace_back(recordOf(reference, end, match, ms, out_of_map));
     if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
     if (out_of_map && match.accepted && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
       std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
@@ -301,15 +307,7 @@ std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, co
   for (int i = 0; i < last - first; ++i) {
     const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
     if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
-    QueryRecord record;
-    record.query_index = first + i;
-    if (!out_of_map) record.true_indices = truthOf(reference, first + i);
-    record.predicted_index = match.reference_index;
-    record.score = match.score;
-    record.confidence = match.confidence;
-    record.accepted = match.accepted;
-    record.time_ms = total_ms / (last - first);
-    records.push_back(record);
+    records.push_back(recordOf(reference, first + i, match, total_ms / (last - first), out_of_map));
   }
   return records;
 }
