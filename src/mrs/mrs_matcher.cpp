@@ -115,22 +115,26 @@ class CoarseToFineSearch {
    * enhancement would not change their order but would cost window/2 extra cells on either side.
    */
   void iterateLevel(bool coarsest, bool comparing, bool finest) {
+    if (coarsest) {
+      iterateParticleFilter(*coarse_costs_, finest);  // Its table is already complete.
+    } else {
+      settleHypotheses(comparing, finest);
+    }
+    previous_rows_ = level_.rows();
+  }
+
+  /// Each hypothesis settles on the cells its own trajectories visit, computed once for all of them.
+  void settleHypotheses(bool comparing, bool finest) {
     const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
     DescriptorSequence query_cells(1);
-    const SequenceView query_rows = coarsest ? SequenceView{} : levelQuery(query_cells);
-    LazyDifferenceMatrix matrix(query_rows, reference_, level_.stride, pixel_pooling,
+    LazyDifferenceMatrix matrix(levelQuery(query_cells), reference_, level_.stride, pixel_pooling,
                                 comparing ? sequence_.contrast_window : 0);
-    if (coarsest) {
-      iterateParticleFilter(*coarse_costs_, finest);
-    } else {
-      for (Particle& particle : particles_) {
-        EndCostTable costs(matrix, level_, levelVelocities(particle));
-        settle(particle, costs, finest);
-      }
-      dropInfeasible();
+    for (Particle& particle : particles_) {
+      EndCostTable costs(matrix, level_, levelVelocities(particle));
+      settle(particle, costs, finest);
     }
+    dropInfeasible();
     result_.comparisons += matrix.comparisons() / pixel_pooling;
-    previous_rows_ = level_.rows();
   }
 
   /// The paper's loop on the coarsest level's table.
