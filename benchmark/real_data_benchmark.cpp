@@ -52,7 +52,6 @@ struct Options {
   bool per_frame = true;
   bool global = true;
   bool diagnose = false;
-  int pixel_pooling = mrs_vpr::MrsParams{}.pixel_pooling;
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
   int min_coarse_frames = mrs_vpr::MrsParams{}.min_coarse_frames;
   std::vector<std::string> methods = {"seqslam", "mrs"};
@@ -73,7 +72,7 @@ Options parse(int argc, char** argv) {
       std::puts("mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
                 "                       [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
                 "                       [--skip-per-frame] [--skip-global] [--diagnose]\n"
-                "                       [--pixel-pooling P] [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
+                "                       [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
                 "                       [--methods seqslam,mrs]\n"
                 "DIR holds nordland/{summer,winter} and corridor/{ref,query}.");
       std::exit(0);
@@ -89,7 +88,6 @@ Options parse(int argc, char** argv) {
     else if (flag == "--threads") options.threads = std::stoi(value);
     else if (flag == "--tolerance") options.tolerance = std::stoi(value);
     else if (flag == "--seed") options.seed = std::stoull(value);
-    else if (flag == "--pixel-pooling") options.pixel_pooling = std::stoi(value);
     else if (flag == "--hypotheses") options.hypotheses = std::stoi(value);
     else if (flag == "--min-coarse-frames") options.min_coarse_frames = std::stoi(value);
     else if (flag == "--references") options.references = splitList(value);
@@ -353,7 +351,6 @@ int run(int argc, char** argv) {
   // Velocity step 0.02 for both methods: 0.1 leaves up to 15 frames of drift at N = 300, so neither
   // could align long sequences whose speed lies between two steps.
   params.sequence.velocity_step = 0.02;
-  params.mrs.pixel_pooling = options.pixel_pooling;
   params.mrs.hypotheses = options.hypotheses;
   params.mrs.min_coarse_frames = options.min_coarse_frames;
   params.validate();
@@ -389,11 +386,11 @@ int run(int argc, char** argv) {
     if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");
     const bool distractors = size == "9k";
     Reference known = buildReference(frames, extractor, 0, route, distractors, size);
-    known.descriptors.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+    known.descriptors.keepCoarseCells(params.mrs.levels, params.descriptor);
     // The out-of-map reference: the other part of the route (with its own distractors), so that no
     // query frame of this part is in it.
     Reference unknown = buildReference(frames, extractor, other_begin, other_end, distractors, size + "-other");
-    unknown.descriptors.keepPooledCells(params.mrs.levels, params.mrs.pixel_pooling);
+    unknown.descriptors.keepCoarseCells(params.mrs.levels, params.descriptor);
     const std::string m = " M=" + std::to_string(known.descriptors.size());
     const std::string m_other = " M=" + std::to_string(unknown.descriptors.size());
 

@@ -1,10 +1,12 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 
 #include <algorithm>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
-#include "mrs_vpr/mrs/temporal_pooling.hpp"
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 
 namespace mrs_vpr {
 
@@ -14,15 +16,20 @@ SequenceView SequenceView::slice(int begin, int end) const {
                             ") are outside a sequence of " + std::to_string(count) + " frames");
   }
   SequenceView sliced{frame(begin), end - begin, descriptor_size, step};
-  if (begin == 0) sliced.pooled = pooled;
+  if (begin == 0) sliced.coarse = coarse;
   return sliced;
 }
 
-SequenceView SequenceView::pooledCells(int stride, int pixel_pooling) const {
-  if (pooled == nullptr || pixel_pooling != pooled->pixel_pooling || step != 1 || count == 0) return {};
-  for (std::size_t level = 0; level < pooled->levels.size(); ++level) {
+SequenceView SequenceView::coarseCells(int stride, const DescriptorParams& geometry) const {
+  if (coarse == nullptr || step != 1 || count == 0) return {};
+  const DescriptorParams& kept = coarse->frequencies->geometry();
+  if (kept.image_width != geometry.image_width || kept.image_height != geometry.image_height ||
+      kept.patch_size != geometry.patch_size) {
+    return {};
+  }
+  for (std::size_t level = 0; level < coarse->levels.size(); ++level) {
     if (stride == (2 << level)) {
-      return {pooled->levels[level].data(), (count - 1) / stride + 1, descriptor_size / pixel_pooling, 1};
+      return {coarse->levels[level].data(), (count - 1) / stride + 1, coarse->frequencies->cellSize(), 1};
     }
   }
   return {};
@@ -52,47 +59,52 @@ void DescriptorSequence::append(const cv::Mat& descriptor, double stamp) {
   }
   data_.insert(data_.end(), descriptor.data, descriptor.data + descriptor_size_);
   stamps_.push_back(stamp);
-  appendPooledCells(size() - 1);
+  appendCoarseCells(size() - 1);
 }
 
-void DescriptorSequence::appendPooledCells(int last) {
-  const std::size_t cell_size = static_cast<std::size_t>(descriptor_size_ / pooled_.pixel_pooling);
-  for (std::size_t level = 0; level < pooled_.levels.size(); ++level) {
+void DescriptorSequence::appendCoarseCells(int last) {
+  if (coarse_.levels.empty()) return;
+  const auto cell_size = static_cast<std::size_t>(coarse_.frequencies->cellSize());
+  for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const int stride = 2 << level;
     if (last % stride != 0) continue;
-    std::vector<std::uint8_t>& cells = pooled_.levels[level];
+    std::vector<std::uint8_t>& cells = coarse_.levels[level];
     cells.resize(cells.size() + cell_size);
-    poolCell(view(), last, stride, pooled_.pixel_pooling, cells.data() + cells.size() - cell_size);
+    coarse_.frequencies->cell(view(), last, stride, cells.data() + cells.size() - cell_size);
   }
 }
 
-void DescriptorSequence::keepPooledCells(int levels, int pixel_pooling) {
-  requirePixelPoolingDivides(pixel_pooling, descriptor_size_);
-  pooled_.pixel_pooling = pixel_pooling;
-  pooled_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
-  for (int frame = 0; frame < size(); ++frame) appendPooledCells(frame);
+void DescriptorSequence::keepCoarseCells(int levels, const DescriptorParams& geometry) {
+  auto frequencies = std::make_shared<const PatchFrequencies>(geometry);
+  if (frequencies->descriptorSize() != descriptor_size_) {
+    throw std::invalid_argument("coarse cells for " + std::to_string(geometry.image_width) + " x " +
+                                std::to_string(geometry.image_height) + " descriptors cannot be kept for descriptors of " +
+                                std::to_string(descriptor_size_) + " bytes");
+  }
+  coarse_.frequencies = std::move(frequencies);
+  coarse_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
+  for (int frame = 0; frame < size(); ++frame) appendCoarseCells(frame);
 }
 
 SequenceView DescriptorSequence::view() const {
   SequenceView whole{data_.data(), size(), descriptor_size_, 1};
-  if (!pooled_.levels.empty()) whole.pooled = &pooled_;
+  if (!coarse_.levels.empty()) whole.coarse = &coarse_;
   return whole;
 }
 
 void DescriptorSequence::reserve(int frames) {
   data_.reserve(static_cast<std::size_t>(frames) * static_cast<std::size_t>(descriptor_size_));
   stamps_.reserve(static_cast<std::size_t>(frames));
-  const std::size_t cell_size = static_cast<std::size_t>(descriptor_size_ / pooled_.pixel_pooling);
-  for (std::size_t level = 0; level < pooled_.levels.size(); ++level) {
+  for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const std::size_t cells = static_cast<std::size_t>(frames) / (std::size_t{2} << level) + 1;
-    pooled_.levels[level].reserve(cells * cell_size);
+    coarse_.levels[level].reserve(cells * static_cast<std::size_t>(coarse_.frequencies->cellSize()));
   }
 }
 
 void DescriptorSequence::clear() {
   data_.clear();
   stamps_.clear();
-  for (std::vector<std::uint8_t>& cells : pooled_.levels) cells.clear();
+  for (std::vector<std::uint8_t>& cells : coarse_.levels) cells.clear();
 }
 
 const std::uint8_t* DescriptorSequence::descriptor(int index) const {
@@ -105,7 +117,7 @@ const std::uint8_t* DescriptorSequence::descriptor(int index) const {
 
 std::size_t DescriptorSequence::memoryBytes() const {
   std::size_t bytes = data_.capacity() + stamps_.capacity() * sizeof(double);
-  for (const std::vector<std::uint8_t>& cells : pooled_.levels) bytes += cells.capacity();
+  for (const std::vector<std::uint8_t>& cells : coarse_.levels) bytes += cells.capacity();
   return bytes;
 }
 

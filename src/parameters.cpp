@@ -81,10 +81,6 @@ const std::vector<ParameterSpec<MrsParams>>& mrsParameters() {
       {{"mrs/min_coarse_frames", Range::closed(2, 1000), {}, "",
         "Fewer levels are used when the coarsest level would keep fewer test frames."},
        &P::min_coarse_frames},
-      // Checked by Parameters::validate(), which knows the descriptor size.
-      {{"mrs/pixel_pooling", Range::closed(1, 64), {}, "dividing image_width * image_height",
-        "Levels coarser than full resolution average runs of this many pixels."},
-       &P::pixel_pooling},
       {{"mrs/tau", Range::closed(1, 16), {}, "", "Particle overlap factor: initial particles = (M / N) * tau."},
        &P::tau},
       {{"mrs/index_shift", Range::closed(0, 1000), {}, "",
@@ -248,13 +244,6 @@ void Parameters::validate() const {
   descriptor.validate();
   sequence.validate();
   mrs.validate();
-  const int descriptor_size = descriptor.image_width * descriptor.image_height;
-  if (descriptor_size % mrs.pixel_pooling != 0) {
-    throw std::invalid_argument(
-        parameterInfo(mrsParameters(), "mrs/pixel_pooling")
-            .rejection(std::to_string(mrs.pixel_pooling),
-                       "image_width * image_height = " + std::to_string(descriptor_size)));
-  }
 }
 
 WindowAlignment parseWindowAlignment(const std::string& text) {

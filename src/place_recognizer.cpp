@@ -32,9 +32,9 @@ PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParam
   params_.validate();
   recognizer_.validate();
   for (const char* method : {"mrs", "seqslam"}) matchers_[method] = makeMatcher(method, params_);
-  // The map keeps MRS's pooled coarse levels up to date as frames arrive, so that a query does not
-  // pool the whole map again.
-  map_.keepPooledCells(params_.mrs.levels, params_.mrs.pixel_pooling);
+  // The map keeps MRS's coarse cells up to date as frames arrive, so that a query does not
+  // transform the whole map again.
+  map_.keepCoarseCells(params_.mrs.levels, params_.descriptor);
 }
 
 cv::Mat PlaceRecognizer::describe(const cv::Mat& image, ChannelOrder order) const {

@@ -41,7 +41,7 @@ std::vector<Match> SequenceMatcher::matchEveryFrame(SequenceView reference, Sequ
 
 std::unique_ptr<SequenceMatcher> makeMatcher(const std::string& method, const Parameters& params) {
   if (method == "seqslam") return std::make_unique<SeqSlamMatcher>(params.sequence);
-  if (method == "mrs") return std::make_unique<MrsMatcher>(params.sequence, params.mrs);
+  if (method == "mrs") return std::make_unique<MrsMatcher>(params.sequence, params.mrs, params.descriptor);
   throw std::invalid_argument("unknown method '" + method + "' (expected 'mrs' or 'seqslam')");
 }
 

@@ -2,18 +2,22 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/parameters.hpp"
+
 namespace mrs_vpr {
 
-/// Pooled cells (see temporal_pooling.hpp) that a store keeps for strides 2, 4, ..., so that a
-/// coarse-to-fine search need not pool the whole map for every query.
-struct PooledCells {
-  int pixel_pooling = 1;
-  /// levels[i]: the cells of stride 2^(i+1), cell J ending at frame J * stride, each
-  /// descriptor_size / pixel_pooling bytes.
+class PatchFrequencies;
+
+/// The compact cells of MRS's coarse levels (see mrs/patch_frequencies.hpp) that a store keeps for
+/// strides 2, 4, ..., so that a coarse-to-fine search need not transform the whole map per query.
+struct CoarseCells {
+  std::shared_ptr<const PatchFrequencies> frequencies;
+  /// levels[i]: the cells of stride 2^(i+1), cell J ending at frame J * stride.
   std::vector<std::vector<std::uint8_t>> levels;
 };
 
@@ -26,7 +30,7 @@ struct SequenceView {
   int step = 1;
   /// Cells kept by the store, or null. Only a view that starts at the store's first frame has them
   /// (cells look back only, so any prefix of the store can use them).
-  const PooledCells* pooled = nullptr;
+  const CoarseCells* coarse = nullptr;
 
   const std::uint8_t* frame(int index) const {
     return data + static_cast<std::ptrdiff_t>(index) * step * descriptor_size;
@@ -35,9 +39,9 @@ struct SequenceView {
   SequenceView slice(int begin, int end) const;
   /// Every `stride`-th frame of this view, starting at `first`. Throws std::out_of_range.
   SequenceView subsample(int first, int stride) const;
-  /// The store's pooled cells of `stride` and `pixel_pooling` for this view (cells 0 ..
-  /// (count - 1) / stride), or an empty view when the store does not keep them.
-  SequenceView pooledCells(int stride, int pixel_pooling) const;
+  /// The store's coarse cells of `stride` for this view (cells 0 .. (count - 1) / stride), or an
+  /// empty view when the store does not keep them or keeps them for another descriptor geometry.
+  SequenceView coarseCells(int stride, const DescriptorParams& geometry) const;
 };
 
 /**
@@ -55,18 +59,18 @@ class DescriptorSequence {
   /// Forgets every frame (the pooling stride stays).
   void clear();
 
-  /// Also keeps the pooled cells of strides 2, 4, ..., 2^levels and `pixel_pooling` (see
-  /// temporal_pooling.hpp), updated on every append. Costs under 1 / pixel_pooling of the
-  /// descriptors' memory. levels == 0 stops keeping them. Throws std::invalid_argument when
-  /// pixel_pooling does not divide the descriptor size.
-  void keepPooledCells(int levels, int pixel_pooling);
+  /// Also keeps MRS's coarse cells of strides 2, 4, ..., 2^levels for descriptors of `geometry`
+  /// (see mrs/patch_frequencies.hpp), updated on every append: 84 bytes a frame at 64 x 32 with 8 x
+  /// 8 patches and 3 levels. levels == 0 stops keeping them. Throws std::invalid_argument when the
+  /// geometry is invalid or does not give this sequence's descriptor size.
+  void keepCoarseCells(int levels, const DescriptorParams& geometry);
 
   int size() const { return static_cast<int>(stamps_.size()); }
   bool empty() const { return stamps_.empty(); }
   int descriptorSize() const { return descriptor_size_; }
   const std::uint8_t* descriptor(int index) const;
   double stamp(int index) const { return stamps_.at(static_cast<std::size_t>(index)); }
-  /// Bytes held by descriptors and stamps (capacity, not just size).
+  /// Bytes held by descriptors, stamps and coarse cells (capacity, not just size).
   std::size_t memoryBytes() const;
 
   SequenceView view() const;
@@ -76,9 +80,9 @@ class DescriptorSequence {
   int descriptor_size_;
   std::vector<std::uint8_t> data_;
   std::vector<double> stamps_;
-  PooledCells pooled_;
+  CoarseCells coarse_;
 
-  void appendPooledCells(int last);
+  void appendCoarseCells(int last);
 };
 
 /// The reference map is a descriptor sequence that only grows (or is reset).

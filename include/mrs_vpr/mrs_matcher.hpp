@@ -1,5 +1,6 @@
 #pragma once
 
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
 namespace mrs_vpr {
@@ -20,7 +21,9 @@ struct MrsLevelTrace {
 /// MRS-VPR: coarse-to-fine particle search over temporally subsampled sequences (Yin et al.).
 class MrsMatcher : public SequenceMatcher {
  public:
-  MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs);
+  /// `descriptor` gives the geometry of the descriptors matched, which the coarse levels' cells
+  /// (patch frequencies) need.
+  MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs, const DescriptorParams& descriptor = {});
 
   Match match(SequenceView reference, SequenceView query) const override;
   /// The same search, recording each level, coarsest first, into `trace` (when not null).
@@ -36,6 +39,7 @@ class MrsMatcher : public SequenceMatcher {
 
  private:
   MrsParams mrs_;
+  PatchFrequencies frequencies_;
 };
 
 }  // namespace mrs_vpr

@@ -58,10 +58,6 @@ struct MrsParams {
   /// rows the true place is too often not the coarse level's first minimum (README).
   int min_coarse_frames = 64;
   double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau.
-  /// Levels coarser than full resolution average runs of this many pixels. 16 is 1.6x faster
-  /// at N = 300 but its coarse table sometimes ranks a wrong place first at an accepted confidence,
-  /// which the finer levels then have to catch; 4 never did (README).
-  int pixel_pooling = 4;
   int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames.
   double coverage_threshold = 0.5;  ///< Go to the next level once coverage shrinks below this ratio.
   int max_iterations = 8;           ///< Cap on particle iterations per level (the paper has none).

@@ -36,7 +36,7 @@ enum class FrameAdmission {
 
 /**
  * The one object a C++ user needs for sequence-based place recognition: the descriptor extractor,
- * the reference map (with the pooled levels MRS keeps for it) and both methods.
+ * the reference map (with the coarse cells MRS keeps for it) and both methods.
  *
  *   mrs_vpr::PlaceRecognizer recognizer;                 // the documented defaults
  *   for (...) recognizer.addFrame(image, stamp);         // build the map

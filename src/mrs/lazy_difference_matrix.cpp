@@ -16,8 +16,8 @@ constexpr int kMergeGap = 16;
 }  // namespace
 
 LazyDifferenceMatrix::LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride,
-                                           int pixel_pooling, int contrast_window)
-    : query_(query), reference_(reference, stride, pixel_pooling), contrast_window_(contrast_window),
+                                           const PatchFrequencies& frequencies, int contrast_window)
+    : query_(query), reference_(reference, stride, frequencies), contrast_window_(contrast_window),
       segments_(static_cast<std::size_t>(query.count)) {}
 
 const float* LazyDifferenceMatrix::rawRow(int row, int begin, int end) {

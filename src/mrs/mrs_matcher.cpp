@@ -14,6 +14,7 @@
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
 #include "mrs_vpr/mrs/particle_evaluation.hpp"
 #include "mrs_vpr/mrs/particle_filter.hpp"
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
@@ -22,24 +23,23 @@
 namespace mrs_vpr {
 namespace {
 
-/// Differences between the test cells and the reference grid of a level. The grid's cells come
-/// from the ones the reference's store keeps (complete cells only), the rest (all of them when it
-/// keeps none, else the last, partial one) are pooled now.
-cv::Mat levelDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
-                         int pixel_pooling) {
-  if (level.stride == 1) return computeDifferenceMatrix(query_cells, reference);  // Full resolution.
+/// Differences between the test cells and the reference grid of the coarsest level, on patch
+/// frequencies. The grid's cells come from the ones the reference's store keeps (complete cells
+/// only); the rest (all of them when it keeps none, else the last, partial one) are computed now.
+cv::Mat coarseDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
+                          const PatchFrequencies& frequencies) {
   cv::Mat differences(query_cells.count, level.grid_size, CV_32F);
-  const SequenceView kept = reference.pooledCells(level.stride, pixel_pooling);
+  const SequenceView kept = reference.coarseCells(level.stride, frequencies.geometry());
   const int known = std::min(kept.count, level.grid_size);
   if (known > 0) {
     cv::Mat columns = differences.colRange(0, known);
     computeDifferenceMatrix(query_cells, kept.slice(0, known), columns);
   }
   if (known < level.grid_size) {
-    const DescriptorSequence pooled =
-        poolSequence(reference, known * level.stride, level.stride, level.grid_size - known, pixel_pooling);
+    const DescriptorSequence cells =
+        frequencies.cells(reference, known * level.stride, level.stride, level.grid_size - known);
     cv::Mat columns = differences.colRange(known, level.grid_size);
-    computeDifferenceMatrix(query_cells, pooled.view(), columns);
+    computeDifferenceMatrix(query_cells, cells.view(), columns);
   }
   return differences;
 }
@@ -48,10 +48,10 @@ cv::Mat levelDifferences(SequenceView query_cells, SequenceView reference, const
 class CoarseToFineSearch {
  public:
   CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
-                     const SequenceParams& sequence, const MrsParams& mrs)
+                     const SequenceParams& sequence, const MrsParams& mrs, const PatchFrequencies& frequencies)
       : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
-        velocities_(velocities(sequence)), rng_(mrs.seed),
-        query_runs_(levels > 0 ? query : SequenceView{}, mrs.pixel_pooling) {}
+        frequencies_(frequencies),
+        velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
   Match run(std::vector<MrsLevelTrace>* trace) {
     level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
@@ -69,22 +69,29 @@ class CoarseToFineSearch {
  private:
   /// The coarsest level. Uniformly spread particles with their +-Id_shift windows, velocity fans
   /// and contrast windows would touch nearly every cell of it anyway, so its matrix is computed
-  /// densely (vectorised, on pooled cells) and every end is scored once; particles then read the
-  /// table. The table also gives the runner-up for the confidence.
+  /// densely (vectorised, on compact cells: patch frequencies) and every end is scored once;
+  /// particles then read the table. The table also gives the runner-up for the confidence. At full
+  /// resolution (no coarser level) it is the brute force's matrix.
   void scoreCoarsestLevel() {
-    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
     DescriptorSequence query_cells(1);
-    const cv::Mat matrix = enhanceContrast(
-        levelDifferences(levelQuery(query_cells), reference_, level_, pixel_pooling), sequence_.contrast_window);
-    result_.comparisons += static_cast<long long>(matrix.total()) / pixel_pooling;
+    const SequenceView cells = levelQuery(query_cells);
+    const cv::Mat differences = level_.stride == 1 ? computeDifferenceMatrix(cells, reference_)
+                                                   : coarseDifferences(cells, reference_, level_, frequencies_);
+    result_.comparisons += std::llround(static_cast<double>(differences.total()) * cellShare());
+    const cv::Mat matrix = enhanceContrast(differences, sequence_.contrast_window);
     coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
   }
 
+  /// Comparisons are counted in descriptor comparisons: a cell costs this share of one.
+  double cellShare() const {
+    return level_.stride == 1 ? 1.0 : static_cast<double>(frequencies_.cellSize()) / frequencies_.descriptorSize();
+  }
+
   /// The test sequence at the current level, row k - k_min ending at frame anchor + k * stride:
-  /// the frames themselves at full resolution, else cells pooled into `storage`.
+  /// the frames themselves at full resolution, else cells computed into `storage`.
   SequenceView levelQuery(DescriptorSequence& storage) const {
     if (level_.stride == 1) return query_.slice(rows_.first, rows_.last + 1);
-    storage = query_runs_.pool(rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
+    storage = frequencies_.cells(query_, rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
     return storage.view();
   }
 
@@ -125,16 +132,15 @@ class CoarseToFineSearch {
 
   /// Each hypothesis settles on the cells its own trajectories visit, computed once for all of them.
   void settleHypotheses(bool comparing, bool finest) {
-    const int pixel_pooling = level_.pixelPooling(mrs_.pixel_pooling);
     DescriptorSequence query_cells(1);
-    LazyDifferenceMatrix matrix(levelQuery(query_cells), reference_, level_.stride, pixel_pooling,
+    LazyDifferenceMatrix matrix(levelQuery(query_cells), reference_, level_.stride, frequencies_,
                                 comparing ? sequence_.contrast_window : 0);
     for (Particle& particle : particles_) {
       EndCostTable costs(matrix, level_, levelVelocities(particle));
       settle(particle, costs, finest);
     }
     dropInfeasible();
-    result_.comparisons += matrix.comparisons() / pixel_pooling;
+    result_.comparisons += std::llround(static_cast<double>(matrix.comparisons()) * cellShare());
   }
 
   /// The paper's loop on the coarsest level's table.
@@ -284,9 +290,9 @@ class CoarseToFineSearch {
   int levels_;
   const SequenceParams& sequence_;
   const MrsParams& mrs_;
+  const PatchFrequencies& frequencies_;
   std::vector<double> velocities_;
   std::mt19937_64 rng_;
-  PixelRunSums query_runs_;  ///< Pools the test sequence at every level below full resolution.
 
   SamplingLevel level_;
   std::unique_ptr<EndCostTable> coarse_costs_;
@@ -299,7 +305,8 @@ class CoarseToFineSearch {
 
 }  // namespace
 
-MrsMatcher::MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs) : SequenceMatcher(sequence), mrs_(mrs) {
+MrsMatcher::MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs, const DescriptorParams& descriptor)
+    : SequenceMatcher(sequence), mrs_(mrs), frequencies_(descriptor) {
   mrs_.validate();
 }
 
@@ -321,9 +328,10 @@ std::vector<Match> MrsMatcher::matchEveryFrame(SequenceView reference, SequenceV
 
 Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);
-  requirePixelPoolingDivides(mrs_.pixel_pooling, reference.descriptor_size, "mrs/pixel_pooling");
-  return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment),
-                            levelsFor(query.count), sequence_, mrs_)
+  const int levels = levelsFor(query.count);
+  if (levels > 0) frequencies_.requireDescriptorsOf(reference);
+  return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment), levels, sequence_,
+                            mrs_, frequencies_)
       .run(trace);
 }
 

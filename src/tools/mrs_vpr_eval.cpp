@@ -252,7 +252,6 @@ json parametersToJson(const Options& options) {
       {"mrs",
        {{"levels", p.mrs.levels},
         {"min_coarse_frames", p.mrs.min_coarse_frames},
-        {"pixel_pooling", p.mrs.pixel_pooling},
         {"tau", p.mrs.tau},
         {"index_shift", p.mrs.index_shift},
         {"coverage_threshold", p.mrs.coverage_threshold},

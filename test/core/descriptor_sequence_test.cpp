@@ -9,7 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/mrs/temporal_pooling.hpp"
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -123,95 +123,105 @@ TEST(SequenceView, InvalidSliceOrSubsampleThrowsOutOfRangeWithTheRange) {
   EXPECT_THROW(whole.subsample(-1, 2), std::out_of_range);
 }
 
-TEST(DescriptorSequence, KeptPooledCellsEqualPoolSequence) {
+/// kSize-byte descriptors as 4 x 4 images of 2 x 2 patches: 4 patches, 12-byte coarse cells.
+DescriptorParams smallGeometry() {
+  DescriptorParams geometry;
+  geometry.image_width = 4;
+  geometry.image_height = 4;
+  geometry.patch_size = 2;
+  return geometry;
+}
+
+TEST(DescriptorSequence, KeptCoarseCellsEqualCellsComputedOnDemand) {
+  const PatchFrequencies frequencies(smallGeometry());
   DescriptorSequence sequence(kSize);
-  sequence.keepPooledCells(3, 4);  // Kept while frames are appended ...
+  sequence.keepCoarseCells(3, smallGeometry());  // Kept while frames are appended ...
   for (int f = 0; f < 37; ++f) sequence.append(descriptorOf(f));
   DescriptorSequence late = sequenceOf(37);
-  late.keepPooledCells(3, 4);  // ... and computed for frames already there.
+  late.keepCoarseCells(3, smallGeometry());  // ... and computed for frames already there.
 
   for (const DescriptorSequence* store : {&sequence, &late}) {
     for (int stride : {2, 4, 8}) {
-      const SequenceView cells = store->view().pooledCells(stride, 4);
+      const SequenceView cells = store->view().coarseCells(stride, smallGeometry());
       ASSERT_EQ(cells.count, 36 / stride + 1) << "stride " << stride;
-      ASSERT_EQ(cells.descriptor_size, kSize / 4);
-      const DescriptorSequence expected = poolSequence(store->view(), 0, stride, cells.count, 4);
+      ASSERT_EQ(cells.descriptor_size, 12);
+      const DescriptorSequence expected = frequencies.cells(store->view(), 0, stride, cells.count);
       for (int j = 0; j < cells.count; ++j) {
-        EXPECT_TRUE(std::equal(cells.frame(j), cells.frame(j) + kSize / 4, expected.descriptor(j)))
+        EXPECT_TRUE(std::equal(cells.frame(j), cells.frame(j) + 12, expected.descriptor(j)))
             << "stride " << stride << ", cell " << j;
       }
     }
-    // Strides or pixel pooling not kept: nothing.
-    EXPECT_EQ(store->view().pooledCells(16, 4).count, 0);
-    EXPECT_EQ(store->view().pooledCells(2, 2).count, 0);
+    // Strides not kept, or another geometry: nothing.
+    EXPECT_EQ(store->view().coarseCells(16, smallGeometry()).count, 0);
+    DescriptorParams other = smallGeometry();
+    other.patch_size = 4;
+    EXPECT_EQ(store->view().coarseCells(2, other).count, 0);
   }
 }
 
-TEST(DescriptorSequence, PooledCellIsTheMeanOfTheFramesEndingAtItsIndex) {
-  DescriptorSequence sequence = sequenceOf(25);
-  sequence.keepPooledCells(2, 2);
-  const int stride = 4;
-  const SequenceView cells = sequence.view().pooledCells(stride, 2);
-  ASSERT_EQ(cells.count, 7);
-  for (int j = 0; j < cells.count; ++j) {
-    const int end = j * stride;
-    const int begin = std::max(0, end - stride + 1);
-    for (int o = 0; o < kSize / 2; ++o) {
-      double sum = 0.0;
-      for (int f = begin; f <= end; ++f) {
-        sum += descriptorOf(f).at<std::uint8_t>(0, 2 * o) + descriptorOf(f).at<std::uint8_t>(0, 2 * o + 1);
-      }
-      const double mean = sum / (2.0 * (end - begin + 1));
-      EXPECT_LE(std::abs(cells.frame(j)[o] - mean), 0.5 + 1e-6) << "cell " << j << ", byte " << o;
-    }
-  }
+TEST(DescriptorSequence, CoarseCellsCostAFractionOfTheDescriptors) {
+  // The default 64 x 32 descriptors with 8 x 8 patches: 96-byte cells at strides 2, 4 and 8 are
+  // 48 + 24 + 12 = 84 bytes a frame beside the 2048-byte descriptor and its 8-byte stamp.
+  const DescriptorParams geometry;
+  DescriptorSequence sequence(2048);
+  sequence.keepCoarseCells(3, geometry);
+  const int frames = 8000;
+  sequence.reserve(frames);
+  const cv::Mat frame(1, 2048, CV_8U, cv::Scalar(128));
+  for (int f = 0; f < frames; ++f) sequence.append(frame);
+  const double per_frame = static_cast<double>(sequence.memoryBytes()) / frames;
+  EXPECT_LE(per_frame, 2048 + 8 + 84 + 1);
+  EXPECT_GE(per_frame, 2048 + 8 + 84);
+  EXPECT_LE(per_frame, 2.2 * 1024);
 }
 
-TEST(DescriptorSequence, PrefixSlicesKeepThePooledCellsOtherViewsDoNot) {
+TEST(DescriptorSequence, PrefixSlicesKeepTheCoarseCellsOtherViewsDoNot) {
   DescriptorSequence sequence = sequenceOf(30);
-  sequence.keepPooledCells(2, 1);
-  const SequenceView whole_cells = sequence.view().pooledCells(4, 1);
-  const SequenceView prefix_cells = sequence.view(0, 21).pooledCells(4, 1);
+  sequence.keepCoarseCells(2, smallGeometry());
+  const SequenceView whole_cells = sequence.view().coarseCells(4, smallGeometry());
+  const SequenceView prefix_cells = sequence.view(0, 21).coarseCells(4, smallGeometry());
   ASSERT_EQ(prefix_cells.count, 6);  // Cells 0 .. 20 / 4.
   EXPECT_EQ(prefix_cells.data, whole_cells.data);
-  EXPECT_EQ(sequence.view(1, 21).pooledCells(4, 1).count, 0);
-  EXPECT_EQ(sequence.view().subsample(0, 2).pooledCells(4, 1).count, 0);
+  EXPECT_EQ(sequence.view(1, 21).coarseCells(4, smallGeometry()).count, 0);
+  EXPECT_EQ(sequence.view().subsample(0, 2).coarseCells(4, smallGeometry()).count, 0);
 }
 
-TEST(DescriptorSequence, KeepPooledCellsRejectsPoolingThatDoesNotDivideTheSize) {
+TEST(DescriptorSequence, KeepCoarseCellsRejectsAGeometryOfAnotherSize) {
   DescriptorSequence sequence(kSize);
-  const std::string message = messageOf<std::invalid_argument>([&] { sequence.keepPooledCells(2, 3); });
-  EXPECT_NE(message.find("pixel pooling 3"), std::string::npos) << message;
-  EXPECT_NE(message.find("16"), std::string::npos) << message;
-  EXPECT_THROW(sequence.keepPooledCells(2, 0), std::invalid_argument);
+  const std::string message = messageOf<std::invalid_argument>([&] { sequence.keepCoarseCells(2, DescriptorParams{}); });
+  EXPECT_NE(message.find("64 x 32"), std::string::npos) << message;
+  EXPECT_NE(message.find("16 bytes"), std::string::npos) << message;
+  DescriptorParams odd = smallGeometry();
+  odd.patch_size = 3;
+  EXPECT_THROW(sequence.keepCoarseCells(2, odd), std::invalid_argument);
 }
 
-TEST(DescriptorSequence, KeepPooledCellsWithZeroLevelsStopsKeepingThem) {
+TEST(DescriptorSequence, KeepCoarseCellsWithZeroLevelsStopsKeepingThem) {
   DescriptorSequence sequence = sequenceOf(12);
-  sequence.keepPooledCells(2, 1);
-  EXPECT_NE(sequence.view().pooled, nullptr);
-  sequence.keepPooledCells(0, 1);
-  EXPECT_EQ(sequence.view().pooled, nullptr);
-  EXPECT_EQ(sequence.view().pooledCells(2, 1).count, 0);
+  sequence.keepCoarseCells(2, smallGeometry());
+  EXPECT_NE(sequence.view().coarse, nullptr);
+  sequence.keepCoarseCells(0, smallGeometry());
+  EXPECT_EQ(sequence.view().coarse, nullptr);
+  EXPECT_EQ(sequence.view().coarseCells(2, smallGeometry()).count, 0);
 }
 
-TEST(DescriptorSequence, ClearForgetsFramesAndCellsButKeepsPooling) {
+TEST(DescriptorSequence, ClearForgetsFramesAndCellsButKeepsTheirKind) {
   DescriptorSequence sequence = sequenceOf(12);
-  sequence.keepPooledCells(1, 2);
+  sequence.keepCoarseCells(1, smallGeometry());
   sequence.clear();
   EXPECT_EQ(sequence.size(), 0);
   EXPECT_TRUE(sequence.empty());
   EXPECT_EQ(sequence.view().count, 0);
-  EXPECT_EQ(sequence.view().pooledCells(2, 2).count, 0);
+  EXPECT_EQ(sequence.view().coarseCells(2, smallGeometry()).count, 0);
   EXPECT_THROW(sequence.descriptor(0), std::out_of_range);
 
   // Frames appended after clear() get fresh, consistent cells.
   for (int f = 100; f < 105; ++f) sequence.append(descriptorOf(f));
-  const SequenceView cells = sequence.view().pooledCells(2, 2);
+  const SequenceView cells = sequence.view().coarseCells(2, smallGeometry());
   ASSERT_EQ(cells.count, 3);
-  const DescriptorSequence expected = poolSequence(sequence.view(), 0, 2, 3, 2);
+  const DescriptorSequence expected = PatchFrequencies(smallGeometry()).cells(sequence.view(), 0, 2, 3);
   for (int j = 0; j < 3; ++j) {
-    EXPECT_TRUE(std::equal(cells.frame(j), cells.frame(j) + kSize / 2, expected.descriptor(j))) << "cell " << j;
+    EXPECT_TRUE(std::equal(cells.frame(j), cells.frame(j) + 12, expected.descriptor(j))) << "cell " << j;
   }
 }
 

@@ -111,8 +111,6 @@ TEST(MrsParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("mrs/tau", [](Parameters& p) { p.mrs.tau = 0.5; });
   EXPECT_REJECTED("mrs/tau", [](Parameters& p) { p.mrs.tau = 17.0; });
   EXPECT_REJECTED("mrs/tau", [](Parameters& p) { p.mrs.tau = kNaN; });
-  EXPECT_REJECTED("mrs/pixel_pooling", [](Parameters& p) { p.mrs.pixel_pooling = 0; });
-  EXPECT_REJECTED("mrs/pixel_pooling", [](Parameters& p) { p.mrs.pixel_pooling = 65; });
   EXPECT_REJECTED("mrs/index_shift", [](Parameters& p) { p.mrs.index_shift = -1; });
   EXPECT_REJECTED("mrs/coverage_threshold", [](Parameters& p) { p.mrs.coverage_threshold = 0.0; });
   EXPECT_REJECTED("mrs/coverage_threshold", [](Parameters& p) { p.mrs.coverage_threshold = 1.0; });
@@ -124,24 +122,6 @@ TEST(MrsParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("mrs/hypotheses", [](Parameters& p) { p.mrs.hypotheses = 1001; });
   EXPECT_TRUE(accepted([](Parameters& p) { p.mrs.resample_threshold = 1.0; }));
   EXPECT_TRUE(accepted([](Parameters& p) { p.mrs.levels = 0; }));
-}
-
-TEST(Parameters, PixelPoolingMustDivideTheDescriptorSize) {
-  // 64 x 32 = 2048 bytes: 3 is within [1, 64] but does not divide it.
-  const std::string message = rejection([](Parameters& p) { p.mrs.pixel_pooling = 3; });
-  EXPECT_NE(message.find("mrs/pixel_pooling"), std::string::npos) << message;
-  EXPECT_NE(message.find("2048"), std::string::npos) << message;
-  // On its own the MRS block has no descriptor size to check against.
-  MrsParams mrs;
-  mrs.pixel_pooling = 3;
-  EXPECT_NO_THROW(mrs.validate());
-  // 60 x 36 = 2160 is divisible by 3.
-  EXPECT_TRUE(accepted([](Parameters& p) {
-    p.descriptor.image_width = 60;
-    p.descriptor.image_height = 36;
-    p.descriptor.patch_size = 6;
-    p.mrs.pixel_pooling = 3;
-  }));
 }
 
 TEST(Parameters, ValidateChecksEveryBlock) {
@@ -225,7 +205,6 @@ TEST(Parameters, RuleMessagesGiveTheWholeAllowedText) {
                 [](Parameters& p) { p.sequence.velocity_max = 0.7; });
   expectAllowed(parameterInfo(sequenceParameters(), "sequence/velocity_step"),
                 [](Parameters& p) { p.sequence.velocity_step = 1e-10; });
-  expectAllowed(parameterInfo(mrsParameters(), "mrs/pixel_pooling"), [](Parameters& p) { p.mrs.pixel_pooling = 3; });
 }
 
 TEST(Parameters, VelocityStepIsDocumentedAsChecked) {
@@ -249,7 +228,7 @@ TEST(Parameters, TablesNameEveryParameterOnceUnderItsGroup) {
   add(sequenceParameters(), "sequence");
   add(mrsParameters(), "mrs");
   // Every field of DescriptorParams, SequenceParams and MrsParams.
-  EXPECT_EQ(names.size(), 3U + 8U + 11U);
+  EXPECT_EQ(names.size(), 3U + 8U + 10U);
 }
 
 TEST(WindowAlignment, ParsesBothSpellingsAndRoundTrips) {

@@ -35,10 +35,10 @@ void expectIdentical(const Match& a, const Match& b) {
   EXPECT_EQ(a.comparisons, b.comparisons);
 }
 
-/// A copy of `reference` that keeps the pooled cells MRS reads, as the node's map does.
+/// A copy of `reference` that keeps the coarse cells MRS reads, as the node's map does.
 DescriptorSequence withKeptCells(const DescriptorSequence& reference, const MrsParams& mrs) {
   DescriptorSequence kept = reference;
-  kept.keepPooledCells(mrs.levels, mrs.pixel_pooling);
+  kept.keepCoarseCells(mrs.levels, DescriptorParams{});
   return kept;
 }
 
@@ -232,15 +232,15 @@ TEST(MrsMatcher, BadInputsThrowWithAClearMessage) {
   const std::string sizes = invalidArgumentMessage([&] { matcher->match(route.reference.view(), small.view()); });
   EXPECT_NE(sizes.find("64 bytes"), std::string::npos) << sizes;
 
-  // Pixel pooling that does not divide the descriptor: named when matching, and by makeMatcher's
-  // caller through Parameters::validate().
-  SequenceParams sequence;
-  MrsParams mrs;
-  mrs.pixel_pooling = 3;
-  const MrsMatcher odd_pooling(sequence, mrs);
-  const std::string pooling =
-      invalidArgumentMessage([&] { odd_pooling.match(route.reference.view(), route.query.view(0, 100)); });
-  EXPECT_NE(pooling.find("mrs/pixel_pooling"), std::string::npos) << pooling;
+  // Descriptors of another geometry than the matcher's: its coarse cells cannot be computed, and
+  // the message names both sizes. Without a coarser level (short sequences) the geometry is unused.
+  DescriptorParams other;
+  other.image_width = 32;
+  const MrsMatcher other_geometry(SequenceParams{}, MrsParams{}, other);
+  const std::string geometry =
+      invalidArgumentMessage([&] { other_geometry.match(route.reference.view(), route.query.view(0, 200)); });
+  EXPECT_NE(geometry.find("32 x 32 = 1024 bytes, got 2048"), std::string::npos) << geometry;
+  EXPECT_NO_THROW(other_geometry.match(route.reference.view(), route.query.view(0, 20)));
 
   Parameters bad;
   bad.mrs.tau = 0.0;

@@ -8,6 +8,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "mrs_vpr/mrs/particle_evaluation.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
@@ -55,7 +56,8 @@ TEST(EndCostTable, LazyCostsEqualTheDenseSearchOnTheEndsAsked) {
   const AnchorCosts dense =
       costsByAnchor(computeDifferenceMatrix(query.view(), reference.view()), level.sequenceRows(), fan);
 
-  LazyDifferenceMatrix matrix(query.view(), reference.view(), 1, 1, 0);
+  const PatchFrequencies unused{DescriptorParams{}};  // Full resolution compares the frames themselves.
+  LazyDifferenceMatrix matrix(query.view(), reference.view(), 1, unused, 0);
   EndCostTable lazy(matrix, level, fan);
   const Evaluation best = lazy.bestInWindow(40, 3);
   EXPECT_EQ(best.index, 41);

@@ -11,18 +11,11 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
 
 namespace mrs_vpr {
 namespace {
-
-DescriptorSequence sequenceFrom(const std::vector<std::vector<std::uint8_t>>& frames) {
-  DescriptorSequence sequence(static_cast<int>(frames.front().size()));
-  for (const auto& bytes : frames) {
-    sequence.append(cv::Mat(1, static_cast<int>(bytes.size()), CV_8U, const_cast<std::uint8_t*>(bytes.data())));
-  }
-  return sequence;
-}
 
 /// `frames` pseudo-random descriptors of `size` bytes, seeded.
 DescriptorSequence randomSequence(int frames, int size, int seed) {
@@ -36,87 +29,35 @@ DescriptorSequence randomSequence(int frames, int size, int seed) {
   return sequence;
 }
 
-TEST(PoolCell, AveragesTheFramesEndingAtTheEndAndRunsOfPixels) {
-  const DescriptorSequence sequence = sequenceFrom({{0, 0, 0, 0}, {10, 20, 30, 40}, {30, 40, 50, 61}});
-  std::vector<std::uint8_t> out(4);
-  // Stride 2 ending at frame 2: frames 1 and 2.
-  poolCell(sequence.view(), 2, 2, 1, out.data());
-  EXPECT_EQ(out, (std::vector<std::uint8_t>{20, 30, 40, 51}));  // 50.5 rounds up.
-  // Clipped at the start: stride 4 ending at frame 1 averages frames 0 and 1.
-  poolCell(sequence.view(), 1, 4, 1, out.data());
-  EXPECT_EQ(out, (std::vector<std::uint8_t>{5, 10, 15, 20}));
-  // Pixel pooling 2 on frames 1 and 2: (10 + 20 + 30 + 40) / 4, (30 + 40 + 50 + 61) / 4.
-  std::vector<std::uint8_t> pooled(2);
-  poolCell(sequence.view(), 2, 2, 2, pooled.data());
-  EXPECT_EQ(pooled, (std::vector<std::uint8_t>{25, 45}));
-  // Stride 1 without pixel pooling is the frame itself.
-  poolCell(sequence.view(), 2, 1, 1, out.data());
-  EXPECT_EQ(out, (std::vector<std::uint8_t>{30, 40, 50, 61}));
+/// 32-byte descriptors as 8 x 4 images of 2 x 2 patches: 8 patches, 24-byte cells.
+DescriptorParams smallGeometry() {
+  DescriptorParams geometry;
+  geometry.image_width = 8;
+  geometry.image_height = 4;
+  geometry.patch_size = 2;
+  return geometry;
 }
 
-TEST(PoolCell, RejectsPixelPoolingThatDoesNotDivideTheSize) {
-  const DescriptorSequence sequence = sequenceFrom({{1, 2, 3, 4}});
-  std::vector<std::uint8_t> out(4);
-  EXPECT_THROW(poolCell(sequence.view(), 0, 1, 3, out.data()), std::invalid_argument);
-}
-
-TEST(PoolSequence, CellsEndAtFirstEndPlusMultiplesOfTheStride) {
-  const DescriptorSequence sequence = randomSequence(20, 8, 1);
-  const DescriptorSequence pooled = poolSequence(sequence.view(), 3, 4, 4, 2);  // Ends 3, 7, 11, 15.
-  ASSERT_EQ(pooled.size(), 4);
-  ASSERT_EQ(pooled.descriptorSize(), 4);
-  std::vector<std::uint8_t> expected(4);
-  for (int i = 0; i < 4; ++i) {
-    poolCell(sequence.view(), 3 + 4 * i, 4, 2, expected.data());
-    EXPECT_TRUE(std::equal(expected.begin(), expected.end(), pooled.descriptor(i))) << "cell " << i;
-  }
-}
-
-TEST(PixelRunSums, PoolsTheSameCellsAsPoolSequence) {
-  // Uneven uint8 values make rounding matter; strides and ends reach past both ends of the sequence.
-  const DescriptorSequence sequence = randomSequence(37, 24, 7);
-  for (const int pixel_pooling : {1, 2, 3, 4, 8}) {
-    const PixelRunSums sums(sequence.view(), pixel_pooling);
-    for (const int stride : {1, 2, 4, 8, 16}) {
-      for (const int first_end : {0, 3, 5}) {
-        // As many cells as hold a frame: with most strides the last one ends past the sequence.
-        const int count = (36 + stride - 1 - first_end) / stride + 1;
-        const DescriptorSequence expected = poolSequence(sequence.view(), first_end, stride, count, pixel_pooling);
-        const DescriptorSequence pooled = sums.pool(first_end, stride, count);
-        ASSERT_EQ(pooled.size(), count);
-        ASSERT_EQ(pooled.descriptorSize(), 24 / pixel_pooling);
-        for (int i = 0; i < count; ++i) {
-          EXPECT_TRUE(
-              std::equal(pooled.descriptor(i), pooled.descriptor(i) + 24 / pixel_pooling, expected.descriptor(i)))
-              << "pixel pooling " << pixel_pooling << ", stride " << stride << ", first end " << first_end
-              << ", cell " << i;
-        }
-      }
-    }
-  }
-}
-
-TEST(PixelRunSums, RejectsAPoolingThatDoesNotDivideTheDescriptor) {
-  const DescriptorSequence sequence = randomSequence(3, 24, 8);
-  EXPECT_THROW(PixelRunSums(sequence.view(), 5), std::invalid_argument);
-}
-
-TEST(PooledReference, CellsMatchPoolCellWithOrWithoutKeptCells) {
-  DescriptorSequence plain = randomSequence(41, 16, 2);
-  DescriptorSequence kept = randomSequence(41, 16, 2);
-  kept.keepPooledCells(3, 4);
-  PooledReference from_plain(plain.view(), 4, 4);
-  PooledReference from_kept(kept.view(), 4, 4);
+TEST(PooledReference, CellsMatchPatchFrequenciesWithOrWithoutKeptCells) {
+  const PatchFrequencies frequencies(smallGeometry());
+  DescriptorSequence plain = randomSequence(41, 32, 2);
+  DescriptorSequence kept = randomSequence(41, 32, 2);
+  kept.keepCoarseCells(3, smallGeometry());
+  PooledReference from_plain(plain.view(), 4, frequencies);
+  PooledReference from_kept(kept.view(), 4, frequencies);
   EXPECT_EQ(from_plain.size(), 11);
-  EXPECT_EQ(from_plain.cellSize(), 4);
-  std::vector<std::uint8_t> expected(4);
+  EXPECT_EQ(from_plain.cellSize(), 24);
+  std::vector<std::uint8_t> expected(24);
   for (int j = 0; j < from_plain.size(); ++j) {
-    poolCell(plain.view(), 4 * j, 4, 4, expected.data());
+    frequencies.cell(plain.view(), 4 * j, 4, expected.data());
     EXPECT_TRUE(std::equal(expected.begin(), expected.end(), from_plain.cell(j))) << "cell " << j;
     EXPECT_TRUE(std::equal(expected.begin(), expected.end(), from_kept.cell(j))) << "cell " << j;
   }
-  // The kept store is read in place.
-  EXPECT_EQ(from_kept.cell(3), kept.view().pooledCells(4, 4).frame(3));
+  // The kept store is read in place; at stride 1 the cells are the frames.
+  EXPECT_EQ(from_kept.cell(3), kept.view().coarseCells(4, smallGeometry()).frame(3));
+  PooledReference frames(plain.view(), 1, frequencies);
+  EXPECT_EQ(frames.cellSize(), 32);
+  EXPECT_EQ(frames.cell(5), plain.view().frame(5));
 }
 
 TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
@@ -124,7 +65,8 @@ TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
   const DescriptorSequence query = randomSequence(6, 32, 4);
   const int window = 10;
   const cv::Mat dense = enhanceContrast(computeDifferenceMatrix(query.view(), reference.view()), window);
-  LazyDifferenceMatrix lazy(query.view(), reference.view(), 1, 1, window);
+  const PatchFrequencies frequencies(smallGeometry());
+  LazyDifferenceMatrix lazy(query.view(), reference.view(), 1, frequencies, window);
   EXPECT_EQ(lazy.rows(), 6);
   EXPECT_EQ(lazy.columns(), 90);
   // Ranges at the edges (clipped windows), in the middle, and overlapping earlier requests.
@@ -144,11 +86,12 @@ TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
 }
 
 TEST(LazyDifferenceMatrix, PooledColumnsAndRawRowsWithoutEnhancement) {
+  const PatchFrequencies frequencies(smallGeometry());
   const DescriptorSequence reference = randomSequence(64, 32, 5);
-  const DescriptorSequence query = randomSequence(4, 8, 6);  // Already pooled: 32 / 4 bytes.
-  const DescriptorSequence cells = poolSequence(reference.view(), 0, 2, 32, 4);
+  const DescriptorSequence query = frequencies.cells(randomSequence(8, 32, 6).view(), 1, 2, 4);  // Test cells.
+  const DescriptorSequence cells = frequencies.cells(reference.view(), 0, 2, 32);
   const cv::Mat dense = computeDifferenceMatrix(query.view(), cells.view());
-  LazyDifferenceMatrix lazy(query.view(), reference.view(), 2, 4, 0);
+  LazyDifferenceMatrix lazy(query.view(), reference.view(), 2, frequencies, 0);
   EXPECT_EQ(lazy.columns(), 32);
   std::vector<float> out(5);
   lazy.enhancedRow(2, 10, 15, out.data());

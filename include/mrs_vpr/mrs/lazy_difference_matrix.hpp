@@ -15,9 +15,11 @@ namespace mrs_vpr {
  */
 class LazyDifferenceMatrix {
  public:
-  /// Rows are the `query` descriptors; column J is the reference cell pooled over `stride` frames
-  /// ending at frame J * stride. contrast_window as SequenceParams::contrast_window.
-  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, int pixel_pooling, int contrast_window);
+  /// Rows are the `query` cells; column J is the reference cell of `stride` frames ending at frame
+  /// J * stride (temporal_pooling.hpp). contrast_window as SequenceParams::contrast_window.
+  /// `frequencies` must outlive the matrix.
+  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, const PatchFrequencies& frequencies,
+                       int contrast_window);
 
   int rows() const { return query_.count; }
   int columns() const { return reference_.size(); }

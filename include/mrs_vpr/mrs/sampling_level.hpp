@@ -25,8 +25,6 @@ struct SamplingLevel {
   /// The level's rows as a sequence: anchored at k = 0.
   SequenceRows sequenceRows() const { return {0, rows() - 1, -k_min}; }
   bool empty() const { return lowest_end > highest_end; }
-  /// Pixel pooling at this level: `configured` below full resolution, none at it.
-  int pixelPooling(int configured) const { return stride > 1 ? configured : 1; }
 };
 
 }  // namespace mrs_vpr

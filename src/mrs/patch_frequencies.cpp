@@ -1,0 +1,109 @@
+#include "mrs_vpr/mrs/patch_frequencies.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mrs_vpr/descriptor.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+/// The three frequencies of every patch of one descriptor's pixel sums; P > 0 is the patch side
+/// known at compile time (so that the row loops unroll), 0 reads it from `patch`.
+template <int P>
+void transformPatches(const std::uint16_t* sums, int width, int height, int patch, const float* wave, float scale,
+                      std::uint8_t* cell) {
+  const int side = P > 0 ? P : patch;
+  const float mean_weight = 1.0F / std::sqrt(static_cast<float>(side));  // The DCT's constant basis.
+  for (int top = 0; top < height; top += side) {
+    for (int left = 0; left < width; left += side) {
+      float horizontal = 0.0F;
+      float vertical = 0.0F;
+      float both = 0.0F;
+      for (int y = 0; y < side; ++y) {
+        const std::uint16_t* row = sums + static_cast<std::ptrdiff_t>(top + y) * width + left;
+        float total = 0.0F;
+        float waved = 0.0F;
+        for (int x = 0; x < side; ++x) {
+          total += static_cast<float>(row[x]);
+          waved += wave[x] * static_cast<float>(row[x]);
+        }
+        horizontal += waved;
+        vertical += wave[y] * total;
+        both += wave[y] * waved;
+      }
+      // The constant offset of the uint8 descriptor (128) falls out: every basis used sums to 0.
+      const float coefficients[PatchFrequencies::kPerPatch] = {horizontal * mean_weight, vertical * mean_weight, both};
+      for (float coefficient : coefficients) {
+        *cell++ = static_cast<std::uint8_t>(std::clamp(std::lround(128.0F + coefficient * scale), 0L, 255L));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+PatchFrequencies::PatchFrequencies(const DescriptorParams& geometry) : geometry_(geometry) {
+  geometry_.validate();
+  const int side = geometry_.patch_size;
+  for (int x = 0; x < side; ++x) {
+    wave_.push_back(static_cast<float>(std::sqrt(2.0 / side) * std::cos(M_PI * (2 * x + 1) / (2.0 * side))));
+  }
+}
+
+int PatchFrequencies::cellSize() const {
+  const int side = geometry_.patch_size;
+  return (geometry_.image_width / side) * (geometry_.image_height / side) * kPerPatch;
+}
+
+void PatchFrequencies::project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const {
+  // A normalised patch of side P has a norm of kLevelsPerStd * P levels, which bounds each of its
+  // orthonormal coefficients: +-that bound maps to +-128, so a byte saturates only at the extreme.
+  const int side = geometry_.patch_size;
+  const float scale = 128.0F / (DescriptorExtractor::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
+  if (side == 8) {
+    transformPatches<8>(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
+  } else {
+    transformPatches<0>(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
+  }
+}
+
+void PatchFrequencies::cell(SequenceView view, int end, int stride, std::uint8_t* out) const {
+  const int size = descriptorSize();
+  const int first = std::max(0, end - stride + 1);
+  const int last = std::min(end, view.count - 1);
+  // uint16 sums hold up to 257 frames of uint8; plain loops over restrict pointers vectorise.
+  thread_local std::vector<std::uint16_t> sums;
+  sums.assign(static_cast<std::size_t>(size), 0);
+  std::uint16_t* __restrict sum = sums.data();
+  for (int f = first; f <= last; ++f) {
+    const std::uint8_t* __restrict frame = view.frame(f);
+    for (int i = 0; i < size; ++i) sum[i] = static_cast<std::uint16_t>(sum[i] + frame[i]);
+  }
+  project(sum, last - first + 1, out);
+}
+
+DescriptorSequence PatchFrequencies::cells(SequenceView view, int first_end, int stride, int count) const {
+  requireDescriptorsOf(view);
+  DescriptorSequence result(cellSize());
+  result.reserve(count);
+  cv::Mat row(1, cellSize(), CV_8U);
+  for (int i = 0; i < count; ++i) {
+    cell(view, first_end + i * stride, stride, row.data);
+    result.append(row);
+  }
+  return result;
+}
+
+void PatchFrequencies::requireDescriptorsOf(SequenceView view) const {
+  if (view.descriptor_size != descriptorSize()) {
+    throw std::invalid_argument("MRS's coarse levels need descriptors of image_width x image_height = " +
+                                std::to_string(geometry_.image_width) + " x " + std::to_string(geometry_.image_height) +
+                                " = " + std::to_string(descriptorSize()) + " bytes, got " +
+                                std::to_string(view.descriptor_size));
+  }
+}
+
+}  // namespace mrs_vpr
