@@ -1,0 +1,343 @@
+// Map-scale benchmark: load time, resident memory and query time of maps of 10k to 1M real frames.
+//
+// Prints figures; it is not a test. For each size it writes a map database (once; reused on later
+// runs) of real frames: the Nordland summer half, as the true places, at a seeded position among
+// distractors made of the shared real frames (both Nordland seasons mirrored, and the corridor), in
+// segments of a few hundred frames, each played forwards or backwards with its own shift, gain,
+// offset and noise, so that the map is never a repetition of itself. Then a fresh process (so that
+// nothing of the writing is resident) loads the map into a PlaceRecognizer and answers winter
+// queries of N frames with both methods, side by side.
+//
+//   mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]
+//                               [--length 300] [--queries 5] [--brute-queries 2] [--threads 1]
+//                               [--seed 42]
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct Options {
+  std::string data;
+  std::vector<long long> sizes = {10000, 100000, 1000000};
+  std::string dir = "/tmp/mrs_vpr_map_scale";
+  int length = 300;
+  int queries = 5;
+  int brute_queries = 2;
+  int threads = 1;
+  std::uint64_t seed = 42;
+  // Internal: measure one map in this process (the parent runs one child per size).
+  std::string measure;
+  long long truth_offset = -1;
+};
+
+long long parseSize(const std::string& text) {
+  std::size_t used = 0;
+  const double value = std::stod(text, &used);
+  const std::string unit = text.substr(used);
+  const double scale = unit.empty() ? 1 : unit == "k" ? 1e3 : unit == "M" ? 1e6 : -1;
+  if (scale < 0 || value * scale < 2000) throw std::invalid_argument("bad size '" + text + "' (e.g. 10k, 1M; >= 2k)");
+  return static_cast<long long>(value * scale);
+}
+
+std::string sizeName(long long frames) {
+  if (frames % 1000000 == 0) return std::to_string(frames / 1000000) + "M";
+  if (frames % 1000 == 0) return std::to_string(frames / 1000) + "k";
+  return std::to_string(frames);
+}
+
+Options parse(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
+      return argv[++i];
+    };
+    if (flag == "--data") {
+      options.data = value();
+    } else if (flag == "--sizes") {
+      options.sizes.clear();
+      std::stringstream list(value());
+      for (std::string item; std::getline(list, item, ',');) options.sizes.push_back(parseSize(item));
+    } else if (flag == "--dir") {
+      options.dir = value();
+    } else if (flag == "--length") {
+      options.length = std::stoi(value());
+    } else if (flag == "--queries") {
+      options.queries = std::stoi(value());
+    } else if (flag == "--brute-queries") {
+      options.brute_queries = std::stoi(value());
+    } else if (flag == "--threads") {
+      options.threads = std::stoi(value());
+    } else if (flag == "--seed") {
+      options.seed = std::stoull(value());
+    } else if (flag == "--measure") {
+      options.measure = value();
+    } else if (flag == "--truth-offset") {
+      options.truth_offset = std::stoll(value());
+    } else {
+      throw std::invalid_argument("unknown option " + flag + " (see the comment at the top of map_scale_benchmark.cpp)");
+    }
+  }
+  if (options.data.empty()) throw std::invalid_argument("--data DIR is required (the shared data folder)");
+  if (options.length < 10 || options.queries < 1 || options.brute_queries < 0 || options.threads < 1) {
+    throw std::invalid_argument("--length >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1");
+  }
+  return options;
+}
+
+/// Resident and peak resident memory of this process [bytes], from /proc/self/status.
+std::pair<long long, long long> residentBytes() {
+  std::ifstream status("/proc/self/status");
+  long long rss = 0;
+  long long hwm = 0;
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmRSS:", 0) == 0) rss = std::stoll(line.substr(6)) * 1024;
+    if (line.rfind("VmHWM:", 0) == 0) hwm = std::stoll(line.substr(6)) * 1024;
+  }
+  return {rss, hwm};
+}
+
+/// A distractor frame: the image mirrored (Nordland) and changed by a shift, gain, offset and noise.
+class Augmenter {
+ public:
+  explicit Augmenter(std::uint64_t seed) : rng_(seed) {}
+
+  struct Look {
+    bool mirror = true;
+    double dx = 0, dy = 0, gain = 1, offset = 0;
+  };
+
+  Look nextLook(bool mirror) {
+    std::uniform_real_distribution<double> shift_x(-6.0, 6.0);
+    std::uniform_real_distribution<double> shift_y(-3.0, 3.0);
+    std::uniform_real_distribution<double> gain(0.7, 1.3);
+    std::uniform_real_distribution<double> offset(-30.0, 30.0);
+    return {mirror, shift_x(rng_), shift_y(rng_), gain(rng_), offset(rng_)};
+  }
+
+  cv::Mat apply(const cv::Mat& image, const Look& look) {
+    cv::Mat source = image;
+    if (look.mirror) cv::flip(image, source, 1);
+    const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, look.dx, 0, 1, look.dy);
+    cv::Mat moved;
+    cv::warpAffine(source, moved, shift, source.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    cv::Mat noise(moved.size(), CV_MAKETYPE(CV_16S, moved.channels()));
+    cv::theRNG().state = rng_();
+    cv::randn(noise, 0, 3);
+    cv::Mat changed;
+    moved.convertTo(changed, CV_16S, look.gain, look.offset);
+    changed += noise;
+    changed.convertTo(moved, image.type());
+    return moved;
+  }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+/// Writes the map of `frames` frames to `path`; returns the index of the first true place.
+long long writeMap(const std::string& path, long long frames, const Options& options) {
+  const mrs_vpr::Parameters params;
+  const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
+  const std::vector<cv::Mat> summer = mrs_vpr::loadImageFolder(options.data + "/nordland/summer");
+  std::vector<std::vector<cv::Mat>> sources = {summer, mrs_vpr::loadImageFolder(options.data + "/nordland/winter"),
+                                               mrs_vpr::loadImageFolder(options.data + "/corridor/ref")};
+  for (const cv::Mat& image : mrs_vpr::loadImageFolder(options.data + "/corridor/query")) sources[2].push_back(image);
+  const long long route = static_cast<long long>(summer.size());
+  std::mt19937_64 rng(options.seed + static_cast<std::uint64_t>(frames));
+  const long long truth_offset = std::uniform_int_distribution<long long>(0, frames - route)(rng);
+  Augmenter augmenter(options.seed);
+
+  const std::string aside = path + ".part";
+  std::remove(aside.c_str());
+  mrs_vpr::MapDatabase map(aside, params.descriptor);
+  std::vector<mrs_vpr::StoredFrame> batch;
+  const auto start = Clock::now();
+  long long written = 0;
+  auto add = [&](const cv::Mat& image) {
+    mrs_vpr::StoredFrame frame;
+    frame.descriptor = extractor.compute(image);
+    frame.stamp = static_cast<double>(written) / 10.0;
+    frame.sequence = written++;
+    batch.push_back(std::move(frame));
+    if (batch.size() == 10000) {
+      map.append(batch);
+      batch.clear();
+      std::fprintf(stderr, "\rwriting %s: %lld / %lld frames, %.0f frames/s ", path.c_str(), written, frames,
+                   written / secondsSince(start));
+    }
+  };
+  while (written < frames) {
+    if (written == truth_offset) {
+      for (const cv::Mat& image : summer) add(image);
+      continue;
+    }
+    // A distractor segment that stops at the true places or the end of the map.
+    const long long room = (written < truth_offset ? truth_offset : frames) - written;
+    const int source_index = std::uniform_int_distribution<int>(0, 2)(rng);
+    const auto& source = sources[static_cast<std::size_t>(source_index)];
+    const long long length = std::min<long long>(room, std::uniform_int_distribution<long long>(200, 800)(rng));
+    const long long begin = std::uniform_int_distribution<long long>(0, static_cast<long long>(source.size()) - 1)(rng);
+    const bool backwards = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
+    // Nordland is always mirrored (never the query's places); the corridor, another world, need not be.
+    const Augmenter::Look look = augmenter.nextLook(source_index < 2 || !backwards);
+    for (long long i = 0; i < length; ++i) {
+      const long long step = backwards ? -i : i;
+      const long long n = static_cast<long long>(source.size());
+      add(augmenter.apply(source[static_cast<std::size_t>(((begin + step) % n + n) % n)], look));
+    }
+  }
+  if (!batch.empty()) map.append(batch);
+  std::fprintf(stderr, "\rwrote %s: %lld frames in %.1f s%20s\n", path.c_str(), written, secondsSince(start), "");
+  return truth_offset;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// The child: loads one map and answers the queries; prints one row.
+int measure(const Options& options) {
+  cv::setNumThreads(options.threads);
+  mrs_vpr::Parameters params;
+  // As in mrs_vpr_real_benchmark: 0.1 leaves up to 15 frames of drift at N = 300.
+  params.sequence.velocity_step = 0.02;
+  params.validate();
+  const auto before = residentBytes();
+  const auto load_start = Clock::now();
+  mrs_vpr::PlaceRecognizer recognizer(params);
+  {
+    const mrs_vpr::MapDatabase map(options.measure, params.descriptor);
+    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
+    recognizer.flush();
+  }
+  const double load_s = secondsSince(load_start);
+  const auto after = residentBytes();
+  const int frames = recognizer.size();
+
+  const std::vector<cv::Mat> winter = mrs_vpr::loadImageFolder(options.data + "/nordland/winter");
+  std::mt19937_64 rng(options.seed);
+  std::uniform_int_distribution<int> end_of(options.length - 1, static_cast<int>(winter.size()) - 1);
+  std::vector<double> mrs_ms;
+  std::vector<double> brute_ms;
+  int mrs_right = 0;
+  int mrs_accepted_wrong = 0;
+  int brute_right = 0;
+  for (int q = 0; q < options.queries; ++q) {
+    const int end = end_of(rng);
+    mrs_vpr::DescriptorSequence query(recognizer.extractor().size());
+    for (int i = end - options.length + 1; i <= end; ++i) {
+      query.append(recognizer.describe(winter[static_cast<std::size_t>(i)]));
+    }
+    const long long truth = options.truth_offset + end;
+    auto right = [&](const mrs_vpr::Match& match) { return std::llabs(match.reference_index - truth) <= 5; };
+    auto start = Clock::now();
+    const mrs_vpr::PlaceAnswer mrs = recognizer.match(query, "mrs");
+    mrs_ms.push_back(secondsSince(start) * 1e3);
+    mrs_right += right(mrs.match) ? 1 : 0;
+    mrs_accepted_wrong += mrs.match.accepted && !right(mrs.match) ? 1 : 0;
+    if (q < options.brute_queries) {
+      start = Clock::now();
+      const mrs_vpr::PlaceAnswer brute = recognizer.match(query, "seqslam");
+      brute_ms.push_back(secondsSince(start) * 1e3);
+      brute_right += right(brute.match) ? 1 : 0;
+    }
+  }
+  const double brute = median(brute_ms);
+  const double fast = median(mrs_ms);
+  std::printf("%9s %8d %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %10d\n", sizeName(frames).c_str(), frames,
+              load_s, static_cast<double>(after.first - before.first) / frames,
+              static_cast<double>(after.second) / frames, fast,
+              brute_ms.empty() ? 0.0 : brute, mrs_right, options.queries,
+              brute_ms.empty() ? "-" : (std::to_string(static_cast<int>(brute / fast)) + "x").c_str(), brute_right,
+              static_cast<int>(brute_ms.size()), mrs_accepted_wrong);
+  return 0;
+}
+
+int run(int argc, char** argv) {
+  const Options options = parse(argc, argv);
+  if (!options.measure.empty()) return measure(options);
+
+  ::mkdir(options.dir.c_str(), 0755);
+  std::printf("Map-scale benchmark: real frames (Nordland summer as the true places among augmented real "
+              "distractors), winter queries of N = %d, %d per map (%d for brute force), threads %d, seed %llu\n",
+              options.length, options.queries, options.brute_queries, options.threads,
+              static_cast<unsigned long long>(options.seed));
+  std::printf("load = database to a queryable map; RSS/frame = resident growth of the load; peak = the process's "
+              "peak RSS over frames; right = within 5 frames\n\n");
+  std::printf("%9s %8s %8s %9s %9s %8s %10s %10s %8s %10s %10s\n", "map", "frames", "load[s]", "RSS/frame",
+              "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "acc.wrong");
+  std::fflush(stdout);
+  for (const long long frames : options.sizes) {
+    const std::string path = options.dir + "/map-" + sizeName(frames) + "-seed" + std::to_string(options.seed) + ".db";
+    const std::string offset_path = path + ".truth";
+    long long truth_offset = -1;
+    std::ifstream known(offset_path);
+    struct stat info {};
+    if (!(known >> truth_offset) || ::stat(path.c_str(), &info) != 0) {
+      truth_offset = writeMap(path, frames, options);
+      if (std::rename((path + ".part").c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + path);
+      std::ofstream(offset_path) << truth_offset << "\n";
+    }
+    // A fresh process, so that the figures hold only what loading and querying cost.
+    const pid_t child = fork();
+    if (child == 0) {
+      const std::string exe = "/proc/self/exe";
+      const std::vector<std::string> args = {
+          "mrs_vpr_map_scale_benchmark", "--data", options.data, "--measure", path, "--truth-offset",
+          std::to_string(truth_offset), "--length", std::to_string(options.length), "--queries",
+          std::to_string(options.queries), "--brute-queries", std::to_string(options.brute_queries), "--threads",
+          std::to_string(options.threads), "--seed", std::to_string(options.seed)};
+      std::vector<char*> argv_child;
+      for (const std::string& arg : args) argv_child.push_back(const_cast<char*>(arg.c_str()));
+      argv_child.push_back(nullptr);
+      ::execv(exe.c_str(), argv_child.data());
+      std::_Exit(127);
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("measuring " + path + " failed");
+    std::fflush(stdout);
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "mrs_vpr_map_scale_benchmark: error: %s\n", error.what());
+    return 1;
+  }
+}
