@@ -13,12 +13,14 @@
 //
 //   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
 //                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
-//                          [--skip-per-frame] [--skip-global] [--diagnose]
+//                          [--skip-per-frame] [--skip-global] [--diagnose] [--json FILE]
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -26,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
@@ -52,6 +55,7 @@ struct Options {
   bool per_frame = true;
   bool global = true;
   bool diagnose = false;
+  std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
   int min_coarse_frames = mrs_vpr::MrsParams{}.min_coarse_frames;
   std::vector<std::string> methods = {"seqslam", "mrs"};
@@ -73,7 +77,7 @@ Options parse(int argc, char** argv) {
                 "                       [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
                 "                       [--skip-per-frame] [--skip-global] [--diagnose]\n"
                 "                       [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
-                "                       [--methods seqslam,mrs]\n"
+                "                       [--methods seqslam,mrs] [--json FILE]\n"
                 "DIR holds nordland/{summer,winter} and corridor/{ref,query}.");
       std::exit(0);
     }
@@ -84,6 +88,7 @@ Options parse(int argc, char** argv) {
     const std::string value = argv[++i];
     if (flag == "--data") options.data = value;
     else if (flag == "--part") options.part = value;
+    else if (flag == "--json") options.json = value;
     else if (flag == "--queries") options.queries = std::stoi(value);
     else if (flag == "--threads") options.threads = std::stoi(value);
     else if (flag == "--tolerance") options.tolerance = std::stoi(value);
@@ -180,11 +185,57 @@ void printHeader() {
               "PR-AUC", "accepted", "acc.P", "acc.R", "median ms");
 }
 
-void printRow(const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& s) {
-  std::printf("%-34s %-8s %7d %7.3f %7.3f %7.3f %9d %8.3f %8.3f %10.3f\n", setting.c_str(), method.c_str(), s.queries,
-              s.top1, s.recall_at_100_precision, s.pr_auc, s.accepted, s.accepted_precision, s.accepted_recall,
-              s.median_time_ms);
-}
+/// What a row of the tables measured, for the JSON output.
+struct RowFacts {
+  std::string protocol;  ///< "global" or "per-frame".
+  bool out_of_map = false;
+  int reference_frames = 0;
+  int sequence_length = 0;
+};
+
+/// The tables: printed as they are measured, and kept for --json.
+class Report {
+ public:
+  void row(const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& s,
+           const RowFacts& facts) {
+    std::printf("%-34s %-8s %7d %7.3f %7.3f %7.3f %9d %8.3f %8.3f %10.3f\n", setting.c_str(), method.c_str(), s.queries,
+                s.top1, s.recall_at_100_precision, s.pr_auc, s.accepted, s.accepted_precision, s.accepted_recall,
+                s.median_time_ms);
+    std::fflush(stdout);
+    // NaN (nothing accepted, nothing predicted) has no JSON spelling: null.
+    const auto number = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
+    rows_.push_back({{"setting", setting},
+                     {"method", method},
+                     {"protocol", facts.protocol},
+                     {"out_of_map", facts.out_of_map},
+                     {"reference_frames", facts.reference_frames},
+                     {"sequence_length", facts.sequence_length},
+                     {"summary",
+                      {{"queries", s.queries},
+                       {"top1", s.top1},
+                       {"recall_at_100_precision", s.recall_at_100_precision},
+                       {"pr_auc", s.pr_auc},
+                       {"accepted", s.accepted},
+                       {"accepted_precision", number(s.accepted_precision)},
+                       {"accepted_recall", s.accepted_recall},
+                       {"median_time_ms", number(s.median_time_ms)}}}});
+  }
+
+  void write(const Options& options) const {
+    if (options.json.empty()) return;
+    const nlohmann::json document = {{"part", options.part}, {"threads", options.threads},
+                                     {"tolerance", options.tolerance}, {"queries", options.queries},
+                                     {"seed", options.seed}, {"rows", rows_}};
+    std::ofstream file(options.json);
+    file << document.dump(2) << "\n";
+    if (!file) throw std::runtime_error("cannot write '" + options.json + "'");
+    std::fprintf(stderr, "wrote %s\n", options.json.c_str());
+  }
+
+ private:
+  std::vector<nlohmann::json> rows_;
+};
+
 
 /// Where MRS kept the truth: per level, how often a hypothesis lay within tolerance of it and at
 /// which rank; for the coarsest level also the rank among the distinct minima of its table.
@@ -313,7 +364,8 @@ std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, co
 /// Out-of-map queries from another world: the corridor's frames against a map of the Nordland summer
 /// frames, and Nordland winter frames of the reported part against a map of the corridor.
 void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, const mrs_vpr::DescriptorExtractor& extractor,
-                   const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end) {
+                   const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end,
+                   Report& report) {
   const int route = static_cast<int>(frames.summer.size());
   const Reference nordland = buildReference(frames, extractor, 0, route, false, "nordland");
   Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
@@ -324,11 +376,13 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, c
     per_frame.sequence.velocity_step = 0.1;
     for (const std::string& method : options.methods) {
       const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
-      printRow("corridor in Nordland map ds=" + std::to_string(length), method,
-               mrs_vpr::summarise(runPerFrame(*matcher, nordland, corridor.descriptors, 0, corridor.descriptors.size(), true), 2));
-      printRow("Nordland in corridor map ds=" + std::to_string(length), method,
-               mrs_vpr::summarise(runPerFrame(*matcher, corridor, winter, part_begin, part_end, true), 2));
-      std::fflush(stdout);
+      const int corridor_frames = corridor.descriptors.size();
+      report.row("corridor in Nordland map ds=" + std::to_string(length), method,
+                 mrs_vpr::summarise(runPerFrame(*matcher, nordland, corridor.descriptors, 0, corridor_frames, true), 2),
+                 {"per-frame", true, nordland.descriptors.size(), length});
+      report.row("Nordland in corridor map ds=" + std::to_string(length), method,
+                 mrs_vpr::summarise(runPerFrame(*matcher, corridor, winter, part_begin, part_end, true), 2),
+                 {"per-frame", true, corridor_frames, length});
     }
   }
 }
@@ -379,6 +433,7 @@ int run(int argc, char** argv) {
   std::printf("success = top-1 within tolerance; accepted = the core's acceptance rule at its default (%.1f)\n\n",
               params.sequence.accept_threshold);
   printHeader();
+  Report report;
 
   std::vector<std::unique_ptr<mrs_vpr::SequenceMatcher>> matchers;
   for (const std::string& method : options.methods) matchers.push_back(mrs_vpr::makeMatcher(method, params));
@@ -403,17 +458,17 @@ int run(int argc, char** argv) {
           const auto records = runGlobal(*matcher, known, winter, ends, length, false,
                                          diagnose ? &diagnosis : nullptr, options.tolerance,
                                          params.sequence.accept_threshold);
-          printRow("global N=" + std::to_string(length) + m, matcher->name(),
-                   mrs_vpr::summarise(records, options.tolerance));
-          std::fflush(stdout);
+          report.row("global N=" + std::to_string(length) + m, matcher->name(),
+                     mrs_vpr::summarise(records, options.tolerance),
+                     {"global", false, known.descriptors.size(), length});
         }
         if (options.diagnose) diagnosis.print("N=" + std::to_string(length) + m);
         for (const auto& matcher : matchers) {
           const auto records = runGlobal(*matcher, unknown, winter, ends, length, true, nullptr, options.tolerance,
                                          params.sequence.accept_threshold);
-          printRow("out-of-map global N=" + std::to_string(length) + m_other, matcher->name(),
-                   mrs_vpr::summarise(records, options.tolerance));
-          std::fflush(stdout);
+          report.row("out-of-map global N=" + std::to_string(length) + m_other, matcher->name(),
+                     mrs_vpr::summarise(records, options.tolerance),
+                     {"global", true, unknown.descriptors.size(), length});
         }
       }
     }
@@ -425,17 +480,17 @@ int run(int argc, char** argv) {
         for (const std::string& method : options.methods) {
           const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
           const auto known_records = runPerFrame(*matcher, known, winter, part_begin, part_end, false);
-          printRow("per-frame ds=" + std::to_string(length) + m + " tol 2", method,
-                   mrs_vpr::summarise(known_records, 2));
+          report.row("per-frame ds=" + std::to_string(length) + m + " tol 2", method,
+                     mrs_vpr::summarise(known_records, 2), {"per-frame", false, known.descriptors.size(), length});
           const auto unknown_records = runPerFrame(*matcher, unknown, winter, part_begin, part_end, true);
-          printRow("out-of-map per-frame ds=" + std::to_string(length) + m_other, method,
-                   mrs_vpr::summarise(unknown_records, 2));
-          std::fflush(stdout);
+          report.row("out-of-map per-frame ds=" + std::to_string(length) + m_other, method,
+                     mrs_vpr::summarise(unknown_records, 2), {"per-frame", true, unknown.descriptors.size(), length});
         }
       }
     }
   }
-  if (options.per_frame) runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end);
+  if (options.per_frame) runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end, report);
+  report.write(options);
   return 0;
 }
 
