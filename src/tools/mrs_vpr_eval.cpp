@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -27,6 +28,7 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "evaluation_plots.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -40,7 +42,7 @@ constexpr const char* kUsage =
     "Usage: mrs_vpr_eval --reference DIR|BAG|MAP.db --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
     "                    --method mrs|seqslam --protocol per-frame|global --sequence-length N\n"
     "                    [--queries K] [--tolerance T] [--seed S] [--output FILE.json]\n"
-    "                    [--accept-threshold C] [--threads T] [--out-of-map]\n"
+    "                    [--accept-threshold C] [--threads T] [--out-of-map] [--plots DIR]\n"
     "\n"
     "Evaluates visual place recognition of a query traversal against a reference traversal.\n"
     "Image folders are read in file-name order; bags (*.bag) give the sensor_msgs/Image or\n"
@@ -54,7 +56,9 @@ constexpr const char* kUsage =
     "A prediction is correct within --tolerance frames of a true index. Every answer is accepted or\n"
     "not by the core's acceptance rule (confidence >= --accept-threshold); with --out-of-map no query\n"
     "frame is in the reference, so every accepted answer is a false loop closure. The summary is\n"
-    "printed on stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n";
+    "printed on stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n"
+    "--plots DIR writes that JSON (DIR/evaluation.json), pictures of the difference matrix, and the\n"
+    "plots of mrs_vpr_plot (PR curve, difference matrix and band, error along the route) into DIR.\n";
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -71,6 +75,7 @@ struct Options {
   std::string method;
   std::string protocol;
   std::string output;
+  std::string plots;
   int queries = 200;
   int tolerance = 2;
   int threads = 0;
@@ -100,6 +105,7 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
       ("seed", po::value(&options.seed)->default_value(options.seed), "seed of the global start positions and of mrs")
       ("output", po::value(&options.output), "JSON file with parameters, records, summary and PR curve")
+      ("plots", po::value(&options.plots), "folder for the JSON, the difference pictures and the PNG plots")
       ("accept-threshold", po::value(&params.sequence.accept_threshold)->default_value(params.sequence.accept_threshold),
        "answers are accepted at this confidence (distinctiveness, in spreads of the query's end costs)")
       ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
@@ -295,6 +301,14 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
   return list;
 }
 
+void writeJson(const json& document, const std::string& path) {
+  std::ofstream file(path);
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  file << document.dump(2) << "\n";
+  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  std::cerr << "  wrote " << path << "\n";
+}
+
 int run(int argc, char** argv) {
   const Clock::time_point start = Clock::now();
   const std::optional<Options> parsed = parseOptions(argc, argv);
@@ -313,7 +327,12 @@ int run(int argc, char** argv) {
   const mrs_vpr::DescriptorExtractor& extractor = recognizer.extractor();
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
             << sequence.sequence_length << "\n";
-  const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) { recognizer.addDescriptor(descriptor, stamp); };
+  // The plots draw the difference matrix, which needs the reference's descriptors beside the map's.
+  mrs_vpr::DescriptorSequence plotted_reference(extractor.size());
+  const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) {
+    if (!options.plots.empty()) plotted_reference.append(descriptor, stamp);
+    recognizer.addDescriptor(descriptor, stamp);
+  };
   mrs_vpr::tools::Traversal reference;
   if (isMapDatabase(options.reference)) {
     // A map built by build_map or the node: descriptors already, of the parameters it names.
@@ -359,12 +378,12 @@ int run(int argc, char** argv) {
   mrs_vpr::EvaluationSummary summary = mrs_vpr::summarise(records, options.tolerance);
   summary.total_time_s = secondsSince(start);  // The whole evaluation: reading, describing, matching.
 
-  if (!options.output.empty()) {
+  if (!options.output.empty() || !options.plots.empty()) {
     json pr_curve = json::array();
     for (const mrs_vpr::PrPoint& point : mrs_vpr::precisionRecallCurve(records, options.tolerance)) {
       pr_curve.push_back({{"threshold", point.threshold}, {"precision", point.precision}, {"recall", point.recall}});
     }
-    const json document = {
+    json document = {
         {"method", options.method},
         {"protocol", options.protocol},
         {"reference_frames", reference.frames},
@@ -380,11 +399,17 @@ int run(int argc, char** argv) {
         {"records", recordsToJson(records, options.tolerance)},
         {"pr_curve", pr_curve},
     };
-    std::ofstream file(options.output);
-    if (!file) throw std::runtime_error("cannot write '" + options.output + "'");
-    file << document.dump(2) << "\n";
-    if (!file) throw std::runtime_error("cannot write '" + options.output + "'");
-    std::cerr << "  wrote " << options.output << "\n";
+    if (!options.plots.empty()) {
+      std::filesystem::create_directories(options.plots);
+      document["difference_pictures"] = mrs_vpr::tools::writeDifferencePictures(
+          options.plots, query_descriptors.view(), plotted_reference.view(), records, sequence.contrast_window);
+    }
+    if (!options.output.empty()) writeJson(document, options.output);
+    if (!options.plots.empty()) {
+      const std::string evaluation = (std::filesystem::path(options.plots) / "evaluation.json").string();
+      writeJson(document, evaluation);
+      mrs_vpr::tools::runPlotTool({"eval", evaluation, "--directory", options.plots});
+    }
   }
   std::cout << json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}.dump(2)
             << std::endl;

@@ -1,0 +1,205 @@
+// mrs_vpr_eval --plots and mrs_vpr_plot on a generated route: the PNGs are written, are valid images
+// and have the size asked for; the difference pictures the plots draw on are described in the JSON.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+/// Width and height from a PNG's signature and IHDR chunk; {-1, -1} when the file is not a PNG.
+std::pair<int, int> pngSize(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::array<unsigned char, 24> head{};
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  const std::array<unsigned char, 8> signature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (!in || !std::equal(signature.begin(), signature.end(), head.begin()) ||
+      std::string(head.begin() + 12, head.begin() + 16) != "IHDR") {
+    return {-1, -1};
+  }
+  const auto big_endian = [&](int at) {
+    return static_cast<int>((std::uint32_t{head[at]} << 24) | (std::uint32_t{head[at + 1]} << 16) |
+                            (std::uint32_t{head[at + 2]} << 8) | std::uint32_t{head[at + 3]});
+  };
+  return {big_endian(16), big_endian(20)};
+}
+
+/// Expects a PNG of width x height that OpenCV decodes to the same size.
+void expectPng(const fs::path& file, int width, int height) {
+  ASSERT_TRUE(fs::exists(file)) << file;
+  EXPECT_EQ(pngSize(file), std::make_pair(width, height)) << file;
+  const cv::Mat image = cv::imread(file.string(), cv::IMREAD_UNCHANGED);
+  ASSERT_FALSE(image.empty()) << file << " does not decode";
+  EXPECT_EQ(image.cols, width) << file;
+  EXPECT_EQ(image.rows, height) << file;
+}
+
+class PlotsTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    root_ = fs::temp_directory_path() / ("mrs_vpr_plots_test_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    mrs_vpr::SyntheticRouteParams params;
+    params.reference_frames = 150;
+    params.query_frames = 100;
+    params.start_place = 20.0;
+    const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
+    writeFolder(root_ / "reference", route.reference);
+    writeFolder(root_ / "query", route.query);
+    std::ofstream truth(root_ / "truth.csv");
+    truth << "query_index,matching_ref_indices\n";
+    for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
+      truth << i << "," << route.query_to_reference[i] << "\n";
+    }
+  }
+  static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+
+  static void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
+    fs::create_directories(folder);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      std::ostringstream name;
+      name << std::setw(5) << std::setfill('0') << i << ".png";
+      cv::imwrite((folder / name.str()).string(), frames[i]);
+    }
+  }
+
+  /// Runs `command` with stdout and stderr in files; returns the exit status.
+  static int run(const std::string& command, std::string* out = nullptr, std::string* err = nullptr) {
+    const fs::path out_file = root_ / "stdout.txt";
+    const fs::path err_file = root_ / "stderr.txt";
+    const int raw = std::system((command + " >'" + out_file.string() + "' 2>'" + err_file.string() + "'").c_str());
+    const auto read = [](const fs::path& path) {
+      std::ifstream file(path);
+      std::stringstream text;
+      text << file.rdbuf();
+      return text.str();
+    };
+    if (out != nullptr) *out = read(out_file);
+    if (err != nullptr) *err = read(err_file);
+    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  }
+
+  static std::string evaluate(const std::string& method, const fs::path& plots) {
+    return std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
+           (root_ / "query").string() + " --ground-truth " + (root_ / "truth.csv").string() + " --method " + method +
+           " --protocol per-frame --sequence-length 10 --tolerance 2 --plots " + plots.string();
+  }
+
+  /// The plotting tool, installed beside the evaluator.
+  static std::string plotTool() { return (fs::path(MRS_VPR_EVAL_PATH).parent_path() / "mrs_vpr_plot").string(); }
+
+  static fs::path root_;
+};
+
+fs::path PlotsTest::root_;
+
+TEST_F(PlotsTest, EvalWritesEveryPlotAndTheDifferencePictures) {
+  const fs::path plots = root_ / "plots";
+  std::string out;
+  std::string err;
+  ASSERT_EQ(run(evaluate("seqslam", plots), &out, &err), 0) << err;
+  // stdout stays the summary alone: the plotting tool's messages go to stderr.
+  EXPECT_EQ(json::parse(out).at("summary").at("queries").get<int>(), 91);
+  for (const char* name : {"pr_curve.png", "difference_matrix.png", "difference_band.png", "error_along_route.png"}) {
+    expectPng(plots / name, 640, 480);
+  }
+  const json document = json::parse(std::ifstream(plots / "evaluation.json"));
+  const json& pictures = document.at("difference_pictures");
+  EXPECT_EQ(pictures.at("contrast_window").get<int>(), 10);
+  // The whole matrix fits: one row per query frame, one column per reference frame.
+  const json& overview = pictures.at("overview");
+  EXPECT_EQ(overview.at("query_stride").get<int>(), 1);
+  EXPECT_EQ(overview.at("reference_stride").get<int>(), 1);
+  expectPng(plots / overview.at("file").get<std::string>(), 150, 100);
+  // The band: one row per evaluated query frame, 50 reference frames each side of the truth.
+  const json& band = pictures.at("band");
+  EXPECT_EQ(band.at("half_width").get<int>(), 50);
+  ASSERT_EQ(band.at("query_frames").size(), 91U);
+  EXPECT_EQ(band.at("query_frames").at(0).get<int>(), 9);
+  EXPECT_LT(band.at("value_min").get<double>(), band.at("value_max").get<double>());
+  expectPng(plots / band.at("file").get<std::string>(), 101, 91);
+}
+
+TEST_F(PlotsTest, PlotToolDrawsTwoMethodsInOneFigureAtTheAskedSize) {
+  const fs::path mrs = root_ / "mrs";
+  const fs::path seqslam = root_ / "seqslam";
+  ASSERT_EQ(run(evaluate("mrs", mrs)), 0);
+  ASSERT_EQ(run(evaluate("seqslam", seqslam)), 0);
+  const fs::path both = root_ / "pr_both.png";
+  std::string err;
+  ASSERT_EQ(run(plotTool() + " pr " + (mrs / "evaluation.json").string() + " " +
+                    (seqslam / "evaluation.json").string() + " -o " + both.string() + " --dpi 50",
+                nullptr, &err),
+            0)
+      << err;
+  expectPng(both, 320, 240);
+  // Alone, with another size.
+  const fs::path error = root_ / "error_small.png";
+  ASSERT_EQ(run(plotTool() + " error " + (mrs / "evaluation.json").string() + " -o " + error.string() +
+                " --size 5 3 --dpi 80"),
+            0);
+  expectPng(error, 400, 240);
+}
+
+TEST_F(PlotsTest, PlotToolDrawsTheBenchmarkCurves) {
+  // The document mrs_vpr_real_benchmark --json writes, with its fields, for two maps and two lengths.
+  json rows = json::array();
+  for (const char* method : {"seqslam", "mrs"}) {
+    for (int frames : {1783, 9137}) {
+      for (int length : {100, 300}) {
+        const double time = (std::string(method) == "mrs" ? 0.05 : 1.0) * frames * length / 10000.0;
+        rows.push_back({{"setting", "global"},
+                        {"method", method},
+                        {"protocol", "global"},
+                        {"out_of_map", false},
+                        {"reference_frames", frames},
+                        {"sequence_length", length},
+                        {"summary", {{"queries", 100}, {"top1", 1.0}, {"median_time_ms", time}}}});
+      }
+    }
+  }
+  const json bench = {{"part", "check"}, {"threads", 1}, {"tolerance", 5}, {"queries", 100}, {"seed", 42},
+                      {"rows", rows}};
+  const fs::path folder = root_ / "bench";
+  fs::create_directories(folder);
+  std::ofstream(folder / "bench.json") << bench.dump();
+  std::string err;
+  ASSERT_EQ(run(plotTool() + " benchmark " + (folder / "bench.json").string(), nullptr, &err), 0) << err;
+  expectPng(folder / "success_vs_n.png", 640, 480);
+  expectPng(folder / "time_vs_m.png", 640, 480);
+}
+
+TEST_F(PlotsTest, PlotToolReportsBadInputInOneLine) {
+  const fs::path bad = root_ / "not_an_evaluation.json";
+  std::ofstream(bad) << R"({"method": "mrs"})";
+  std::string err;
+  EXPECT_EQ(run(plotTool() + " error " + bad.string() + " -o " + (root_ / "x.png").string(), nullptr, &err), 1);
+  EXPECT_EQ(err.rfind("mrs_vpr_plot: error: missing field", 0), 0U) << err;
+  EXPECT_FALSE(fs::exists(root_ / "x.png"));
+}
+
+}  // namespace
