@@ -17,7 +17,7 @@ DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation
 # The real frames of the benchmark: read at run time, never copied into the repository.
 DATA ?= $(CURDIR)/../shared/data
 
-.PHONY: all deps link build test demo bench bench-real lint clean
+.PHONY: all deps link build test test-sanitize fuzz fuzz-deps demo bench bench-real lint clean
 
 all: build
 
@@ -39,9 +39,12 @@ deps:
 $(PKG_LINK):
 	@mkdir -p $(PKG_LINK)
 
+# $(call link_package,FOLDER): FOLDER holds a link to each top-level entry of the package.
+link_package = mkdir -p $(1) && find $(1) -maxdepth 1 -type l -delete && \
+  for f in $(CURDIR)/*; do ln -sfn "$$f" "$(1)/$$(basename "$$f")"; done
+
 link: $(PKG_LINK)
-	@find $(PKG_LINK) -maxdepth 1 -type l -delete
-	@for f in $(CURDIR)/*; do ln -sfn "$$f" "$(PKG_LINK)/$$(basename "$$f")"; done
+	@$(call link_package,$(PKG_LINK))
 
 build: deps link
 	@cd $(WS) && catkin_make -DCMAKE_BUILD_TYPE=Release -DCATKIN_ENABLE_TESTING=ON >/dev/null \
@@ -56,6 +59,41 @@ test: build lint
 	  echo "Test output: $(WS)/test.log"; \
 	  if [ $$status -ne 0 ]; then tail -50 $(WS)/test.log; exit $$status; fi
 	@$(SETUP) && scripts/test_summary.sh $(WS)/build/test_results
+
+# Sanitizers and fuzzing, each in a workspace of its own that links the same package (.ws is not
+# touched) and builds only the targets it needs: .ws-sanitize (the compiler of .ws) the core's,
+# evaluation's and store's tests, .ws-fuzz (clang, for libFuzzer) the map loader's fuzzer.
+SANITIZE_WS := $(CURDIR)/.ws-sanitize
+FUZZ_WS := $(CURDIR)/.ws-fuzz
+SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SANITIZED_TESTS := mrs_vpr_core_test mrs_vpr_evaluation_test mrs_vpr_store_test
+FUZZ_SECONDS ?= 60
+# Installed by `make fuzz` only: the README's two commands do not need a second compiler.
+FUZZ_DEB_PACKAGES := clang-14 libfuzzer-14-dev
+FUZZ_CMAKE_ARGUMENTS := -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DCATKIN_ENABLE_TESTING=ON \
+  -DMRS_VPR_FUZZ=ON
+
+# $(call sanitized_build,WORKSPACE,CMAKE_ARGUMENTS,TARGETS). A shell that sourced .ws must not lead
+# this build to .ws's libraries.
+sanitized_build = $(call link_package,$(1)/src/mrs_vpr) && cd $(1) && \
+  env -u LD_LIBRARY_PATH -u CMAKE_PREFIX_PATH catkin_make -j2 -DCMAKE_BUILD_TYPE=RelWithDebInfo $(2) \
+    "-DCMAKE_C_FLAGS=$(SANITIZE_FLAGS)" "-DCMAKE_CXX_FLAGS=$(SANITIZE_FLAGS)" \
+    "-DCMAKE_EXE_LINKER_FLAGS=$(SANITIZE_FLAGS)" "-DCMAKE_SHARED_LINKER_FLAGS=$(SANITIZE_FLAGS)" \
+    $(3) >$(1)/build.log 2>&1 || { tail -40 $(1)/build.log; exit 1; }
+
+# The core's, evaluation's and store's tests under AddressSanitizer and UndefinedBehaviorSanitizer;
+# a failed test or any report (leaks included) fails.
+test-sanitize: deps
+	@$(call sanitized_build,$(SANITIZE_WS),-DCATKIN_ENABLE_TESTING=ON,$(SANITIZED_TESTS))
+	@scripts/run_sanitized_tests.sh $(SANITIZE_WS)/devel/lib/mrs_vpr $(SANITIZED_TESTS)
+
+fuzz-deps:
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(DEB_PACKAGES) $(FUZZ_DEB_PACKAGES)"
+
+# The map loader's libFuzzer target for FUZZ_SECONDS, from seeds written by the store at run time.
+fuzz: fuzz-deps
+	@$(call sanitized_build,$(FUZZ_WS),$(FUZZ_CMAKE_ARGUMENTS),map_database_fuzz_test map_database_fuzz_test_seeds)
+	@scripts/fuzz_map_loader.sh $(FUZZ_WS)/devel/lib/mrs_vpr $(FUZZ_WS)/fuzz $(FUZZ_SECONDS)
 
 demo: build
 	@$(SETUP) && scripts/demo.sh
@@ -74,4 +112,4 @@ lint: deps link
 	  test $${PIPESTATUS[0]} -eq 0
 
 clean:
-	rm -rf $(WS)
+	rm -rf $(WS) $(SANITIZE_WS) $(FUZZ_WS)
