@@ -1,7 +1,14 @@
 #include "mrs_vpr/node/keyframe_policy.hpp"
 
+#include <algorithm>
+
 namespace mrs_vpr {
 namespace node {
+namespace {
+
+constexpr double kJitterTolerance = 0.1;  // of min_frame_interval
+
+}  // namespace
 
 KeyframePolicy::KeyframePolicy(double min_frame_interval, int frame_stride)
     : min_frame_interval_(min_frame_interval), frame_stride_(frame_stride) {}
@@ -14,20 +21,35 @@ bool KeyframePolicy::wants(double stamp) const {
     return false;
   }
   // Time running backwards means a new recording or a clock reset, not a robot that stands still.
-  return stamp < last_stamp_ || stamp - last_stamp_ >= min_frame_interval_;
+  if (stamp < last_stamp_) {
+    return true;
+  }
+  // Early by less than half a frame period, this frame is nearer the interval than the next one will
+  // be; the slack is capped so that keyframes stay at least 90% of the interval apart.
+  const double frame_period = has_frame_ ? std::max(0.0, stamp - last_frame_stamp_) : 0.0;
+  const double slack = std::min(0.5 * frame_period, kJitterTolerance * min_frame_interval_);
+  return stamp - last_stamp_ >= min_frame_interval_ - slack;
 }
 
-void KeyframePolicy::skip() { ++frames_since_keyframe_; }
+void KeyframePolicy::skip(double stamp) {
+  ++frames_since_keyframe_;
+  has_frame_ = true;
+  last_frame_stamp_ = stamp;
+}
 
 void KeyframePolicy::keep(double stamp) {
   has_keyframe_ = true;
   last_stamp_ = stamp;
+  has_frame_ = true;
+  last_frame_stamp_ = stamp;
   frames_since_keyframe_ = 0;
 }
 
 void KeyframePolicy::reset() {
   has_keyframe_ = false;
   last_stamp_ = 0.0;
+  has_frame_ = false;
+  last_frame_stamp_ = 0.0;
   frames_since_keyframe_ = 0;
 }
 

@@ -92,7 +92,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     if (!keyframe_policy_.wants(stamp)) {
-      keyframe_policy_.skip();
+      keyframe_policy_.skip(stamp);
       ++frames_skipped_;
       return;
     }
@@ -107,7 +107,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
     ++frames_failed_;
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
-      keyframe_policy_.skip();
+      keyframe_policy_.skip(stamp);
     }
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%u x %u, %s): %s",
                       image_sub_.getTopic().c_str(), message->width, message->height,
