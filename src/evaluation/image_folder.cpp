@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
+#include "mrs_vpr/image_codecs.hpp"
 
 namespace mrs_vpr {
 
@@ -61,7 +61,7 @@ std::vector<std::string> listImageFiles(const std::string& folder) {
 }
 
 cv::Mat loadImage(const std::string& path) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  cv::Mat image = image_codecs::read(path, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw std::runtime_error("cannot read image '" + path + "'");
   return image;
 }

@@ -2,15 +2,19 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstddef>
+#include <cstdint>
 #include <set>
 #include <stdexcept>
 
-#include <cv_bridge/cv_bridge.h>
+#include <boost/make_shared.hpp>
 #include <opencv2/imgproc.hpp>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/image_encodings.h>
+
+#include "mrs_vpr/image_codecs.hpp"
 
 namespace mrs_vpr {
 namespace bag {
@@ -49,12 +53,45 @@ void checkTopic(const rosbag::Bag& bag, const std::string& path, const std::stri
                            (listing.empty() ? "nothing" : listing) + ")");
 }
 
+/// An image message holding a copy of `image` (rows packed, native byte order), as cv_bridge's
+/// CvImage::toImageMsg makes it; without cv_bridge, whose codecs would load ~120 libraries at start-up.
+sensor_msgs::ImagePtr messageOf(const cv::Mat& image, const std::string& encoding, const std_msgs::Header& header) {
+  auto message = boost::make_shared<sensor_msgs::Image>();
+  message->header = header;
+  message->height = static_cast<std::uint32_t>(image.rows);
+  message->width = static_cast<std::uint32_t>(image.cols);
+  message->encoding = encoding;
+  message->is_bigendian = 0;
+  message->step = static_cast<std::uint32_t>(image.cols * image.elemSize());
+  message->data.resize(static_cast<std::size_t>(message->step) * image.rows);
+  cv::Mat packed(image.rows, image.cols, image.type(), message->data.data(), message->step);
+  image.copyTo(packed);
+  return message;
+}
+
+/// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8.
 sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed, const std::string& path) {
+  cv::Mat image;
   try {
-    cv_bridge::CvImagePtr image = cv_bridge::toCvCopy(compressed);
-    return image->toImageMsg();
-  } catch (const std::exception& error) {  // cv_bridge::Exception and cv::Exception.
+    const cv::Mat buffer(1, static_cast<int>(compressed->data.size()), CV_8UC1,
+                         const_cast<std::uint8_t*>(compressed->data.data()));
+    image = image_codecs::decode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& error) {
     throw std::runtime_error("cannot decode a compressed image of bag '" + path + "': " + error.what());
+  }
+  if (image.empty()) throw std::runtime_error("cannot decode a compressed image of bag '" + path + "'");
+  switch (image.type()) {
+    case CV_8UC1:
+      return messageOf(image, sensor_msgs::image_encodings::MONO8, compressed->header);
+    case CV_16UC1:
+      return messageOf(image, sensor_msgs::image_encodings::MONO16, compressed->header);
+    case CV_8UC3:
+      return messageOf(image, sensor_msgs::image_encodings::BGR8, compressed->header);
+    case CV_8UC4:
+      return messageOf(image, sensor_msgs::image_encodings::BGRA8, compressed->header);
+    default:
+      throw std::runtime_error("a compressed image of bag '" + path + "' decodes to " +
+                               cv::typeToString(image.type()) + ", which is not an image encoding read here");
   }
 }
 
@@ -146,7 +183,7 @@ sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& en
   std_msgs::Header header;
   header.stamp = stamp;
   header.frame_id = frame_id;
-  return cv_bridge::CvImage(header, encoding, converted).toImageMsg();
+  return messageOf(converted, encoding, header);
 }
 
 }  // namespace bag

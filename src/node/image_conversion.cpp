@@ -2,8 +2,8 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
-
 
 namespace mrs_vpr {
 namespace node {
@@ -13,16 +13,34 @@ struct EncodingInfo {
   const char* name;
   int bytes_per_pixel;
   ChannelOrder order;
+  int cv_type;
 };
 
 const std::array<EncodingInfo, 6> kEncodings{{
-    {"mono8", 1, ChannelOrder::kBgr},
-    {"mono16", 2, ChannelOrder::kBgr},
-    {"bgr8", 3, ChannelOrder::kBgr},
-    {"rgb8", 3, ChannelOrder::kRgb},
-    {"bgra8", 4, ChannelOrder::kBgr},
-    {"rgba8", 4, ChannelOrder::kRgb},
+    {"mono8", 1, ChannelOrder::kBgr, CV_8UC1},
+    {"mono16", 2, ChannelOrder::kBgr, CV_16UC1},
+    {"bgr8", 3, ChannelOrder::kBgr, CV_8UC3},
+    {"rgb8", 3, ChannelOrder::kRgb, CV_8UC3},
+    {"bgra8", 4, ChannelOrder::kBgr, CV_8UC4},
+    {"rgba8", 4, ChannelOrder::kRgb, CV_8UC4},
 }};
+
+bool hostIsBigEndian() {
+  const std::uint16_t probe = 1;
+  return *reinterpret_cast<const std::uint8_t*>(&probe) == 0;
+}
+
+/// A copy of 16-bit `image` with the bytes of every value swapped (a message of the other endianness).
+cv::Mat swapBytes(const cv::Mat& image) {
+  cv::Mat swapped = image.clone();
+  for (int row = 0; row < swapped.rows; ++row) {
+    auto* value = swapped.ptr<std::uint16_t>(row);
+    for (int i = 0; i < swapped.cols * swapped.channels(); ++i) {
+      value[i] = static_cast<std::uint16_t>((value[i] >> 8) | (value[i] << 8));
+    }
+  }
+  return swapped;
+}
 
 const EncodingInfo* findEncoding(const std::string& encoding) {
   for (const auto& info : kEncodings) {
@@ -57,7 +75,7 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
     throw std::invalid_argument("empty image (" + std::to_string(message.width) + " x " +
                                 std::to_string(message.height) + " px)");
   }
-  // cv_bridge trusts width, height and step; a malformed message must not make it read past data.
+  // The frame trusts width, height and step; a malformed message must not make it read past data.
   const std::size_t row_bytes = static_cast<std::size_t>(message.width) * info->bytes_per_pixel;
   if (message.step < row_bytes) {
     throw std::invalid_argument("step " + std::to_string(message.step) + " is less than width " +
@@ -72,11 +90,16 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
 
   ImageFrame frame;
   frame.order = info->order;
-  try {
-    // Keeps the encoding; cv_bridge copies (and swaps bytes) only for big-endian 16-bit data.
-    frame.cv_image = cv_bridge::toCvShare(message, tracked_object);
-  } catch (const cv_bridge::Exception& error) {
-    throw std::invalid_argument(std::string("cv_bridge: ") + error.what());
+  // Keeps the encoding and shares the message's pixels, as cv_bridge::toCvShare does (without
+  // cv_bridge, whose image codecs would load ~120 libraries into every tool); only 16-bit data of the
+  // other byte order is copied.
+  const cv::Mat shared(static_cast<int>(message.height), static_cast<int>(message.width), info->cv_type,
+                       const_cast<std::uint8_t*>(message.data.data()), message.step);
+  if (CV_MAT_DEPTH(info->cv_type) == CV_16U && (message.is_bigendian != 0) != hostIsBigEndian()) {
+    frame.pixels = swapBytes(shared);
+  } else {
+    frame.pixels = shared;
+    frame.owner = tracked_object;
   }
   return frame;
 }

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "mrs_vpr/evaluation/difference_picture.hpp"
-#include <opencv2/imgcodecs.hpp>
+#include "mrs_vpr/image_codecs.hpp"
 
 extern char** environ;  // NOLINT: POSIX passes the environment on to the plotting tool.
 
@@ -54,7 +54,7 @@ json writeQuantised(const cv::Mat& values, const fs::path& file) {
           std::isfinite(value) ? static_cast<std::uint8_t>(1 + std::lround((value - low) * scale)) : 0;
     }
   }
-  if (!cv::imwrite(file.string(), codes)) throw std::runtime_error("cannot write '" + file.string() + "'");
+  if (!image_codecs::write(file.string(), codes)) throw std::runtime_error("cannot write '" + file.string() + "'");
   return {{"file", file.filename().string()},
           {"rows", values.rows},
           {"columns", values.cols},

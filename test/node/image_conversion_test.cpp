@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <boost/make_shared.hpp>
+#include <boost/weak_ptr.hpp>
+#include <cv_bridge/cv_bridge.h>
 #include <sensor_msgs/image_encodings.h>
 #include <opencv2/imgproc.hpp>
 
@@ -42,6 +45,51 @@ TEST(ImageConversion, SharesPixelsAndKeepsEncoding) {
   EXPECT_EQ(frame.image().type(), CV_8UC3);
   EXPECT_EQ(frame.image().data, message.data.data());  // no copy
   EXPECT_EQ(frame.order, ChannelOrder::kBgr);
+}
+
+TEST(ImageConversion, PaddedRowsAreSharedWithTheirStep) {
+  sensor_msgs::Image message = makeImage(texturedBgr(5, 3), "bgr8");
+  // Rows of 15 bytes padded to 16, as some drivers send them.
+  std::vector<std::uint8_t> padded;
+  for (int row = 0; row < 3; ++row) {
+    padded.insert(padded.end(), message.data.begin() + row * 15, message.data.begin() + (row + 1) * 15);
+    padded.push_back(0xEE);
+  }
+  message.data = padded;
+  message.step = 16;
+  const ImageFrame frame = fromImageMessage(message);
+  EXPECT_EQ(frame.image().step[0], 16u);
+  EXPECT_EQ(cv::norm(frame.image(), texturedBgr(5, 3), cv::NORM_INF), 0.0);
+}
+
+TEST(ImageConversion, Mono16OfTheOtherByteOrderIsSwapped) {
+  sensor_msgs::Image message;
+  message.encoding = "mono16";
+  message.width = 2;
+  message.height = 1;
+  message.step = 4;
+  message.data = {0x01, 0x02, 0xAB, 0xCD};
+  message.is_bigendian = 1;
+  const ImageFrame big = fromImageMessage(message);
+  EXPECT_EQ(big.image().at<std::uint16_t>(0, 0), 0x0102);
+  EXPECT_EQ(big.image().at<std::uint16_t>(0, 1), 0xABCD);
+  EXPECT_NE(big.image().data, message.data.data());  // a swapped copy, the message stays as sent
+
+  message.is_bigendian = 0;  // this machine's order (x86, ARM): shared as it is
+  const ImageFrame little = fromImageMessage(message);
+  EXPECT_EQ(little.image().at<std::uint16_t>(0, 0), 0x0201);
+  EXPECT_EQ(little.image().data, message.data.data());
+}
+
+TEST(ImageConversion, TheFrameKeepsTheTrackedMessageAlive) {
+  auto message = boost::make_shared<sensor_msgs::Image>(makeImage(texturedBgr(), "bgr8"));
+  const boost::weak_ptr<sensor_msgs::Image> watch = message;
+  ImageFrame frame = fromImageMessage(*message, message);
+  message.reset();
+  EXPECT_FALSE(watch.expired());
+  EXPECT_EQ(cv::norm(frame.image(), texturedBgr(), cv::NORM_INF), 0.0);
+  frame = ImageFrame();
+  EXPECT_TRUE(watch.expired());
 }
 
 TEST(ImageConversion, RgbOrderGivesTheSameDescriptorAsBgr) {

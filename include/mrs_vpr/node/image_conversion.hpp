@@ -3,7 +3,6 @@
 #include <string>
 
 #include <boost/shared_ptr.hpp>
-#include <cv_bridge/cv_bridge.h>
 #include <opencv2/core.hpp>
 #include <sensor_msgs/Image.h>
 
@@ -14,11 +13,13 @@ namespace node {
 
 /// An image message as OpenCV sees it, ready for DescriptorExtractor::compute.
 struct ImageFrame {
-  /// Shares the message's pixels when possible (keeps the message alive), so a frame costs no copy.
-  cv_bridge::CvImageConstPtr cv_image;
+  /// Shares the message's pixels when possible, so a frame costs no copy.
+  cv::Mat pixels;
+  /// Keeps the message alive while `pixels` shares its memory (null when nothing needs keeping).
+  boost::shared_ptr<void const> owner;
   ChannelOrder order = ChannelOrder::kBgr;
 
-  const cv::Mat& image() const { return cv_image->image; }
+  const cv::Mat& image() const { return pixels; }
 };
 
 /// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8.

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>  // The cv::IMREAD_* and cv::IMWRITE_* flags only.
+
+namespace mrs_vpr {
+namespace image_codecs {
+
+/**
+ * OpenCV's image file and stream codecs (cv::imread, cv::imdecode, cv::imwrite, cv::imencode), loaded
+ * the first time one is called instead of when the program starts.
+ *
+ * Debian's libopencv_imgcodecs brings GDAL and about 120 further libraries; loading them took most of
+ * a tool's start-up (0.1 s), also for runs that never touch an image file (`--help`, a map database).
+ * The codecs live in a plugin library (libmrs_vpr_opencv_codecs.so, beside this library) that is
+ * opened once, thread-safely, on the first call. Each function behaves exactly as its OpenCV namesake
+ * and throws std::runtime_error, naming the plugin and the loader's reason, when it cannot be loaded.
+ */
+cv::Mat read(const std::string& path, int flags);
+
+/// cv::imdecode of an encoded stream (a 1 x n CV_8UC1 matrix or a vector of bytes).
+cv::Mat decode(const cv::Mat& buffer, int flags);
+
+/// cv::imwrite: false when OpenCV cannot write the file; cv::Exception as OpenCV throws it.
+bool write(const std::string& path, const cv::Mat& image, const std::vector<int>& params = {});
+
+/// cv::imencode into `buffer` in the format of `extension` (".png", ".jpg").
+bool encode(const std::string& extension, const cv::Mat& image, std::vector<std::uint8_t>& buffer,
+            const std::vector<int>& params = {});
+
+}  // namespace image_codecs
+}  // namespace mrs_vpr

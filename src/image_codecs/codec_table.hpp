@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace mrs_vpr {
+namespace image_codecs {
+
+/// What the codec plugin hands to the loader: OpenCV's own functions, so that their behaviour
+/// (formats, flags, exceptions) is exactly OpenCV's.
+struct CodecTable {
+  cv::Mat (*read)(const cv::String& path, int flags);
+  cv::Mat (*decode)(cv::InputArray buffer, int flags);
+  bool (*write)(const cv::String& path, cv::InputArray image, const std::vector<int>& params);
+  bool (*encode)(const cv::String& extension, cv::InputArray image, std::vector<std::uint8_t>& buffer,
+                 const std::vector<int>& params);
+};
+
+/// The plugin's one exported symbol (unmangled, for dlsym).
+constexpr const char* kCodecTableSymbol = "mrs_vpr_opencv_codec_table";
+/// The plugin's file name; it is installed beside the library that loads it.
+constexpr const char* kCodecPluginFile = "libmrs_vpr_opencv_codecs.so";
+
+}  // namespace image_codecs
+}  // namespace mrs_vpr
