@@ -35,6 +35,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
@@ -139,12 +140,13 @@ struct Reference {
 
 /// Appends frames [begin, end) of `frames` (optionally mirrored, optionally backwards) as distractors.
 void appendFrames(Reference& reference, const mrs_vpr::DescriptorExtractor& extractor, const std::vector<cv::Mat>& frames,
-                  int begin, int end, bool mirror, bool backwards, bool true_place) {
+                  int begin, int end, bool mirror, bool backwards, bool true_place, mrs_vpr::ProgressLine& progress) {
   for (int i = 0; i < end - begin; ++i) {
     const int frame = backwards ? end - 1 - i : begin + i;
     const cv::Mat& image = frames[static_cast<std::size_t>(frame)];
     reference.descriptors.append(extractor.compute(mirror ? mirrored(image) : image));
     reference.route_frame.push_back(true_place ? frame : -1);
+    progress.update(static_cast<long long>(reference.route_frame.size()));
   }
 }
 
@@ -153,15 +155,18 @@ void appendFrames(Reference& reference, const mrs_vpr::DescriptorExtractor& extr
 Reference buildReference(const RealFrames& frames, const mrs_vpr::DescriptorExtractor& extractor, int begin, int end,
                          bool distractors, const std::string& name) {
   Reference reference{name, DescriptorSequence(extractor.size()), {}};
-  appendFrames(reference, extractor, frames.summer, begin, end, false, false, true);
+  const int corridor = static_cast<int>(frames.corridor.size());
+  mrs_vpr::ProgressLine progress = mrs_vpr::ProgressLine::onStderr(
+      "reference " + name, "frames", distractors ? 5LL * (end - begin) + corridor : end - begin);
+  appendFrames(reference, extractor, frames.summer, begin, end, false, false, true, progress);
   if (distractors) {
-    appendFrames(reference, extractor, frames.summer, begin, end, true, false, false);
-    appendFrames(reference, extractor, frames.winter, begin, end, true, false, false);
-    appendFrames(reference, extractor, frames.summer, begin, end, false, true, false);
-    appendFrames(reference, extractor, frames.winter, begin, end, true, true, false);
-    appendFrames(reference, extractor, frames.corridor, 0, static_cast<int>(frames.corridor.size()), false, false,
-                 false);
+    appendFrames(reference, extractor, frames.summer, begin, end, true, false, false, progress);
+    appendFrames(reference, extractor, frames.winter, begin, end, true, false, false, progress);
+    appendFrames(reference, extractor, frames.summer, begin, end, false, true, false, progress);
+    appendFrames(reference, extractor, frames.winter, begin, end, true, true, false, progress);
+    appendFrames(reference, extractor, frames.corridor, 0, corridor, false, false, false, progress);
   }
+  progress.finish();
   return reference;
 }
 

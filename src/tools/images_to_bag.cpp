@@ -13,6 +13,7 @@
 #include <rosbag/bag.h>
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "tool_main.hpp"
 
@@ -92,6 +93,8 @@ int run(int argc, char** argv) {
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
   int written = 0;
+  mrs_vpr::ProgressLine progress =
+      mrs_vpr::ProgressLine::onStderr("  " + bag_path, "images", static_cast<long long>(files.size()));
   mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
     // Stamps from the frame number, not accumulated, so they never drift.
     const ros::Time stamp(start_time + index / rate);
@@ -100,9 +103,9 @@ int run(int argc, char** argv) {
     } catch (const std::invalid_argument& error) {
       throw std::runtime_error("image '" + path + "': " + error.what());
     }
-    ++written;
-    if (written % 500 == 0) std::cerr << "  " << written << "/" << files.size() << " images\n";
+    progress.update(++written);
   });
+  progress.finish();
   bag.close();
   output.commit();
   std::cerr << "images_to_bag: wrote " << written << " images to " << bag_path << " on " << topic << " at " << rate

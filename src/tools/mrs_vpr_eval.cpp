@@ -23,6 +23,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
@@ -203,8 +204,10 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
   std::vector<mrs_vpr::QueryRecord> records;
   int done = 0;
   int skipped = 0;
+  mrs_vpr::ProgressLine progress =
+      mrs_vpr::ProgressLine::onStderr("  " + options.method, "test sequences", static_cast<long long>(tests.size()));
   for (const mrs_vpr::TestSequence& test : tests) {
-    ++done;
+    progress.update(done++);
     const auto true_indices = mrs_vpr::truthFor(test.query_index, truth, reference.size());
     if (!true_indices) {
       ++skipped;
@@ -214,10 +217,9 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
     const mrs_vpr::Match match =
         reference.match(query.view(test.start, test.start + test.length), options.method).match;
     records.push_back(makeRecord(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
-    if (done % std::max(1, static_cast<int>(tests.size()) / 10) == 0) {
-      std::cerr << "  " << options.method << ": " << done << "/" << tests.size() << " test sequences\n";
-    }
   }
+  progress.update(done);
+  progress.finish();
   if (skipped > 0) std::cerr << "  " << skipped << " test sequences skipped: their frame has no ground truth\n";
   return records;
 }

@@ -1,32 +1,26 @@
 #include "traversal_reader.hpp"
 
-#include <chrono>
-#include <iomanip>
-#include <iostream>
 #include <stdexcept>
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 
 namespace mrs_vpr {
 namespace tools {
-namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
                         const std::function<void(const cv::Mat& descriptor, double stamp)>& append) {
-  const auto start = std::chrono::steady_clock::now();
+  const bool bag = mrs_vpr::bag::isBagPath(source);
+  const int total =
+      bag ? mrs_vpr::bag::countImages(source, topic) : static_cast<int>(mrs_vpr::listImageFiles(source).size());
+  ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;
   const auto add = [&](const cv::Mat& descriptor, double stamp) {
     append(descriptor, stamp);
-    if (++traversal.frames % 500 == 0) std::cerr << "  " << what << ": " << traversal.frames << " frames\n";
+    progress.update(++traversal.frames);
   };
   const auto checkSize = [&](const cv::Size& size, const std::string& image_name) {
     if (traversal.frames == 0) {
@@ -38,7 +32,7 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
     }
   };
 
-  if (mrs_vpr::bag::isBagPath(source)) {
+  if (bag) {
     mrs_vpr::bag::forEachImage(source, topic, [&](int index, const sensor_msgs::ImageConstPtr& image) {
       const std::string name = what + " message " + std::to_string(index) + " of '" + source + "'";
       checkSize(cv::Size(static_cast<int>(image->width), static_cast<int>(image->height)), name);
@@ -59,9 +53,8 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
       }
     });
   }
-  std::cerr << "  " << what << ": " << traversal.frames << " frames of " << traversal.image_size.width
-            << "x" << traversal.image_size.height << " px described in " << std::fixed << std::setprecision(2)
-            << secondsSince(start) << " s\n";
+  progress.finish("of " + std::to_string(traversal.image_size.width) + "x" +
+                  std::to_string(traversal.image_size.height) + " px described");
   return traversal;
 }
 
