@@ -12,6 +12,7 @@
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
 #include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
 
 namespace mrs_vpr {
@@ -60,6 +61,46 @@ TEST(PooledReference, CellsMatchPatchFrequenciesWithOrWithoutKeptCells) {
   EXPECT_EQ(frames.cell(5), plain.view().frame(5));
 }
 
+TEST(PooledReference, HoldsEveryCellOfItsSamplingLevelUpToThePartialLastOne) {
+  // 42 frames at stride 4: the level's grid ends with cell 11, ending at frame 44 past the newest
+  // (41), which pools frame 41 alone. The search asks for it like any other cell; a reference one
+  // cell short let the contrast window read past its row.
+  const PatchFrequencies frequencies(smallGeometry());
+  const DescriptorSequence plain = randomSequence(42, 32, 9);
+  DescriptorSequence kept = randomSequence(42, 32, 9);
+  kept.keepCoarseCells(3, smallGeometry());
+  const SamplingLevel level = SamplingLevel::make(4, SequenceRows{0, 19, 19}, 42, 0.8);
+  ASSERT_EQ(level.grid_size, 12);
+  PooledReference from_plain(plain.view(), 4, frequencies);
+  PooledReference from_kept(kept.view(), 4, frequencies);
+  ASSERT_EQ(from_plain.size(), level.grid_size);
+  ASSERT_EQ(from_kept.size(), level.grid_size);
+  std::vector<std::uint8_t> expected(24);
+  frequencies.cell(plain.view(), 44, 4, expected.data());
+  EXPECT_TRUE(std::equal(expected.begin(), expected.end(), from_plain.cell(11)));
+  EXPECT_TRUE(std::equal(expected.begin(), expected.end(), from_kept.cell(11)));
+}
+
+TEST(LazyDifferenceMatrix, EnhancedRowsReachThePartialLastCellOfTheGrid) {
+  const PatchFrequencies frequencies(smallGeometry());
+  const DescriptorSequence reference = randomSequence(42, 32, 10);
+  const DescriptorSequence query = frequencies.cells(randomSequence(12, 32, 11).view(), 3, 4, 3);
+  const SamplingLevel level = SamplingLevel::make(4, SequenceRows{0, 11, 11}, 42, 0.8);
+  const int window = 4;
+  const cv::Mat dense = enhanceContrast(
+      computeDifferenceMatrix(query.view(), frequencies.cells(reference.view(), 0, 4, level.grid_size).view()), window);
+  LazyDifferenceMatrix lazy(query.view(), reference.view(), 4, frequencies, window);
+  ASSERT_EQ(lazy.columns(), level.grid_size);
+  std::vector<float> out(4);
+  for (int row = 0; row < lazy.rows(); ++row) {
+    lazy.enhancedRow(row, level.grid_size - 4, level.grid_size, out.data());
+    for (int c = level.grid_size - 4; c < level.grid_size; ++c) {
+      EXPECT_NEAR(out[static_cast<std::size_t>(c - (level.grid_size - 4))], dense.at<float>(row, c), 1e-4F)
+          << "row " << row << ", column " << c;
+    }
+  }
+}
+
 TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
   const DescriptorSequence reference = randomSequence(90, 32, 3);
   const DescriptorSequence query = randomSequence(6, 32, 4);
@@ -92,7 +133,7 @@ TEST(LazyDifferenceMatrix, PooledColumnsAndRawRowsWithoutEnhancement) {
   const DescriptorSequence cells = frequencies.cells(reference.view(), 0, 2, 32);
   const cv::Mat dense = computeDifferenceMatrix(query.view(), cells.view());
   LazyDifferenceMatrix lazy(query.view(), reference.view(), 2, frequencies, 0);
-  EXPECT_EQ(lazy.columns(), 32);
+  EXPECT_EQ(lazy.columns(), 33);  // The last cell ends at frame 64, past the newest (63).
   std::vector<float> out(5);
   lazy.enhancedRow(2, 10, 15, out.data());
   for (int c = 10; c < 15; ++c) EXPECT_FLOAT_EQ(out[static_cast<std::size_t>(c - 10)], dense.at<float>(2, c));

@@ -29,8 +29,9 @@ class PooledReference {
 
   /// Bytes per cell.
   int cellSize() const { return stride_ == 1 ? reference_.descriptor_size : frequencies_.cellSize(); }
-  /// Cells J = 0 .. size() - 1.
-  int size() const { return (reference_.count - 1) / stride_ + 1; }
+  /// Cells J = 0 .. size() - 1: SamplingLevel's grid, whose last cell may end past the newest frame
+  /// (it pools the frames that exist), so that every cell a search of that level asks for is here.
+  int size() const { return (reference_.count + stride_ - 2) / stride_ + 1; }
   const std::uint8_t* cell(int grid_index);
 
  private:
