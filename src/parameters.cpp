@@ -159,6 +159,8 @@ std::string Range::text() const {
 }
 
 std::string ParameterInfo::allowed() const {
+  // Free text (a path): no range and no choices, only the rule says what it may be.
+  if (isFreeText()) return rule;
   const std::string values = choices.empty() ? range.text() : join(choices);
   return rule.empty() ? values : values + ", " + rule;
 }
@@ -180,7 +182,12 @@ void ParameterInfo::require(double value) const {
   }
 }
 
+bool ParameterInfo::isFreeText() const {
+  return choices.empty() && !std::isfinite(range.low) && !std::isfinite(range.high) && !rule.empty();
+}
+
 void ParameterInfo::require(const std::string& value) const {
+  if (isFreeText()) return;
   for (const auto& choice : choices) {
     if (value == choice) return;
   }

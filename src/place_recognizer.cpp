@@ -91,6 +91,19 @@ void PlaceRecognizer::reserveAhead() {
   reserved_frames_ = target;
 }
 
+void PlaceRecognizer::visitFrames(int begin, int end,
+                                  const std::function<void(const cv::Mat& descriptor, double stamp)>& visit) const {
+  std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+  if (begin < 0 || end > map_.size() || begin > end) {
+    throw std::invalid_argument("frames [" + std::to_string(begin) + ", " + std::to_string(end) +
+                                ") are not in a map of " + std::to_string(map_.size()));
+  }
+  for (int i = begin; i < end; ++i) {
+    const cv::Mat descriptor(1, map_.descriptorSize(), CV_8UC1, const_cast<std::uint8_t*>(map_.descriptor(i)));
+    visit(descriptor, map_.stamp(i));
+  }
+}
+
 int PlaceRecognizer::pending() const {
   std::lock_guard<std::mutex> lock(pending_mutex_);
   return static_cast<int>(pending_.size());

@@ -135,8 +135,11 @@ struct ParameterInfo {
   std::string rejection(const std::string& value, const std::string& detail = "") const;
   /// Throws std::invalid_argument with rejection() unless `value` is in range.
   void require(double value) const;
-  /// Throws std::invalid_argument with rejection() unless `value` is one of the choices.
+  /// Throws std::invalid_argument with rejection() unless `value` is one of the choices (any text
+  /// for a free-text parameter).
   void require(const std::string& value) const;
+  /// A text parameter of any value (a path): no range, no choices, and a rule that says what it is.
+  bool isFreeText() const;
 };
 
 /// A parameter of the group `Group`: its description and the field it sets.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -88,6 +89,10 @@ class PlaceRecognizer {
   int pending() const;
   /// Removes every frame; returns how many there were (pending ones included).
   int reset();
+
+  /// Calls `visit` with the descriptor (a view, valid during the call) and stamp of map frames
+  /// [begin, end), in order, under the map's shared lock: queries go on, new frames wait as pending.
+  void visitFrames(int begin, int end, const std::function<void(const cv::Mat& descriptor, double stamp)>& visit) const;
 
   /// Moves pending frames into the map, waiting for running queries.
   void flush();

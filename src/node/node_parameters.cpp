@@ -31,6 +31,21 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
        &P::auto_query_frames},
       {{"map_info_rate", Range::openClosed(0, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
        &P::map_info_rate},
+      {{"database", {}, {}, "a file path; empty = memory only",
+        "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
+       &P::database},
+  };
+  return table;
+}
+
+const std::vector<ParameterSpec<CommitPolicy>>& commitParameters() {
+  using P = CommitPolicy;
+  static const std::vector<ParameterSpec<P>> table = {
+      {{"commit_period", Range::openClosed(0, 3600), {}, "",
+        "Longest time a keyframe waits for its commit to ~database [s]."},
+       &P::period},
+      {{"commit_frames", Range::closed(1, 1000000), {}, "", "Most keyframes waiting for a commit to ~database."},
+       &P::frames},
   };
   return table;
 }
@@ -64,6 +79,7 @@ const std::vector<Entry>& entries() {
     append(all, mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
     append(all, recognizerParameters(), [](NodeParameters& p) -> RecognizerParams& { return p.recognizer; });
     append(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+    append(all, commitParameters(), [](NodeParameters& p) -> CommitPolicy& { return p.commit; });
     return all;
   }();
   return table;
@@ -190,6 +206,7 @@ void NodeParameters::validate() const {
     core.validate();
     recognizer.validate();
     requireInRange(nodeParameters(), *this);
+    requireInRange(commitParameters(), commit);
   } catch (const std::invalid_argument& error) {
     throwPrivate(error);
   }

@@ -30,12 +30,15 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
       private_nh_(private_nh),
       query_nh_(private_nh),
       image_transport_(nh) {
+  openMap();  // First: a map database that cannot be used stops the node before it offers anything.
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
   loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
   map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
   query_srv_ = query_nh_.advertiseService("query", &PlaceRecognitionNode::queryCallback, this);
   reset_srv_ = query_nh_.advertiseService("reset", &PlaceRecognitionNode::resetCallback, this);
+  save_map_srv_ = query_nh_.advertiseService("save_map", &PlaceRecognitionNode::saveMapCallback, this);
+  load_map_srv_ = query_nh_.advertiseService("load_map", &PlaceRecognitionNode::loadMapCallback, this);
   map_info_timer_ = query_nh_.createTimer(ros::Duration(1.0 / params_.map_info_rate),
                                           &PlaceRecognitionNode::mapInfoCallback, this);
   if (params_.auto_query_period > 0.0) {
@@ -75,6 +78,8 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   map_info_timer_.stop();
   query_srv_.shutdown();
   reset_srv_.shutdown();
+  save_map_srv_.shutdown();
+  load_map_srv_.shutdown();
   if (query_spinner_) {
     query_spinner_->stop();
   }
@@ -115,7 +120,7 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
     return;
   }
 
-  switch (recognizer_.addDescriptor(descriptor, stamp)) {
+  switch (map_->add(descriptor, stamp, message->header.frame_id, message->header.seq)) {
     case FrameAdmission::kMapFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
@@ -259,20 +264,6 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
 // ---------------------------------------------------------------------------------------------------
 // Housekeeping
 
-bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
-  const int cleared = recognizer_.reset();
-  {
-    std::lock_guard<std::mutex> lock(state_mutex_);
-    keyframe_policy_.reset();
-  }
-  ++map_version_;
-  response.success = true;
-  response.message = "cleared " + std::to_string(cleared) + " frames";
-  ROS_INFO("mrs_vpr: reference map reset (%s)", response.message.c_str());
-  publishMapInfoIfChanged();
-  return true;
-}
-
 MapInfo PlaceRecognitionNode::makeMapInfo() {
   MapInfo info;
   const PlaceRecognizer::MapState state = recognizer_.state();
@@ -285,6 +276,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   }
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);
+  info.frames_persisted = map_->persisted();
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     info.frame_time_mean_ms =
@@ -320,6 +312,7 @@ void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
   recognizer_.flush();  // frames parked during a query show up even when no new image arrives
   recognizer_.reserveAhead();
   publishMapInfoIfChanged();
+  reportWriteErrors();
 }
 
 }  // namespace node

@@ -20,7 +20,8 @@ void printHelp() {
       "       roslaunch mrs_vpr mrs_vpr.launch image:=TOPIC params:=FILE.yaml\n\n"
       "Subscribes:  image (sensor_msgs/Image; ~image_transport selects raw, compressed, ...)\n"
       "Publishes:   ~loop_closure (mrs_vpr/LoopClosure), ~map_info (mrs_vpr/MapInfo, latched)\n"
-      "Services:    ~query (mrs_vpr/QuerySequence), ~reset (std_srvs/Trigger)\n\n"
+      "Services:    ~query (mrs_vpr/QuerySequence), ~reset (std_srvs/Trigger),\n"
+      "             ~save_map (mrs_vpr/SaveMap), ~load_map (mrs_vpr/LoadMap)\n\n"
       "Parameters (private):\n");
   for (const auto& p : mrs_vpr::node::describeParameters()) {
     std::printf("  ~%-26s %-6s default %-8s range %s\n      %s\n", p.name.c_str(), p.type.c_str(),

@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 
 #include <ctime>
+#include <filesystem>
 #include <map>
 #include <memory>
 
@@ -29,17 +30,21 @@ std::string utcNow() {
 
 }  // namespace
 
-MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params)
+MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access)
     : path_(path), descriptor_bytes_(params.image_width * params.image_height) {
   params.validate();
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+  const bool read_only = access == MapAccess::kReadOnly;
+  std::error_code ignored;
+  if (read_only && !std::filesystem::is_regular_file(path, ignored)) fail("there is no such file");
+  const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
     throw MapDatabaseError("cannot open map database '" + path + "': " + problem);
   }
   try {
-    if (sqlite3_db_readonly(db_, "main") == 1) fail("it is read-only");
+    if (!read_only && sqlite3_db_readonly(db_, "main") == 1) fail("it is read-only");
     // Not waiting for another writer: a map held by another node is an error to report, not to queue.
     sqlite3_busy_timeout(db_, 0);
     // Reading the schema is the first access to the file: this is where "not a database" shows.
@@ -59,10 +64,12 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
     tables.reset();
     // Nothing is written to a file that is not an empty new one or a map of these descriptors.
     const bool create = names.empty();
+    if (create && read_only) fail("it holds no map (an empty database)");
     if (!create && (names.count("metadata") == 0 || names.count("frames") == 0)) {
       fail("it is an SQLite database of another kind (no mrs_vpr metadata and frames tables)");
     }
     if (!create) checkMetadata(params);
+    if (read_only) return;  // Nothing to lock or convert: the file is only read.
     // Exclusive: the lock taken by the first write is kept until the database is closed.
     execute("PRAGMA locking_mode = EXCLUSIVE");
     execute("PRAGMA journal_mode = WAL");
@@ -139,7 +146,7 @@ void MapDatabase::checkMetadata(const DescriptorParams& params) const {
   if (!mismatch.empty()) fail("it was written for other descriptors: " + mismatch);
 }
 
-void MapDatabase::append(const std::vector<StoredFrame>& frames) {
+void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
   for (const StoredFrame& frame : frames) {
     if (frame.descriptor.type() != CV_8UC1 || !frame.descriptor.isContinuous() ||
         static_cast<int>(frame.descriptor.total()) != descriptor_bytes_) {
@@ -147,23 +154,44 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames) {
                                   " continuous bytes of CV_8UC1");
     }
   }
+}
+
+void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
+                         &raw, nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement insert(raw, sqlite3_finalize);
+  for (const StoredFrame& frame : frames) {
+    sqlite3_bind_double(insert.get(), 1, frame.stamp);
+    sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
+                      SQLITE_TRANSIENT);
+    sqlite3_bind_int64(insert.get(), 3, frame.sequence);
+    sqlite3_bind_blob(insert.get(), 4, frame.descriptor.data, descriptor_bytes_, SQLITE_STATIC);
+    if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
+    sqlite3_reset(insert.get());
+  }
+}
+
+void MapDatabase::append(const std::vector<StoredFrame>& frames) {
+  checkDescriptors(frames);
   execute("BEGIN IMMEDIATE");
   try {
-    sqlite3_stmt* raw = nullptr;
-    if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
-                           &raw, nullptr) != SQLITE_OK) {
-      fail(lastProblem(db_));
-    }
-    const Statement insert(raw, sqlite3_finalize);
-    for (const StoredFrame& frame : frames) {
-      sqlite3_bind_double(insert.get(), 1, frame.stamp);
-      sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
-                        SQLITE_TRANSIENT);
-      sqlite3_bind_int64(insert.get(), 3, frame.sequence);
-      sqlite3_bind_blob(insert.get(), 4, frame.descriptor.data, descriptor_bytes_, SQLITE_STATIC);
-      if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
-      sqlite3_reset(insert.get());
-    }
+    insertFrames(frames);
+    execute("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+}
+
+void MapDatabase::replace(const std::vector<StoredFrame>& frames) {
+  checkDescriptors(frames);
+  execute("BEGIN IMMEDIATE");
+  try {
+    execute("DELETE FROM frames");
+    insertFrames(frames);
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -205,5 +233,75 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
 }
 
 void MapDatabase::clear() { execute("DELETE FROM frames"); }
+
+void MapDatabase::checkIntegrity() const {
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "PRAGMA quick_check", -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
+  const Statement rows(raw, sqlite3_finalize);
+  std::string problems;
+  int step = SQLITE_ROW;
+  while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
+    const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 0));
+    const std::string line = text != nullptr ? text : "";
+    if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
+  }
+  if (step != SQLITE_DONE) fail(lastProblem(db_));
+  if (!problems.empty()) fail("it is corrupt (" + problems + ")");
+}
+
+namespace {
+
+[[noreturn]] void refuseSave(const std::string& path, const std::string& problem) {
+  throw MapDatabaseError("cannot save the map to '" + path + "': " + problem);
+}
+
+}  // namespace
+
+void MapDatabase::checkSaveTarget(const std::string& path) {
+  std::error_code error;
+  if (path.empty()) refuseSave(path, "no path given");
+  if (std::filesystem::exists(path, error)) {
+    refuseSave(path, "the file exists (a map is never overwritten: remove it or choose another name)");
+  }
+  const std::filesystem::path folder = std::filesystem::absolute(path, error).parent_path();
+  if (!std::filesystem::is_directory(folder, error)) refuseSave(path, "there is no folder " + folder.string());
+}
+
+void MapDatabase::backupTo(const std::string& path) const {
+  namespace fs = std::filesystem;
+  const auto refuse = [&](const std::string& problem) { refuseSave(path, problem); };
+  std::error_code error;
+  checkSaveTarget(path);
+  const std::string part = path + ".part";
+  for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(part + suffix, error);
+  sqlite3* copy = nullptr;
+  std::string problem;
+  if (sqlite3_open_v2(part.c_str(), &copy, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+    problem = copy != nullptr ? sqlite3_errmsg(copy) : "out of memory";
+  } else {
+    // One step copies every page under one read transaction: the copy is the map at one moment.
+    sqlite3_backup* backup = sqlite3_backup_init(copy, "main", db_, "main");
+    if (backup == nullptr) {
+      problem = sqlite3_errmsg(copy);
+    } else {
+      const int step = sqlite3_backup_step(backup, -1);
+      sqlite3_backup_finish(backup);
+      if (step != SQLITE_DONE) problem = lastProblem(copy);
+    }
+    // The source's WAL mode is copied with its pages; a snapshot is better one file than three.
+    if (problem.empty() && sqlite3_exec(copy, "PRAGMA journal_mode = DELETE", nullptr, nullptr, nullptr) != SQLITE_OK) {
+      problem = lastProblem(copy);
+    }
+  }
+  sqlite3_close(copy);
+  if (problem.empty()) {
+    fs::rename(part, path, error);
+    if (error) problem = error.message();
+  }
+  if (!problem.empty()) {
+    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(part + suffix, error);
+    refuse(problem);
+  }
+}
 
 }  // namespace mrs_vpr

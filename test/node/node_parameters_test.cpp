@@ -79,7 +79,8 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("mrs/tau"), 1U);
   EXPECT_EQ(names.count("descriptor/image_width"), 1U);
   EXPECT_EQ(names.count("min_frame_interval"), 1U);
-  EXPECT_EQ(descriptions.size(), 32U);
+  EXPECT_EQ(names.count("database"), 1U);
+  EXPECT_EQ(descriptions.size(), 34U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and
@@ -120,6 +121,7 @@ TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
                                [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
   expectHelpRangeInEachMessage(mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
   expectHelpRangeInEachMessage(nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+  expectHelpRangeInEachMessage(commitParameters(), [](NodeParameters& p) -> CommitPolicy& { return p.commit; });
 
   // The text parameter and a rule involving two parameters, with the words of --help too.
   const auto help = descriptionsByName();
@@ -129,6 +131,17 @@ TEST(NodeParameters, HelpRangeIsTheRangeEachMessageGives) {
   params = NodeParameters{};
   params.core.descriptor.patch_size = 6;
   EXPECT_NE(errorOf(params).find(help.at("descriptor/patch_size").range), std::string::npos) << errorOf(params);
+}
+
+TEST(NodeParameters, TheDatabaseIsAnyPathAndEmptyMeansMemoryOnly) {
+  NodeParameters params;
+  EXPECT_EQ(params.database, "");
+  params.database = "maps/a map with spaces.db";
+  EXPECT_EQ(errorOf(params), "");
+  EXPECT_EQ(descriptionsByName().at("database").range, "a file path; empty = memory only");
+  EXPECT_EQ(descriptionsByName().at("database").default_value, "\"\"");
+  params.commit.period = 0.0;
+  EXPECT_EQ(errorOf(params), "~commit_period must be in (0, 3600], got 0");
 }
 
 TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {

@@ -6,6 +6,7 @@
 #include <ros/node_handle.h>
 
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/store/map_writer.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -26,6 +27,8 @@ struct NodeParameters {
   double auto_query_period = 0.0;   ///< Continuous mode period [s]; 0 = off.
   int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
   double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz].
+  std::string database;             ///< Map database path; empty = the map lives in memory only.
+  CommitPolicy commit;              ///< ~commit_period, ~commit_frames: batching of the database's commits.
 
   /// Throws std::invalid_argument naming the first parameter out of range (as ~group/name) and the
   /// values it allows, in the words of `--help`.
@@ -37,6 +40,8 @@ struct NodeParameters {
 /// The node's own parameters (the core's are in descriptorParameters(), sequenceParameters() and
 /// mrsParameters()): each one's name, allowed values and meaning, written once.
 const std::vector<ParameterSpec<NodeParameters>>& nodeParameters();
+/// The batching of the map database's commits: ~commit_period and ~commit_frames.
+const std::vector<ParameterSpec<CommitPolicy>>& commitParameters();
 
 /**
  * Reads every parameter that is set under `private_nh` over the defaults (kiss-icp style: an unset

@@ -12,12 +12,15 @@
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
 
+#include "mrs_vpr/LoadMap.h"
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/store/persistent_map.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -63,7 +66,14 @@ class PlaceRecognitionNode {
 
   void imageCallback(const sensor_msgs::ImageConstPtr& message);
   bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);
+  // The map and its database (map_services.cpp).
+  /// Opens ~database and loads its map, or keeps the map in memory; throws MapDatabaseError.
+  void openMap();
   bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
+  bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
+  bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);
+  /// Logs (throttled) why commits to ~database fail, while they do.
+  void reportWriteErrors();
   void autoQueryCallback(const ros::TimerEvent& event);
   void mapInfoCallback(const ros::TimerEvent& event);
 
@@ -76,6 +86,8 @@ class PlaceRecognitionNode {
 
   NodeParameters params_;
   PlaceRecognizer recognizer_;  ///< The map and both methods; thread-safe.
+  /// recognizer_'s map and ~database: every keyframe goes through it. Thread-safe.
+  std::unique_ptr<PersistentMap> map_;
 
   // The keyframe policy, the camera's frame id and the frame timings, under state_mutex_, which is
   // only ever held for a few instructions.
@@ -105,6 +117,8 @@ class PlaceRecognitionNode {
   ros::Publisher map_info_pub_;
   ros::ServiceServer query_srv_;
   ros::ServiceServer reset_srv_;
+  ros::ServiceServer save_map_srv_;
+  ros::ServiceServer load_map_srv_;
   ros::Timer auto_query_timer_;
   ros::Timer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;

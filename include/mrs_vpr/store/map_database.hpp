@@ -21,6 +21,12 @@ class MapDatabaseError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// How a map database is opened.
+enum class MapAccess {
+  kReadWrite,  ///< Created when missing; held with an exclusive lock (the owner of a map).
+  kReadOnly,   ///< Must exist; never written (a saved map to load); fails while another owner holds it.
+};
+
 /// One frame as stored: its descriptor and what is known of the image it came from.
 struct StoredFrame {
   cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
@@ -50,7 +56,7 @@ class MapDatabase {
    * file when it is not an SQLite database, holds another schema, was written for other descriptor
    * parameters, cannot be written, or is locked by another process. Never replaces a user's file.
    */
-  MapDatabase(const std::string& path, const DescriptorParams& params);
+  MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access = MapAccess::kReadWrite);
   ~MapDatabase();
 
   MapDatabase(const MapDatabase&) = delete;
@@ -64,6 +70,20 @@ class MapDatabase {
   void forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const;
   /// Removes every frame (the metadata stays).
   void clear();
+  /// Replaces every frame by `frames` in one transaction: on any failure the old frames stay.
+  void replace(const std::vector<StoredFrame>& frames);
+  /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound.
+  void checkIntegrity() const;
+
+  /**
+   * Writes a consistent copy of the map to the new file `path` with SQLite's online backup, in
+   * rollback-journal mode so that the copy is one self-contained file. Refuses an existing `path`
+   * (a map is never overwritten); writes `path`.part and renames it when complete, so that a failed
+   * copy never leaves a partial map. Throws MapDatabaseError naming `path` and the problem.
+   */
+  void backupTo(const std::string& path) const;
+  /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists or has no folder.
+  static void checkSaveTarget(const std::string& path);
 
   const std::string& path() const { return path_; }
 
@@ -72,6 +92,9 @@ class MapDatabase {
   void execute(const std::string& sql) const;
   void createSchema(const DescriptorParams& params);
   void checkMetadata(const DescriptorParams& params) const;
+  void checkDescriptors(const std::vector<StoredFrame>& frames) const;
+  /// Inserts `frames` inside a transaction the caller has begun.
+  void insertFrames(const std::vector<StoredFrame>& frames);
 
   std::string path_;
   int descriptor_bytes_ = 0;

@@ -1,0 +1,87 @@
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_writer.hpp"
+
+namespace mrs_vpr {
+
+/**
+ * A PlaceRecognizer's map mirrored in a map database, so that it survives crashes and restarts: the
+ * database's frames, in the same order, are the map's (up to the frames still waiting for a commit,
+ * see MapWriter). Without a database the map lives in memory only, and save() still writes one.
+ *
+ * reset(), load() and save() replace or copy the whole map consistently while add() goes on from
+ * another thread. Errors throw MapDatabaseError naming the file and the problem; the map and the
+ * database are then as they were. Every member is thread-safe.
+ */
+class PersistentMap {
+ public:
+  /// Memory only.
+  explicit PersistentMap(PlaceRecognizer& recognizer);
+  /**
+   * Opens `path` (creating an empty map when no file exists) and loads its frames into `recognizer`,
+   * which must be empty. Throws MapDatabaseError naming the file when it is not a map of the
+   * recognizer's descriptors, is corrupt, truncated, read-only or locked, or holds more frames than
+   * RecognizerParams::max_frames: a user's map is never replaced by an empty one.
+   */
+  PersistentMap(PlaceRecognizer& recognizer, const std::string& path, const CommitPolicy& policy);
+  /// Commits the frames still queued.
+  ~PersistentMap();
+
+  PersistentMap(const PersistentMap&) = delete;
+  PersistentMap& operator=(const PersistentMap&) = delete;
+
+  /// Adds a frame to the map and, when admitted, queues it for the database. Cheap: never waits for
+  /// the disk or a query.
+  FrameAdmission add(const cv::Mat& descriptor, double stamp, const std::string& frame_id = "",
+                     std::int64_t sequence = -1);
+
+  /// Empties the map and the database; returns the frames the map held.
+  int reset();
+  /**
+   * Replaces the map (and the database) by the map saved at `path`, which is opened read-only and
+   * checked first (integrity, descriptors, size); returns its frames. `path` may not be this map's
+   * own database.
+   */
+  int load(const std::string& path);
+  /**
+   * Writes a consistent snapshot of the map, as it is when called, to the new file `path` (never
+   * overwritten; written aside and renamed when complete). With a database it is SQLite's online
+   * backup of it; in memory only, the map's descriptors and stamps. Returns the frames written.
+   */
+  std::int64_t save(const std::string& path);
+  /// Commits the queued frames now.
+  void commit();
+
+  bool persistent() const { return database_ != nullptr; }
+  /// The database's path; empty in memory only.
+  std::string databasePath() const { return database_ ? database_->path() : ""; }
+  /// Frames committed to the database, which survive a crash; 0 in memory only.
+  std::uint64_t persisted() const { return writer_ ? writer_->persisted() : 0; }
+  /// Why the last commit failed; empty when it succeeded.
+  std::string writeError() const { return writer_ ? writer_->lastError() : ""; }
+
+ private:
+  /// Appends `frames` to the recognizer (empty or just reset); the caller holds add_mutex_.
+  void admitAll(const std::vector<StoredFrame>& frames);
+  std::int64_t saveFromMemory(const std::string& path);
+
+  PlaceRecognizer& recognizer_;
+  std::unique_ptr<MapDatabase> database_;
+  std::unique_ptr<MapWriter> writer_;
+  // Held by add() while the frame goes to the map and the queue, so that both see frames in one
+  // order; held by reset() and load() while they swap the maps.
+  std::mutex add_mutex_;
+  // One whole-map operation (reset, load, save) at a time.
+  std::mutex whole_map_mutex_;
+};
+
+}  // namespace mrs_vpr

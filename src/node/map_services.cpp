@@ -1,0 +1,99 @@
+// The node's map and its database: opening ~database at start-up, ~reset, ~save_map, ~load_map.
+
+#include <exception>
+#include <string>
+
+#include "mrs_vpr/node/place_recognition_node.hpp"
+
+namespace mrs_vpr {
+namespace node {
+namespace {
+
+constexpr double kWriteErrorPeriod = 10.0;  // [s] between repeated errors about failing commits
+
+}  // namespace
+
+void PlaceRecognitionNode::openMap() {
+  if (params_.database.empty()) {
+    map_ = std::make_unique<PersistentMap>(recognizer_);
+    return;
+  }
+  // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
+  // starting empty over a map it could not read.
+  map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
+  ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
+           params_.database.c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
+}
+
+bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
+  try {
+    const int cleared = map_->reset();
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      keyframe_policy_.reset();
+    }
+    ++map_version_;
+    response.success = true;
+    response.message = map_->persistent() ? "cleared " + std::to_string(cleared) +
+                                                " frames from the map and from the database '" +
+                                                map_->databasePath() + "'"
+                                          : "cleared " + std::to_string(cleared) + " frames (no ~database)";
+    ROS_INFO("mrs_vpr: reference map reset (%s)", response.message.c_str());
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.message = std::string(error.what()) + "; the map is kept";
+    ROS_ERROR("mrs_vpr: reset failed: %s", response.message.c_str());
+  }
+  publishMapInfoIfChanged();
+  return true;  // Failures are reported in the response.
+}
+
+bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::Response& response) {
+  try {
+    response.frames = static_cast<std::uint64_t>(map_->save(request.path));
+    response.success = true;
+    response.message = "saved " + std::to_string(response.frames) + " frames to '" + request.path + "'";
+    ROS_INFO("mrs_vpr: %s", response.message.c_str());
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.message = error.what();
+    ROS_WARN("mrs_vpr: save_map failed: %s", response.message.c_str());
+  }
+  return true;
+}
+
+bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::Response& response) {
+  try {
+    if (request.path.empty()) throw std::invalid_argument("load_map needs a path");
+    const int loaded = map_->load(request.path);
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      keyframe_policy_.reset();
+    }
+    ++map_version_;
+    response.frames = static_cast<std::uint64_t>(loaded);
+    response.success = true;
+    response.message = "loaded " + std::to_string(loaded) + " frames from '" + request.path + "'" +
+                       (map_->persistent() ? "; the database '" + map_->databasePath() + "' now holds them too"
+                                           : "");
+    ROS_INFO("mrs_vpr: %s", response.message.c_str());
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.frames = static_cast<std::uint64_t>(recognizer_.size());
+    response.message = std::string(error.what()) + "; the current map is kept";
+    ROS_WARN("mrs_vpr: load_map failed: %s", response.message.c_str());
+  }
+  publishMapInfoIfChanged();
+  return true;
+}
+
+void PlaceRecognitionNode::reportWriteErrors() {
+  const std::string error = map_->writeError();
+  if (!error.empty()) {
+    ROS_ERROR_THROTTLE(kWriteErrorPeriod, "mrs_vpr: keyframes cannot be committed to ~database (retrying): %s",
+                       error.c_str());
+  }
+}
+
+}  // namespace node
+}  // namespace mrs_vpr

@@ -1,0 +1,121 @@
+#include "mrs_vpr/store/map_writer.hpp"
+
+#include <exception>
+#include <iterator>
+#include <utility>
+
+namespace mrs_vpr {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+Clock::duration toDuration(double seconds) {
+  return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
+
+MapWriter::MapWriter(MapDatabase& database, const CommitPolicy& policy)
+    : database_(database), policy_(policy), persisted_(static_cast<std::uint64_t>(database.size())) {
+  thread_ = std::thread(&MapWriter::run, this);
+}
+
+MapWriter::~MapWriter() {
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+void MapWriter::add(StoredFrame frame) {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  const bool was_empty = queue_.empty();
+  if (was_empty) oldest_ = Clock::now();
+  queue_.push_back(std::move(frame));
+  // The thread sleeps until a frame arrives (then until its deadline) or a batch is full.
+  if (was_empty || static_cast<int>(queue_.size()) >= policy_.frames) wake_.notify_one();
+}
+
+void MapWriter::commit() {
+  std::lock_guard<std::mutex> lock(database_mutex_);
+  commitQueuedLocked();
+}
+
+void MapWriter::withDatabase(const std::function<void(MapDatabase& database)>& task) {
+  std::lock_guard<std::mutex> lock(database_mutex_);
+  commitQueuedLocked();
+  try {
+    task(database_);
+  } catch (...) {
+    try {
+      persisted_ = static_cast<std::uint64_t>(database_.size());
+    } catch (const std::exception&) {  // The task's failure is the one to report.
+    }
+    throw;
+  }
+  persisted_ = static_cast<std::uint64_t>(database_.size());
+}
+
+std::size_t MapWriter::queued() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return queue_.size();
+}
+
+std::string MapWriter::lastError() const {
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  return last_error_;
+}
+
+void MapWriter::commitQueuedLocked() {
+  std::vector<StoredFrame> batch;
+  Clock::time_point batch_oldest;
+  {
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    batch.swap(queue_);
+    batch_oldest = oldest_;
+  }
+  if (batch.empty()) return;
+  try {
+    database_.append(batch);  // One transaction: all of the batch is on disk, or none of it.
+  } catch (const std::exception& error) {
+    // Back to the front of the queue, before anything added meanwhile, for the next try.
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    batch.insert(batch.end(), std::make_move_iterator(queue_.begin()), std::make_move_iterator(queue_.end()));
+    queue_.swap(batch);
+    oldest_ = batch_oldest;
+    last_error_ = error.what();
+    throw MapDatabaseError(last_error_);
+  }
+  persisted_ += batch.size();
+  std::lock_guard<std::mutex> lock(queue_mutex_);
+  last_error_.clear();
+}
+
+void MapWriter::run() {
+  std::unique_lock<std::mutex> lock(queue_mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // Stopping, and everything is committed.
+    wake_.wait_until(lock, oldest_ + toDuration(policy_.period),
+                     [&] { return stopping_ || static_cast<int>(queue_.size()) >= policy_.frames; });
+    lock.unlock();
+    bool failed = false;
+    {
+      std::lock_guard<std::mutex> database_lock(database_mutex_);
+      try {
+        commitQueuedLocked();
+      } catch (const std::exception&) {
+        failed = true;  // lastError() has it; the frames wait for the next try.
+      }
+    }
+    lock.lock();
+    if (failed) {
+      if (stopping_) return;  // The last try failed too: the map keeps these frames, the file does not.
+      wake_.wait_for(lock, toDuration(policy_.period), [&] { return stopping_; });
+    }
+  }
+}
+
+}  // namespace mrs_vpr

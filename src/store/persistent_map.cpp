@@ -1,0 +1,163 @@
+#include "mrs_vpr/store/persistent_map.hpp"
+
+#include <algorithm>
+#include <exception>
+#include <filesystem>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace mrs_vpr {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr int kChunk = 4096;  // frames read or written at a time by a whole-map operation
+
+/// Throws MapDatabaseError when `frames` do not fit in the recognizer's map.
+void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path, std::int64_t frames) {
+  const int capacity = recognizer.recognizerParameters().max_frames;
+  if (capacity > 0 && frames > capacity) {
+    throw MapDatabaseError("map database '" + path + "': it holds " + std::to_string(frames) +
+                           " frames, more than max_frames (" + std::to_string(capacity) + ")");
+  }
+}
+
+/// Hands one frame to the recognizer, which must take it (the caller checked the capacity).
+void admit(PlaceRecognizer& recognizer, const cv::Mat& descriptor, double stamp) {
+  FrameAdmission admission = recognizer.addDescriptor(descriptor, stamp);
+  if (admission == FrameAdmission::kPendingFull) {
+    recognizer.flush();  // Another thread held the map for a moment: wait for it instead of dropping.
+    admission = recognizer.addDescriptor(descriptor, stamp);
+  }
+  if (admission != FrameAdmission::kAdmitted) throw std::logic_error("the map refused a frame it had room for");
+}
+
+}  // namespace
+
+PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(recognizer) {}
+
+PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& path, const CommitPolicy& policy)
+    : recognizer_(recognizer),
+      database_(std::make_unique<MapDatabase>(path, recognizer.parameters().descriptor)) {
+  if (recognizer_.size() + recognizer_.pending() > 0) {
+    throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
+  }
+  requireCapacity(recognizer_, path, database_->size());
+  // Streamed, not read into memory first: a million-frame map would be held twice.
+  int loaded = 0;
+  database_->forEachFrame([&](const StoredFrame& frame) {
+    if (loaded++ % kChunk == 0) recognizer_.reserveAhead();
+    admit(recognizer_, frame.descriptor.clone(), frame.stamp);  // The row's bytes live until the next row.
+  });
+  recognizer_.flush();
+  writer_ = std::make_unique<MapWriter>(*database_, policy);
+}
+
+PersistentMap::~PersistentMap() {
+  writer_.reset();  // Its last commit, before the database closes.
+}
+
+FrameAdmission PersistentMap::add(const cv::Mat& descriptor, double stamp, const std::string& frame_id,
+                                  std::int64_t sequence) {
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  const FrameAdmission admission = recognizer_.addDescriptor(descriptor, stamp);
+  if (admission == FrameAdmission::kAdmitted && writer_) {
+    writer_->add({descriptor, stamp, frame_id, sequence});  // Shares the descriptor's bytes, never changed.
+  }
+  return admission;
+}
+
+void PersistentMap::commit() {
+  if (writer_) writer_->commit();
+}
+
+int PersistentMap::reset() {
+  std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  // The database first: if it cannot be emptied, the map stays as it is and still matches it.
+  if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
+  return recognizer_.reset();
+}
+
+int PersistentMap::load(const std::string& path) {
+  std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  std::error_code ignored;
+  if (database_ && fs::equivalent(path, database_->path(), ignored)) {
+    throw MapDatabaseError("map database '" + path + "': it is this map's own database, already loaded");
+  }
+  // Everything is read and checked before anything changes.
+  std::vector<StoredFrame> frames;
+  {
+    const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
+    saved.checkIntegrity();
+    requireCapacity(recognizer_, path, saved.size());
+    frames.reserve(static_cast<std::size_t>(saved.size()));
+    saved.forEachFrame([&](const StoredFrame& frame) {
+      frames.push_back({frame.descriptor.clone(), frame.stamp, frame.frame_id, frame.sequence});
+    });
+  }
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  // The database first, in one transaction: on failure the old map stays in both.
+  if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
+  recognizer_.reset();
+  admitAll(frames);
+  return static_cast<int>(frames.size());
+}
+
+void PersistentMap::admitAll(const std::vector<StoredFrame>& frames) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    if (i % kChunk == 0) recognizer_.reserveAhead();
+    admit(recognizer_, frames[i].descriptor, frames[i].stamp);
+  }
+  recognizer_.flush();
+}
+
+std::int64_t PersistentMap::save(const std::string& path) {
+  std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  if (!writer_) return saveFromMemory(path);
+  std::int64_t frames = 0;
+  // Queued frames are committed first, so the snapshot holds every frame added before the call.
+  writer_->withDatabase([&](MapDatabase& database) {
+    database.backupTo(path);
+    frames = database.size();
+  });
+  return frames;
+}
+
+std::int64_t PersistentMap::saveFromMemory(const std::string& path) {
+  MapDatabase::checkSaveTarget(path);  // Before any work, in the words a backup would use.
+  std::error_code ignored;
+  // The frames go to a scratch database beside the target, which the online backup then turns into
+  // the one-file snapshot, written aside and renamed like every saved map.
+  const std::string scratch = path + ".build";
+  const auto removeScratch = [&] {
+    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(scratch + suffix, ignored);
+  };
+  removeScratch();
+  recognizer_.flush();
+  const int frames = recognizer_.size();  // Frames added later are after the snapshot's moment.
+  try {
+    MapDatabase copy(scratch, recognizer_.parameters().descriptor);
+    std::vector<StoredFrame> chunk;
+    for (int begin = 0; begin < frames; begin += kChunk) {
+      chunk.clear();
+      recognizer_.visitFrames(begin, std::min(frames, begin + kChunk), [&](const cv::Mat& descriptor, double stamp) {
+        chunk.push_back({descriptor.clone(), stamp, "", -1});
+      });
+      copy.append(chunk);
+    }
+    copy.backupTo(path);
+  } catch (const MapDatabaseError& error) {
+    removeScratch();
+    // The scratch file's name would only confuse: the user asked for `path`.
+    const std::string message = error.what();
+    if (message.find(scratch) == std::string::npos) throw;
+    throw MapDatabaseError("cannot save the map to '" + path + "': " + message.substr(message.find(scratch) +
+                                                                                        scratch.size() + 3));
+  }
+  removeScratch();
+  return frames;
+}
+
+}  // namespace mrs_vpr

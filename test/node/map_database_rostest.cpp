@@ -1,0 +1,423 @@
+// The node with a map database (~database), started and stopped by the test itself under rostest's
+// master: restarts, kill -9, ~save_map, ~load_map, ~reset, bad databases at start-up, and a map built
+// by the node against one built offline by build_map from the same frames.
+
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <std_srvs/Trigger.h>
+
+#include "mrs_vpr/LoadMap.h"
+#include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/SaveMap.h"
+#include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kReferenceStart = 1000.0;  // stamp of reference frame 0 [s]
+constexpr double kFramePeriod = 0.1;        // [s] between the stamps of published frames
+constexpr int kTolerance = 5;               // frames
+const char* const kTopic = "/map_test/image";
+
+const mrs_vpr::SyntheticRoute& route() {
+  static const mrs_vpr::SyntheticRoute generated = generateSyntheticRoute(mrs_vpr::SyntheticRouteParams{});
+  return generated;  // 400 reference frames, 300 query frames
+}
+
+sensor_msgs::ImagePtr referenceMessage(int i) {
+  return mrs_vpr::bag::toImageMessage(route().reference[static_cast<std::size_t>(i)], "bgr8",
+                                      ros::Time(kReferenceStart + i * kFramePeriod), "camera");
+}
+
+/// An mrs_vpr_node process named `name`, its output in `log`.
+class NodeProcess {
+ public:
+  NodeProcess(const std::string& name, const std::vector<std::string>& parameters, const std::string& log)
+      : name_(name) {
+    std::vector<std::string> arguments = {MRS_VPR_NODE_PATH, "__name:=" + name, std::string("image:=") + kTopic};
+    for (const auto& parameter : parameters) arguments.push_back("_" + parameter);
+    pid_ = fork();
+    if (pid_ == 0) {
+      const int out = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(out, STDOUT_FILENO);
+      dup2(out, STDERR_FILENO);
+      std::vector<char*> argv;
+      for (auto& argument : arguments) argv.push_back(argument.data());
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+  }
+  ~NodeProcess() {
+    if (pid_ > 0 && running()) kill(pid_, SIGKILL);
+    if (pid_ > 0) waitpid(pid_, nullptr, 0);
+  }
+
+  bool running() {
+    if (exited_) return false;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      exited_ = true;
+      status_ = status;
+      return false;
+    }
+    return true;
+  }
+
+  /// Waits up to `seconds` for the process to end; its exit code, or -1 when it did not end.
+  int waitForExit(double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (running() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (!exited_) return -1;
+    return WIFEXITED(status_) ? WEXITSTATUS(status_) : 128 + WTERMSIG(status_);
+  }
+
+  /// Stops the node as Ctrl-C does; its exit code.
+  int stop() {
+    kill(pid_, SIGINT);
+    return waitForExit(20.0);
+  }
+  void killHard() {
+    kill(pid_, SIGKILL);
+    waitForExit(10.0);
+  }
+
+  std::string service(const std::string& name) const { return "/" + name_ + "/" + name; }
+  const std::string& name() const { return name_; }
+
+ private:
+  std::string name_;
+  pid_t pid_ = -1;
+  bool exited_ = false;
+  int status_ = 0;
+};
+
+/// The latest ~map_info of a node.
+class MapInfoWatch {
+ public:
+  MapInfoWatch(ros::NodeHandle& nh, const std::string& node)
+      : sub_(nh.subscribe("/" + node + "/map_info", 10, &MapInfoWatch::callback, this)) {}
+
+  /// Waits until a MapInfo satisfies `predicate`.
+  template <typename Predicate>
+  bool waitFor(Predicate predicate, double seconds = 30.0) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (std::chrono::steady_clock::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (received_ && predicate(latest_)) return true;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return false;
+  }
+  mrs_vpr::MapInfo latest() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return latest_;
+  }
+
+ private:
+  void callback(const mrs_vpr::MapInfo& info) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = info;
+    received_ = true;
+  }
+
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  mrs_vpr::MapInfo latest_;
+  bool received_ = false;
+};
+
+std::string contents(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+class MapDatabaseNodeTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_map_node_test.XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    folder_ = pattern;
+    image_pub_ = nh_.advertise<sensor_msgs::Image>(kTopic, 1000);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(folder_, ignored);
+  }
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+
+  /// Starts a node on `database` and waits until it serves ~query and is subscribed.
+  std::unique_ptr<NodeProcess> startNode(const std::string& name, const std::string& database,
+                                         const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> parameters = {"database:=" + database, "image_queue_size:=1000",
+                                           "map_info_rate:=20.0", "recent_exclusion:=50"};
+    parameters.insert(parameters.end(), extra.begin(), extra.end());
+    auto node = std::make_unique<NodeProcess>(name, parameters, path(name + ".log"));
+    EXPECT_TRUE(ros::service::waitForService(node->service("query"), ros::Duration(30.0)))
+        << "the node did not start; its log:\n" << contents(path(name + ".log"));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (image_pub_.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_GT(image_pub_.getNumSubscribers(), 0U);
+    return node;
+  }
+
+  /// Publishes reference frames [begin, end) quickly; the node's queue holds them all.
+  void publishReference(int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      image_pub_.publish(referenceMessage(i));
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+  }
+
+  /// Waits until the node's map holds `frames` frames, all committed to its database.
+  static void waitPersisted(MapInfoWatch& info, std::uint32_t frames) {
+    ASSERT_TRUE(info.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == frames && m.frames_persisted == frames; }))
+        << "map_info: " << info.latest().frames << " frames, " << info.latest().frames_persisted << " persisted; expected "
+        << frames;
+  }
+
+  /// The node's answer to query frames [first, first + count) of the second traversal.
+  static mrs_vpr::QuerySequence::Response query(const NodeProcess& node, int first, int count) {
+    mrs_vpr::QuerySequence srv;
+    for (int i = first; i < first + count; ++i) {
+      srv.request.images.push_back(*mrs_vpr::bag::toImageMessage(route().query[static_cast<std::size_t>(i)], "bgr8",
+                                                                 ros::Time(9000.0 + i * kFramePeriod), "camera"));
+    }
+    srv.request.method = "seqslam";
+    EXPECT_TRUE(ros::service::call(node.service("query"), srv));
+    return srv.response;
+  }
+
+  /// The first query frame that shows reference frame `reference` or a later one.
+  static int queryFrameAt(int reference) {
+    const auto& truth = route().query_to_reference;
+    for (std::size_t i = 0; i < truth.size(); ++i) {
+      if (truth[i] >= reference) return static_cast<int>(i);
+    }
+    return -1;
+  }
+
+  static std::vector<mrs_vpr::StoredFrame> storedFrames(const std::string& file) {
+    std::vector<mrs_vpr::StoredFrame> frames;
+    mrs_vpr::MapDatabase(file, mrs_vpr::DescriptorParams{}, mrs_vpr::MapAccess::kReadOnly)
+        .forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+          frames.push_back({frame.descriptor.clone(), frame.stamp, frame.frame_id, frame.sequence});
+        });
+    return frames;
+  }
+
+  ros::NodeHandle nh_;
+  ros::Publisher image_pub_;
+  fs::path folder_;
+};
+
+TEST_F(MapDatabaseNodeTest, ARestartedNodeKeepsItsMapAndAnswersAboutTheFirstPart) {
+  const std::string database = path("map.db");
+  {
+    auto node = startNode("mapper", database);
+    MapInfoWatch info(nh_, node->name());
+    publishReference(0, 200);
+    waitPersisted(info, 200);
+    EXPECT_EQ(node->stop(), 0);
+  }
+  auto node = startNode("mapper", database);
+  MapInfoWatch info(nh_, node->name());
+  waitPersisted(info, 200);  // Loaded at start-up, before any frame arrives.
+  publishReference(200, 300);
+  waitPersisted(info, 300);
+
+  // A stretch of the second traversal over reference frames mapped before the restart.
+  const int first = queryFrameAt(60);
+  const int last = first + 79;
+  ASSERT_LT(route().query_to_reference[static_cast<std::size_t>(last)], 200);
+  auto response = query(*node, first, 80);
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_NEAR(response.reference_index, route().query_to_reference[static_cast<std::size_t>(last)], kTolerance);
+  EXPECT_NEAR(response.reference_stamp.toSec(), kReferenceStart + response.reference_index * kFramePeriod, 1e-3);
+  EXPECT_TRUE(response.accepted);
+  // And one over frames mapped after it.
+  const int later = queryFrameAt(210);
+  response = query(*node, later, 60);
+  ASSERT_TRUE(response.success) << response.message;
+  EXPECT_NEAR(response.reference_index, route().query_to_reference[static_cast<std::size_t>(later + 59)], kTolerance);
+  EXPECT_EQ(node->stop(), 0);
+}
+
+TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) {
+  // The same 150 messages: written to a bag for build_map, published to the node.
+  {
+    rosbag::Bag bag(path("frames.bag"), rosbag::bagmode::Write);
+    for (int i = 0; i < 150; ++i) bag.write(kTopic, ros::Time(kReferenceStart + i * kFramePeriod), referenceMessage(i));
+  }
+  const std::string command = std::string(BUILD_MAP_PATH) + " --bag " + path("frames.bag") + " --topic " + kTopic +
+                              " --output " + path("offline.db") + " > " + path("build_map.log") + " 2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << contents(path("build_map.log"));
+
+  auto node = startNode("mapper", path("node.db"));
+  MapInfoWatch info(nh_, node->name());
+  publishReference(0, 150);
+  waitPersisted(info, 150);
+  EXPECT_EQ(node->stop(), 0);
+
+  const auto offline = storedFrames(path("offline.db"));
+  const auto online = storedFrames(path("node.db"));
+  ASSERT_EQ(offline.size(), 150U);
+  ASSERT_EQ(online.size(), 150U);
+  for (std::size_t i = 0; i < offline.size(); ++i) {
+    SCOPED_TRACE("frame " + std::to_string(i));
+    ASSERT_EQ(offline[i].descriptor.total(), online[i].descriptor.total());
+    EXPECT_EQ(std::memcmp(offline[i].descriptor.data, online[i].descriptor.data, offline[i].descriptor.total()), 0);
+    EXPECT_EQ(offline[i].stamp, online[i].stamp);
+  }
+  EXPECT_EQ(online.front().frame_id, "camera");  // What the node knows of the camera is kept too.
+}
+
+TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
+  auto node = startNode("mapper", path("map.db"));
+  MapInfoWatch info(nh_, node->name());
+  publishReference(0, 120);
+  waitPersisted(info, 120);
+
+  mrs_vpr::SaveMap save;
+  save.request.path = path("snapshot.db");
+  ASSERT_TRUE(ros::service::call(node->service("save_map"), save));
+  EXPECT_TRUE(save.response.success) << save.response.message;
+  EXPECT_EQ(save.response.frames, 120U);
+  EXPECT_EQ(storedFrames(path("snapshot.db")).size(), 120U);
+  // Saving over a file is refused, naming it; the file stays as it was.
+  const std::string snapshot = contents(path("snapshot.db"));
+  ASSERT_TRUE(ros::service::call(node->service("save_map"), save));
+  EXPECT_FALSE(save.response.success);
+  EXPECT_NE(save.response.message.find(path("snapshot.db")), std::string::npos) << save.response.message;
+  EXPECT_NE(save.response.message.find("exists"), std::string::npos) << save.response.message;
+  EXPECT_EQ(contents(path("snapshot.db")), snapshot);
+
+  // A file that is not a map: refused, naming it, and the map is kept.
+  {
+    std::ofstream notes(path("notes.db"));
+    notes << "my notes, not a map\n";
+  }
+  mrs_vpr::LoadMap load;
+  load.request.path = path("notes.db");
+  ASSERT_TRUE(ros::service::call(node->service("load_map"), load));
+  EXPECT_FALSE(load.response.success);
+  EXPECT_NE(load.response.message.find(path("notes.db")), std::string::npos) << load.response.message;
+  EXPECT_NE(load.response.message.find("not a database"), std::string::npos) << load.response.message;
+  EXPECT_NE(load.response.message.find("kept"), std::string::npos) << load.response.message;
+  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+
+  std_srvs::Trigger reset;
+  ASSERT_TRUE(ros::service::call(node->service("reset"), reset));
+  EXPECT_TRUE(reset.response.success);
+  EXPECT_NE(reset.response.message.find("cleared 120 frames from the map and from the database"), std::string::npos)
+      << reset.response.message;
+  waitPersisted(info, 0);
+
+  load.request.path = path("snapshot.db");
+  ASSERT_TRUE(ros::service::call(node->service("load_map"), load));
+  EXPECT_TRUE(load.response.success) << load.response.message;
+  EXPECT_EQ(load.response.frames, 120U);
+  waitPersisted(info, 120);
+  publishReference(120, 140);
+  waitPersisted(info, 140);
+  EXPECT_EQ(node->stop(), 0);
+  // The node's database mirrors the map: the loaded frames, then the new ones.
+  const auto frames = storedFrames(path("map.db"));
+  ASSERT_EQ(frames.size(), 140U);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_DOUBLE_EQ(frames[i].stamp, kReferenceStart + static_cast<double>(i) * kFramePeriod) << i;
+  }
+}
+
+TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {
+  // Frames at 30 Hz, default commits (1 s or 100 frames); the node is killed with SIGKILL at seeded
+  // moments. Every frame ~map_info called persisted must be in the database afterwards.
+  std::mt19937 rng(11);
+  for (int round = 0; round < 3; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    const std::string database = path("crash" + std::to_string(round) + ".db");
+    auto node = startNode("crasher" + std::to_string(round), database);
+    MapInfoWatch info(nh_, node->name());
+    const int frames = std::uniform_int_distribution<int>(60, 150)(rng);
+    std::uint64_t reported = 0;
+    for (int i = 0; i < frames; ++i) {
+      image_pub_.publish(referenceMessage(i));
+      reported = info.latest().frames_persisted;
+      std::this_thread::sleep_for(std::chrono::microseconds(33333));
+    }
+    reported = info.latest().frames_persisted;
+    node->killHard();
+    const auto stored = storedFrames(database);
+    std::printf("[ figures  ] kill -9 after %d frames at 30 Hz: %llu reported persisted, %zu in the database\n",
+                frames, static_cast<unsigned long long>(reported), stored.size());
+    EXPECT_GE(stored.size(), reported);
+    EXPECT_GT(reported, 0U);
+    // At most about one commit period (30 frames) and the frames in flight are lost.
+    EXPECT_GE(static_cast<int>(stored.size()), frames - 45);
+    for (std::size_t i = 0; i < stored.size(); ++i) {
+      EXPECT_DOUBLE_EQ(stored[i].stamp, kReferenceStart + static_cast<double>(i) * kFramePeriod) << i;
+    }
+  }
+}
+
+TEST_F(MapDatabaseNodeTest, AnUnusableDatabaseStopsTheNodeAtStartUpNamingIt) {
+  {
+    std::ofstream notes(path("notes.db"));
+    notes << "my notes, not a map\n";
+  }
+  NodeProcess node("bad_db", {"database:=" + path("notes.db")}, path("bad_db.log"));
+  EXPECT_EQ(node.waitForExit(30.0), 1);
+  const std::string log = contents(path("bad_db.log"));
+  EXPECT_NE(log.find(path("notes.db")), std::string::npos) << log;
+  EXPECT_NE(log.find("not a database"), std::string::npos) << log;
+  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+
+  // A database another node holds.
+  auto owner = startNode("owner", path("map.db"));
+  NodeProcess second("second", {"database:=" + path("map.db")}, path("second.log"));
+  EXPECT_EQ(second.waitForExit(30.0), 1);
+  const std::string second_log = contents(path("second.log"));
+  EXPECT_NE(second_log.find("locked by another process"), std::string::npos) << second_log;
+  EXPECT_TRUE(owner->running());
+  EXPECT_EQ(owner->stop(), 0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "mrs_vpr_map_database_rostest");
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}

@@ -1,0 +1,122 @@
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "mrs_vpr/store/map_writer.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+namespace fs = std::filesystem;
+
+class MapWriterTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_writer_test.XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    folder_ = pattern;
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(folder_, ignored);
+  }
+  std::string path() const { return (folder_ / "map.db").string(); }
+
+  static StoredFrame frame(int i) {
+    StoredFrame stored;
+    stored.descriptor = cv::Mat(1, 64 * 32, CV_8UC1, cv::Scalar(i % 256));
+    stored.descriptor.at<std::uint8_t>(0, 0) = static_cast<std::uint8_t>(i / 256);
+    stored.stamp = i;
+    return stored;
+  }
+
+  /// Waits up to `seconds` for the writer to report `frames` persisted.
+  static bool waitPersisted(const MapWriter& writer, std::uint64_t frames, double seconds) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+    while (writer.persisted() < frames && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return writer.persisted() >= frames;
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {
+  MapDatabase database(path(), DescriptorParams{});
+  MapWriter writer(database, CommitPolicy{2.0, 1000});
+  for (int i = 0; i < 5; ++i) writer.add(frame(i));
+  // Far below the batch size: nothing is written before the period has passed.
+  EXPECT_EQ(writer.persisted(), 0U);
+  EXPECT_EQ(writer.queued(), 5U);
+  EXPECT_TRUE(waitPersisted(writer, 5, 10.0));
+  EXPECT_EQ(writer.queued(), 0U);
+  std::int64_t stored = 0;
+  writer.withDatabase([&](MapDatabase& db) { stored = db.size(); });
+  EXPECT_EQ(stored, 5);
+}
+
+TEST_F(MapWriterTest, AFullBatchIsCommittedWithoutWaitingForThePeriod) {
+  MapDatabase database(path(), DescriptorParams{});
+  MapWriter writer(database, CommitPolicy{3600.0, 10});
+  for (int i = 0; i < 10; ++i) writer.add(frame(i));
+  EXPECT_TRUE(waitPersisted(writer, 10, 10.0)) << "the batch waited for the hour-long period";
+}
+
+TEST_F(MapWriterTest, StoppingCommitsWhatIsQueued) {
+  {
+    MapDatabase database(path(), DescriptorParams{});
+    MapWriter writer(database, CommitPolicy{3600.0, 1000});
+    for (int i = 0; i < 7; ++i) writer.add(frame(i));
+  }
+  EXPECT_EQ(MapDatabase(path(), DescriptorParams{}).size(), 7);
+}
+
+TEST_F(MapWriterTest, FramesReachTheDatabaseInTheOrderAddedWhateverCommitsThem) {
+  constexpr int kFrames = 3000;
+  {
+    MapDatabase database(path(), DescriptorParams{});
+    MapWriter writer(database, CommitPolicy{0.001, 7});
+    // The writer's thread, explicit commits and whole-database tasks all take batches meanwhile.
+    std::thread committer([&] {
+      for (int i = 0; i < 50; ++i) {
+        writer.commit();
+        writer.withDatabase([](MapDatabase&) {});
+      }
+    });
+    for (int i = 0; i < kFrames; ++i) writer.add(frame(i));
+    committer.join();
+    writer.commit();
+    EXPECT_EQ(writer.persisted(), static_cast<std::uint64_t>(kFrames));
+  }
+  int i = 0;
+  MapDatabase(path(), DescriptorParams{}).forEachFrame([&](const StoredFrame& stored) {
+    EXPECT_EQ(stored.stamp, i) << "frame " << i;
+    EXPECT_EQ(cv::norm(stored.descriptor, frame(i).descriptor, cv::NORM_L1), 0.0) << "frame " << i;
+    ++i;
+  });
+  EXPECT_EQ(i, kFrames);
+}
+
+TEST_F(MapWriterTest, PersistedStartsAtTheFramesAlreadyStored) {
+  {
+    MapDatabase database(path(), DescriptorParams{});
+    database.append({frame(0), frame(1), frame(2)});
+  }
+  MapDatabase database(path(), DescriptorParams{});
+  MapWriter writer(database, CommitPolicy{});
+  EXPECT_EQ(writer.persisted(), 3U);
+  writer.add(frame(3));
+  writer.commit();
+  EXPECT_EQ(writer.persisted(), 4U);
+  writer.withDatabase([](MapDatabase& db) { db.clear(); });
+  EXPECT_EQ(writer.persisted(), 0U);
+}
+
+}  // namespace
+}  // namespace mrs_vpr

@@ -1,0 +1,343 @@
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include "mrs_vpr/store/persistent_map.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A small generated route, described once for every test.
+const SyntheticRoute& route() {
+  static const SyntheticRoute generated = [] {
+    SyntheticRouteParams params;
+    params.reference_frames = 300;
+    params.query_frames = 200;
+    return generateSyntheticRoute(params);
+  }();
+  return generated;
+}
+
+const std::vector<cv::Mat>& referenceDescriptors() {
+  static const std::vector<cv::Mat> described = [] {
+    const DescriptorExtractor extractor{DescriptorParams{}};
+    std::vector<cv::Mat> result;
+    for (const cv::Mat& image : route().reference) result.push_back(extractor.compute(image));
+    return result;
+  }();
+  return described;
+}
+
+/// The map's frames as (descriptor, stamp), copied.
+std::vector<std::pair<cv::Mat, double>> framesOf(const PlaceRecognizer& recognizer) {
+  std::vector<std::pair<cv::Mat, double>> frames;
+  recognizer.visitFrames(0, recognizer.size(),
+                         [&](const cv::Mat& descriptor, double stamp) { frames.emplace_back(descriptor.clone(), stamp); });
+  return frames;
+}
+
+/// The database's frames as (descriptor, stamp), copied.
+std::vector<std::pair<cv::Mat, double>> framesOf(const std::string& path) {
+  std::vector<std::pair<cv::Mat, double>> frames;
+  MapDatabase(path, DescriptorParams{}, MapAccess::kReadOnly).forEachFrame([&](const StoredFrame& frame) {
+    frames.emplace_back(frame.descriptor.clone(), frame.stamp);
+  });
+  return frames;
+}
+
+/// Reference frames [begin, end) as the map should hold them: descriptor and stamp i.
+std::vector<std::pair<cv::Mat, double>> expectedFrames(int begin, int end) {
+  std::vector<std::pair<cv::Mat, double>> frames;
+  for (int i = begin; i < end; ++i) frames.emplace_back(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+  return frames;
+}
+
+void expectSameFrames(const std::vector<std::pair<cv::Mat, double>>& actual,
+                      const std::vector<std::pair<cv::Mat, double>>& expected) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_EQ(cv::norm(actual[i].first, expected[i].first, cv::NORM_L1), 0.0) << "frame " << i;
+    EXPECT_EQ(actual[i].second, expected[i].second) << "frame " << i;
+  }
+}
+
+class PersistentMapTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_persistent_map_test.XXXXXX").string();
+    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
+    folder_ = pattern;
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(folder_, ignored);
+  }
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+
+  static void addReference(PersistentMap& map, int begin, int end) {
+    for (int i = begin; i < end; ++i) {
+      ASSERT_EQ(map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i, "camera", i), FrameAdmission::kAdmitted);
+    }
+  }
+
+  /// The message of the MapDatabaseError that `action` throws, or "(no error)".
+  template <typename Action>
+  static std::string errorOf(Action action) {
+    try {
+      action();
+    } catch (const MapDatabaseError& error) {
+      return error.what();
+    }
+    return "(no error)";
+  }
+
+  static std::string contents(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+
+  /// A map database of reference frames [begin, end) at `file`, written by a PersistentMap.
+  static void writeMap(const std::string& file, int begin, int end) {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, file, CommitPolicy{});
+    addReference(map, begin, end);
+  }
+
+  fs::path folder_;
+};
+
+TEST_F(PersistentMapTest, ARestartedMapHoldsEveryFrameInOrderAndAnswersAboutThem) {
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    addReference(map, 0, 300);
+  }  // A clean stop commits what is queued.
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+  EXPECT_EQ(map.persisted(), 300U);
+  expectSameFrames(framesOf(recognizer), expectedFrames(0, 300));
+  // The query traversal's frames 60..139 lie in the restored map.
+  const std::vector<cv::Mat> test(route().query.begin() + 60, route().query.begin() + 140);
+  const PlaceAnswer answer = recognizer.match(test, "seqslam");
+  EXPECT_NEAR(answer.match.reference_index, route().query_to_reference[139], 3);
+  EXPECT_TRUE(answer.match.accepted);
+}
+
+TEST_F(PersistentMapTest, FramesAddedAfterARestartFollowTheLoadedOnes) {
+  writeMap(path("map.db"), 0, 100);
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    addReference(map, 100, 150);
+  }
+  expectSameFrames(framesOf(path("map.db")), expectedFrames(0, 150));
+}
+
+TEST_F(PersistentMapTest, ResetEmptiesTheMapAndTheDatabase) {
+  PlaceRecognizer recognizer;
+  {
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{3600.0, 1000});
+    addReference(map, 0, 50);
+    EXPECT_EQ(map.reset(), 50);
+    EXPECT_EQ(recognizer.size(), 0);
+    EXPECT_EQ(map.persisted(), 0U);
+    addReference(map, 50, 60);
+  }
+  expectSameFrames(framesOf(path("map.db")), expectedFrames(50, 60));
+}
+
+TEST_F(PersistentMapTest, SaveWritesASnapshotWhileFramesKeepArriving) {
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{0.05, 20});
+  addReference(map, 0, 100);
+  std::atomic<bool> saved{false};
+  std::thread camera([&] {
+    for (int i = 100; i < 300 && !saved; ++i) map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+  });
+  const std::int64_t frames = map.save(path("snapshot.db"));
+  saved = true;
+  camera.join();
+  // A consistent moment of the map: every frame added before the call, then a prefix of the rest.
+  EXPECT_GE(frames, 100);
+  expectSameFrames(framesOf(path("snapshot.db")), expectedFrames(0, static_cast<int>(frames)));
+  // One self-contained file, nothing left aside.
+  EXPECT_FALSE(fs::exists(path("snapshot.db-wal")));
+  EXPECT_FALSE(fs::exists(path("snapshot.db.part")));
+}
+
+TEST_F(PersistentMapTest, SaveNeverOverwritesAFile) {
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+  addReference(map, 0, 10);
+  {
+    std::ofstream notes(path("notes.db"));
+    notes << "my notes\n";
+  }
+  const std::string message = errorOf([&] { map.save(path("notes.db")); });
+  EXPECT_NE(message.find(path("notes.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("exists"), std::string::npos) << message;
+  EXPECT_EQ(contents(path("notes.db")), "my notes\n");
+  const std::string no_folder = errorOf([&] { map.save(path("missing/map.db")); });
+  EXPECT_NE(no_folder.find("no folder"), std::string::npos) << no_folder;
+}
+
+TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer);
+  addReference(map, 0, 120);
+  EXPECT_FALSE(map.persistent());
+  EXPECT_EQ(map.persisted(), 0U);
+  EXPECT_EQ(map.save(path("memory.db")), 120);
+  expectSameFrames(framesOf(path("memory.db")), expectedFrames(0, 120));
+  EXPECT_FALSE(fs::exists(path("memory.db.build")));
+}
+
+TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {
+  writeMap(path("saved.db"), 200, 260);
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    addReference(map, 0, 100);
+    EXPECT_EQ(map.load(path("saved.db")), 60);
+    EXPECT_EQ(map.persisted(), 60U);
+    expectSameFrames(framesOf(recognizer), expectedFrames(200, 260));
+    addReference(map, 260, 270);  // Frames after a load follow the loaded ones.
+  }
+  expectSameFrames(framesOf(path("map.db")), expectedFrames(200, 270));
+  expectSameFrames(framesOf(path("saved.db")), expectedFrames(200, 260));  // Only read.
+}
+
+TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
+  writeMap(path("big.db"), 0, 50);
+  {
+    std::ofstream text(path("notes.db"));
+    text << "my notes, not a map\n";
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("other.db").c_str(), &db), SQLITE_OK);
+  sqlite3_exec(db, "CREATE TABLE recipes (name TEXT)", nullptr, nullptr, nullptr);
+  sqlite3_close(db);
+  writeMap(path("truncated.db"), 0, 300);
+  fs::resize_file(path("truncated.db"), fs::file_size(path("truncated.db")) / 2);
+  {
+    DescriptorParams params;  // Other descriptors.
+    params.image_width = 32;
+    MapDatabase other(path("small.db"), params);
+  }
+
+  RecognizerParams capacity;
+  capacity.max_frames = 40;
+  PlaceRecognizer recognizer(Parameters{}, capacity);
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+  addReference(map, 0, 30);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"notes.db", "not a database"},
+      {"other.db", "another kind"},
+      {"truncated.db", "malformed"},
+      {"small.db", "image_width 32 in the map, 64 here"},
+      {"big.db", "50 frames, more than max_frames (40)"},
+      {"missing.db", "no such file"},
+      {"map.db", "own database"},
+  };
+  for (const auto& [file, problem] : cases) {
+    SCOPED_TRACE(file);
+    const std::string before = contents(path(file));
+    const std::string message = errorOf([&] { map.load(path(file)); });
+    EXPECT_NE(message.find(path(file)), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    if (file != "map.db") EXPECT_EQ(contents(path(file)), before) << "the file was changed";
+    expectSameFrames(framesOf(recognizer), expectedFrames(0, 30));
+  }
+  map.commit();
+  EXPECT_EQ(map.persisted(), 30U);
+}
+
+TEST_F(PersistentMapTest, StartingOnABadDatabaseFailsNamingItAndLeavesItUntouched) {
+  {
+    std::ofstream text(path("notes.db"));
+    text << "my notes, not a map\n";
+  }
+  writeMap(path("truncated.db"), 0, 300);
+  fs::resize_file(path("truncated.db"), fs::file_size(path("truncated.db")) / 2);
+  writeMap(path("big.db"), 0, 50);
+  for (const auto& [file, problem] : std::vector<std::pair<std::string, std::string>>{
+           {"notes.db", "not a database"}, {"truncated.db", "malformed"}, {"big.db", "more than max_frames"}}) {
+    SCOPED_TRACE(file);
+    const std::string before = contents(path(file));
+    RecognizerParams capacity;
+    capacity.max_frames = 40;
+    PlaceRecognizer recognizer(Parameters{}, capacity);
+    const std::string message = errorOf([&] { PersistentMap map(recognizer, path(file), CommitPolicy{}); });
+    EXPECT_NE(message.find(path(file)), std::string::npos) << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    EXPECT_EQ(contents(path(file)), before);
+  }
+  // A map held by a running owner.
+  PlaceRecognizer first_recognizer;
+  PersistentMap first(first_recognizer, path("map.db"), CommitPolicy{});
+  PlaceRecognizer second_recognizer;
+  const std::string message = errorOf([&] { PersistentMap second(second_recognizer, path("map.db"), CommitPolicy{}); });
+  EXPECT_NE(message.find("locked by another process"), std::string::npos) << message;
+}
+
+TEST_F(PersistentMapTest, AKillAtAnyMomentLosesNoFrameReportedPersisted) {
+  // A child adds frames at about 30 Hz with the default commit policy scaled down (0.1 s or 10
+  // frames) and reports persisted() through a pipe whenever it grows; the parent kills it with
+  // SIGKILL at seeded moments. Reopened, the map holds at least every frame reported, bit for bit.
+  std::mt19937 rng(5);
+  referenceDescriptors();  // Described before the fork, so that the child starts adding at once.
+  for (int round = 0; round < 4; ++round) {
+    const std::string file = path("crash" + std::to_string(round) + ".db");
+    int report[2];
+    ASSERT_EQ(pipe(report), 0);
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      close(report[0]);
+      PlaceRecognizer recognizer;
+      PersistentMap map(recognizer, file, CommitPolicy{0.1, 10});
+      std::uint64_t reported = 0;
+      for (int i = 0;; i = (i + 1) % 300) {
+        map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+        const std::uint64_t persisted = map.persisted();
+        if (persisted != reported) {
+          reported = persisted;
+          if (write(report[1], &persisted, sizeof(persisted)) != sizeof(persisted)) _exit(1);
+        }
+        usleep(33000);
+      }
+    }
+    close(report[1]);
+    usleep(std::uniform_int_distribution<int>(500000, 2000000)(rng));
+    kill(child, SIGKILL);
+    waitpid(child, nullptr, 0);
+    std::uint64_t persisted = 0;
+    std::uint64_t value = 0;
+    while (read(report[0], &value, sizeof(value)) == sizeof(value)) persisted = value;
+    close(report[0]);
+    ASSERT_GT(persisted, 0U) << "nothing was committed in time";
+    const auto frames = framesOf(file);
+    EXPECT_GE(frames.size(), persisted);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      EXPECT_EQ(cv::norm(frames[i].first, referenceDescriptors()[i % 300], cv::NORM_L1), 0.0) << "frame " << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace mrs_vpr
