@@ -2,9 +2,10 @@
 # The mrs_vpr node end to end on a generated route:
 #   1. generate two traversals of one route as bags (reference.bag, query.bag) with their ground truth,
 #   2. start a private roscore (on a free port, so it never meets a running master) and the node,
-#   3. play the reference bag into the node (it builds its reference map),
-#   4. query a few stretches of the second traversal with mrs and seqslam via the ~query service,
-#   5. print predicted vs true reference frame and the time of each query,
+#   3. play the reference bag into the node (it builds its reference map, kept in a map database),
+#   4. restart the node: it loads the map from its database,
+#   5. query a few stretches of the second traversal with mrs and seqslam via the ~query service,
+#   6. print predicted vs true reference frame and the time of each query,
 # then shut everything down, also on Ctrl-C or an error.
 #
 # Needs the workspace's setup sourced (make demo does it). Usage: scripts/demo.sh
@@ -77,6 +78,9 @@ wait_until() {  # SECONDS DESCRIPTION COMMAND...: polls COMMAND until it succeed
 }
 
 node_alive() { kill -0 "$launch_pid" 2>/dev/null; }
+map_info() {  # FIELD: the node's latest ~map_info FIELD (latched), or nothing.
+  timeout 10 rostopic echo -n 1 "/mrs_vpr/map_info/$1" 2>/dev/null | head -n 1 || true
+}
 service_ready() {
   if ! node_alive; then
     echo "demo: the node exited at start-up; its log:" >&2
@@ -97,10 +101,14 @@ roscore -p "$port" >"$work/roscore.log" 2>&1 &
 background_pids+=("$!:roscore")
 wait_until 30 "the ROS master" rosparam get /rosversion
 
-roslaunch mrs_vpr mrs_vpr.launch image:="$TOPIC" >"$work/node.log" 2>&1 &
-launch_pid=$!
-background_pids+=("$launch_pid:roslaunch")
-wait_until 30 "the service $SERVICE" service_ready
+database=$work/map.db
+start_node() {  # The node on the map database; waits for its query service.
+  roslaunch mrs_vpr mrs_vpr.launch image:="$TOPIC" database:="$database" >>"$work/node.log" 2>&1 &
+  launch_pid=$!
+  background_pids+=("$launch_pid:roslaunch")
+  wait_until 30 "the service $SERVICE" service_ready
+}
+start_node
 
 rostopic echo -p /mrs_vpr/loop_closure >"$work/loop_closure.csv" 2>/dev/null &
 background_pids+=("$!:rostopic echo")
@@ -108,10 +116,18 @@ background_pids+=("$!:rostopic echo")
 echo "== Playing reference.bag into the node ($REFERENCE_FRAMES frames, twice real time)"
 rosbag play --quiet --rate 2 --wait-for-subscribers "$work/reference.bag" >"$work/play.log" 2>&1
 sleep 1  # The last frames still in the subscriber queue.
-map_frames=$(timeout 10 rostopic echo -n 1 /mrs_vpr/map_info/frames 2>/dev/null | head -n 1 || true)
-echo "   reference map: ${map_frames:-?} frames"
+map_frames=$(map_info frames)
+# Commits follow within ~commit_period (1 s) of a frame.
+map_persisted_all() { [ "$(map_info frames_persisted)" = "$map_frames" ]; }
+wait_until 10 "the map's commit to $database" map_persisted_all || true
+echo "   reference map: ${map_frames:-?} frames, $(map_info frames_persisted) of them committed to map.db"
 
-echo "== Querying with $QUERY_LENGTH-frame stretches of query.bag"
+echo "== Restarting the node (roslaunch mrs_vpr mrs_vpr.launch database:=map.db): the map is kept"
+stop_process "$launch_pid" roslaunch
+start_node
+echo "   reference map after the restart: $(map_info frames) frames, loaded from map.db; no frame played since"
+
+echo "== Querying the restarted node with $QUERY_LENGTH-frame stretches of query.bag"
 results=$work/results.jsonl
 : >"$results"
 for start in $QUERY_STARTS; do
