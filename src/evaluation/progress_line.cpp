@@ -58,15 +58,13 @@ std::string ProgressLine::formatDuration(double seconds) {
 }
 
 std::string ProgressLine::format(const std::string& what, const std::string& unit, long long done, long long total,
-                                 double elapsed_seconds) {
+                                 double rate) {
   std::ostringstream text;
   text << what << ": " << done;
   if (total > 0) text << "/" << total;
   text << " " << unit;
   if (total > 0) text << " (" << (100 * done / total) << "%)";
-  // No rate before anything is done or any time has passed: it would be 0 or infinite.
-  if (done > 0 && elapsed_seconds > 0.0) {
-    const double rate = static_cast<double>(done) / elapsed_seconds;
+  if (rate > 0.0) {
     text << ", " << rateText(rate, unit);
     if (total > 0 && done < total) {
       text << ", " << formatDuration(static_cast<double>(total - done) / rate) << " left";
@@ -79,9 +77,16 @@ void ProgressLine::update(long long done) {
   done_ = done;
   if (finished_) return;
   const double now = clock_();
+  if (!counting_) {
+    counting_ = true;
+    first_done_ = done;
+    first_time_ = now;
+  }
   if (now - last_write_ < (terminal_ ? kTerminalPeriod : kPlainPeriod)) return;
   last_write_ = now;
-  write(format(what_, unit_, done_, total_, now - start_));
+  const double rate =
+      now > first_time_ ? static_cast<double>(done - first_done_) / (now - first_time_) : 0.0;
+  write(format(what_, unit_, done_, total_, rate));
 }
 
 ProgressLine::~ProgressLine() {

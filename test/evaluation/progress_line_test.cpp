@@ -17,23 +17,23 @@ struct FakeClock {
 };
 
 TEST(ProgressLine, FormatsDoneTotalRateAndTimeLeft) {
-  // 400 of 1000 frames in 8 s: 50 frames/s, 600 frames left, 12 s.
-  EXPECT_EQ(ProgressLine::format("reference", "frames", 400, 1000, 8.0),
+  // 400 of 1000 frames at 50 frames/s: 600 frames left, 12 s.
+  EXPECT_EQ(ProgressLine::format("reference", "frames", 400, 1000, 50.0),
             "reference: 400/1000 frames (40%), 50 frames/s, 12.0 s left");
   // A slow run keeps a decimal of its rate; a long one gives minutes and hours.
-  EXPECT_EQ(ProgressLine::format("queries", "queries", 3, 1000, 2.0),
+  EXPECT_EQ(ProgressLine::format("queries", "queries", 3, 1000, 1.5),
             "queries: 3/1000 queries (0%), 1.5 queries/s, 11 min 05 s left");
-  EXPECT_EQ(ProgressLine::format("bag", "images", 10, 100000, 10.0),
+  EXPECT_EQ(ProgressLine::format("bag", "images", 10, 100000, 1.0),
             "bag: 10/100000 images (0%), 1.0 images/s, 27 h 46 min left");
 }
 
 TEST(ProgressLine, LeavesOutWhatIsNotKnown) {
-  // Nothing done yet, or no time passed: no rate, no estimate.
-  EXPECT_EQ(ProgressLine::format("reference", "frames", 0, 1000, 5.0), "reference: 0/1000 frames (0%)");
+  // No rate known yet: no rate, no estimate.
+  EXPECT_EQ(ProgressLine::format("reference", "frames", 0, 1000, 0.0), "reference: 0/1000 frames (0%)");
   EXPECT_EQ(ProgressLine::format("reference", "frames", 10, 1000, 0.0), "reference: 10/1000 frames (1%)");
   // Unknown total: count and rate only. Done: no time left.
-  EXPECT_EQ(ProgressLine::format("reference", "frames", 300, 0, 2.0), "reference: 300 frames, 150 frames/s");
-  EXPECT_EQ(ProgressLine::format("reference", "frames", 1000, 1000, 4.0),
+  EXPECT_EQ(ProgressLine::format("reference", "frames", 300, 0, 150.0), "reference: 300 frames, 150 frames/s");
+  EXPECT_EQ(ProgressLine::format("reference", "frames", 1000, 1000, 250.0),
             "reference: 1000/1000 frames (100%), 250 frames/s");
 }
 
@@ -49,21 +49,21 @@ TEST(ProgressLine, RewritesOneLineOnATerminalAtMostFiveTimesASecond) {
   FakeClock time;
   std::ostringstream out;
   ProgressLine progress("reference", "frames", 100, out, true, time.clock());
-  progress.update(1);  // no time has passed: nothing written
+  progress.update(10);  // no time has passed: nothing written; the rate is counted from here
   EXPECT_EQ(out.str(), "");
   time.now += 0.5;
-  progress.update(50);
-  EXPECT_EQ(out.str(), "\rreference: 50/100 frames (50%), 100 frames/s, 0.5 s left");
-  time.now += 0.1;  // within the period: not rewritten
   progress.update(60);
-  EXPECT_EQ(out.str(), "\rreference: 50/100 frames (50%), 100 frames/s, 0.5 s left");
+  EXPECT_EQ(out.str(), "\rreference: 60/100 frames (60%), 100 frames/s, 0.4 s left");
+  time.now += 0.1;  // within the period: not rewritten
+  progress.update(70);
+  EXPECT_EQ(out.str(), "\rreference: 60/100 frames (60%), 100 frames/s, 0.4 s left");
   time.now += 0.4;
   progress.update(100);
   progress.finish("of 64x32 px");
   // A shorter line is padded with spaces over the longer one before it; the final line ends with the
   // only newline.
-  const std::string first = "reference: 50/100 frames (50%), 100 frames/s, 0.5 s left";
-  const std::string second = "reference: 100/100 frames (100%), 100 frames/s";
+  const std::string first = "reference: 60/100 frames (60%), 100 frames/s, 0.4 s left";
+  const std::string second = "reference: 100/100 frames (100%), 90 frames/s";
   const std::string final_text = "reference: 100 frames of 64x32 px in 1.0 s, 100 frames/s";
   ASSERT_LT(second.size(), first.size());
   ASSERT_GT(final_text.size(), second.size());
@@ -92,6 +92,20 @@ TEST(ProgressLine, WritesAPlainLineEveryTenSecondsIntoAFile) {
   EXPECT_NE(out.str().find("bag: 1280/3840 images (33%), 128 images/s, 20.0 s left\n"), std::string::npos)
       << out.str();
   EXPECT_NE(out.str().find("bag: 3840 images in 30.0 s, 128 images/s\n"), std::string::npos) << out.str();
+}
+
+TEST(ProgressLine, ASlowFirstItemDoesNotSpoilTheEstimate) {
+  FakeClock time;
+  std::ostringstream out;
+  ProgressLine progress("reference", "frames", 1000, out, false, time.clock());
+  time.now += 5.0;  // the first frame waited for a library to load
+  progress.update(1);
+  for (int done = 2; done <= 641; ++done) {
+    time.now += 1.0 / 128.0;  // then 128 frames/s
+    progress.update(done);
+  }
+  // 10 s after the start: 640 frames in the 5 s since the first one, 359 left.
+  EXPECT_EQ(out.str(), "reference: 641/1000 frames (64%), 128 frames/s, 2.8 s left\n");
 }
 
 TEST(ProgressLine, EndsAnUnfinishedLineSoThatAnErrorStartsOnItsOwn) {

@@ -44,8 +44,9 @@ class ProgressLine {
   void finish(const std::string& detail = "");
 
   /// The text of one update: done/total, percentage, rate and time left (the pure part, for tests).
+  /// `rate` is in items per second, <= 0 when not known yet.
   static std::string format(const std::string& what, const std::string& unit, long long done, long long total,
-                            double elapsed_seconds);
+                            double rate);
 
   /// "4.7 s", "2 min 05 s", "1 h 02 min".
   static std::string formatDuration(double seconds);
@@ -64,6 +65,11 @@ class ProgressLine {
   Clock clock_;
   double start_;
   double last_write_;
+  // The rate is measured from the first update on, so that a slow first item (libraries loaded, files
+  // opened) does not make the estimate of the time left far too long.
+  bool counting_ = false;
+  long long first_done_ = 0;
+  double first_time_ = 0.0;
   long long done_ = 0;
   std::size_t last_length_ = 0;
   bool finished_ = false;
