@@ -75,7 +75,8 @@ TEST(DifferenceBand, FollowsTheTruthWithTheWholeMatrixValues) {
       if (frame < 0 || frame >= r.reference.size()) {
         EXPECT_TRUE(std::isnan(value)) << q << " " << c;  // Outside the reference.
       } else {
-        EXPECT_NEAR(value, full.at<float>(q, frame), 1e-5) << q << " " << c;
+        // Sliding sums over another span of frames round differently in float.
+        EXPECT_NEAR(value, full.at<float>(q, frame), 1e-4) << q << " " << c;
       }
     }
     cv::Mat finite = band.values.row(q).clone();
