@@ -18,6 +18,34 @@ float zScore(float centre, double sum, double sum_of_squares, int count) {
   return static_cast<float>((centre - mean) / std::sqrt(variance));
 }
 
+/// sums[c] = values[c] + ... + values[c + n - 1] for c in [0, count - n], from the sums of 1, 2, 4,
+/// ... values that n's binary digits select: O(log n) contiguous passes, each of which vectorises.
+/// `scratch` holds 2 * count floats.
+void slidingSums(const float* values, int count, int n, float* __restrict sums, float* scratch) {
+  const int outputs = count - n + 1;
+  std::fill(sums, sums + outputs, 0.0F);
+  const float* power = values;  // power[c]: the sum of `width` values from c, for c <= count - width.
+  float* next = scratch;
+  int width = 1;
+  int offset = 0;
+  for (;;) {
+    if ((n & width) != 0) {
+      const float* __restrict part = power + offset;
+      for (int c = 0; c < outputs; ++c) sums[c] += part[c];
+      offset += width;
+    }
+    if (2 * width > n) break;
+    const int valid = count - 2 * width + 1;
+    const float* __restrict low = power;
+    const float* __restrict high = power + width;
+    float* __restrict doubled = next;
+    for (int c = 0; c < valid; ++c) doubled[c] = low[c] + high[c];
+    power = next;
+    next = next == scratch ? scratch + count : scratch;
+    width *= 2;
+  }
+}
+
 }  // namespace
 
 float contrastShift(int window) {
@@ -33,6 +61,10 @@ float enhanceCell(float centre, const float* values, int count, int window) {
     sum += values[i];
     sum_of_squares += static_cast<double>(values[i]) * values[i];
   }
+  return enhanceCellFromSums(centre, sum, sum_of_squares, count, window);
+}
+
+float enhanceCellFromSums(float centre, double sum, double sum_of_squares, int count, int window) {
   return zScore(centre, sum, sum_of_squares, count) + contrastShift(window);
 }
 
@@ -44,8 +76,11 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
   const float shift = contrastShift(window);
   cv::Mat enhanced(differences.size(), CV_32F);
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
-    std::vector<float> means(static_cast<std::size_t>(columns));
+    std::vector<float> centred(static_cast<std::size_t>(columns));
     std::vector<float> squares(static_cast<std::size_t>(columns));
+    std::vector<float> sums(static_cast<std::size_t>(columns));
+    std::vector<float> sums_of_squares(static_cast<std::size_t>(columns));
+    std::vector<float> scratch(2 * static_cast<std::size_t>(columns));
     for (int row = rows.start; row < rows.end; ++row) {
       const float* in = differences.ptr<float>(row);
       float* out = enhanced.ptr<float>(row);
@@ -59,40 +94,33 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
       };
       for (int c = 0; c < interior_begin; ++c) clipped(c);
       for (int c = interior_end; c < columns; ++c) clipped(c);
-      // Interior: a full window of n samples. Each pass below runs over contiguous columns and
-      // vectorises; the two-pass variance (mean first) stays exact in single precision. Two
-      // offsets per pass halve the loads and stores of the running sums.
+      if (interior_begin >= interior_end) continue;
+      // Interior: a full window of n samples. Sums over every window come from sliding sums in
+      // O(log n) contiguous, vectorised passes. The values are centred on one of the row's first, so
+      // that sum of squares minus squared sum keeps its precision in single precision: a window's
+      // values then differ from the centre by about the row's spread, not by their mean. Any value
+      // of the row will do as the centre; the middle one costs nothing.
       const int n = 2 * half + 1;
-      float* __restrict mean = means.data();
-      float* __restrict square = squares.data();
-      std::fill(mean + interior_begin, mean + interior_end, 0.0F);
-      std::fill(square + interior_begin, square + interior_end, 0.0F);
-      int d = -half;
-      for (; d + 1 <= half; d += 2) {
-        for (int c = interior_begin; c < interior_end; ++c) mean[c] += in[c + d] + in[c + d + 1];
+      const float pivot = in[columns / 2];
+      float* __restrict y = centred.data();
+      float* __restrict y2 = squares.data();
+      for (int c = 0; c < columns; ++c) {
+        y[c] = in[c] - pivot;
+        y2[c] = y[c] * y[c];
       }
-      for (; d <= half; ++d) {
-        for (int c = interior_begin; c < interior_end; ++c) mean[c] += in[c + d];
-      }
-      for (int c = interior_begin; c < interior_end; ++c) mean[c] /= static_cast<float>(n);
-      for (d = -half; d + 1 <= half; d += 2) {
-        for (int c = interior_begin; c < interior_end; ++c) {
-          const float first = in[c + d] - mean[c];
-          const float second = in[c + d + 1] - mean[c];
-          square[c] += first * first + second * second;
-        }
-      }
-      for (; d <= half; ++d) {
-        for (int c = interior_begin; c < interior_end; ++c) {
-          const float deviation = in[c + d] - mean[c];
-          square[c] += deviation * deviation;
-        }
-      }
+      slidingSums(y, columns, n, sums.data(), scratch.data());
+      slidingSums(y2, columns, n, sums_of_squares.data(), scratch.data());
+      const float* __restrict s1 = sums.data() - half;  // s1[c]: the window centred on column c.
+      const float* __restrict s2 = sums_of_squares.data() - half;
+      const float inverse_n = 1.0F / static_cast<float>(n);
+      const float inverse_n1 = 1.0F / static_cast<float>(n - 1);
       for (int c = interior_begin; c < interior_end; ++c) {
-        const float variance = square[c] / static_cast<float>(n - 1);
+        const float mean = s1[c] * inverse_n;
+        const float variance = std::max(0.0F, (s2[c] - s1[c] * mean) * inverse_n1);
         // A constant window gives no contrast; a multiplication rather than a branch vectorises.
-        const float deviation = (in[c] - mean[c]) * static_cast<float>(variance > kMinVariance);
-        out[c] = deviation / std::sqrt(std::max(variance, kMinVariance)) + shift;
+        const float deviation = (y[c] - mean) * static_cast<float>(variance > kMinVariance);
+        // No z-score over n samples lies below -shift; single precision could round past it.
+        out[c] = std::max(0.0F, deviation / std::sqrt(std::max(variance, kMinVariance)) + shift);
       }
     }
   });

@@ -23,14 +23,20 @@ inline int inlineSumOfAbsoluteDifferences(const std::uint8_t* __restrict a, cons
   return sum;
 }
 
+/// The factor that turns a sum of absolute differences of `size` bytes into a mean in patch
+/// standard deviations.
+float differenceScale(int size) { return 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd); }
+
+/// OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8; short rows
+/// (coarse cells) are summed inline.
+inline int sumOfAbsoluteDifferences(const std::uint8_t* a, const std::uint8_t* b, int size) {
+  return size < kInlineSumBelow ? inlineSumOfAbsoluteDifferences(a, b, size) : cv::hal::normL1_(a, b, size);
+}
+
 }  // namespace
 
 float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size) {
-  // OpenCV's HAL sum of absolute differences is vectorised (SSE/AVX/NEON) for uint8; short (pooled)
-  // rows are summed inline. One multiplication turns the sum into a mean in patch standard deviations.
-  const float scale = 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd);
-  const int sum = size < kInlineSumBelow ? inlineSumOfAbsoluteDifferences(a, b, size) : cv::hal::normL1_(a, b, size);
-  return static_cast<float>(sum) * scale;
+  return static_cast<float>(sumOfAbsoluteDifferences(a, b, size)) * differenceScale(size);
 }
 
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
@@ -49,6 +55,8 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
   // Blocks of reference frames are swept for all query frames so that a block stays in cache.
   constexpr int kBlock = 64;
   const int blocks = (reference.count + kBlock - 1) / kBlock;
+  const int size = query.descriptor_size;
+  const float scale = differenceScale(size);  // Once, not per pair: a division costs as much as a short sum.
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
     for (int block = range.start; block < range.end; ++block) {
       const int begin = block * kBlock;
@@ -57,7 +65,7 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
         float* row = differences.ptr<float>(t);
         const std::uint8_t* q = query.frame(t);
         for (int r = begin; r < end; ++r) {
-          row[r] = descriptorDifference(q, reference.frame(r), query.descriptor_size);
+          row[r] = static_cast<float>(sumOfAbsoluteDifferences(q, reference.frame(r), size)) * scale;
         }
       }
     }

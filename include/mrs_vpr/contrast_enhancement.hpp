@@ -17,6 +17,9 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window);
 /// Enhances one cell: `values` holds the window's raw differences, `centre` the cell's own.
 float enhanceCell(float centre, const float* values, int count, int window);
 
+/// The same from the sum and sum of squares of the window's `count` values.
+float enhanceCellFromSums(float centre, double sum, double sum_of_squares, int count, int window);
+
 /// The bound (n - 1) / sqrt(n), n = window + 1, on how negative a z-score over n samples can be.
 float contrastShift(int window);
 

@@ -69,11 +69,22 @@ void LazyDifferenceMatrix::enhancedRow(int row, int begin, int end, float* out) 
   const int raw_begin = std::max(0, begin - half);
   const int raw_end = std::min(columns(), end + half);
   const float* raw = rawRow(row, raw_begin, raw_end);
+  // Prefix sums over the segment give every window's sums at once, instead of a pass per cell.
+  const int length = raw_end - raw_begin;
+  prefix_.resize(2 * (static_cast<std::size_t>(length) + 1));
+  double* sums = prefix_.data();
+  double* sums_of_squares = sums + length + 1;
+  sums[0] = 0.0;
+  sums_of_squares[0] = 0.0;
+  for (int i = 0; i < length; ++i) {
+    sums[i + 1] = sums[i] + raw[i];
+    sums_of_squares[i + 1] = sums_of_squares[i] + static_cast<double>(raw[i]) * raw[i];
+  }
   for (int column = begin; column < end; ++column) {
-    const int low = std::max(0, column - half);
-    const int high = std::min(columns(), column + half + 1);
-    out[column - begin] =
-        enhanceCell(raw[column - raw_begin], raw + (low - raw_begin), high - low, contrast_window_);
+    const int low = std::max(0, column - half) - raw_begin;
+    const int high = std::min(columns(), column + half + 1) - raw_begin;
+    out[column - begin] = enhanceCellFromSums(raw[column - raw_begin], sums[high] - sums[low],
+                                              sums_of_squares[high] - sums_of_squares[low], high - low, contrast_window_);
   }
 }
 

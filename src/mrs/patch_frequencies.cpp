@@ -4,40 +4,50 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "mrs_vpr/descriptor.hpp"
 
 namespace mrs_vpr {
 namespace {
 
-/// The three frequencies of every patch of one descriptor's pixel sums; P > 0 is the patch side
-/// known at compile time (so that the row loops unroll), 0 reads it from `patch`.
-template <int P>
-void transformPatches(const std::uint16_t* sums, int width, int height, int patch, const float* wave, float scale,
+/// The three frequencies of every patch of one descriptor's pixel sums. Each is separable: the
+/// horizontal one is the cosine-weighted sum over x of a patch's column sums, the vertical one the
+/// plain sum over x of its cosine-weighted column sums, the mixed one the cosine-weighted sum of
+/// the latter. So a band of patches (`side` image rows) is read once into two column accumulators
+/// the width of the image, in contiguous loops that vectorise, and only those are reduced per patch.
+void transformPatches(const std::uint16_t* sums, int width, int height, int side, const float* wave, float scale,
                       std::uint8_t* cell) {
-  const int side = P > 0 ? P : patch;
   const float mean_weight = 1.0F / std::sqrt(static_cast<float>(side));  // The DCT's constant basis.
+  thread_local std::vector<float> accumulators;
+  accumulators.resize(2 * static_cast<std::size_t>(width));
+  float* __restrict columns = accumulators.data();       // Sum over the band's rows y of pixel (x, y).
+  float* __restrict waved_columns = columns + width;     // The same weighted by wave(y).
   for (int top = 0; top < height; top += side) {
+    std::fill(columns, columns + 2 * width, 0.0F);
+    for (int y = 0; y < side; ++y) {
+      const std::uint16_t* __restrict row = sums + static_cast<std::ptrdiff_t>(top + y) * width;
+      const float weight = wave[y];
+      for (int x = 0; x < width; ++x) {
+        const auto value = static_cast<float>(row[x]);
+        columns[x] += value;
+        waved_columns[x] += weight * value;
+      }
+    }
     for (int left = 0; left < width; left += side) {
       float horizontal = 0.0F;
       float vertical = 0.0F;
       float both = 0.0F;
-      for (int y = 0; y < side; ++y) {
-        const std::uint16_t* row = sums + static_cast<std::ptrdiff_t>(top + y) * width + left;
-        float total = 0.0F;
-        float waved = 0.0F;
-        for (int x = 0; x < side; ++x) {
-          total += static_cast<float>(row[x]);
-          waved += wave[x] * static_cast<float>(row[x]);
-        }
-        horizontal += waved;
-        vertical += wave[y] * total;
-        both += wave[y] * waved;
+      for (int x = 0; x < side; ++x) {
+        horizontal += wave[x] * columns[left + x];
+        vertical += waved_columns[left + x];
+        both += wave[x] * waved_columns[left + x];
       }
       // The constant offset of the uint8 descriptor (128) falls out: every basis used sums to 0.
       const float coefficients[PatchFrequencies::kPerPatch] = {horizontal * mean_weight, vertical * mean_weight, both};
       for (float coefficient : coefficients) {
-        *cell++ = static_cast<std::uint8_t>(std::clamp(std::lround(128.0F + coefficient * scale), 0L, 255L));
+        const float byte = std::clamp(128.0F + coefficient * scale, 0.0F, 255.0F);
+        *cell++ = static_cast<std::uint8_t>(byte + 0.5F);
       }
     }
   }
@@ -63,11 +73,7 @@ void PatchFrequencies::project(const std::uint16_t* sums, int frames, std::uint8
   // orthonormal coefficients: +-that bound maps to +-128, so a byte saturates only at the extreme.
   const int side = geometry_.patch_size;
   const float scale = 128.0F / (DescriptorExtractor::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
-  if (side == 8) {
-    transformPatches<8>(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
-  } else {
-    transformPatches<0>(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
-  }
+  transformPatches(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
 }
 
 void PatchFrequencies::cell(SequenceView view, int end, int stride, std::uint8_t* out) const {

@@ -45,6 +45,7 @@ class LazyDifferenceMatrix {
   int contrast_window_;
   long long comparisons_ = 0;
   std::vector<std::vector<Segment>> segments_;
+  std::vector<double> prefix_;  ///< enhancedRow's prefix sums, kept to avoid an allocation per call.
 };
 
 }  // namespace mrs_vpr
