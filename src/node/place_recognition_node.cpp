@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 
 namespace mrs_vpr {
@@ -48,16 +49,23 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   recognizer_.reserveAhead();
   publishMapInfoIfChanged();
 
-  // The transport ("raw", "compressed", ...) comes from ~image_transport.
+  // The transport ("raw", "compressed", ...) comes from ~image_transport. Debian 12 ships no
+  // `compressed` plugin, so the node decodes that transport itself, on the topic and with the format
+  // strings of image_transport's plugin (README, "Compressed images"); others go through image_transport.
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh_);
-  image_sub_ = image_transport_.subscribe("image", static_cast<std::uint32_t>(params_.image_queue_size),
-                                          &PlaceRecognitionNode::imageCallback, this, hints);
+  const auto queue_size = static_cast<std::uint32_t>(params_.image_queue_size);
+  if (hints.getTransport() == "compressed") {
+    compressed_image_sub_ = nh_.subscribe(nh_.resolveName("image") + "/compressed", queue_size,
+                                          &PlaceRecognitionNode::compressedImageCallback, this);
+  } else {
+    image_sub_ = image_transport_.subscribe("image", queue_size, &PlaceRecognitionNode::imageCallback, this, hints);
+  }
 
   query_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &query_queue_);
   query_spinner_->start();
 
   ROS_INFO("mrs_vpr: listening on %s (transport %s); descriptor %d x %d, default method %s%s",
-           image_sub_.getTopic().c_str(), image_sub_.getTransport().c_str(),
+           imageTopic().c_str(), hints.getTransport().c_str(),
            params_.core.descriptor.image_width, params_.core.descriptor.image_height,
            params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
 }
@@ -74,6 +82,7 @@ std::unique_ptr<PlaceRecognitionNode> PlaceRecognitionNode::start(const ros::Nod
 PlaceRecognitionNode::~PlaceRecognitionNode() {
   // Stop feeding callbacks first, then join the query thread, so no callback outlives the members.
   image_sub_.shutdown();
+  compressed_image_sub_.shutdown();
   auto_query_timer_.stop();
   map_info_timer_.stop();
   query_srv_.shutdown();
@@ -89,8 +98,22 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
 // Frames
 
 void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& message) {
+  addFrame(message->header, [&] { return fromImageMessage(*message, message); },
+           [&] {
+             return std::to_string(message->width) + " x " + std::to_string(message->height) + ", " +
+                    message->encoding;
+           });
+}
+
+void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::CompressedImageConstPtr& message) {
+  addFrame(message->header, [&] { return decodeCompressedImage(*message); },
+           [&] { return "format " + inQuotes(message->format) + ", " + std::to_string(message->data.size()) + " bytes"; });
+}
+
+template <typename Convert, typename Summary>
+void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
-  double stamp = message->header.stamp.toSec();
+  double stamp = header.stamp.toSec();
   if (stamp <= 0.0) {
     stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
   }
@@ -107,20 +130,20 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
   const auto start = std::chrono::steady_clock::now();
   cv::Mat descriptor;
   try {
-    descriptor = describeImage(recognizer_.extractor(), *message, message);
-  } catch (const std::exception& error) {
+    const ImageFrame frame = convert();
+    descriptor = frame_describer_.describe(frame.image(), frame.order);
+  } catch (const std::exception& error) {  // std::invalid_argument, and cv::Exception or bad_alloc
     ++frames_failed_;
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip(stamp);
     }
-    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%u x %u, %s): %s",
-                      image_sub_.getTopic().c_str(), message->width, message->height,
-                      message->encoding.c_str(), error.what());
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%s): %s", imageTopic().c_str(),
+                      summary().c_str(), error.what());
     return;
   }
 
-  switch (map_->add(descriptor, stamp, message->header.frame_id, message->header.seq)) {
+  switch (map_->add(descriptor, stamp, header.frame_id, header.seq)) {
     case FrameAdmission::kMapFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
@@ -138,11 +161,15 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
   ++map_version_;
   std::lock_guard<std::mutex> lock(state_mutex_);
   keyframe_policy_.keep(stamp);
-  camera_frame_id_ = message->header.frame_id;
+  camera_frame_id_ = header.frame_id;
   const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame_time_total_ms_ += elapsed_ms;
   ++frames_timed_;
   frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+}
+
+std::string PlaceRecognitionNode::imageTopic() const {
+  return compressed_image_sub_ ? compressed_image_sub_.getTopic() : image_sub_.getTopic();
 }
 
 // ---------------------------------------------------------------------------------------------------

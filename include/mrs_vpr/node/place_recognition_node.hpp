@@ -9,6 +9,7 @@
 #include <image_transport/image_transport.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
 
@@ -18,6 +19,7 @@
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/node/frame_describer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
@@ -65,6 +67,14 @@ class PlaceRecognitionNode {
   };
 
   void imageCallback(const sensor_msgs::ImageConstPtr& message);
+  /// The `compressed` transport (jpeg, png), decoded by the node itself: Debian 12 has no plugin for it.
+  void compressedImageCallback(const sensor_msgs::CompressedImageConstPtr& message);
+  /// The image path of both callbacks: keyframe policy, conversion (`convert` returns an ImageFrame),
+  /// description, admission and counters. `summary` describes the message for a warning.
+  template <typename Convert, typename Summary>
+  void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
+  /// The topic the camera frames come from, for messages.
+  std::string imageTopic() const;
   bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);
   // The map and its database (map_services.cpp).
   /// Opens ~database and loads its map, or keeps the map in memory; throws MapDatabaseError.
@@ -86,6 +96,7 @@ class PlaceRecognitionNode {
 
   NodeParameters params_;
   PlaceRecognizer recognizer_;  ///< The map and both methods; thread-safe.
+  FrameDescriber frame_describer_{recognizer_.extractor()};  ///< The camera's frames, without allocations.
   /// recognizer_'s map and ~database: every keyframe goes through it. Thread-safe.
   std::unique_ptr<PersistentMap> map_;
 
@@ -112,7 +123,8 @@ class PlaceRecognitionNode {
   ros::CallbackQueue query_queue_;
   ros::NodeHandle query_nh_;  // private_nh_ bound to query_queue_
   image_transport::ImageTransport image_transport_;
-  image_transport::Subscriber image_sub_;
+  image_transport::Subscriber image_sub_;       // every transport but `compressed`
+  ros::Subscriber compressed_image_sub_;         // `compressed`
   ros::Publisher loop_closure_pub_;
   ros::Publisher map_info_pub_;
   ros::ServiceServer query_srv_;

@@ -1,0 +1,42 @@
+#!/usr/bin/env python3
+"""Publishes a synthetic camera stream (sensor_msgs/Image, bgr8) at a fixed rate for the node's CPU
+benchmark (benchmark/node_cpu.sh). Runs in a process of its own, so its CPU is not the node's.
+
+Usage: camera_stream.py TOPIC WIDTH HEIGHT RATE SECONDS
+Prints the number of frames published when done."""
+import sys
+import time
+
+import numpy as np
+import rospy
+from sensor_msgs.msg import Image
+
+
+def main():
+    topic, width, height, rate, seconds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
+    rospy.init_node("camera_stream", anonymous=True, disable_signals=True)
+    publisher = rospy.Publisher(topic, Image, queue_size=int(rate) * 2)
+    # A textured scene panned by a few pixels a frame, so that frames differ as a camera's do.
+    rng = np.random.RandomState(1)
+    scene = rng.randint(0, 256, (height // 8 + 1, (width + 4 * 200) // 8 + 1, 3)).astype(np.uint8)
+    scene = np.kron(scene, np.ones((8, 8, 1), dtype=np.uint8))
+    frames = [scene[:height, 4 * i:4 * i + width].tobytes() for i in range(200)]
+    while publisher.get_num_connections() == 0 and not rospy.is_shutdown():
+        time.sleep(0.05)
+    message = Image(height=height, width=width, encoding="bgr8", step=width * 3)
+    message.header.frame_id = "camera"
+    period = 1.0 / rate
+    start = time.monotonic()
+    count = 0
+    while time.monotonic() - start < seconds and not rospy.is_shutdown():
+        message.header.stamp = rospy.Time.from_sec(1000.0 + count * period)
+        message.data = frames[count % len(frames)]
+        publisher.publish(message)
+        count += 1
+        time.sleep(max(0.0, start + count * period - time.monotonic()))
+    time.sleep(1.0)  # the last frames in flight
+    print(count)
+
+
+if __name__ == "__main__":
+    main()

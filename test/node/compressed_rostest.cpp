@@ -1,0 +1,236 @@
+// Drives the nodes of compressed_transport.test: one route published raw, as JPEG and as PNG (the
+// `compressed` transport), the answers compared, and bad compressed frames counted.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+#include <ros/ros.h>
+#include <sensor_msgs/CompressedImage.h>
+
+#include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace {
+
+constexpr double kFramePeriod = 0.05;  // [s], 20 Hz as in the demo
+constexpr int kQueryLength = 80;       // the demo's queries: 80 frames from 60, 120, ..., 300
+
+/// The newest ~map_info of a node.
+class MapInfoInbox {
+ public:
+  MapInfoInbox(ros::NodeHandle& nh, const std::string& topic) : sub_(nh.subscribe(topic, 10, &MapInfoInbox::callback, this)) {}
+
+  /// Waits until the newest message satisfies `predicate`; returns whether it did.
+  template <typename Predicate>
+  bool waitFor(Predicate predicate, mrs_vpr::MapInfo& found, double timeout = 30.0) {
+    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
+    while (ros::ok() && ros::WallTime::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (received_ && predicate(latest_)) {
+          found = latest_;
+          return true;
+        }
+      }
+      ros::WallDuration(0.02).sleep();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    found = latest_;
+    return false;
+  }
+
+ private:
+  void callback(const mrs_vpr::MapInfo& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    latest_ = message;
+    received_ = true;
+  }
+
+  ros::Subscriber sub_;
+  std::mutex mutex_;
+  mrs_vpr::MapInfo latest_;
+  bool received_ = false;
+};
+
+sensor_msgs::Image toImage(const cv::Mat& bgr, double stamp) {
+  sensor_msgs::Image message;
+  message.header.stamp = ros::Time(stamp);
+  message.header.frame_id = "camera";
+  message.height = static_cast<std::uint32_t>(bgr.rows);
+  message.width = static_cast<std::uint32_t>(bgr.cols);
+  message.encoding = "bgr8";
+  message.step = static_cast<std::uint32_t>(bgr.cols * 3);
+  message.data.resize(static_cast<std::size_t>(message.step) * bgr.rows);
+  bgr.copyTo(cv::Mat(bgr.rows, bgr.cols, CV_8UC3, message.data.data(), message.step));
+  return message;
+}
+
+/// What image_transport's compressed publisher sends for a bgr8 image.
+sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, const std::string& codec) {
+  sensor_msgs::CompressedImage message;
+  message.header.stamp = ros::Time(stamp);
+  message.header.frame_id = "camera";
+  message.format = "bgr8; " + codec + " compressed bgr8";
+  cv::imencode(codec == "jpeg" ? ".jpg" : ".png", bgr, message.data);
+  return message;
+}
+
+template <typename Publisher>
+void waitForSubscriber(const Publisher& publisher) {
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
+  while (publisher.getNumSubscribers() == 0 && ros::WallTime::now() < deadline) {
+    ros::WallDuration(0.05).sleep();
+  }
+  ASSERT_GT(publisher.getNumSubscribers(), 0U) << publisher.getTopic() << " has no subscriber";
+}
+
+class CompressedTransportTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    mrs_vpr::SyntheticRouteParams params;  // the demo's route: 600 reference and 400 query frames
+    params.reference_frames = 600;
+    params.query_frames = 400;
+    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(params));
+  }
+  static void TearDownTestSuite() {
+    delete route_;
+    route_ = nullptr;
+  }
+
+  void SetUp() override {
+    for (const std::string& node : kNodes) {
+      ASSERT_TRUE(ros::service::waitForService(node + "/query", ros::Duration(30.0))) << node;
+    }
+    if (!mapped_) {
+      mapReference();
+      mapped_ = true;
+    }
+  }
+
+  /// Publishes the reference traversal on the three topics and waits until every map holds it.
+  void mapReference() {
+    ros::Publisher raw = nh_.advertise<sensor_msgs::Image>("/camera/raw", 1000);
+    ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 1000);
+    ros::Publisher png = nh_.advertise<sensor_msgs::CompressedImage>("/camera/png/compressed", 1000);
+    waitForSubscriber(raw);
+    waitForSubscriber(jpeg);
+    waitForSubscriber(png);
+    for (std::size_t i = 0; i < route_->reference.size(); ++i) {
+      const double stamp = 1000.0 + static_cast<double>(i) * kFramePeriod;
+      raw.publish(toImage(route_->reference[i], stamp));
+      jpeg.publish(toCompressed(route_->reference[i], stamp, "jpeg"));
+      png.publish(toCompressed(route_->reference[i], stamp, "png"));
+      ros::WallDuration(0.002).sleep();
+    }
+    const auto frames = static_cast<std::uint32_t>(route_->reference.size());
+    for (const std::string& node : kNodes) {
+      MapInfoInbox inbox(nh_, node + "/map_info");
+      mrs_vpr::MapInfo info;
+      ASSERT_TRUE(inbox.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == frames; }, info))
+          << node << " holds " << info.frames << " frames, not " << frames;
+      EXPECT_EQ(info.frames_failed, 0U) << node;
+      EXPECT_EQ(info.frames_received, frames) << node;
+    }
+  }
+
+  mrs_vpr::QuerySequence::Response query(const std::string& node, int first, const std::string& method) {
+    mrs_vpr::QuerySequence srv;
+    for (int i = first; i < first + kQueryLength; ++i) {
+      srv.request.images.push_back(toImage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+    }
+    srv.request.method = method;
+    ros::ServiceClient client = nh_.serviceClient<mrs_vpr::QuerySequence>(node + "/query");
+    EXPECT_TRUE(client.call(srv)) << node;
+    return srv.response;
+  }
+
+  const std::vector<std::string> kNodes{"/mrs_vpr_raw", "/jpeg/mrs_vpr", "/mrs_vpr_png"};
+  static mrs_vpr::SyntheticRoute* route_;
+  static bool mapped_;
+  ros::NodeHandle nh_;
+};
+
+mrs_vpr::SyntheticRoute* CompressedTransportTest::route_ = nullptr;
+bool CompressedTransportTest::mapped_ = false;
+
+TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
+  for (const int first : {60, 120, 180, 240, 300}) {
+    for (const std::string method : {"mrs", "seqslam"}) {
+      SCOPED_TRACE(method + " from query frame " + std::to_string(first));
+      const auto raw = query("/mrs_vpr_raw", first, method);
+      ASSERT_TRUE(raw.success) << raw.message;
+      if (raw.accepted) {  // the first stretch is a guess, not accepted, as in the demo
+        const int truth = route_->query_to_reference[static_cast<std::size_t>(first + kQueryLength - 1)];
+        EXPECT_NEAR(raw.reference_index, truth, 5);
+      }
+
+      // PNG is lossless: the very same map, so the very same answer.
+      const auto png = query("/mrs_vpr_png", first, method);
+      ASSERT_TRUE(png.success) << png.message;
+      EXPECT_EQ(png.reference_index, raw.reference_index);
+      EXPECT_FLOAT_EQ(png.confidence, raw.confidence);
+      EXPECT_EQ(png.accepted, raw.accepted);
+
+      // JPEG: the same answer, its confidence within the codec's error.
+      const auto jpeg = query("/jpeg/mrs_vpr", first, method);
+      ASSERT_TRUE(jpeg.success) << jpeg.message;
+      EXPECT_EQ(jpeg.reference_index, raw.reference_index);
+      EXPECT_EQ(jpeg.accepted, raw.accepted);
+      EXPECT_NEAR(jpeg.confidence, raw.confidence, 0.1 * raw.confidence + 0.5);
+    }
+  }
+}
+
+TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapping) {
+  ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 100);
+  waitForSubscriber(jpeg);
+  MapInfoInbox inbox(nh_, "/jpeg/mrs_vpr/map_info");
+  mrs_vpr::MapInfo before;
+  ASSERT_TRUE(inbox.waitFor([](const mrs_vpr::MapInfo&) { return true; }, before));
+
+  const cv::Mat& image = route_->reference[0];
+  double stamp = 5000.0;
+  std::vector<sensor_msgs::CompressedImage> bad;
+  bad.push_back(toCompressed(image, stamp, "jpeg"));
+  bad.back().format = "bgr8; tiff compressed bgr8";  // a format the node does not decode
+  bad.push_back(toCompressed(image, stamp += 1.0, "jpeg"));
+  bad.back().data.resize(bad.back().data.size() / 10);  // corrupt: cut inside the image data
+  std::fill(bad.back().data.begin() + 4, bad.back().data.end(), 0x00);
+  bad.push_back(toCompressed(image, stamp += 1.0, "png"));
+  bad.back().format = "png";
+  bad.back().data[16] = 0x7F;  // forged IHDR width of about 2 billion pixels: refused before decoding
+  bad.push_back(toCompressed(image, stamp += 1.0, "png"));
+  bad.back().format = "jpeg";  // mislabelled
+  for (const auto& message : bad) {
+    jpeg.publish(message);
+  }
+  jpeg.publish(toCompressed(image, stamp += 1.0, "jpeg"));  // a good frame after them
+
+  const auto failed = before.frames_failed + bad.size();
+  mrs_vpr::MapInfo after;
+  ASSERT_TRUE(inbox.waitFor(
+      [&](const mrs_vpr::MapInfo& m) { return m.frames_failed == failed && m.frames == before.frames + 1; }, after))
+      << "failed " << after.frames_failed << ", frames " << after.frames;
+  EXPECT_EQ(after.frames_received, before.frames_received + bad.size() + 1);
+  const auto answer = query("/jpeg/mrs_vpr", 120, "mrs");
+  EXPECT_TRUE(answer.success) << answer.message;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "mrs_vpr_compressed_rostest");
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  spinner.stop();
+  ros::shutdown();
+  return result;
+}
