@@ -144,6 +144,23 @@ TEST_F(PlotsTest, EvalWritesEveryPlotAndTheDifferencePictures) {
   expectPng(plots / band.at("file").get<std::string>(), 101, 91);
 }
 
+TEST_F(PlotsTest, OutOfMapQueriesHaveNoBandAndNoErrorToDraw) {
+  const fs::path plots = root_ / "out_of_map";
+  std::string err;
+  ASSERT_EQ(run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
+                    (root_ / "query").string() +
+                    " --out-of-map --method mrs --protocol per-frame --sequence-length 10 --plots " + plots.string(),
+                nullptr, &err),
+            0)
+      << err;
+  expectPng(plots / "pr_curve.png", 640, 480);
+  expectPng(plots / "difference_matrix.png", 640, 480);
+  EXPECT_FALSE(fs::exists(plots / "difference_band.png"));
+  EXPECT_FALSE(fs::exists(plots / "error_along_route.png"));
+  const json document = json::parse(std::ifstream(plots / "evaluation.json"));
+  EXPECT_FALSE(document.at("difference_pictures").contains("band"));
+}
+
 TEST_F(PlotsTest, PlotToolDrawsTwoMethodsInOneFigureAtTheAskedSize) {
   const fs::path mrs = root_ / "mrs";
   const fs::path seqslam = root_ / "seqslam";
