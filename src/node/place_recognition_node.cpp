@@ -63,6 +63,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
 
   query_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &query_queue_);
   query_spinner_->start();
+  master_watch_ = std::make_unique<MasterWatch>();  // Last: it re-registers what is advertised above.
 
   ROS_INFO("mrs_vpr: listening on %s (transport %s); descriptor %d x %d, default method %s%s",
            imageTopic().c_str(), hints.getTransport().c_str(),

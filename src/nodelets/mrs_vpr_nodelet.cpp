@@ -16,8 +16,8 @@ class MrsVprNodelet : public nodelet::Nodelet {
       // Images on the manager's single-threaded queue; the node serves queries on its own thread.
       node_ = node::PlaceRecognitionNode::start(getNodeHandle(), getPrivateNodeHandle());
     } catch (const std::exception& error) {
-      // A nodelet cannot exit its manager; it stays inert and says why.
-      NODELET_FATAL("invalid parameters, not starting: %s", error.what());
+      // A nodelet cannot exit its manager; it stays inert and says why (parameters, map database).
+      NODELET_FATAL("not starting: %s", error.what());
     }
   }
 

@@ -338,7 +338,7 @@ TEST_F(NodeTest, ResetEmptiesTheMap) {
   std_srvs::Trigger trigger;
   ASSERT_TRUE(reset.call(trigger));
   EXPECT_TRUE(trigger.response.success);
-  EXPECT_EQ(trigger.response.message, "cleared " + std::to_string(map_frames_) + " frames");
+  EXPECT_EQ(trigger.response.message, "cleared " + std::to_string(map_frames_) + " frames (no ~database)");
   mrs_vpr::MapInfo info;
   ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 0; }, info));
   EXPECT_EQ(info.frames_received, map_frames_);

@@ -21,6 +21,7 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/node/frame_describer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
+#include "mrs_vpr/node/master_watch.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
 
@@ -134,6 +135,7 @@ class PlaceRecognitionNode {
   ros::Timer auto_query_timer_;
   ros::Timer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
+  std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
 };
 
 }  // namespace node
