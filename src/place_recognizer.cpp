@@ -4,6 +4,9 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
+
+#include "mrs_vpr/mrs_matcher.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -151,13 +154,22 @@ const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) co
   return *matcher->second;
 }
 
-PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, const std::string& method) const {
+PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, const std::string& method,
+                                    MatchExplanation* explanation) const {
   const SequenceMatcher& matcher = matcherFor(method);
   PlaceAnswer answer;
   answer.method = matcher.name();
   answer.query_length = query.count;
-  answer.match = matcher.match(reference, query);
+  std::vector<MrsLevelTrace> levels;
+  const auto* mrs = dynamic_cast<const MrsMatcher*>(&matcher);
+  // Only an explained MRS answer records its levels: the same search, plus a copy of the particles.
+  answer.match = explanation != nullptr && mrs != nullptr ? mrs->match(reference, query, &levels)
+                                                          : matcher.match(reference, query);
   if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
+  if (explanation != nullptr) {
+    *explanation = explainMatch(reference, query, answer.match, params_.sequence, params_.descriptor);
+    explanation->levels = std::move(levels);
+  }
   return answer;
 }
 
@@ -175,11 +187,13 @@ PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, co
   return match(descriptors, method);
 }
 
-PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, const std::string& method) {
-  return match(test_sequence.view(), method);
+PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, const std::string& method,
+                                   MatchExplanation* explanation) {
+  return match(test_sequence.view(), method, explanation);
 }
 
-PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string& method) {
+PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string& method,
+                                   MatchExplanation* explanation) {
   matcherFor(method);  // An unknown method is reported before anything else.
   if (test_sequence.count < 2) {
     throw std::invalid_argument("a test sequence needs at least 2 images, got " + std::to_string(test_sequence.count));
@@ -193,7 +207,7 @@ PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string
                                   " images but the reference map only " + std::to_string(frames) + " frames");
     }
     // The search may take a while; frames arriving meanwhile wait in the pending buffer.
-    result = answer(map_.view(), test_sequence, method);
+    result = answer(map_.view(), test_sequence, method, explanation);
   }
   flush();
   return result;
@@ -211,7 +225,8 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
   return matches;
 }
 
-PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method) {
+PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method,
+                                         MatchExplanation* explanation) {
   matcherFor(method);
   if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
   flush();  // The newest frames must be in the map before they can be the test sequence.
@@ -232,7 +247,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
                                   " - recent_exclusion " + std::to_string(recognizer_.recent_exclusion) +
                                   "); the search needs at least " + std::to_string(recent));
     }
-    result = answer(map_.view(0, searchable), map_.view(size - recent, size), method);
+    result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation);
     result.newest_stamp = map_.stamp(size - 1);
   }
   flush();

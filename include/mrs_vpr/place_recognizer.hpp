@@ -14,6 +14,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
+#include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
@@ -68,9 +69,15 @@ class PlaceRecognizer {
   /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
   PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
                     ChannelOrder order = ChannelOrder::kBgr);
-  /// The same with a test sequence of descriptors.
-  PlaceAnswer match(const DescriptorSequence& test_sequence, const std::string& method = "");
-  PlaceAnswer match(SequenceView test_sequence, const std::string& method = "");
+  /**
+   * The same with a test sequence of descriptors. When `explanation` is not null it receives what a
+   * picture of the answer needs (see match_explanation.hpp), computed while the map is still held;
+   * without it the query costs nothing more.
+   */
+  PlaceAnswer match(const DescriptorSequence& test_sequence, const std::string& method = "",
+                    MatchExplanation* explanation = nullptr);
+  PlaceAnswer match(SequenceView test_sequence, const std::string& method = "",
+                    MatchExplanation* explanation = nullptr);
   /**
    * The per-frame protocol over a whole traversal of descriptors: for every frame, the sequence of
    * sequence_length frames that localises it (Match::reference_index -1 where it is incomplete).
@@ -79,9 +86,9 @@ class PlaceRecognizer {
   /**
    * Where the map's own `frames` newest frames lie among its older ones: only frames
    * [0, size - frames - recent_exclusion) are searched, so that the answer is a loop closure and not
-   * the place just passed.
+   * the place just passed. `explanation` as for match().
    */
-  PlaceAnswer matchRecent(long long frames, const std::string& method = "");
+  PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr);
 
   /// Frames in the map (not counting pending ones).
   int size() const { return map_frames_.load(); }
@@ -123,7 +130,8 @@ class PlaceRecognizer {
   const SequenceMatcher& matcherFor(const std::string& method) const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;
-  PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method) const;
+  PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method,
+                     MatchExplanation* explanation) const;
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
   void flushLocked();
 
