@@ -1,0 +1,211 @@
+// What ~debug_image costs an answered query: the same queries on real frames without and with the
+// explanation and the drawing, side by side. Prints figures; it is not a test. With --output it also
+// writes the picture of one query (the README's doc/debug_image.png is made this way).
+//
+//   mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries 20]
+//                                 [--runs 3] [--methods mrs,seqslam] [--threads 1] [--output FILE.png]
+//                                 [--picture-end I] [--picture-length N] [--picture-method mrs]
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/match_explanation.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/visualization/match_image.hpp"
+
+namespace {
+
+struct Options {
+  std::string reference;
+  std::string query;
+  std::vector<int> lengths = {100, 300};
+  int queries = 20;
+  int runs = 3;  // per query and variant; the fastest counts
+  std::vector<std::string> methods = {"mrs", "seqslam"};
+  int threads = 1;
+  std::string output;
+  int picture_end = -1;  // -1: the middle of the query traversal
+  int picture_length = 300;
+  std::string picture_method = "mrs";
+};
+
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) items.push_back(item);
+  return items;
+}
+
+Options parse(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string flag = argv[i];
+    if (flag == "--help") {
+      std::puts("mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries K] [--runs R]\n"
+                "                              [--methods mrs,seqslam] [--threads T] [--output FILE.png]\n"
+                "                              [--picture-end I] [--picture-length N] [--picture-method mrs|seqslam]\n"
+                "Query frame i is assumed to show reference frame i (as in the Nordland halves).");
+      std::exit(0);
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
+    const std::string value = argv[++i];
+    if (flag == "--reference") {
+      options.reference = value;
+    } else if (flag == "--query") {
+      options.query = value;
+    } else if (flag == "--lengths") {
+      options.lengths.clear();
+      for (const std::string& item : splitList(value)) options.lengths.push_back(std::stoi(item));
+    } else if (flag == "--queries") {
+      options.queries = std::stoi(value);
+    } else if (flag == "--runs") {
+      options.runs = std::stoi(value);
+    } else if (flag == "--methods") {
+      options.methods = splitList(value);
+    } else if (flag == "--threads") {
+      options.threads = std::stoi(value);
+    } else if (flag == "--output") {
+      options.output = value;
+    } else if (flag == "--picture-end") {
+      options.picture_end = std::stoi(value);
+    } else if (flag == "--picture-length") {
+      options.picture_length = std::stoi(value);
+    } else if (flag == "--picture-method") {
+      options.picture_method = value;
+    } else {
+      throw std::invalid_argument("unknown flag " + flag + " (see --help)");
+    }
+  }
+  if (options.reference.empty() || options.query.empty()) throw std::invalid_argument("--reference and --query are required");
+  if (options.queries < 1) throw std::invalid_argument("--queries must be at least 1");
+  if (options.runs < 1) throw std::invalid_argument("--runs must be at least 1");
+  return options;
+}
+
+double millisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+double maximum(const std::vector<double>& values) { return *std::max_element(values.begin(), values.end()); }
+
+void run(const Options& options) {
+  cv::setNumThreads(options.threads);
+  mrs_vpr::PlaceRecognizer recognizer;  // The node's defaults.
+  // A copy of the map's descriptors, to time the explanation on its own.
+  mrs_vpr::DescriptorSequence reference(recognizer.extractor().size());
+  mrs_vpr::forEachImage(options.reference, [&](int index, const std::string&, const cv::Mat& image) {
+    const cv::Mat descriptor = recognizer.describe(image);
+    recognizer.addDescriptor(descriptor, index);
+    reference.append(descriptor, index);
+  });
+  mrs_vpr::DescriptorSequence query(recognizer.extractor().size());
+  mrs_vpr::forEachImage(options.query, [&](int index, const std::string&, const cv::Mat& image) {
+    query.append(recognizer.describe(image), index);
+  });
+  std::printf("reference %d frames, query %d frames, %d thread(s), %d queries per row\n", recognizer.size(),
+              query.size(), options.threads, options.queries);
+  std::printf("%-8s %5s | %10s | %14s %12s %10s | %10s %10s | %9s\n", "method", "N", "query [ms]",
+              "explained [ms]", "explain [ms]", "drawn [ms]", "extra [ms]", "extra max", "accepted");
+
+  for (const std::string& method : options.methods) {
+    for (const int length : options.lengths) {
+      if (length > query.size()) continue;
+      std::vector<double> plain;
+      std::vector<double> explained;
+      std::vector<double> drawn;
+      std::vector<double> extra;
+      std::vector<double> explain_only;
+      int accepted = 0;
+      for (int q = 0; q < options.queries; ++q) {
+        // Query ends spread evenly over the traversal.
+        const int end = length - 1 + static_cast<int>(static_cast<long long>(q) * (query.size() - length) /
+                                                      std::max(1, options.queries - 1));
+        const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
+        // The fastest of a few runs of each: the machine's other load is noise, not cost.
+        double plain_ms = 1e300;
+        double explained_ms = 1e300;
+        double drawn_ms = 1e300;
+        double explain_ms = 1e300;
+        mrs_vpr::PlaceAnswer answer;
+        mrs_vpr::PlaceAnswer explained_answer;
+        for (int run = 0; run < options.runs; ++run) {
+          auto start = std::chrono::steady_clock::now();
+          answer = recognizer.match(test, method);
+          plain_ms = std::min(plain_ms, millisecondsSince(start));
+          mrs_vpr::MatchExplanation explanation;
+          start = std::chrono::steady_clock::now();
+          explained_answer = recognizer.match(test, method, &explanation);
+          explained_ms = std::min(explained_ms, millisecondsSince(start));
+          start = std::chrono::steady_clock::now();
+          const cv::Mat picture = mrs_vpr::visualization::renderMatchImage(explanation, explained_answer);
+          drawn_ms = std::min(drawn_ms, millisecondsSince(start));
+          start = std::chrono::steady_clock::now();
+          mrs_vpr::explainMatch(reference.view(), test, explained_answer.match, recognizer.parameters().sequence,
+                                recognizer.parameters().descriptor);
+          explain_ms = std::min(explain_ms, millisecondsSince(start));
+        }
+        plain.push_back(plain_ms);
+        explained.push_back(explained_ms);
+        drawn.push_back(drawn_ms);
+        explain_only.push_back(explain_ms);
+        extra.push_back(explained_ms - plain_ms + drawn_ms);
+        if (explained_answer.match.reference_index != answer.match.reference_index) {
+          throw std::runtime_error("explaining changed the answer of the query ending at " + std::to_string(end));
+        }
+        accepted += answer.match.accepted ? 1 : 0;
+      }
+      std::printf("%-8s %5d | %10.2f | %14.2f %12.2f %10.2f | %10.2f %10.2f | %6d/%d\n", method.c_str(), length,
+                  median(plain), median(explained), median(explain_only), median(drawn), median(extra),
+                  maximum(extra), accepted, options.queries);
+    }
+  }
+  std::puts("query: without explanation (no subscriber); explained: the same query filling a MatchExplanation\n"
+            "(for mrs also recording its levels); explain: explainMatch alone; drawn: renderMatchImage;\n"
+            "extra: explained - query + drawn, what a subscriber adds. Medians over the queries of the fastest\n"
+            "of --runs runs each; extra max: the largest over the queries.");
+
+  if (!options.output.empty()) {
+    const int length = std::min(options.picture_length, query.size());
+    const int end = options.picture_end >= 0 ? options.picture_end : query.size() / 2;
+    if (end < length - 1 || end >= query.size()) throw std::invalid_argument("--picture-end out of range");
+    mrs_vpr::MatchExplanation explanation;
+    const mrs_vpr::PlaceAnswer answer =
+        recognizer.match(query.view(end - length + 1, end + 1), options.picture_method, &explanation);
+    const cv::Mat picture = mrs_vpr::visualization::renderMatchImage(explanation, answer);
+    if (!cv::imwrite(options.output, picture, {cv::IMWRITE_PNG_COMPRESSION, 9})) {
+      throw std::runtime_error("cannot write " + options.output);
+    }
+    std::printf("wrote %s (%d x %d): query frames %d..%d, %s, reference %d, confidence %.2f, %s\n",
+                options.output.c_str(), picture.cols, picture.rows, end - length + 1, end, answer.method.c_str(),
+                answer.match.reference_index, answer.match.confidence,
+                answer.match.accepted ? "accepted" : "not accepted");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    run(parse(argc, argv));
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "mrs_vpr_debug_image_benchmark: %s\n", error.what());
+    return 1;
+  }
+  return 0;
+}
