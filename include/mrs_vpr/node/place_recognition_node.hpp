@@ -18,6 +18,7 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/node/debug_image_publisher.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/node/frame_describer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
@@ -133,6 +134,7 @@ class PlaceRecognitionNode {
   ros::ServiceServer save_map_srv_;
   ros::ServiceServer load_map_srv_;
   ros::Timer auto_query_timer_;
+  std::unique_ptr<DebugImagePublisher> debug_image_;  // ~debug_image, drawn only while subscribed
   ros::Timer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
   std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
