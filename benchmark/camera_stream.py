@@ -20,7 +20,9 @@ def main():
     rng = np.random.RandomState(1)
     scene = rng.randint(0, 256, (height // 8 + 1, (width + 4 * 200) // 8 + 1, 3)).astype(np.uint8)
     scene = np.kron(scene, np.ones((8, 8, 1), dtype=np.uint8))
-    frames = [scene[:height, 4 * i:4 * i + width].tobytes() for i in range(200)]
+    # At most 200 frames and about 400 MB of them.
+    count = max(2, min(200, (400 << 20) // (width * height * 3)))
+    frames = [scene[:height, 4 * i:4 * i + width].tobytes() for i in range(count)]
     while publisher.get_num_connections() == 0 and not rospy.is_shutdown():
         time.sleep(0.05)
     message = Image(height=height, width=width, encoding="bgr8", step=width * 3)

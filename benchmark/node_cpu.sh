@@ -86,15 +86,15 @@ published=$(cat "$work/published")
 hz=$(getconf CLK_TCK)
 
 echo "${width}x${height} bgr8 at $rate Hz, continuous mode (~auto_query_period 1 s), ${seconds} s measured:"
-printf '%-14s %10s %10s %10s %10s\n' node "% of core" received failed dropped
+printf '%-14s %10s %12s %8s %8s %14s\n' node "% of core" received failed dropped "frame ms mean"
 first=""
 for i in "${!labels[@]}"; do
   label=${labels[$i]}
   percent=$(awk -v d=$((after_ticks[$i] - before_ticks[$i])) -v hz="$hz" -v s="$seconds" 'BEGIN {printf "%.2f", 100 * d / hz / s}')
   info=$(timeout 10 rostopic echo -n 1 "/cpu_$label/map_info" 2>/dev/null || true)
   field() { awk -v f="$1:" '$1 == f {print $2; exit}' <<<"$info"; }
-  printf '%-14s %10s %10s %10s %10s\n' "$label" "$percent" "$(field frames_received)/$published" \
-    "$(field frames_failed)" "$(field frames_dropped)"
+  printf '%-14s %10s %12s %8s %8s %14s\n' "$label" "$percent" "$(field frames_received)/$published" \
+    "$(field frames_failed)" "$(field frames_dropped)" "$(field frame_time_mean_ms)"
   if [[ -z $first ]]; then first=$percent; else
     awk -v a="$first" -v b="$percent" -v l="$label" -v f="${labels[0]}" 'BEGIN {if (b > 0) printf "%s costs %.2fx of %s\n", f, a / b, l}'
   fi

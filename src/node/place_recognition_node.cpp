@@ -114,6 +114,7 @@ void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::Compressed
 template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
+  countMissingFrames(header.seq);
   double stamp = header.stamp.toSec();
   if (stamp <= 0.0) {
     stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
@@ -167,6 +168,25 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   frame_time_total_ms_ += elapsed_ms;
   ++frames_timed_;
   frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+}
+
+void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
+  std::uint64_t missing = 0;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    missing = sequence_gaps_.record(seq);
+  }
+  if (missing == 0) {
+    return;
+  }
+  // Lost before this callback, where nothing else would count them: received, and failed.
+  frames_received_ += missing;
+  frames_failed_ += missing;
+  ROS_WARN_THROTTLE(kWarningPeriod,
+                    "mrs_vpr: %llu frames of %s never reached the node (header.seq jumped to %u): the "
+                    "subscriber queue (~image_queue_size = %d) overflowed while frames were described, or the "
+                    "publisher dropped them; counted as failed",
+                    static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size);
 }
 
 std::string PlaceRecognitionNode::imageTopic() const {

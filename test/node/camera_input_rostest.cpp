@@ -1,5 +1,6 @@
-// Drives the nodes of compressed_transport.test: one route published raw, as JPEG and as PNG (the
-// `compressed` transport), the answers compared, and bad compressed frames counted.
+// Drives the nodes of camera_input.test: one route published raw, as JPEG and as PNG (the
+// `compressed` transport), the answers compared, and bad compressed frames counted; bursts of large
+// frames into a one-frame queue, every frame counted.
 
 #include <gtest/gtest.h>
 
@@ -222,11 +223,48 @@ TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapp
   EXPECT_TRUE(answer.success) << answer.message;
 }
 
+TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
+  // 4000 x 3000 frames take tens of milliseconds each to describe; published back to back into a
+  // one-frame subscriber queue, most are dropped by roscpp before the callback. Each must still be
+  // counted: received, and either mapped or failed.
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_small_queue/query", ros::Duration(30.0)));
+  ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/burst", 100);
+  waitForSubscriber(publisher);
+  MapInfoInbox inbox(nh, "/mrs_vpr_small_queue/map_info");
+  cv::RNG rng(3);
+  std::vector<sensor_msgs::Image> frames;
+  for (const cv::Size size : {cv::Size(4000, 3000), cv::Size(640, 480)}) {
+    cv::Mat image(size, CV_8UC3);
+    rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+    frames.push_back(toImage(image, 0.0));
+  }
+  int published = 0;
+  for (int i = 0; i < 12; ++i) {  // 6 large frames, and 6 small ones between them
+    sensor_msgs::Image& frame = frames[static_cast<std::size_t>(i % 2)];
+    frame.header.stamp = ros::Time(100.0 + i);
+    publisher.publish(frame);
+    ++published;
+  }
+  ros::WallDuration(1.0).sleep();
+  frames[1].header.stamp = ros::Time(200.0);
+  publisher.publish(frames[1]);  // a last frame after the burst shows the gap before it
+  ++published;
+
+  mrs_vpr::MapInfo info;
+  ASSERT_TRUE(inbox.waitFor(
+      [&](const mrs_vpr::MapInfo& m) { return m.frames_received == static_cast<std::uint64_t>(published); }, info, 60.0))
+      << "received " << info.frames_received << " of " << published;
+  EXPECT_EQ(info.frames + info.frames_failed, info.frames_received);
+  EXPECT_EQ(info.frames_dropped, 0U);
+  EXPECT_GE(info.frames, 2U);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "mrs_vpr_compressed_rostest");
+  ros::init(argc, argv, "mrs_vpr_camera_input_rostest");
   ros::AsyncSpinner spinner(1);
   spinner.start();
   const int result = RUN_ALL_TESTS();

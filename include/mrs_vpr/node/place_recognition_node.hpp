@@ -24,6 +24,7 @@
 #include "mrs_vpr/node/keyframe_policy.hpp"
 #include "mrs_vpr/node/master_watch.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/node/sequence_gaps.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
 
 namespace mrs_vpr {
@@ -75,6 +76,8 @@ class PlaceRecognitionNode {
   /// description, admission and counters. `summary` describes the message for a warning.
   template <typename Convert, typename Summary>
   void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
+  /// Counts (received and failed) and reports the frames missing before the one numbered `seq`.
+  void countMissingFrames(std::uint32_t seq);
   /// The topic the camera frames come from, for messages.
   std::string imageTopic() const;
   bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);
@@ -106,6 +109,7 @@ class PlaceRecognitionNode {
   // only ever held for a few instructions.
   std::mutex state_mutex_;
   KeyframePolicy keyframe_policy_;
+  SequenceGaps sequence_gaps_;  // frames lost before the image callback
   std::string camera_frame_id_;
   double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
   std::uint64_t frames_timed_ = 0;
