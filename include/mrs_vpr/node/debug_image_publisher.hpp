@@ -1,0 +1,40 @@
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include <ros/ros.h>
+#include <std_msgs/Header.h>
+
+#include "mrs_vpr/match_explanation.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+
+namespace mrs_vpr {
+namespace node {
+
+/**
+ * `~debug_image` (sensor_msgs/Image, bgr8): the picture of each answered query
+ * (visualization/match_image.hpp). It costs nothing while no one subscribes: the node asks wanted()
+ * before a query and only then has the answer explained and drawn.
+ */
+class DebugImagePublisher {
+ public:
+  /// Advertises `debug_image` on `private_nh`.
+  explicit DebugImagePublisher(ros::NodeHandle& private_nh);
+
+  /// Whether someone subscribes, so that the next answer should be explained and drawn.
+  bool wanted() const { return publisher_.getNumSubscribers() > 0; }
+
+  /// Draws the answer and publishes it with `header` (the newest test frame's).
+  void publish(const std_msgs::Header& header, const PlaceAnswer& answer, const MatchExplanation& explanation);
+
+  /// Images drawn since start-up (reported in ~map_info).
+  std::uint64_t rendered() const { return rendered_.load(); }
+
+ private:
+  ros::Publisher publisher_;
+  std::atomic<std::uint64_t> rendered_{0};
+};
+
+}  // namespace node
+}  // namespace mrs_vpr
