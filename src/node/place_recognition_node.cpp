@@ -36,6 +36,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   query_nh_.setCallbackQueue(&query_queue_);
   loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
   map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
+  debug_image_ = std::make_unique<DebugImagePublisher>(private_nh_);
   query_srv_ = query_nh_.advertiseService("query", &PlaceRecognitionNode::queryCallback, this);
   reset_srv_ = query_nh_.advertiseService("reset", &PlaceRecognitionNode::resetCallback, this);
   save_map_srv_ = query_nh_.advertiseService("save_map", &PlaceRecognitionNode::saveMapCallback, this);
@@ -254,13 +255,17 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
 
 PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {
   // The search may take a while; frames arriving meanwhile wait in the recognizer's pending buffer.
-  PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method)
-                                      : recognizer_.matchRecent(input.recent_frames, input.method);
+  // The answer is explained (for ~debug_image) only while someone watches.
+  MatchExplanation explanation;
+  MatchExplanation* const explain = debug_image_->wanted() ? &explanation : nullptr;
+  PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method, explain)
+                                      : recognizer_.matchRecent(input.recent_frames, input.method, explain);
   if (!input.images) {
     input.header.stamp = toRosTime(answered.newest_stamp);
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
+  if (explain != nullptr) debug_image_->publish(input.header, answered, explanation);
   const Match& match = answered.match;
   response.reference_index = match.reference_index;
   response.score = match.score;
@@ -335,6 +340,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   info.frames_skipped = frames_skipped_.load();
   info.frames_dropped = frames_dropped_.load();
   info.frames_failed = frames_failed_.load();
+  info.debug_images = debug_image_->rendered();
   return info;
 }
 
