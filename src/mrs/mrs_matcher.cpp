@@ -130,17 +130,34 @@ class CoarseToFineSearch {
     previous_rows_ = level_.rows();
   }
 
-  /// Each hypothesis settles on the cells its own trajectories visit, computed once for all of them.
+  /// Each hypothesis settles on the cells its own trajectories visit. Hypotheses are distinct places,
+  /// more than a basin apart, so they share no cells: each has a lazy matrix of its own and they
+  /// settle in parallel (OpenCV's threads). The best end is merged in hypothesis order, so that the
+  /// answer does not depend on the number of threads.
   void settleHypotheses(bool comparing, bool finest) {
     DescriptorSequence query_cells(1);
-    LazyDifferenceMatrix matrix(levelQuery(query_cells), reference_, level_.stride, frequencies_,
-                                comparing ? sequence_.contrast_window : 0);
-    for (Particle& particle : particles_) {
-      EndCostTable costs(matrix, level_, levelVelocities(particle));
-      settle(particle, costs, finest);
+    const SequenceView cells = levelQuery(query_cells);
+    const int count = static_cast<int>(particles_.size());
+    std::vector<Evaluation> bests(particles_.size());
+    std::vector<long long> comparisons(particles_.size(), 0);
+    cv::parallel_for_(cv::Range(0, count), [&](const cv::Range& range) {
+      for (int i = range.start; i < range.end; ++i) {
+        Particle& particle = particles_[static_cast<std::size_t>(i)];
+        LazyDifferenceMatrix matrix(cells, reference_, level_.stride, frequencies_,
+                                    comparing ? sequence_.contrast_window : 0);
+        EndCostTable costs(matrix, level_, levelVelocities(particle));
+        bests[static_cast<std::size_t>(i)] = settle(particle, costs);
+        comparisons[static_cast<std::size_t>(i)] = matrix.comparisons();
+      }
+    });
+    long long total = 0;
+    for (int i = 0; i < count; ++i) {
+      const Evaluation& best = bests[static_cast<std::size_t>(i)];
+      if (finest && best.cost < best_.cost) best_ = best;
+      total += comparisons[static_cast<std::size_t>(i)];
     }
     dropInfeasible();
-    result_.comparisons += std::llround(static_cast<double>(matrix.comparisons()) * cellShare());
+    result_.comparisons += std::llround(static_cast<double>(total) * cellShare());
   }
 
   /// The paper's loop on the coarsest level's table.
@@ -168,18 +185,21 @@ class CoarseToFineSearch {
     }
   }
 
-  /// Moves a hypothesis to the best end within +-Id_shift until it stays (at most max_iterations).
-  void settle(Particle& particle, EndCostTable& costs, bool finest) {
+  /// Moves a hypothesis to the best end within +-Id_shift until it stays (at most max_iterations);
+  /// returns the best end it saw.
+  Evaluation settle(Particle& particle, EndCostTable& costs) const {
+    Evaluation best;
     for (int iteration = 0; iteration < mrs_.max_iterations; ++iteration) {
       const Evaluation evaluation = costs.bestInWindow(particle.index, mrs_.index_shift);
       particle.cost = evaluation.cost;
-      if (evaluation.index < 0) return;
+      if (evaluation.index < 0) break;
       const bool moved = evaluation.index != particle.index;
       particle.index = evaluation.index;
       particle.velocity = evaluation.velocity;
-      if (finest && evaluation.cost < best_.cost) best_ = evaluation;
-      if (!moved) return;
+      if (evaluation.cost < best.cost) best = evaluation;
+      if (!moved) break;
     }
+    return best;
   }
 
   void dropInfeasible() {
