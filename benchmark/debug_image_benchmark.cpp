@@ -132,6 +132,7 @@ void run(const Options& options) {
       std::vector<double> extra;
       std::vector<double> explain_only;
       int accepted = 0;
+      cv::Mat picture;  // Reused from query to query, as the node does.
       for (int q = 0; q < options.queries; ++q) {
         // Query ends spread evenly over the traversal.
         const int end = length - 1 + static_cast<int>(static_cast<long long>(q) * (query.size() - length) /
@@ -153,7 +154,7 @@ void run(const Options& options) {
           explained_answer = recognizer.match(test, method, &explanation);
           explained_ms = std::min(explained_ms, millisecondsSince(start));
           start = std::chrono::steady_clock::now();
-          const cv::Mat picture = mrs_vpr::visualization::renderMatchImage(explanation, explained_answer);
+          mrs_vpr::visualization::renderMatchImage(explanation, explained_answer, picture);
           drawn_ms = std::min(drawn_ms, millisecondsSince(start));
           start = std::chrono::steady_clock::now();
           mrs_vpr::explainMatch(reference.view(), test, explained_answer.match, recognizer.parameters().sequence,

@@ -16,9 +16,9 @@ DebugImagePublisher::DebugImagePublisher(ros::NodeHandle& private_nh)
 void DebugImagePublisher::publish(const std_msgs::Header& header, const PlaceAnswer& answer,
                                   const MatchExplanation& explanation) {
   const auto start = std::chrono::steady_clock::now();
-  const cv::Mat image = visualization::renderMatchImage(explanation, answer);
+  visualization::renderMatchImage(explanation, answer, image_);
   ++rendered_;
-  publisher_.publish(cv_bridge::CvImage(header, "bgr8", image).toImageMsg());
+  publisher_.publish(cv_bridge::CvImage(header, "bgr8", image_).toImageMsg());
   ROS_DEBUG("mrs_vpr: debug image drawn and published in %.2f ms",
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }

@@ -40,9 +40,9 @@ void drawThumbnail(cv::Mat& image, const cv::Rect& area, const cv::Mat& thumbnai
   if (thumbnail.empty()) {
     target.setTo(kBackground);
   } else {
-    cv::Mat scaled;
-    cv::resize(thumbnail, scaled, area.size(), 0, 0, cv::INTER_NEAREST);
-    cv::cvtColor(scaled, target, cv::COLOR_GRAY2BGR);
+    cv::Mat colour;
+    cv::cvtColor(thumbnail, colour, cv::COLOR_GRAY2BGR);
+    cv::resize(colour, target, area.size(), 0, 0, cv::INTER_NEAREST);  // Into the image itself.
   }
   cv::rectangle(image, cv::Rect(area.x, area.y, area.width, 16), kBackground, cv::FILLED);
   label(image, caption, {area.x + 4, area.y + 12}, kText);
@@ -74,9 +74,9 @@ void drawBand(cv::Mat& image, const cv::Rect& area, const MatchExplanation& expl
     return;
   }
   const cv::Mat grey = standardisedColumns(explanation.band);
-  cv::Mat scaled;
-  cv::resize(grey, scaled, area.size(), 0, 0, cv::INTER_NEAREST);
-  cv::cvtColor(scaled, target, cv::COLOR_GRAY2BGR);
+  cv::Mat colour;
+  cv::cvtColor(grey, colour, cv::COLOR_GRAY2BGR);
+  cv::resize(colour, target, area.size(), 0, 0, cv::INTER_NEAREST);  // Into the image itself.
   // Dashed, so that the dark cells it follows stay visible between the dashes.
   std::vector<cv::Point> dash;
   for (int t = 0; t < static_cast<int>(explanation.trajectory.size()); ++t) {
@@ -163,8 +163,15 @@ cv::Point trajectoryPixel(const MatchExplanation& explanation, int test_frame) {
 }
 
 cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer) {
+  cv::Mat image;
+  renderMatchImage(explanation, answer, image);
+  return image;
+}
+
+void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image) {
   const MatchImageLayout layout = matchImageLayout(static_cast<int>(explanation.levels.size()));
-  cv::Mat image(layout.size, CV_8UC3, kBackground);
+  image.create(layout.size, CV_8UC3);  // Keeps the buffer when the size is the same.
+  image.setTo(kBackground);
   const int reference = answer.match.reference_index;
   const bool newest = explanation.anchor == explanation.query_frames - 1;
   drawThumbnail(image, layout.query_thumbnail, explanation.query_thumbnail,
@@ -184,7 +191,6 @@ cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer&
     drawLevel(image, layout.levels[level], explanation.levels[level], explanation, reference);
   }
   drawVerdict(image, layout.verdict, explanation, answer);
-  return image;
 }
 
 }  // namespace visualization

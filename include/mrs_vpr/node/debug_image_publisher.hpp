@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include <opencv2/core.hpp>
 #include <ros/ros.h>
 #include <std_msgs/Header.h>
 
@@ -34,6 +35,7 @@ class DebugImagePublisher {
  private:
   ros::Publisher publisher_;
   std::atomic<std::uint64_t> rendered_{0};
+  cv::Mat image_;  // Drawn into again and again (only from the query thread).
 };
 
 }  // namespace node

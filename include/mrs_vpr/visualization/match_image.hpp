@@ -34,6 +34,9 @@ MatchImageLayout matchImageLayout(int levels);
  * publishes it, a tool may write it to a file.
  */
 cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer);
+/// The same into `image`, whose buffer is reused when it has the size already: a caller that draws
+/// often (the node) avoids fresh pages, which after a large query cost more than the drawing itself.
+void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image);
 
 /// The pixel where renderMatchImage draws the trajectory's point for test frame `test_frame`.
 cv::Point trajectoryPixel(const MatchExplanation& explanation, int test_frame);
