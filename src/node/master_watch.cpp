@@ -82,6 +82,13 @@ MasterEvent MasterState::observe(const std::string& identity) {
 }
 
 MasterWatch::MasterWatch(double period) {
+  // The master this process registered with, before any restart can happen unseen.
+  state_.observe(masterIdentity());
+  try {
+    services_ = registeredServices();
+  } catch (const std::exception&) {
+    // Not answering already: the first check reports it.
+  }
   nh_.setCallbackQueue(&queue_);
   // Wall time: a simulated /clock stops with the master that publishes it.
   timer_ = nh_.createWallTimer(ros::WallDuration(period), &MasterWatch::check, this);

@@ -1,0 +1,151 @@
+// The node and a ROS master killed with SIGKILL and restarted on the same port. Not a rostest: the
+// test owns the master, so that it can kill it.
+#include <gtest/gtest.h>
+
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <xmlrpcpp/XmlRpc.h>
+
+extern char** environ;  // NOLINT: the children get this environment with the master's address.
+
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+int freePort() {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t length = sizeof(address);
+  const bool bound = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0 &&
+                     getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
+  close(fd);
+  return bound ? ntohs(address.sin_port) : -1;
+}
+
+/// A process the test starts; killed when the test ends, whatever happens.
+class Child {
+ public:
+  Child(const std::vector<std::string>& command, const std::vector<std::string>& environment) {
+    std::vector<char*> argv;
+    for (const std::string& word : command) argv.push_back(const_cast<char*>(word.c_str()));
+    argv.push_back(nullptr);
+    std::vector<char*> envp;
+    for (const std::string& entry : environment) envp.push_back(const_cast<char*>(entry.c_str()));
+    envp.push_back(nullptr);
+    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
+  }
+  ~Child() { stop(SIGKILL); }
+  Child(const Child&) = delete;
+  Child& operator=(const Child&) = delete;
+
+  bool started() const { return pid_ > 0; }
+
+  void stop(int signal) {
+    if (pid_ <= 0) return;
+    kill(pid_, signal);
+    waitpid(pid_, nullptr, 0);
+    pid_ = -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+/// A call of the master API as any node makes it; true when the master answers with success.
+bool masterSays(int port, const std::string& method, const std::string& argument = "") {
+  XmlRpc::XmlRpcClient client("localhost", port, "/");  // A new connection: the old master may be gone.
+  XmlRpcValue params;
+  params[0] = std::string("/master_restart_test");
+  if (!argument.empty()) params[1] = argument;
+  XmlRpcValue result;
+  return client.execute(method.c_str(), params, result) && result.getType() == XmlRpcValue::TypeArray &&
+         result.size() == 3 && static_cast<int>(result[0]) == 1;
+}
+
+/// True when the master lists `node` among the publishers (`kind` 0) or subscribers (1) of `topic`.
+bool lists(int port, int kind, const std::string& node, const std::string& topic) {
+  XmlRpc::XmlRpcClient client("localhost", port, "/");
+  XmlRpcValue params;
+  params[0] = std::string("/master_restart_test");
+  XmlRpcValue result;
+  if (!client.execute("getSystemState", params, result) || static_cast<int>(result[0]) != 1) return false;
+  XmlRpcValue& entries = result[2][kind];
+  for (int i = 0; i < entries.size(); ++i) {
+    if (static_cast<std::string>(entries[i][0]) != topic) continue;
+    for (int j = 0; j < entries[i][1].size(); ++j) {
+      if (static_cast<std::string>(entries[i][1][j]) == node) return true;
+    }
+  }
+  return false;
+}
+
+bool publishes(int port, const std::string& node, const std::string& topic) { return lists(port, 0, node, topic); }
+bool subscribes(int port, const std::string& node, const std::string& topic) { return lists(port, 1, node, topic); }
+
+bool waitFor(const std::function<bool()>& condition, double seconds) {
+  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
+  while (std::chrono::steady_clock::now() < end) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return condition();
+}
+
+TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
+  const int port = freePort();
+  ASSERT_GT(port, 0);
+  std::vector<std::string> environment;
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    const std::string text = *entry;
+    if (text.rfind("ROS_MASTER_URI=", 0) != 0 && text.rfind("ROS_HOSTNAME=", 0) != 0 &&
+        text.rfind("ROS_IP=", 0) != 0) {
+      environment.push_back(text);
+    }
+  }
+  environment.push_back("ROS_MASTER_URI=http://localhost:" + std::to_string(port) + "/");
+  environment.push_back("ROS_HOSTNAME=localhost");
+  const std::vector<std::string> master_command{"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)};
+  const auto master_up = [port] { return masterSays(port, "getPid"); };
+  const auto query_registered = [port] { return masterSays(port, "lookupService", "/mrs_vpr/query"); };
+
+  auto master = std::make_unique<Child>(master_command, environment);
+  ASSERT_TRUE(master->started());
+  ASSERT_TRUE(waitFor(master_up, 30.0)) << "rosmaster did not start on port " << port;
+  Child node({MRS_VPR_NODE_PATH, "__name:=mrs_vpr"}, environment);
+  ASSERT_TRUE(node.started());
+  ASSERT_TRUE(waitFor(query_registered, 30.0)) << "the node did not register ~query";
+  // The image subscription is the node's last registration; the master is killed only after it.
+  ASSERT_TRUE(waitFor([port] { return subscribes(port, "/mrs_vpr", "/image"); }, 30.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+
+  master->stop(SIGKILL);
+  ASSERT_FALSE(master_up());
+  master = std::make_unique<Child>(master_command, environment);
+  ASSERT_TRUE(waitFor(master_up, 30.0)) << "rosmaster did not restart on port " << port;
+
+  // The node checks every second; the new master starts empty, so only the node can have told it.
+  EXPECT_TRUE(waitFor(query_registered, 15.0)) << "the restarted master does not know ~query";
+  EXPECT_TRUE(masterSays(port, "lookupService", "/mrs_vpr/reset"));
+  EXPECT_TRUE(masterSays(port, "lookupNode", "/mrs_vpr"));
+  EXPECT_TRUE(publishes(port, "/mrs_vpr", "/mrs_vpr/map_info"));
+  EXPECT_TRUE(publishes(port, "/mrs_vpr", "/mrs_vpr/loop_closure"));
+  EXPECT_TRUE(subscribes(port, "/mrs_vpr", "/image"));
+
+  node.stop(SIGINT);
+}
+
+}  // namespace
