@@ -18,12 +18,14 @@ unset LD_LIBRARY_PATH
 
 failed=0
 total_passed=0
+total_skipped=0
 for name in "$@"; do
   log="$bin_dir/$name.log"
   start=$SECONDS
   "$bin_dir/$name" --gtest_brief=1 >"$log" 2>&1
   status=$?
   passed=$(grep -oE '^\[  PASSED  \] [0-9]+' "$log" | grep -oE '[0-9]+$' || echo 0)
+  skipped=$(grep -oE '^\[  SKIPPED \] [0-9]+' "$log" | grep -oE '[0-9]+$' || echo 0)
   # A report that some build did not make fatal still fails the run.
   if [ $status -ne 0 ] || grep -qE 'runtime error:|ERROR: (AddressSanitizer|LeakSanitizer)' "$log"; then
     failed=$((failed + 1))
@@ -31,7 +33,8 @@ for name in "$@"; do
     tail -40 "$log"
   else
     total_passed=$((total_passed + passed))
-    echo "passed   $name: $passed tests, no sanitizer report ($((SECONDS - start)) s)"
+    total_skipped=$((total_skipped + skipped))
+    echo "passed   $name: $passed tests ($skipped skipped), no sanitizer report ($((SECONDS - start)) s)"
   fi
 done
 
@@ -39,4 +42,4 @@ if [ $failed -ne 0 ]; then
   echo "RESULT: FAILURE ($failed of $# sanitized test binaries failed)"
   exit 1
 fi
-echo "RESULT: SUCCESS ($# sanitized test binaries, $total_passed tests, no sanitizer report)"
+echo "RESULT: SUCCESS ($# sanitized test binaries, $total_passed tests passed, $total_skipped skipped, no sanitizer report)"
