@@ -90,7 +90,9 @@ class NodeProcess {
   /// Waits up to `seconds` for the process to end; its exit code, or -1 when it did not end.
   int waitForExit(double seconds) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (running() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    while (running() && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
     if (!exited_) return -1;
     return WIFEXITED(status_) ? WEXITSTATUS(status_) : 128 + WTERMSIG(status_);
   }
@@ -198,9 +200,10 @@ class MapDatabaseNodeTest : public ::testing::Test {
 
   /// Waits until the node's map holds `frames` frames, all committed to its database.
   static void waitPersisted(MapInfoWatch& info, std::uint32_t frames) {
-    ASSERT_TRUE(info.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == frames && m.frames_persisted == frames; }))
-        << "map_info: " << info.latest().frames << " frames, " << info.latest().frames_persisted << " persisted; expected "
-        << frames;
+    ASSERT_TRUE(info.waitFor(
+        [&](const mrs_vpr::MapInfo& m) { return m.frames == frames && m.frames_persisted == frames; }))
+        << "map_info: " << info.latest().frames << " frames, " << info.latest().frames_persisted
+        << " persisted; expected " << frames;
   }
 
   /// The node's answer to query frames [first, first + count) of the second traversal.

@@ -46,8 +46,9 @@ const std::vector<cv::Mat>& referenceDescriptors() {
 /// The map's frames as (descriptor, stamp), copied.
 std::vector<std::pair<cv::Mat, double>> framesOf(const PlaceRecognizer& recognizer) {
   std::vector<std::pair<cv::Mat, double>> frames;
-  recognizer.visitFrames(0, recognizer.size(),
-                         [&](const cv::Mat& descriptor, double stamp) { frames.emplace_back(descriptor.clone(), stamp); });
+  recognizer.visitFrames(0, recognizer.size(), [&](const cv::Mat& descriptor, double stamp) {
+    frames.emplace_back(descriptor.clone(), stamp);
+  });
   return frames;
 }
 
@@ -91,7 +92,8 @@ class PersistentMapTest : public ::testing::Test {
 
   static void addReference(PersistentMap& map, int begin, int end) {
     for (int i = begin; i < end; ++i) {
-      ASSERT_EQ(map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i, "camera", i), FrameAdmission::kAdmitted);
+      ASSERT_EQ(map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i, "camera", i),
+                FrameAdmission::kAdmitted);
     }
   }
 
