@@ -86,9 +86,7 @@ cv::Size pngSize(const std::vector<std::uint8_t>& data) {
   return cv::Size(static_cast<int>(width), static_cast<int>(height));
 }
 
-bool isDescribable(int type) {
-  return type == CV_8UC1 || type == CV_16UC1 || type == CV_8UC3 || type == CV_8UC4;
-}
+bool isDescribable(int type) { return type == CV_8UC1 || type == CV_16UC1 || type == CV_8UC3 || type == CV_8UC4; }
 
 }  // namespace
 
@@ -108,8 +106,8 @@ CompressedCodec parseCompressedFormat(const std::string& format) {
 }
 
 cv::Size compressedImageSize(const std::vector<std::uint8_t>& data, CompressedCodec codec) {
-  const bool signed_right = codec == CompressedCodec::kJpeg ? startsWith(data, kJpegSignature)
-                                                            : startsWith(data, kPngSignature);
+  const bool signed_right =
+      codec == CompressedCodec::kJpeg ? startsWith(data, kJpegSignature) : startsWith(data, kPngSignature);
   if (!signed_right) {
     throw std::invalid_argument(std::string("corrupt data: ") + std::to_string(data.size()) + " bytes that are not a " +
                                 codecName(codec) + " stream");
@@ -143,9 +141,9 @@ ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
     throw std::invalid_argument(std::string("corrupt data: OpenCV cannot decode the ") + codecName(codec) + " image");
   }
   if (!isDescribable(image.type())) {
-    throw std::invalid_argument(std::string("the ") + codecName(codec) + " image decodes to " +
-                                cv::typeToString(image.type()) + ", which is not described (supported: " +
-                                "8-bit grey, colour or colour with alpha, 16-bit grey)");
+    throw std::invalid_argument(
+        std::string("the ") + codecName(codec) + " image decodes to " + cv::typeToString(image.type()) +
+        ", which is not described (supported: " + "8-bit grey, colour or colour with alpha, 16-bit grey)");
   }
   ImageFrame frame;
   frame.pixels = image;

@@ -25,7 +25,8 @@ constexpr int kQueryLength = 80;       // the demo's queries: 80 frames from 60,
 /// The newest ~map_info of a node.
 class MapInfoInbox {
  public:
-  MapInfoInbox(ros::NodeHandle& nh, const std::string& topic) : sub_(nh.subscribe(topic, 10, &MapInfoInbox::callback, this)) {}
+  MapInfoInbox(ros::NodeHandle& nh, const std::string& topic)
+      : sub_(nh.subscribe(topic, 10, &MapInfoInbox::callback, this)) {}
 
   /// Waits until the newest message satisfies `predicate`; returns whether it did.
   template <typename Predicate>
@@ -253,7 +254,8 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
 
   mrs_vpr::MapInfo info;
   ASSERT_TRUE(inbox.waitFor(
-      [&](const mrs_vpr::MapInfo& m) { return m.frames_received == static_cast<std::uint64_t>(published); }, info, 60.0))
+      [&](const mrs_vpr::MapInfo& m) { return m.frames_received == static_cast<std::uint64_t>(published); }, info,
+      60.0))
       << "received " << info.frames_received << " of " << published;
   EXPECT_EQ(info.frames + info.frames_failed, info.frames_received);
   EXPECT_EQ(info.frames_dropped, 0U);
