@@ -173,6 +173,25 @@ TEST(MrsMatcher, KeptPyramidGivesTheSameAnswer) {
   }
 }
 
+TEST(MrsMatcher, AnswersDoNotDependOnTheNumberOfThreads) {
+  // The hypotheses settle in parallel and every dense level is split between threads: the answer,
+  // its confidence and the work counted must be the same with one thread and with several.
+  const auto& route = standardRoute();
+  const auto matcher = makeMatcher("mrs", globalSearchParams());
+  const int threads = cv::getNumThreads();
+  for (const int length : {200, 300}) {
+    const SequenceView query = route.query.view(0, length);
+    cv::setNumThreads(1);
+    const Match single = matcher->match(route.reference.view(), query);
+    cv::setNumThreads(4);
+    const Match several = matcher->match(route.reference.view(), query);
+    cv::setNumThreads(threads);
+    SCOPED_TRACE(length);
+    ASSERT_GE(single.reference_index, 0);
+    expectIdentical(single, several);
+  }
+}
+
 TEST(MrsMatcher, SameSeedGivesIdenticalMatches) {
   const auto& route = standardRoute();
   const auto matcher = makeMatcher("mrs", globalSearchParams());
