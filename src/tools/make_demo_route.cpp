@@ -10,10 +10,10 @@
 #include <string>
 
 #include <boost/program_options.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
+#include "mrs_vpr/image_codecs.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "tool_main.hpp"
@@ -49,7 +49,7 @@ void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     std::ostringstream name;
     name << std::setw(6) << std::setfill('0') << i << ".png";
-    if (!cv::imwrite((folder / name.str()).string(), frames[i])) {
+    if (!mrs_vpr::image_codecs::write((folder / name.str()).string(), frames[i])) {
       throw std::runtime_error("cannot write '" + (folder / name.str()).string() + "'");
     }
   }
