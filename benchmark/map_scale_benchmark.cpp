@@ -244,6 +244,7 @@ int measure(const Options& options) {
   mrs_vpr::PlaceRecognizer recognizer(params);
   {
     const mrs_vpr::MapDatabase map(options.measure, params.descriptor);
+    recognizer.reserve(static_cast<int>(map.size()));
     map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
     recognizer.flush();
   }

@@ -94,6 +94,14 @@ void PlaceRecognizer::reserveAhead() {
   reserved_frames_ = target;
 }
 
+void PlaceRecognizer::reserve(int frames) {
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  if (recognizer_.max_frames > 0) frames = std::min(frames, recognizer_.max_frames);
+  if (frames <= reserved_frames_) return;
+  map_.reserve(frames);
+  reserved_frames_ = frames;
+}
+
 void PlaceRecognizer::visitFrames(int begin, int end,
                                   const std::function<void(const cv::Mat& descriptor, double stamp)>& visit) const {
   std::shared_lock<std::shared_mutex> map_lock(map_mutex_);

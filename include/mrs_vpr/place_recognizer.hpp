@@ -105,6 +105,9 @@ class PlaceRecognizer {
   void flush();
   /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation.
   void reserveAhead();
+  /// Grows the map's storage to hold `frames` frames (at most max_frames) at once, so that loading a
+  /// map of known size copies nothing and holds no spare capacity.
+  void reserve(int frames);
 
   /// A consistent look at the map.
   struct MapState {

@@ -44,10 +44,10 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
     throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
   }
   requireCapacity(recognizer_, path, database_->size());
-  // Streamed, not read into memory first: a million-frame map would be held twice.
-  int loaded = 0;
+  // Streamed, not read into memory first: a million-frame map would be held twice. Its size is known,
+  // so the map is allocated once, with nothing copied as it grows.
+  recognizer_.reserve(static_cast<int>(database_->size()));
   database_->forEachFrame([&](const StoredFrame& frame) {
-    if (loaded++ % kChunk == 0) recognizer_.reserveAhead();
     admit(recognizer_, frame.descriptor.clone(), frame.stamp);  // The row's bytes live until the next row.
   });
   recognizer_.flush();
@@ -106,10 +106,8 @@ int PersistentMap::load(const std::string& path) {
 }
 
 void PersistentMap::admitAll(const std::vector<StoredFrame>& frames) {
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    if (i % kChunk == 0) recognizer_.reserveAhead();
-    admit(recognizer_, frames[i].descriptor, frames[i].stamp);
-  }
+  recognizer_.reserve(static_cast<int>(frames.size()));
+  for (const StoredFrame& frame : frames) admit(recognizer_, frame.descriptor, frame.stamp);
   recognizer_.flush();
 }
 

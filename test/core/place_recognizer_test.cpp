@@ -125,6 +125,25 @@ TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
   EXPECT_EQ(recognizer.addFrame(route().reference[0]), FrameAdmission::kAdmitted);
 }
 
+TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
+  RecognizerParams limits;
+  limits.max_frames = 300;
+  PlaceRecognizer recognizer(Parameters{}, limits);
+  const std::size_t empty = recognizer.state().memory_bytes;
+  recognizer.reserve(200);
+  const std::size_t reserved = recognizer.state().memory_bytes;
+  const auto frame_bytes = static_cast<std::size_t>(recognizer.extractor().size()) + sizeof(double);
+  const std::size_t coarse_bytes = 128;  // at most, a frame, of MRS's kept coarse cells
+  EXPECT_GE(reserved - empty, 200 * frame_bytes);
+  EXPECT_LT(reserved - empty, 200 * (frame_bytes + coarse_bytes));
+  // Filling what was reserved allocates nothing more.
+  for (int i = 0; i < 200; ++i) ASSERT_EQ(recognizer.addFrame(route().reference[i]), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.state().memory_bytes, reserved);
+  // Never beyond max_frames.
+  recognizer.reserve(1000000);
+  EXPECT_LT(recognizer.state().memory_bytes - empty, 300 * (frame_bytes + coarse_bytes));
+}
+
 TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacity) {
   // One thread adds frames while another queries without pause: every frame is either in the map or
   // reported dropped, and the map never grows past max_frames, however the two interleave.
