@@ -241,7 +241,6 @@ class Report {
   std::vector<nlohmann::json> rows_;
 };
 
-
 /// Where MRS kept the truth: per level, how often a hypothesis lay within tolerance of it and at
 /// which rank; for the coarsest level also the rank among the distinct minima of its table.
 class Diagnosis {

@@ -33,7 +33,8 @@ namespace node {
 /**
  * The ROS face of the place recogniser: subscribes `image`, keeps keyframe descriptors in a reference
  * map, answers `~query` (mrs_vpr/QuerySequence), publishes `~loop_closure` and the latched
- * `~map_info`, offers `~reset`, and optionally queries on its own every `~auto_query_period` seconds.
+ * `~map_info`, offers `~reset`, `~save_map` and `~load_map`, keeps the map in `~database` when one
+ * is set, and optionally queries on its own every `~auto_query_period` seconds.
  *
  * Threading: image callbacks run on the queue of `nh` (the caller spins it: ros::spin() in the node,
  * the manager's single-threaded queue in the nodelet). Services and timers run on a private callback
@@ -133,12 +134,12 @@ class PlaceRecognitionNode {
   ros::Subscriber compressed_image_sub_;         // `compressed`
   ros::Publisher loop_closure_pub_;
   ros::Publisher map_info_pub_;
+  std::unique_ptr<DebugImagePublisher> debug_image_;  // ~debug_image, drawn only while subscribed
   ros::ServiceServer query_srv_;
   ros::ServiceServer reset_srv_;
   ros::ServiceServer save_map_srv_;
   ros::ServiceServer load_map_srv_;
   ros::Timer auto_query_timer_;
-  std::unique_ptr<DebugImagePublisher> debug_image_;  // ~debug_image, drawn only while subscribed
   ros::Timer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
   std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
