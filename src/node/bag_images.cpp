@@ -2,97 +2,25 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstddef>
-#include <cstdint>
-#include <set>
 #include <stdexcept>
 
-#include <boost/make_shared.hpp>
 #include <opencv2/imgproc.hpp>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
-#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/image_encodings.h>
 
-#include "mrs_vpr/image_codecs.hpp"
+#include "../plugin_loader/plugin_loader.hpp"
+#include "bag_reader_table.hpp"
+#include "image_message_copy.hpp"
 
 namespace mrs_vpr {
 namespace bag {
 
 namespace {
 
-constexpr const char* kImageType = "sensor_msgs/Image";
-constexpr const char* kCompressedType = "sensor_msgs/CompressedImage";
-
-void openBag(rosbag::Bag& bag, const std::string& path) {
-  try {
-    bag.open(path, rosbag::bagmode::Read);
-  } catch (const rosbag::BagException& error) {
-    throw std::runtime_error("cannot open bag '" + path + "': " + error.what());
-  }
-}
-
-/// Checks that `topic` exists and carries images; the message lists what the bag holds instead.
-void checkTopic(const rosbag::Bag& bag, const std::string& path, const std::string& topic) {
-  rosbag::View everything(bag);
-  std::set<std::string> topics;
-  for (const rosbag::ConnectionInfo* connection : everything.getConnections()) {
-    if (connection->topic != topic) {
-      topics.insert(connection->topic + " (" + connection->datatype + ")");
-      continue;
-    }
-    if (connection->datatype != kImageType && connection->datatype != kCompressedType) {
-      throw std::runtime_error("topic '" + topic + "' of bag '" + path + "' carries " + connection->datatype +
-                               ", not sensor_msgs/Image or sensor_msgs/CompressedImage");
-    }
-    return;
-  }
-  std::string listing;
-  for (const std::string& entry : topics) listing += (listing.empty() ? "" : ", ") + entry;
-  throw std::runtime_error("bag '" + path + "' has no topic '" + topic + "' (it has: " +
-                           (listing.empty() ? "nothing" : listing) + ")");
-}
-
-/// An image message holding a copy of `image` (rows packed, native byte order), as cv_bridge's
-/// CvImage::toImageMsg makes it; without cv_bridge, whose codecs would load ~120 libraries at start-up.
-sensor_msgs::ImagePtr messageOf(const cv::Mat& image, const std::string& encoding, const std_msgs::Header& header) {
-  auto message = boost::make_shared<sensor_msgs::Image>();
-  message->header = header;
-  message->height = static_cast<std::uint32_t>(image.rows);
-  message->width = static_cast<std::uint32_t>(image.cols);
-  message->encoding = encoding;
-  message->is_bigendian = 0;
-  message->step = static_cast<std::uint32_t>(image.cols * image.elemSize());
-  message->data.resize(static_cast<std::size_t>(message->step) * image.rows);
-  cv::Mat packed(image.rows, image.cols, image.type(), message->data.data(), message->step);
-  image.copyTo(packed);
-  return message;
-}
-
-/// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8.
-sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed, const std::string& path) {
-  cv::Mat image;
-  try {
-    const cv::Mat buffer(1, static_cast<int>(compressed->data.size()), CV_8UC1,
-                         const_cast<std::uint8_t*>(compressed->data.data()));
-    image = image_codecs::decode(buffer, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& error) {
-    throw std::runtime_error("cannot decode a compressed image of bag '" + path + "': " + error.what());
-  }
-  if (image.empty()) throw std::runtime_error("cannot decode a compressed image of bag '" + path + "'");
-  switch (image.type()) {
-    case CV_8UC1:
-      return messageOf(image, sensor_msgs::image_encodings::MONO8, compressed->header);
-    case CV_16UC1:
-      return messageOf(image, sensor_msgs::image_encodings::MONO16, compressed->header);
-    case CV_8UC3:
-      return messageOf(image, sensor_msgs::image_encodings::BGR8, compressed->header);
-    case CV_8UC4:
-      return messageOf(image, sensor_msgs::image_encodings::BGRA8, compressed->header);
-    default:
-      throw std::runtime_error("a compressed image of bag '" + path + "' decodes to " +
-                               cv::typeToString(image.type()) + ", which is not an image encoding read here");
-  }
+const BagReaderTable& reader() {
+  // A function-local static is initialised once, also when several threads read bags at once.
+  static const BagReaderTable& table =
+      plugins::load<BagReaderTable>(kBagReaderPluginFile, kBagReaderSymbol, "bag reader");
+  return table;
 }
 
 }  // namespace
@@ -106,33 +34,12 @@ bool isBagPath(const std::string& path) {
 }
 
 int countImages(const std::string& bag_path, const std::string& topic) {
-  rosbag::Bag bag;
-  openBag(bag, bag_path);
-  checkTopic(bag, bag_path, topic);
-  return static_cast<int>(rosbag::View(bag, rosbag::TopicQuery(topic)).size());
+  return reader().count_images(bag_path, topic);
 }
 
-void forEachImage(const std::string& bag_path, const std::string& topic,
-                  const std::function<void(int index, const sensor_msgs::ImageConstPtr& image)>& visit,
-                  int start, int count) {
-  rosbag::Bag bag;
-  openBag(bag, bag_path);
-  checkTopic(bag, bag_path, topic);
-  rosbag::View view(bag, rosbag::TopicQuery(topic));
-  int index = 0;
-  for (const rosbag::MessageInstance& instance : view) {
-    if (count >= 0 && index >= start + count) break;
-    if (index++ < start) continue;
-    sensor_msgs::ImagePtr image;
-    if (instance.getDataType() == kImageType) {
-      image = instance.instantiate<sensor_msgs::Image>();
-    } else {
-      image = decode(instance.instantiate<sensor_msgs::CompressedImage>(), bag_path);
-    }
-    if (!image) throw std::runtime_error("cannot read message " + std::to_string(index - 1) + " of '" + topic + "'");
-    if (image->header.stamp.isZero()) image->header.stamp = instance.getTime();
-    visit(index - 1, image);
-  }
+void forEachImage(const std::string& bag_path, const std::string& topic, const ImageVisitor& visit, int start,
+                  int count) {
+  reader().for_each_image(bag_path, topic, visit, start, count);
 }
 
 std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, const std::string& topic,
@@ -183,7 +90,7 @@ sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& en
   std_msgs::Header header;
   header.stamp = stamp;
   header.frame_id = frame_id;
-  return messageOf(converted, encoding, header);
+  return imageMessageOf(converted, encoding, header);
 }
 
 }  // namespace bag

@@ -11,6 +11,9 @@
 namespace mrs_vpr {
 namespace bag {
 
+/// Called with each image message read from a bag and its index over the topic (from 0).
+using ImageVisitor = std::function<void(int index, const sensor_msgs::ImageConstPtr& image)>;
+
 /// Number of image messages (sensor_msgs/Image or sensor_msgs/CompressedImage) on `topic` of a bag.
 /// Throws std::runtime_error when the bag cannot be opened or the topic holds no image messages.
 int countImages(const std::string& bag_path, const std::string& topic);
@@ -22,10 +25,14 @@ int countImages(const std::string& bag_path, const std::string& topic);
  * replaced by the time the message was recorded.
  * Throws std::runtime_error naming the bag and topic when the bag cannot be opened, the topic holds
  * no image messages, or a compressed image cannot be decoded.
+ *
+ * Bags are read by a plugin (libmrs_vpr_rosbag_reader.so, beside this library) opened on the first
+ * call, as rosbag brings roslib, rospack and Python: a program that reads no bag starts without them.
+ * countImages and forEachImage throw std::runtime_error ("cannot load the bag reader: ...") when it
+ * cannot be loaded.
  */
-void forEachImage(const std::string& bag_path, const std::string& topic,
-                  const std::function<void(int index, const sensor_msgs::ImageConstPtr& image)>& visit,
-                  int start = 0, int count = -1);
+void forEachImage(const std::string& bag_path, const std::string& topic, const ImageVisitor& visit, int start = 0,
+                  int count = -1);
 
 /// Messages [start, start + count) of `topic`. Throws std::runtime_error as forEachImage does, and
 /// when the topic holds fewer messages.

@@ -1,0 +1,24 @@
+#pragma once
+
+#include <string>
+
+#include "mrs_vpr/node/bag_images.hpp"
+
+namespace mrs_vpr {
+namespace bag {
+
+/// What the bag reader plugin hands to bag_images.cpp: countImages and forEachImage as
+/// bag_images.hpp documents them, read with rosbag.
+struct BagReaderTable {
+  int (*count_images)(const std::string& bag_path, const std::string& topic);
+  void (*for_each_image)(const std::string& bag_path, const std::string& topic, const ImageVisitor& visit, int start,
+                         int count);
+};
+
+/// The plugin's one exported symbol (unmangled, for dlsym).
+constexpr const char* kBagReaderSymbol = "mrs_vpr_rosbag_reader_table";
+/// The plugin's file name; it is installed beside the library that loads it.
+constexpr const char* kBagReaderPluginFile = "libmrs_vpr_rosbag_reader.so";
+
+}  // namespace bag
+}  // namespace mrs_vpr
