@@ -390,6 +390,27 @@ TEST_F(ToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) {
               "has no topic '/nothing' (it has: /camera/image_raw (sensor_msgs/Image))");
 }
 
+// rosbag (with roslib, rospack and Python) is a plugin loaded on the first bag read: a run that reads
+// no bag starts without it. LD_DEBUG=files makes the dynamic loader name every library it opens.
+TEST_F(ToolsTest, TheEvaluatorLoadsTheBagReaderOnlyWhenItReadsABag) {
+  const Result help = run("LD_DEBUG=files " + eval("--help"));
+  ASSERT_EQ(help.status, 0) << help.err;
+  ASSERT_NE(help.err.find("libmrs_vpr_core.so"), std::string::npos) << "LD_DEBUG gave no listing";
+  EXPECT_EQ(help.err.find("librosbag_storage"), std::string::npos);
+  EXPECT_EQ(help.err.find("libmrs_vpr_rosbag_reader"), std::string::npos);
+
+  const Result written = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("reference") + " --bag " +
+                             path("lazy.bag") + " --topic /camera/image_raw --rate 10");
+  ASSERT_EQ(written.status, 0) << written.err;
+  const std::string arguments = "--reference " + path("lazy.bag") + " --query " + path("query") +
+                                " --topic /camera/image_raw --ground-truth " + path("truth.csv") +
+                                " --method seqslam --protocol per-frame --sequence-length 10";
+  const Result from_bag = run("LD_DEBUG=files " + eval(arguments));
+  ASSERT_EQ(from_bag.status, 0) << from_bag.err;
+  EXPECT_NE(from_bag.err.find("libmrs_vpr_rosbag_reader.so"), std::string::npos);
+  EXPECT_NE(from_bag.err.find("librosbag_storage"), std::string::npos);
+}
+
 TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
   const Result no_rate = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
                              path("x.bag") + " --topic /t --rate 0");
