@@ -32,6 +32,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 
@@ -241,7 +242,9 @@ int measure(const Options& options) {
   params.validate();
   const auto before = residentBytes();
   const auto load_start = Clock::now();
-  mrs_vpr::PlaceRecognizer recognizer(params);
+  mrs_vpr::RecognizerParams limits;
+  limits.max_frames = 0;  // Unbounded: the default capacity (500k frames) is below the largest map.
+  mrs_vpr::PlaceRecognizer recognizer(params, limits);
   {
     const mrs_vpr::MapDatabase map(options.measure, params.descriptor);
     recognizer.reserve(static_cast<int>(map.size()));
@@ -357,6 +360,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrs_vpr::retainFreedMemory();  // As the node and the tools do.
   try {
     return run(argc, argv);
   } catch (const std::exception& error) {

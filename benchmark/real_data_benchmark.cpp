@@ -36,6 +36,7 @@
 #include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
+#include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
@@ -501,6 +502,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrs_vpr::retainFreedMemory();  // As the node and the tools do.
   try {
     return run(argc, argv);
   } catch (const std::exception& error) {

@@ -24,6 +24,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 
@@ -113,6 +114,7 @@ MethodResult runQueries(mrs_vpr::PlaceRecognizer& reference, const std::string& 
 }  // namespace
 
 int main(int argc, char** argv) {
+  mrs_vpr::retainFreedMemory();  // As the node and the tools do.
   try {
     const Options options = parse(argc, argv);
     mrs_vpr::Parameters params;

@@ -9,6 +9,7 @@
 
 #include <ros/ros.h>
 
+#include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"  // describeParameters, for --help
 #include "mrs_vpr/node/place_recognition_node.hpp"
 
@@ -39,6 +40,7 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
+  mrs_vpr::retainFreedMemory();  // Queries reuse the memory earlier queries freed.
   ros::init(argc, argv, "mrs_vpr");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");

@@ -23,12 +23,13 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
-#include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
+#include "mrs_vpr/evaluation/progress_line.hpp"
+#include "mrs_vpr/memory_reuse.hpp"
+#include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
-#include "mrs_vpr/node/bag_images.hpp"
 #include "evaluation_plots.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
@@ -420,4 +421,7 @@ int run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return mrs_vpr::tools::runTool("mrs_vpr_eval", run, argc, argv); }
+int main(int argc, char** argv) {
+  mrs_vpr::retainFreedMemory();  // Each query reuses the memory the previous one freed.
+  return mrs_vpr::tools::runTool("mrs_vpr_eval", run, argc, argv);
+}
