@@ -89,6 +89,27 @@ TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
   EXPECT_EQ(i, written.size());
 }
 
+TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
+  // With SQLite's default 4 KiB pages each 2 KiB descriptor took a page of its own.
+  {
+    MapDatabase database(path("map.db"), DescriptorParams{});
+    database.append(frames(1000));
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path("map.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
+  int page_size = 0;
+  sqlite3_exec(
+      db, "PRAGMA page_size",
+      [](void* out, int, char** values, char**) {
+        *static_cast<int*>(out) = std::atoi(values[0]);
+        return 0;
+      },
+      &page_size, nullptr);
+  sqlite3_close(db);
+  EXPECT_EQ(page_size, MapDatabase::kPageSize);
+  EXPECT_LT(fs::file_size(path("map.db")), 1000 * 2048 * 125 / 100);  // 4 KiB pages: 200%
+}
+
 TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), DescriptorParams{}); }
   sqlite3* db = nullptr;

@@ -50,6 +50,8 @@ struct StoredFrame {
 class MapDatabase {
  public:
   static constexpr int kFormatVersion = 1;
+  /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are 2 KiB rows.
+  static constexpr int kPageSize = 65536;
 
   /**
    * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
