@@ -17,7 +17,7 @@ DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation
 # The real frames of the benchmark: read at run time, never copied into the repository.
 DATA ?= $(CURDIR)/../shared/data
 
-.PHONY: all deps link build test test-sanitize fuzz fuzz-deps demo bench bench-real lint clean
+.PHONY: all deps link build test test-sanitize fuzz fuzz-deps demo bench bench-real bench-scale lint clean
 
 all: build
 
@@ -105,6 +105,11 @@ bench: build
 bench-real: build
 	@test -d "$(DATA)/nordland" || { echo "No real data at $(DATA): run make bench-real DATA=/path/to/data"; exit 1; }
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_real_benchmark --data "$(DATA)" --part check --diagnose
+
+# Maps of 10k, 100k and 1M real frames: load time, memory, query times (writes ~2.5 GB into /tmp).
+bench-scale: build
+	@test -d "$(DATA)/nordland" || { echo "No real data at $(DATA): run make bench-scale DATA=/path/to/data"; exit 1; }
+	@$(SETUP) && rosrun mrs_vpr mrs_vpr_map_scale_benchmark --data "$(DATA)" --sizes 10k,100k,1M --queries 5 --brute-queries 1
 
 # Checked on the workspace link, whose folder carries the package's name as catkin_lint expects.
 lint: deps link
