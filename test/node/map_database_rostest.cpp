@@ -32,6 +32,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace {
 
@@ -161,17 +162,8 @@ std::string contents(const std::string& file) {
 
 class MapDatabaseNodeTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_map_node_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    folder_ = pattern;
-    image_pub_ = nh_.advertise<sensor_msgs::Image>(kTopic, 1000);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(folder_, ignored);
-  }
-  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  void SetUp() override { image_pub_ = nh_.advertise<sensor_msgs::Image>(kTopic, 1000); }
+  std::string path(const std::string& name) const { return folder_.path(name); }
 
   /// Starts a node on `database` and waits until it serves ~query and is subscribed.
   std::unique_ptr<NodeProcess> startNode(const std::string& name, const std::string& database,
@@ -238,7 +230,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
 
   ros::NodeHandle nh_;
   ros::Publisher image_pub_;
-  fs::path folder_;
+  mrs_vpr::testing_support::TemporaryFolder folder_{"mrs_vpr_map_node_test"};
 };
 
 TEST_F(MapDatabaseNodeTest, ARestartedNodeKeepsItsMapAndAnswersAboutTheFirstPart) {

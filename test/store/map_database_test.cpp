@@ -14,6 +14,7 @@
 #include <sqlite3.h>
 
 #include "mrs_vpr/store/map_database.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -23,16 +24,7 @@ namespace fs = std::filesystem;
 /// A fresh folder under the system's temporary directory, removed when the test ends.
 class MapDatabaseTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_store_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    folder_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(folder_, ignored);
-  }
-  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  std::string path(const std::string& name) const { return folder_.path(name); }
 
   /// Frames whose descriptor bytes, stamps and ids all differ.
   static std::vector<StoredFrame> frames(int count, int first = 0) {
@@ -65,7 +57,7 @@ class MapDatabaseTest : public ::testing::Test {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   }
 
-  fs::path folder_;
+  testing_support::TemporaryFolder folder_{"mrs_vpr_store_test"};
 };
 
 TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {

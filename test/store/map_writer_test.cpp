@@ -1,6 +1,5 @@
 #include <chrono>
 #include <cstdlib>
-#include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
@@ -8,24 +7,14 @@
 #include <gtest/gtest.h>
 
 #include "mrs_vpr/store/map_writer.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace mrs_vpr {
 namespace {
 
-namespace fs = std::filesystem;
-
 class MapWriterTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_writer_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    folder_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(folder_, ignored);
-  }
-  std::string path() const { return (folder_ / "map.db").string(); }
+  std::string path() const { return folder_.path("map.db"); }
 
   static StoredFrame frame(int i) {
     StoredFrame stored;
@@ -44,7 +33,7 @@ class MapWriterTest : public ::testing::Test {
     return writer.persisted() >= frames;
   }
 
-  fs::path folder_;
+  testing_support::TemporaryFolder folder_{"mrs_vpr_writer_test"};
 };
 
 TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {

@@ -16,6 +16,7 @@
 
 #include "mrs_vpr/store/persistent_map.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -79,16 +80,7 @@ void expectSameFrames(const std::vector<std::pair<cv::Mat, double>>& actual,
 
 class PersistentMapTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    std::string pattern = (fs::temp_directory_path() / "mrs_vpr_persistent_map_test.XXXXXX").string();
-    ASSERT_NE(mkdtemp(pattern.data()), nullptr);
-    folder_ = pattern;
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(folder_, ignored);
-  }
-  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  std::string path(const std::string& name) const { return folder_.path(name); }
 
   static void addReference(PersistentMap& map, int begin, int end) {
     for (int i = begin; i < end; ++i) {
@@ -120,7 +112,7 @@ class PersistentMapTest : public ::testing::Test {
     addReference(map, begin, end);
   }
 
-  fs::path folder_;
+  testing_support::TemporaryFolder folder_{"mrs_vpr_persistent_map_test"};
 };
 
 TEST_F(PersistentMapTest, ARestartedMapHoldsEveryFrameInOrderAndAnswersAboutThem) {
