@@ -16,6 +16,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/rostest_main.hpp"
 
 namespace {
 
@@ -265,12 +266,5 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "mrs_vpr_camera_input_rostest");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_camera_input_rostest");
 }

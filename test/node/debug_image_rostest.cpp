@@ -15,6 +15,7 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
+#include "support/rostest_main.hpp"
 
 namespace {
 
@@ -205,12 +206,5 @@ TEST_F(DebugImageTest, ASubscriberGetsOneImagePerAnswer) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "mrs_vpr_debug_image_rostest");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_debug_image_rostest");
 }

@@ -32,6 +32,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/rostest_main.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
@@ -407,12 +408,5 @@ TEST_F(MapDatabaseNodeTest, AnUnusableDatabaseStopsTheNodeAtStartUpNamingIt) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "mrs_vpr_map_database_rostest");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_map_database_rostest");
 }

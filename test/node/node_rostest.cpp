@@ -21,6 +21,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/rostest_main.hpp"
 
 namespace {
 
@@ -378,12 +379,5 @@ TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "mrs_vpr_node_rostest");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  spinner.stop();
-  ros::shutdown();
-  return result;
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_node_rostest");
 }
