@@ -22,6 +22,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "mrs_vpr/synthetic_route.hpp"
+#include "route_folders.hpp"
 
 namespace {
 
@@ -60,31 +61,11 @@ class PlotsTest : public ::testing::Test {
   static void SetUpTestSuite() {
     root_ = fs::temp_directory_path() / ("mrs_vpr_plots_test_" + std::to_string(::getpid()));
     fs::remove_all(root_);
-    mrs_vpr::SyntheticRouteParams params;
-    params.reference_frames = 150;
-    params.query_frames = 100;
-    params.start_place = 20.0;
-    const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
-    writeFolder(root_ / "reference", route.reference);
-    writeFolder(root_ / "query", route.query);
-    std::ofstream truth(root_ / "truth.csv");
-    truth << "query_index,matching_ref_indices\n";
-    for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
-      truth << i << "," << route.query_to_reference[i] << "\n";
-    }
+    mrs_vpr::testing_support::writeRouteFolders(root_);
   }
   static void TearDownTestSuite() {
     std::error_code ignored;
     fs::remove_all(root_, ignored);
-  }
-
-  static void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
-    fs::create_directories(folder);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-      std::ostringstream name;
-      name << std::setw(5) << std::setfill('0') << i << ".png";
-      cv::imwrite((folder / name.str()).string(), frames[i]);
-    }
   }
 
   /// Runs `command` with stdout and stderr in files; returns the exit status.
