@@ -7,6 +7,7 @@
 #include <opencv2/core/hal/hal.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
+#include "simd/vector_kernel.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -23,6 +24,15 @@ inline int inlineSumOfAbsoluteDifferences(const std::uint8_t* __restrict a, cons
   return sum;
 }
 
+/// Short rows against consecutive cells: the inline sum, in 256-bit vectors where the CPU has them.
+MRS_VPR_VECTOR_KERNEL
+void shortRowDifferences(const std::uint8_t* query, const std::uint8_t* cells, std::ptrdiff_t pitch, int count,
+                         int size, float scale, float* out) {
+  for (int i = 0; i < count; ++i) {
+    out[i] = static_cast<float>(inlineSumOfAbsoluteDifferences(query, cells + i * pitch, size)) * scale;
+  }
+}
+
 /// The factor that turns a sum of absolute differences of `size` bytes into a mean in patch
 /// standard deviations.
 float differenceScale(int size) { return 1.0F / (static_cast<float>(size) * DescriptorExtractor::kLevelsPerStd); }
@@ -34,6 +44,16 @@ inline int sumOfAbsoluteDifferences(const std::uint8_t* a, const std::uint8_t* b
 }
 
 }  // namespace
+
+void descriptorDifferences(const std::uint8_t* query, const std::uint8_t* cells, std::ptrdiff_t pitch, int count,
+                           int size, float* out) {
+  const float scale = differenceScale(size);  // Once, not per pair: a division costs as much as a short sum.
+  if (size < kInlineSumBelow) {
+    shortRowDifferences(query, cells, pitch, count, size, scale, out);
+    return;
+  }
+  for (int i = 0; i < count; ++i) out[i] = static_cast<float>(cv::hal::normL1_(query, cells + i * pitch, size)) * scale;
+}
 
 float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size) {
   return static_cast<float>(sumOfAbsoluteDifferences(a, b, size)) * differenceScale(size);
@@ -56,17 +76,14 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
   constexpr int kBlock = 64;
   const int blocks = (reference.count + kBlock - 1) / kBlock;
   const int size = query.descriptor_size;
-  const float scale = differenceScale(size);  // Once, not per pair: a division costs as much as a short sum.
+  const std::ptrdiff_t pitch = static_cast<std::ptrdiff_t>(reference.step) * size;
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
     for (int block = range.start; block < range.end; ++block) {
       const int begin = block * kBlock;
       const int end = std::min(reference.count, begin + kBlock);
       for (int t = 0; t < query.count; ++t) {
-        float* row = differences.ptr<float>(t);
-        const std::uint8_t* q = query.frame(t);
-        for (int r = begin; r < end; ++r) {
-          row[r] = static_cast<float>(sumOfAbsoluteDifferences(q, reference.frame(r), size)) * scale;
-        }
+        descriptorDifferences(query.frame(t), reference.frame(begin), pitch, end - begin, size,
+                              differences.ptr<float>(t) + begin);
       }
     }
   });

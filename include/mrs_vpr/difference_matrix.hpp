@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 
 #include <opencv2/core.hpp>
@@ -11,6 +12,11 @@ namespace mrs_vpr {
 /// Mean absolute difference of two descriptors in patch standard deviations (SIMD sum of absolute
 /// differences on the uint8 rows).
 float descriptorDifference(const std::uint8_t* a, const std::uint8_t* b, int size);
+
+/// out[i] = descriptorDifference(query, cells + i * pitch, size) for i in [0, count): one test frame
+/// against consecutive reference cells, with the per-pair work vectorised and nothing else per pair.
+void descriptorDifferences(const std::uint8_t* query, const std::uint8_t* cells, std::ptrdiff_t pitch, int count,
+                           int size, float* out);
 
 /// D(t, r) = descriptorDifference(query t, reference r): CV_32FC1, query.count x reference.count.
 /// Rows are filled in parallel. Throws std::invalid_argument when descriptor sizes differ.
