@@ -14,11 +14,14 @@ namespace mrs_vpr {
  */
 cv::Mat enhanceContrast(const cv::Mat& differences, int window);
 
+/// Enhances columns [begin, end) of one row of `columns` raw differences into `out`, exactly as
+/// enhanceContrast does, from the raw differences their windows see: `raw` holds columns
+/// [max(0, begin - window / 2), min(columns, end + window / 2)). A search that needs a few cells of
+/// a row computes only those.
+void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float* out);
+
 /// Enhances one cell: `values` holds the window's raw differences, `centre` the cell's own.
 float enhanceCell(float centre, const float* values, int count, int window);
-
-/// The same from the sum and sum of squares of the window's `count` values.
-float enhanceCellFromSums(float centre, double sum, double sum_of_squares, int count, int window);
 
 /// The bound (n - 1) / sqrt(n), n = window + 1, on how negative a z-score over n samples can be.
 float contrastShift(int window);

@@ -1,5 +1,7 @@
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
 
+#include <algorithm>
+
 namespace mrs_vpr {
 
 PooledReference::PooledReference(SequenceView reference, int stride, const PatchFrequencies& frequencies)
@@ -19,6 +21,14 @@ const std::uint8_t* PooledReference::cell(int grid_index) {
     known_[static_cast<std::size_t>(grid_index)] = 1;
   }
   return cell;
+}
+
+PooledReference::Run PooledReference::run(int first, int wanted) {
+  const auto pitch = [](SequenceView view) { return static_cast<std::ptrdiff_t>(view.step) * view.descriptor_size; };
+  if (stride_ == 1) return {reference_.frame(first), pitch(reference_), wanted};
+  if (first < kept_.count) return {kept_.frame(first), pitch(kept_), std::min(wanted, kept_.count - first)};
+  for (int index = first; index < first + wanted; ++index) cell(index);  // Computes the missing ones.
+  return {cells_.data() + static_cast<std::ptrdiff_t>(first) * cellSize(), cellSize(), wanted};
 }
 
 }  // namespace mrs_vpr

@@ -9,9 +9,10 @@ namespace mrs_vpr {
 
 /**
  * Contrast-enhanced difference matrix between a test sequence (rows) and a reference (columns) that
- * computes only the cells a search asks for and remembers them. Each row keeps a few contiguous
- * segments of raw differences, so that nearby requests (particles of one cluster, neighbouring end
- * indices) share work and the contrast window sees the same neighbours as enhanceContrast.
+ * computes only the cells a search asks for and remembers them. One hypothesis of the search asks
+ * for cells around its trajectory only, so each row keeps one interval of raw differences: the
+ * smallest that holds every request (gaps between requests are filled, which near one place costs
+ * a few cells). The contrast window sees the same neighbours as enhanceContrast.
  */
 class LazyDifferenceMatrix {
  public:
@@ -31,21 +32,25 @@ class LazyDifferenceMatrix {
   long long comparisons() const { return comparisons_; }
 
  private:
-  struct Segment {
+  /// The raw differences of one row known so far: columns [begin, end), held in `values` from
+  /// column `origin` on, with room on both sides so that a growing interval rarely moves.
+  struct RowInterval {
+    int origin = 0;
     int begin = 0;
+    int end = 0;
     std::vector<float> values;
-    int end() const { return begin + static_cast<int>(values.size()); }
   };
 
   /// Raw differences of `row` over [begin, end), computed where missing; valid until the next call.
   const float* rawRow(int row, int begin, int end);
+  /// Computes the raw differences of `row` for columns [begin, end) into `out`.
+  void compare(int row, int begin, int end, float* out);
 
   SequenceView query_;
   PooledReference reference_;
   int contrast_window_;
   long long comparisons_ = 0;
-  std::vector<std::vector<Segment>> segments_;
-  std::vector<double> prefix_;  ///< enhancedRow's prefix sums, kept to avoid an allocation per call.
+  std::vector<RowInterval> rows_;
 };
 
 }  // namespace mrs_vpr

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -33,6 +34,16 @@ class PooledReference {
   /// (it pools the frames that exist), so that every cell a search of that level asks for is here.
   int size() const { return (reference_.count + stride_ - 2) / stride_ + 1; }
   const std::uint8_t* cell(int grid_index);
+
+  /// Cells first .. first + count - 1, `pitch` bytes apart.
+  struct Run {
+    const std::uint8_t* cells = nullptr;
+    std::ptrdiff_t pitch = 0;
+    int count = 0;
+  };
+  /// The longest run of consecutive cells from `first` (at most `wanted` of them, computed where
+  /// missing) that lie one pitch apart, so that they can be compared in one sweep.
+  Run run(int first, int wanted);
 
  private:
   SequenceView reference_;
