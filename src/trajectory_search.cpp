@@ -7,8 +7,45 @@
 #include <utility>
 
 #include "mrs_vpr/acceptance.hpp"
+#include "simd/vector_kernel.hpp"
 
 namespace mrs_vpr {
+namespace {
+
+
+/// sum[i] = rows[0][i] + ... + rows[count - 1][i] for i < width: the cells of `width` neighbouring
+/// trajectories, row by row. Four rows at a time, so that the inner loop is a contiguous,
+/// vectorisable add that loads and stores the sums a quarter as often.
+MRS_VPR_VECTOR_KERNEL
+void sumRows(const float* const* rows, int count, int width, float* __restrict sum) {
+  std::fill(sum, sum + width, 0.0F);
+  int r = 0;
+  for (; r + 3 < count; r += 4) {
+    const float* __restrict r0 = rows[r];
+    const float* __restrict r1 = rows[r + 1];
+    const float* __restrict r2 = rows[r + 2];
+    const float* __restrict r3 = rows[r + 3];
+    for (int i = 0; i < width; ++i) sum[i] += (r0[i] + r1[i]) + (r2[i] + r3[i]);
+  }
+  for (; r < count; ++r) {
+    const float* __restrict row = rows[r];
+    for (int i = 0; i < width; ++i) sum[i] += row[i];
+  }
+}
+
+/// Where the mean sum[i] / length is lower than cost[i], it and `velocity` replace it.
+MRS_VPR_VECTOR_KERNEL
+void keepLowerMeans(const float* __restrict sum, int width, float length, float velocity, float* __restrict cost,
+                    float* __restrict best_velocity) {
+  for (int i = 0; i < width; ++i) {
+    const float mean = sum[i] / length;
+    const bool lower = mean < cost[i];
+    cost[i] = lower ? mean : cost[i];
+    best_velocity[i] = lower ? velocity : best_velocity[i];
+  }
+}
+
+}  // namespace
 
 std::vector<double> velocities(const SequenceParams& params) {
   std::vector<double> result;
@@ -115,6 +152,7 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
   const int blocks = (columns + kBlock - 1) / kBlock;
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
     std::vector<float> sums(kBlock);
+    std::vector<const float*> row_starts(static_cast<std::size_t>(length));
     for (int block = range.start; block < range.end; ++block) {
       const int block_begin = block * kBlock;
       const int block_end = std::min(columns, block_begin + kBlock);
@@ -123,36 +161,15 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
         const int begin = std::max(block_begin, -offsets[v].front());
         const int end = std::min(block_end, columns - offsets[v].back());
         if (begin >= end) continue;
-        const int count = end - begin;
-        float* __restrict sum = sums.data();  // sum[i] for the anchor begin + i.
-        std::fill(sum, sum + count, 0.0F);
         // Row t's cells of anchors [begin, end): inside the row, as begin and end keep every
         // trajectory inside the matrix.
-        const auto row_at = [&](int t) {
-          return enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)] + begin;
-        };
-        // Four rows at a time, so that the inner loop is a contiguous, vectorisable add that
-        // loads and stores the sums a quarter as often.
-        int t = rows.first;
-        for (; t + 3 <= rows.last; t += 4) {
-          const float* __restrict r0 = row_at(t);
-          const float* __restrict r1 = row_at(t + 1);
-          const float* __restrict r2 = row_at(t + 2);
-          const float* __restrict r3 = row_at(t + 3);
-          for (int i = 0; i < count; ++i) sum[i] += (r0[i] + r1[i]) + (r2[i] + r3[i]);
+        for (int t = rows.first; t <= rows.last; ++t) {
+          row_starts[static_cast<std::size_t>(t - rows.first)] =
+              enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)] + begin;
         }
-        for (; t <= rows.last; ++t) {
-          const float* __restrict row = row_at(t);
-          for (int i = 0; i < count; ++i) sum[i] += row[i];
-        }
-        for (int i = 0; i < count; ++i) {
-          const float mean = sum[i] / static_cast<float>(length);
-          const auto j = static_cast<std::size_t>(begin + i);
-          if (mean < costs.cost[j]) {
-            costs.cost[j] = mean;
-            costs.velocity[j] = static_cast<float>(velocities[v]);
-          }
-        }
+        sumRows(row_starts.data(), length, end - begin, sums.data());
+        keepLowerMeans(sums.data(), end - begin, static_cast<float>(length), static_cast<float>(velocities[v]),
+                       costs.cost.data() + begin, costs.velocity.data() + begin);
       }
     }
   });
