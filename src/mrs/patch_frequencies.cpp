@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mrs_vpr/descriptor.hpp"
+#include "simd/vector_kernel.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -16,12 +17,12 @@ namespace {
 /// plain sum over x of its cosine-weighted column sums, the mixed one the cosine-weighted sum of
 /// the latter. So a band of patches (`side` image rows) is read once into two column accumulators
 /// the width of the image, in contiguous loops that vectorise, and only those are reduced per patch.
+/// `accumulators` holds 2 * width floats.
+MRS_VPR_VECTOR_KERNEL
 void transformPatches(const std::uint16_t* sums, int width, int height, int side, const float* wave, float scale,
-                      std::uint8_t* cell) {
+                      std::uint8_t* cell, float* accumulators) {
   const float mean_weight = 1.0F / std::sqrt(static_cast<float>(side));  // The DCT's constant basis.
-  thread_local std::vector<float> accumulators;
-  accumulators.resize(2 * static_cast<std::size_t>(width));
-  float* __restrict columns = accumulators.data();       // Sum over the band's rows y of pixel (x, y).
+  float* __restrict columns = accumulators;              // Sum over the band's rows y of pixel (x, y).
   float* __restrict waved_columns = columns + width;     // The same weighted by wave(y).
   for (int top = 0; top < height; top += side) {
     std::fill(columns, columns + 2 * width, 0.0F);
@@ -53,6 +54,18 @@ void transformPatches(const std::uint16_t* sums, int width, int height, int side
   }
 }
 
+/// sum[i] = the sum of byte i of frames first .. last of `view` (descriptor_size values).
+MRS_VPR_VECTOR_KERNEL
+void sumFrames(SequenceView view, int first, int last, std::uint16_t* __restrict sum) {
+  const int size = view.descriptor_size;
+  std::fill(sum, sum + size, 0);
+  // uint16 sums hold up to 257 frames of uint8; plain loops over restrict pointers vectorise.
+  for (int f = first; f <= last; ++f) {
+    const std::uint8_t* __restrict frame = view.frame(f);
+    for (int i = 0; i < size; ++i) sum[i] = static_cast<std::uint16_t>(sum[i] + frame[i]);
+  }
+}
+
 }  // namespace
 
 PatchFrequencies::PatchFrequencies(const DescriptorParams& geometry) : geometry_(geometry) {
@@ -73,22 +86,20 @@ void PatchFrequencies::project(const std::uint16_t* sums, int frames, std::uint8
   // orthonormal coefficients: +-that bound maps to +-128, so a byte saturates only at the extreme.
   const int side = geometry_.patch_size;
   const float scale = 128.0F / (DescriptorExtractor::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
-  transformPatches(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell);
+  thread_local std::vector<float> accumulators;
+  accumulators.resize(2 * static_cast<std::size_t>(geometry_.image_width));
+  transformPatches(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell,
+                   accumulators.data());
 }
 
 void PatchFrequencies::cell(SequenceView view, int end, int stride, std::uint8_t* out) const {
   const int size = descriptorSize();
   const int first = std::max(0, end - stride + 1);
   const int last = std::min(end, view.count - 1);
-  // uint16 sums hold up to 257 frames of uint8; plain loops over restrict pointers vectorise.
   thread_local std::vector<std::uint16_t> sums;
-  sums.assign(static_cast<std::size_t>(size), 0);
-  std::uint16_t* __restrict sum = sums.data();
-  for (int f = first; f <= last; ++f) {
-    const std::uint8_t* __restrict frame = view.frame(f);
-    for (int i = 0; i < size; ++i) sum[i] = static_cast<std::uint16_t>(sum[i] + frame[i]);
-  }
-  project(sum, last - first + 1, out);
+  sums.resize(static_cast<std::size_t>(size));
+  sumFrames(view, first, last, sums.data());
+  project(sums.data(), last - first + 1, out);
 }
 
 DescriptorSequence PatchFrequencies::cells(SequenceView view, int first_end, int stride, int count) const {
