@@ -23,15 +23,21 @@ EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& le
 Evaluation EndCostTable::bestInWindow(int centre, int radius) {
   const int first = std::max(level_.lowest_end, centre - radius);
   const int last = std::min(level_.highest_end, centre + radius);
-  // Compute the unknown ends of the window in contiguous runs.
+  // Compute the unknown ends of the window in contiguous runs, reaching a radius further where
+  // they are unknown too: a particle moves at most `radius` a step, so its next window is then
+  // mostly known, and one request per row replaces two narrow ones.
+  const int pad_first = std::max(level_.lowest_end, first - radius);
+  const int pad_last = std::min(level_.highest_end, last + radius);
   for (int index = first; index <= last;) {
     if (known_[static_cast<std::size_t>(index)]) {
       ++index;
       continue;
     }
+    int run_begin = index;
+    while (run_begin - 1 >= pad_first && !known_[static_cast<std::size_t>(run_begin - 1)]) --run_begin;
     int run_end = index;
-    while (run_end + 1 <= last && !known_[static_cast<std::size_t>(run_end + 1)]) ++run_end;
-    computeEnds(index, run_end);
+    while (run_end + 1 <= pad_last && !known_[static_cast<std::size_t>(run_end + 1)]) ++run_end;
+    computeEnds(run_begin, run_end);
     index = run_end + 1;
   }
   Evaluation best;
