@@ -7,7 +7,7 @@
 #include <opencv2/core/hal/hal.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
-#include "simd/vector_kernel.hpp"
+#include "simd/sum_of_absolute_differences.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -22,15 +22,6 @@ inline int inlineSumOfAbsoluteDifferences(const std::uint8_t* __restrict a, cons
   int sum = 0;
   for (int i = 0; i < size; ++i) sum += std::abs(static_cast<int>(a[i]) - static_cast<int>(b[i]));
   return sum;
-}
-
-/// Short rows against consecutive cells: the inline sum, in 256-bit vectors where the CPU has them.
-MRS_VPR_VECTOR_KERNEL
-void shortRowDifferences(const std::uint8_t* query, const std::uint8_t* cells, std::ptrdiff_t pitch, int count,
-                         int size, float scale, float* out) {
-  for (int i = 0; i < count; ++i) {
-    out[i] = static_cast<float>(inlineSumOfAbsoluteDifferences(query, cells + i * pitch, size)) * scale;
-  }
 }
 
 /// The factor that turns a sum of absolute differences of `size` bytes into a mean in patch
@@ -49,7 +40,7 @@ void descriptorDifferences(const std::uint8_t* query, const std::uint8_t* cells,
                            int size, float* out) {
   const float scale = differenceScale(size);  // Once, not per pair: a division costs as much as a short sum.
   if (size < kInlineSumBelow) {
-    shortRowDifferences(query, cells, pitch, count, size, scale, out);
+    simd::sumsOfAbsoluteDifferences(query, cells, pitch, count, size, scale, out);
     return;
   }
   for (int i = 0; i < count; ++i) out[i] = static_cast<float>(cv::hal::normL1_(query, cells + i * pitch, size)) * scale;
