@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <opencv2/core/utility.hpp>
+
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 
@@ -24,7 +26,7 @@ void LazyDifferenceMatrix::compare(int row, int begin, int end, float* out) {
   while (begin < end) {
     const PooledReference::Run run = reference_.run(begin, end - begin);
     descriptorDifferences(test_frame, run.cells, run.pitch, run.count, query_.descriptor_size, out);
-    comparisons_ += run.count;
+    comparisons_.fetch_add(run.count, std::memory_order_relaxed);
     begin += run.count;
     out += run.count;
   }
@@ -66,6 +68,22 @@ void LazyDifferenceMatrix::enhancedRow(int row, int begin, int end, float* out) 
   const int raw_begin = std::max(0, begin - half);
   const float* raw = rawRow(row, raw_begin, std::min(columns(), end + half));
   enhanceRowSpan(raw, columns(), begin, end, contrast_window_, out);
+}
+
+void LazyDifferenceMatrix::enhancedRows(const std::vector<RowRequest>& requests) {
+  const auto serve = [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) {
+      const RowRequest& request = requests[static_cast<std::size_t>(i)];
+      enhancedRow(request.row, request.begin, request.end, request.out);
+    }
+  };
+  const cv::Range all(0, static_cast<int>(requests.size()));
+  // Pooled cells are computed on first use into shared storage: one thread then.
+  if (reference_.stride() == 1) {
+    cv::parallel_for_(all, serve);
+  } else {
+    serve(all);
+  }
 }
 
 }  // namespace mrs_vpr

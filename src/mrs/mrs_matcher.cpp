@@ -132,15 +132,15 @@ class CoarseToFineSearch {
 
   /// Each hypothesis settles on the cells its own trajectories visit. Hypotheses are distinct places,
   /// more than a basin apart, so they share no cells: each has a lazy matrix of its own and they
-  /// settle in parallel (OpenCV's threads). The best end is merged in hypothesis order, so that the
-  /// answer does not depend on the number of threads.
+  /// settle in parallel (OpenCV's threads). The best end is merged in hypothesis order, and a lone
+  /// hypothesis sums its rows in order, so that the answer does not depend on the number of threads.
   void settleHypotheses(bool comparing, bool finest) {
     DescriptorSequence query_cells(1);
     const SequenceView cells = levelQuery(query_cells);
     const int count = static_cast<int>(particles_.size());
     std::vector<Evaluation> bests(particles_.size());
     std::vector<long long> comparisons(particles_.size(), 0);
-    cv::parallel_for_(cv::Range(0, count), [&](const cv::Range& range) {
+    const auto settle_range = [&](const cv::Range& range) {
       for (int i = range.start; i < range.end; ++i) {
         Particle& particle = particles_[static_cast<std::size_t>(i)];
         LazyDifferenceMatrix matrix(cells, reference_, level_.stride, frequencies_,
@@ -149,7 +149,13 @@ class CoarseToFineSearch {
         bests[static_cast<std::size_t>(i)] = settle(particle, costs);
         comparisons[static_cast<std::size_t>(i)] = matrix.comparisons();
       }
-    });
+    };
+    // A lone hypothesis (below the comparing level) shares its rows among the threads instead.
+    if (count == 1) {
+      settle_range(cv::Range(0, 1));
+    } else {
+      cv::parallel_for_(cv::Range(0, count), settle_range);
+    }
     long long total = 0;
     for (int i = 0; i < count; ++i) {
       const Evaluation& best = bests[static_cast<std::size_t>(i)];

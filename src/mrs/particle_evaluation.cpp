@@ -64,24 +64,34 @@ void EndCostTable::computeEnds(int first, int last) {
   }
   if (fans.empty()) return;  // No trajectory through these ends fits.
   const auto span = static_cast<std::size_t>(last - first + 1);
-  std::vector<float> sums(fans.size() * span, 0.0F);
-  std::vector<float> row;
-  for (int r = 0; r < level_.rows(); ++r) {
-    const auto offset = [&](const Fan& fan) { return offsets_[fan.velocity][static_cast<std::size_t>(r)]; };
-    // The fans' cells of one row lie in one short span: one request for all of them.
+  // Each row's fans lie in one short span of cells: one request per row, all served first (by
+  // several threads where the matrix allows), then summed row by row in order.
+  const int rows = level_.rows();
+  std::vector<LazyDifferenceMatrix::RowRequest> requests(static_cast<std::size_t>(rows));
+  std::vector<std::size_t> starts(static_cast<std::size_t>(rows) + 1, 0);
+  for (int r = 0; r < rows; ++r) {
     int low = level_.grid_size;
     int high = 0;
     for (const Fan& fan : fans) {
-      low = std::min(low, fan.begin + offset(fan));
-      high = std::max(high, fan.end + offset(fan) + 1);
+      const int offset = offsets_[fan.velocity][static_cast<std::size_t>(r)];
+      low = std::min(low, fan.begin + offset);
+      high = std::max(high, fan.end + offset + 1);
     }
-    row.resize(static_cast<std::size_t>(high - low));
-    matrix_->enhancedRow(r, low, high, row.data());
+    requests[static_cast<std::size_t>(r)] = {r, low, high, nullptr};
+    starts[static_cast<std::size_t>(r) + 1] = starts[static_cast<std::size_t>(r)] + static_cast<std::size_t>(high - low);
+  }
+  std::vector<float> values(starts.back());
+  for (int r = 0; r < rows; ++r) requests[static_cast<std::size_t>(r)].out = values.data() + starts[static_cast<std::size_t>(r)];
+  matrix_->enhancedRows(requests);
+  std::vector<float> sums(fans.size() * span, 0.0F);
+  for (int r = 0; r < rows; ++r) {
+    const LazyDifferenceMatrix::RowRequest& request = requests[static_cast<std::size_t>(r)];
     for (std::size_t f = 0; f < fans.size(); ++f) {
-      const float* values = row.data() + (fans[f].begin + offset(fans[f]) - low);
+      const int offset = offsets_[fans[f].velocity][static_cast<std::size_t>(r)];
+      const float* row_values = request.out + (fans[f].begin + offset - request.begin);
       float* fan_sums = sums.data() + f * span;
       const int count = fans[f].end - fans[f].begin + 1;
-      for (int e = 0; e < count; ++e) fan_sums[e] += values[e];
+      for (int e = 0; e < count; ++e) fan_sums[e] += row_values[e];
     }
   }
   for (std::size_t f = 0; f < fans.size(); ++f) {

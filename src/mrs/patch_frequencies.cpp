@@ -104,13 +104,14 @@ void PatchFrequencies::cell(SequenceView view, int end, int stride, std::uint8_t
 
 DescriptorSequence PatchFrequencies::cells(SequenceView view, int first_end, int stride, int count) const {
   requireDescriptorsOf(view);
+  // Cells are independent: threads share them, each writing its own rows.
+  cv::Mat rows(std::max(0, count), cellSize(), CV_8U);
+  cv::parallel_for_(cv::Range(0, rows.rows), [&](const cv::Range& range) {
+    for (int i = range.start; i < range.end; ++i) cell(view, first_end + i * stride, stride, rows.ptr(i));
+  });
   DescriptorSequence result(cellSize());
-  result.reserve(count);
-  cv::Mat row(1, cellSize(), CV_8U);
-  for (int i = 0; i < count; ++i) {
-    cell(view, first_end + i * stride, stride, row.data);
-    result.append(row);
-  }
+  result.reserve(rows.rows);
+  for (int i = 0; i < rows.rows; ++i) result.append(rows.row(i));
   return result;
 }
 

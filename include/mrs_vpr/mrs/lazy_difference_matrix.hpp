@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <vector>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
@@ -28,8 +29,19 @@ class LazyDifferenceMatrix {
   /// Writes the enhanced differences of `row` for columns [begin, end) (inside the matrix) to `out`.
   void enhancedRow(int row, int begin, int end, float* out);
 
+  /// One row's request to enhancedRow.
+  struct RowRequest {
+    int row;
+    int begin;
+    int end;
+    float* out;
+  };
+  /// enhancedRow for each request, which must name distinct rows. At stride 1 the cells are the
+  /// reference's own frames, so rows share nothing and threads share the requests.
+  void enhancedRows(const std::vector<RowRequest>& requests);
+
   /// Raw descriptor comparisons made so far.
-  long long comparisons() const { return comparisons_; }
+  long long comparisons() const { return comparisons_.load(std::memory_order_relaxed); }
 
  private:
   /// The raw differences of one row known so far: columns [begin, end), held in `values` from
@@ -49,7 +61,7 @@ class LazyDifferenceMatrix {
   SequenceView query_;
   PooledReference reference_;
   int contrast_window_;
-  long long comparisons_ = 0;
+  std::atomic<long long> comparisons_{0};  ///< Counted by concurrent rows (enhancedRows).
   std::vector<RowInterval> rows_;
 };
 

@@ -28,6 +28,7 @@ class PooledReference {
  public:
   PooledReference(SequenceView reference, int stride, const PatchFrequencies& frequencies);
 
+  int stride() const { return stride_; }
   /// Bytes per cell.
   int cellSize() const { return stride_ == 1 ? reference_.descriptor_size : frequencies_.cellSize(); }
   /// Cells J = 0 .. size() - 1: SamplingLevel's grid, whose last cell may end past the newest frame
