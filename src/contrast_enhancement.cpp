@@ -20,68 +20,122 @@ float zScore(float centre, double sum, double sum_of_squares, int count) {
   return static_cast<float>((centre - mean) / std::sqrt(variance));
 }
 
-/// sums[c] = values[c] + ... + values[c + n - 1] for c in [0, count - n], from the sums of 1, 2, 4,
-/// ... values that n's binary digits select: O(log n) contiguous passes, each of which vectorises.
-/// `scratch` holds 2 * count floats.
+/// Sums of the values of every window, as the parts its width's binary digits select: parts[k][c]
+/// sums `widths[k]` values from c + offsets[k], and the window of c is parts[0][c] + parts[1][c] +
+/// ..., added in that order.
+struct WindowParts {
+  static constexpr int kMax = 32;
+  const float* values[kMax];
+  const float* squares[kMax];
+  int count = 0;
+};
+
+/**
+ * Sums of 1, 2, 4, ... consecutive values and squares (`y`, `y2`, count of each), doubling the
+ * width in one vectorised pass for both, into `storage` (2 * count floats per doubling), and the
+ * parts of a window of n values that n's binary digits select: O(log n) passes instead of n sums.
+ */
 MRS_VPR_VECTOR_KERNEL
-void slidingSums(const float* values, int count, int n, float* __restrict sums, float* scratch) {
-  const int outputs = count - n + 1;
-  std::fill(sums, sums + outputs, 0.0F);
-  const float* power = values;  // power[c]: the sum of `width` values from c, for c <= count - width.
-  float* next = scratch;
+WindowParts windowParts(const float* y, const float* y2, int count, int n, float* storage) {
+  WindowParts parts;
+  const float* power = y;  // power[c]: the sum of `width` values from c, for c <= count - width.
+  const float* power2 = y2;
   int width = 1;
   int offset = 0;
   for (;;) {
     if ((n & width) != 0) {
-      const float* __restrict part = power + offset;
-      for (int c = 0; c < outputs; ++c) sums[c] += part[c];
+      parts.values[parts.count] = power + offset;
+      parts.squares[parts.count] = power2 + offset;
+      ++parts.count;
       offset += width;
     }
     if (2 * width > n) break;
     const int valid = count - 2 * width + 1;
+    float* __restrict doubled = storage;
+    float* __restrict doubled2 = storage + count;
     const float* __restrict low = power;
-    const float* __restrict high = power + width;
-    float* __restrict doubled = next;
-    for (int c = 0; c < valid; ++c) doubled[c] = low[c] + high[c];
-    power = next;
-    next = next == scratch ? scratch + count : scratch;
+    const float* __restrict low2 = power2;
+    for (int c = 0; c < valid; ++c) {
+      doubled[c] = low[c] + low[c + width];
+      doubled2[c] = low2[c] + low2[c + width];
+    }
+    power = doubled;
+    power2 = doubled2;
+    storage += 2 * static_cast<std::ptrdiff_t>(count);
     width *= 2;
   }
+  return parts;
+}
+
+/// Floats windowParts stores for n and count values.
+std::size_t windowPartsStorage(int count, int n) {
+  std::size_t doublings = 0;
+  for (int width = 1; 2 * width <= n; width *= 2) ++doublings;
+  return 2 * doublings * static_cast<std::size_t>(count);
 }
 
 /**
  * The enhanced values of the cells whose whole window of n values lies in `values` (count of them):
- * out[i] for the cell values[i + n / 2]. Sums over every window come from sliding sums in O(log n)
- * contiguous, vectorised passes. The values are centred on the middle one, so that sum of squares
- * minus squared sum keeps its precision in single precision: a window's values then differ from the
- * centre by about the row's spread, not by their mean. `buffers` holds 6 * count floats.
+ * out[i] for the cell values[i + n / 2]. The values are centred on the middle one, so that sum of
+ * squares minus squared sum keeps its precision in single precision: a window's values then differ
+ * from it by about the row's spread, not by their mean. The window sums are read straight from
+ * their parts (up to three; more are folded first), so the z-scores take one more pass.
+ * `buffers` holds 5 * count + windowPartsStorage(count, n) floats.
  */
 MRS_VPR_VECTOR_KERNEL
 void enhanceInterior(const float* values, int count, int n, float shift, float* out, float* buffers) {
-  float* __restrict y = buffers;
-  float* __restrict y2 = y + count;
-  float* __restrict s1 = y2 + count;  // s1[i]: the sum of the window of cell i + n / 2.
-  float* __restrict s2 = s1 + count;
-  float* scratch = s2 + count;  // 2 * count floats.
+  float* y = buffers;
+  float* y2 = y + count;
+  float* folded = y2 + count;  // Parts folded together when there are more than three.
+  float* folded2 = folded + count;
+  float* zeros = folded2 + count;  // Stands for a missing part: x + 0 is x.
   const float pivot = values[count / 2];
   for (int c = 0; c < count; ++c) {
     y[c] = values[c] - pivot;
     y2[c] = y[c] * y[c];
+    zeros[c] = 0.0F;
   }
-  slidingSums(y, count, n, s1, scratch);
-  slidingSums(y2, count, n, s2, scratch);
-  const int half = n / 2;
+  WindowParts parts = windowParts(y, y2, count, n, zeros + count);
   const int outputs = count - n + 1;
+  if (parts.count > 3) {
+    // Left to right, as the window sum adds them: the first count - 2 into one part.
+    std::copy(parts.values[0], parts.values[0] + outputs, folded);
+    std::copy(parts.squares[0], parts.squares[0] + outputs, folded2);
+    for (int k = 1; k < parts.count - 2; ++k) {
+      const float* __restrict part = parts.values[k];
+      const float* __restrict part2 = parts.squares[k];
+      for (int i = 0; i < outputs; ++i) {
+        folded[i] += part[i];
+        folded2[i] += part2[i];
+      }
+    }
+    parts = {{folded, parts.values[parts.count - 2], parts.values[parts.count - 1]},
+             {folded2, parts.squares[parts.count - 2], parts.squares[parts.count - 1]},
+             3};
+  }
+  for (int k = parts.count; k < 3; ++k) {
+    parts.values[k] = zeros;
+    parts.squares[k] = zeros;
+  }
+  const float* __restrict a = parts.values[0];
+  const float* __restrict b = parts.values[1];
+  const float* __restrict c = parts.values[2];
+  const float* __restrict a2 = parts.squares[0];
+  const float* __restrict b2 = parts.squares[1];
+  const float* __restrict c2 = parts.squares[2];
+  const float* __restrict centre = y + n / 2;
+  float* __restrict enhanced = out;
   const float inverse_n = 1.0F / static_cast<float>(n);
   const float inverse_n1 = 1.0F / static_cast<float>(n - 1);
-  const float* __restrict centre = y + half;
   for (int i = 0; i < outputs; ++i) {
-    const float mean = s1[i] * inverse_n;
-    const float variance = std::max(0.0F, (s2[i] - s1[i] * mean) * inverse_n1);
+    const float sum = (a[i] + b[i]) + c[i];
+    const float sum_of_squares = (a2[i] + b2[i]) + c2[i];
+    const float mean = sum * inverse_n;
+    const float variance = std::max(0.0F, (sum_of_squares - sum * mean) * inverse_n1);
     // A constant window gives no contrast; a multiplication rather than a branch vectorises.
     const float deviation = (centre[i] - mean) * static_cast<float>(variance > kMinVariance);
     // No z-score over n samples lies below -shift; single precision could round past it.
-    out[i] = std::max(0.0F, deviation / std::sqrt(std::max(variance, kMinVariance)) + shift);
+    enhanced[i] = std::max(0.0F, deviation / std::sqrt(std::max(variance, kMinVariance)) + shift);
   }
 }
 
@@ -125,7 +179,7 @@ void enhanceRowSpan(const float* raw, int columns, int begin, int end, int windo
     const int first = interior_begin - half;
     const int count = interior_end - interior_begin + 2 * half;
     thread_local std::vector<float> buffers;  // Kept between rows and calls: no allocation per row.
-    buffers.resize(6 * static_cast<std::size_t>(count));
+    buffers.resize(5 * static_cast<std::size_t>(count) + windowPartsStorage(count, 2 * half + 1));
     enhanceInterior(raw + (first - raw_begin), count, 2 * half + 1, contrastShift(window),
                     out + (interior_begin - begin), buffers.data());
   }
