@@ -145,7 +145,7 @@ class CoarseToFineSearch {
         Particle& particle = particles_[static_cast<std::size_t>(i)];
         LazyDifferenceMatrix matrix(cells, reference_, level_.stride, frequencies_,
                                     comparing ? sequence_.contrast_window : 0);
-        EndCostTable costs(matrix, level_, levelVelocities(particle));
+        EndCostTable costs(matrix, level_, levelVelocities(particle), level_.stride > 1);
         bests[static_cast<std::size_t>(i)] = settle(particle, costs);
         comparisons[static_cast<std::size_t>(i)] = matrix.comparisons();
       }

@@ -9,8 +9,10 @@ namespace mrs_vpr {
 EndCostTable::EndCostTable(AnchorCosts costs, const SamplingLevel& level)
     : level_(level), costs_(std::move(costs)), known_(costs_.cost.size(), 1) {}
 
-EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities)
-    : matrix_(&matrix), level_(level), velocities_(std::move(velocities)), known_(level.grid_size, 0) {
+EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities,
+                           bool look_ahead)
+    : matrix_(&matrix), level_(level), velocities_(std::move(velocities)), known_(level.grid_size, 0),
+      look_ahead_(look_ahead) {
   costs_.cost.assign(static_cast<std::size_t>(level.grid_size), std::numeric_limits<float>::infinity());
   costs_.velocity.assign(static_cast<std::size_t>(level.grid_size), 1.0F);
   // Row r of the trajectory of velocity v through end J is the cell J + round(v * (k_min + r)).
@@ -23,11 +25,11 @@ EndCostTable::EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& le
 Evaluation EndCostTable::bestInWindow(int centre, int radius) {
   const int first = std::max(level_.lowest_end, centre - radius);
   const int last = std::min(level_.highest_end, centre + radius);
-  // Compute the unknown ends of the window in contiguous runs, reaching a radius further where
-  // they are unknown too: a particle moves at most `radius` a step, so its next window is then
-  // mostly known, and one request per row replaces two narrow ones.
-  const int pad_first = std::max(level_.lowest_end, first - radius);
-  const int pad_last = std::min(level_.highest_end, last + radius);
+  // Compute the unknown ends of the window in contiguous runs; looking ahead, reach a radius further
+  // where they are unknown too: a particle moves at most `radius` a step.
+  const int reach = look_ahead_ ? radius : 0;
+  const int pad_first = std::max(level_.lowest_end, first - reach);
+  const int pad_last = std::min(level_.highest_end, last + reach);
   for (int index = first; index <= last;) {
     if (known_[static_cast<std::size_t>(index)]) {
       ++index;

@@ -26,8 +26,12 @@ class EndCostTable {
  public:
   /// Every end already scored (the dense coarsest level).
   EndCostTable(AnchorCosts costs, const SamplingLevel& level);
-  /// Ends scored on demand over `velocities`; `matrix` must outlive the table.
-  EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities);
+  /// Ends scored on demand over `velocities`; `matrix` must outlive the table. With `look_ahead`, a
+  /// window's unknown ends are computed together with the unknown ends up to a radius beyond it:
+  /// where cells are cheap (pooled levels) one wider request per row then serves the particle's next
+  /// window too, instead of a second narrow one.
+  EndCostTable(LazyDifferenceMatrix& matrix, const SamplingLevel& level, std::vector<double> velocities,
+               bool look_ahead = false);
 
   /// The best end within `radius` of `centre` (the paper's +-Id_shift window).
   Evaluation bestInWindow(int centre, int radius);
@@ -45,6 +49,7 @@ class EndCostTable {
   std::vector<std::vector<int>> offsets_;  ///< offsets_[v][r]: row r's column offset at velocity v.
   AnchorCosts costs_;
   std::vector<char> known_;
+  bool look_ahead_ = false;
 };
 
 /**
