@@ -1,6 +1,7 @@
 #include "mrs_vpr/mrs_matcher.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <memory>
 #include <random>
@@ -18,30 +19,30 @@
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
+#include "mrs_vpr/mrs/tiled_end_costs.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace {
 
-/// Differences between the test cells and the reference grid of the coarsest level, on patch
-/// frequencies. The grid's cells come from the ones the reference's store keeps (complete cells
-/// only); the rest (all of them when it keeps none, else the last, partial one) are computed now.
-cv::Mat coarseDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
-                          const PatchFrequencies& frequencies) {
-  cv::Mat differences(query_cells.count, level.grid_size, CV_32F);
+/// Differences between the test cells and columns [begin, end) of the reference grid of the
+/// coarsest level, on patch frequencies, into `differences`. The grid's cells come from the ones the
+/// reference's store keeps (complete cells only); the rest (all of them when it keeps none, else the
+/// last, partial one) are computed now.
+void coarseDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
+                       const PatchFrequencies& frequencies, int begin, int end, cv::Mat& differences) {
   const SequenceView kept = reference.coarseCells(level.stride, frequencies.geometry());
-  const int known = std::min(kept.count, level.grid_size);
-  if (known > 0) {
-    cv::Mat columns = differences.colRange(0, known);
-    computeDifferenceMatrix(query_cells, kept.slice(0, known), columns);
+  const int known_end = std::clamp(std::min(kept.count, level.grid_size), begin, end);
+  if (known_end > begin) {
+    cv::Mat columns = differences.colRange(0, known_end - begin);
+    computeDifferenceMatrix(query_cells, kept.slice(begin, known_end), columns);
   }
-  if (known < level.grid_size) {
+  if (known_end < end) {
     const DescriptorSequence cells =
-        frequencies.cells(reference, known * level.stride, level.stride, level.grid_size - known);
-    cv::Mat columns = differences.colRange(known, level.grid_size);
+        frequencies.cells(reference, known_end * level.stride, level.stride, end - known_end);
+    cv::Mat columns = differences.colRange(known_end - begin, end - begin);
     computeDifferenceMatrix(query_cells, cells.view(), columns);
   }
-  return differences;
 }
 
 /// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
@@ -69,17 +70,29 @@ class CoarseToFineSearch {
  private:
   /// The coarsest level. Uniformly spread particles with their +-Id_shift windows, velocity fans
   /// and contrast windows would touch nearly every cell of it anyway, so its matrix is computed
-  /// densely (vectorised, on compact cells: patch frequencies) and every end is scored once;
-  /// particles then read the table. The table also gives the runner-up for the confidence. At full
-  /// resolution (no coarser level) it is the brute force's matrix.
+  /// densely (vectorised, on compact cells: patch frequencies), a tile at a time, and every end is
+  /// scored once; particles then read the table. The table also gives the runner-up for the
+  /// confidence. At full resolution (no coarser level) it is the brute force's table.
   void scoreCoarsestLevel() {
     DescriptorSequence query_cells(1);
     const SequenceView cells = levelQuery(query_cells);
-    const cv::Mat differences = level_.stride == 1 ? computeDifferenceMatrix(cells, reference_)
-                                                   : coarseDifferences(cells, reference_, level_, frequencies_);
-    result_.comparisons += std::llround(static_cast<double>(differences.total()) * cellShare());
-    const cv::Mat matrix = enhanceContrast(differences, sequence_.contrast_window);
-    coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
+    if (level_.stride == 1) {
+      // No coarser level: the brute force's own dense search, so that the answers are its answers.
+      const cv::Mat differences = computeDifferenceMatrix(cells, reference_);
+      result_.comparisons += static_cast<long long>(differences.total());
+      const cv::Mat matrix = enhanceContrast(differences, sequence_.contrast_window);
+      coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
+      return;
+    }
+    std::atomic<long long> compared{0};
+    const auto tile = [&](int begin, int end, cv::Mat& raw) {
+      coarseDifferences(cells, reference_, level_, frequencies_, begin, end, raw);
+      compared.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
+    };
+    coarse_costs_ = std::make_unique<EndCostTable>(
+        tiledCostsByAnchor(level_.grid_size, level_.sequenceRows(), velocities_, sequence_.contrast_window, tile),
+        level_);
+    result_.comparisons += std::llround(static_cast<double>(compared.load()) * cellShare());
   }
 
   /// Comparisons are counted in descriptor comparisons: a cell costs this share of one.
