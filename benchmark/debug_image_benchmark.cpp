@@ -10,11 +10,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <boost/program_options.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -23,6 +24,11 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
+#include "command_line.hpp"
+#include "list_option.hpp"
+#include "tool_main.hpp"
+
+namespace po = boost::program_options;
 
 namespace {
 
@@ -40,56 +46,55 @@ struct Options {
   std::string picture_method = "mrs";
 };
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream list(text);
-  for (std::string item; std::getline(list, item, ',');) items.push_back(item);
-  return items;
-}
+constexpr const char* kUsage =
+    "Usage: mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries K] [--runs R]\n"
+    "                                     [--methods mrs,seqslam] [--threads T] [--output FILE.png]\n"
+    "                                     [--picture-end I] [--picture-length N] [--picture-method mrs|seqslam]\n"
+    "\n"
+    "Times the same queries without and with the explanation and drawing of ~debug_image, side by side;\n"
+    "with --output also writes the picture of one query. Query frame i is assumed to show reference\n"
+    "frame i (as in the Nordland halves).\n";
 
-Options parse(int argc, char** argv) {
+bool isMethod(const std::string& method) { return method == "mrs" || method == "seqslam"; }
+
+/// Parses the command line; returns nothing after printing the help.
+std::optional<Options> parse(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help") {
-      std::puts("mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries K] [--runs R]\n"
-                "                              [--methods mrs,seqslam] [--threads T] [--output FILE.png]\n"
-                "                              [--picture-end I] [--picture-length N] [--picture-method mrs|seqslam]\n"
-                "Query frame i is assumed to show reference frame i (as in the Nordland halves).");
-      std::exit(0);
-    }
-    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-    const std::string value = argv[++i];
-    if (flag == "--reference") {
-      options.reference = value;
-    } else if (flag == "--query") {
-      options.query = value;
-    } else if (flag == "--lengths") {
-      options.lengths.clear();
-      for (const std::string& item : splitList(value)) options.lengths.push_back(std::stoi(item));
-    } else if (flag == "--queries") {
-      options.queries = std::stoi(value);
-    } else if (flag == "--runs") {
-      options.runs = std::stoi(value);
-    } else if (flag == "--methods") {
-      options.methods = splitList(value);
-    } else if (flag == "--threads") {
-      options.threads = std::stoi(value);
-    } else if (flag == "--output") {
-      options.output = value;
-    } else if (flag == "--picture-end") {
-      options.picture_end = std::stoi(value);
-    } else if (flag == "--picture-length") {
-      options.picture_length = std::stoi(value);
-    } else if (flag == "--picture-method") {
-      options.picture_method = value;
-    } else {
-      throw std::invalid_argument("unknown flag " + flag + " (see --help)");
-    }
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("reference", po::value(&options.reference)->required(), "reference image folder")
+      ("query", po::value(&options.query)->required(), "query image folder")
+      ("lengths", mrs_vpr::benchmark::listValue(&options.lengths), "N: frames per test sequence, comma-separated")
+      ("queries", po::value(&options.queries)->default_value(options.queries), "queries per row, spread over the query")
+      ("runs", po::value(&options.runs)->default_value(options.runs), "runs per query and variant; the fastest counts")
+      ("methods", mrs_vpr::benchmark::listValue(&options.methods), "mrs and/or seqslam, comma-separated")
+      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
+      ("output", po::value(&options.output), "PNG file for the picture of one query")
+      ("picture-end", po::value(&options.picture_end)->default_value(options.picture_end),
+       "newest query frame of the picture; -1 = the middle of the query")
+      ("picture-length", po::value(&options.picture_length)->default_value(options.picture_length),
+       "frames of the picture's test sequence")
+      ("picture-method", po::value(&options.picture_method)->default_value(options.picture_method),
+       "mrs | seqslam: the method of the picture");
+  // clang-format on
+  po::variables_map variables;
+  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  for (const int length : options.lengths) {
+    if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
   }
-  if (options.reference.empty() || options.query.empty()) throw std::invalid_argument("--reference and --query are required");
+  for (const std::string& method : options.methods) {
+    if (!isMethod(method)) throw std::invalid_argument("--methods: unknown method '" + method + "' (expected mrs or seqslam)");
+  }
+  if (!isMethod(options.picture_method)) {
+    throw std::invalid_argument("--picture-method must be mrs or seqslam, not '" + options.picture_method + "'");
+  }
   if (options.queries < 1) throw std::invalid_argument("--queries must be at least 1");
   if (options.runs < 1) throw std::invalid_argument("--runs must be at least 1");
+  if (options.threads < 1) throw std::invalid_argument("--threads must be at least 1");
+  if (options.picture_length < 2) throw std::invalid_argument("--picture-length must be at least 2");
+  if (options.picture_end < -1) throw std::invalid_argument("--picture-end must be a frame index, or -1");
   return options;
 }
 
@@ -202,11 +207,12 @@ void run(const Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    run(parse(argc, argv));
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "mrs_vpr_debug_image_benchmark: %s\n", error.what());
-    return 1;
-  }
-  return 0;
+  return mrs_vpr::tools::runTool(
+      "mrs_vpr_debug_image_benchmark",
+      [](int count, char** arguments) {
+        const std::optional<Options> options = parse(count, arguments);
+        if (options) run(*options);
+        return 0;
+      },
+      argc, argv);
 }

@@ -12,13 +12,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <optional>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <boost/program_options.hpp>
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
@@ -27,6 +29,11 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "command_line.hpp"
+#include "list_option.hpp"
+#include "tool_main.hpp"
+
+namespace po = boost::program_options;
 
 namespace {
 
@@ -44,32 +51,56 @@ struct Options {
   double min_time_s = 1.0;
 };
 
-Options parse(int argc, char** argv) {
+/// Frames of the second traversal: it may run up to 1.2x faster, so it is kept inside the route.
+int queryFrames(int reference_frames) {
+  return static_cast<int>(reference_frames / mrs_vpr::SyntheticRouteParams{}.speed_max) - 10;
+}
+
+constexpr const char* kUsage =
+    "Usage: mrs_vpr_benchmark [--reference-frames M] [--sequence-length N] [--queries K]\n"
+    "                         [--velocity-step S] [--tolerance T] [--threads 1,2] [--seed S]\n"
+    "                         [--min-time SECONDS]\n"
+    "\n"
+    "Times MRS-VPR against brute-force SeqSLAM on the same seeded queries of a generated route, side by\n"
+    "side for each thread count, and prints success, median time and comparisons a query.\n";
+
+/// Parses the command line; returns nothing after printing the help.
+std::optional<Options> parse(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help") {
-      std::puts("mrs_vpr_benchmark [--reference-frames M] [--sequence-length N] [--queries K]\n"
-                "                  [--velocity-step S] [--tolerance T] [--threads 1,2] [--seed S]\n"
-                "                  [--min-time SECONDS]");
-      std::exit(0);
-    }
-    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-    const std::string value = argv[++i];
-    if (flag == "--reference-frames") options.reference_frames = std::stoi(value);
-    else if (flag == "--sequence-length") options.sequence_length = std::stoi(value);
-    else if (flag == "--queries") options.queries = std::stoi(value);
-    else if (flag == "--velocity-step") options.velocity_step = std::stod(value);
-    else if (flag == "--tolerance") options.tolerance = std::stoi(value);
-    else if (flag == "--seed") options.seed = std::stoull(value);
-    else if (flag == "--min-time") options.min_time_s = std::stod(value);
-    else if (flag == "--threads") {
-      options.threads.clear();
-      std::stringstream list(value);
-      for (std::string item; std::getline(list, item, ',');) options.threads.push_back(std::stoi(item));
-    } else {
-      throw std::invalid_argument("unknown flag " + flag);
-    }
+  std::int64_t seed = static_cast<std::int64_t>(options.seed);  // Signed, so that a negative seed is refused.
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("reference-frames", po::value(&options.reference_frames)->default_value(options.reference_frames),
+       "M: frames of the reference traversal")
+      ("sequence-length", po::value(&options.sequence_length)->default_value(options.sequence_length),
+       "N: frames per test sequence")
+      ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences")
+      ("velocity-step", po::value(&options.velocity_step)->default_value(options.velocity_step),
+       "step between the velocities tried, both methods")
+      ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
+       "frames of error still counted a success")
+      ("threads", mrs_vpr::benchmark::listValue(&options.threads), "thread counts to time, comma-separated")
+      ("seed", po::value(&seed)->default_value(seed), "seed of the route and of the query positions")
+      ("min-time", po::value(&options.min_time_s)->default_value(options.min_time_s),
+       "seconds each method repeats the queries for, at least");
+  // clang-format on
+  po::variables_map variables;
+  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
+  options.seed = static_cast<std::uint64_t>(seed);
+  if (options.reference_frames < 100) throw std::invalid_argument("--reference-frames must be >= 100");
+  const int query_frames = queryFrames(options.reference_frames);
+  if (options.sequence_length < 2 || options.sequence_length > query_frames) {
+    throw std::invalid_argument("--sequence-length must be in 2.." + std::to_string(query_frames) +
+                                " (the query traversal of " + std::to_string(options.reference_frames) + " frames)");
+  }
+  if (options.queries < 1) throw std::invalid_argument("--queries must be >= 1");
+  if (options.tolerance < 0) throw std::invalid_argument("--tolerance must be >= 0");
+  if (options.min_time_s < 0) throw std::invalid_argument("--min-time must be >= 0");
+  for (const int threads : options.threads) {
+    if (threads < 1) throw std::invalid_argument("--threads takes counts >= 1");
   }
   return options;
 }
@@ -111,62 +142,63 @@ MethodResult runQueries(mrs_vpr::PlaceRecognizer& reference, const std::string& 
   return result;
 }
 
+/// Runs the benchmark; returns the exit code.
+int run(int argc, char** argv) {
+  const std::optional<Options> parsed = parse(argc, argv);
+  if (!parsed) return 0;
+  const Options& options = *parsed;
+  mrs_vpr::Parameters params;
+  params.sequence.velocity_step = options.velocity_step;
+  params.validate();
+
+  mrs_vpr::SyntheticRouteParams route_params;
+  route_params.reference_frames = options.reference_frames;
+  route_params.query_frames = queryFrames(options.reference_frames);
+  route_params.seed = options.seed;
+  std::fprintf(stderr, "generating a route of %d + %d frames...\n", route_params.reference_frames,
+               route_params.query_frames);
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+
+  mrs_vpr::RecognizerParams unbounded;
+  unbounded.max_frames = 0;
+  mrs_vpr::PlaceRecognizer reference(params, unbounded);
+  mrs_vpr::DescriptorSequence query(reference.extractor().size());
+  for (const cv::Mat& image : route.reference) reference.addFrame(image);
+  for (const cv::Mat& image : route.query) query.append(reference.describe(image));
+
+  std::mt19937_64 rng(options.seed);
+  std::uniform_int_distribution<int> start_at(0, query.size() - options.sequence_length);
+  std::vector<int> starts;
+  for (int i = 0; i < options.queries; ++i) starts.push_back(start_at(rng));
+
+  std::printf("MRS-VPR vs brute-force SeqSLAM on the same %d queries (synthetic route, seed %llu)\n",
+              options.queries, static_cast<unsigned long long>(options.seed));
+  std::printf("M = %d reference frames, N = %d frame test sequences, velocity step %.2f, "
+              "success = within %d frames\n",
+              reference.size(), options.sequence_length, options.velocity_step, options.tolerance);
+  std::printf("each method repeats the queries until it has run %.1f s; a query's time is the median of its runs\n\n",
+              options.min_time_s);
+  std::printf("%-8s %-8s %8s %14s %18s\n", "threads", "method", "success", "median ms/query",
+              "comparisons/query");
+  for (int threads : options.threads) {
+    cv::setNumThreads(threads);
+    const MethodResult brute = runQueries(reference, "seqslam", query, starts, route.query_to_reference, options);
+    const MethodResult fast = runQueries(reference, "mrs", query, starts, route.query_to_reference, options);
+    for (const auto& [name, result] : {std::pair{"seqslam", &brute}, std::pair{"mrs", &fast}}) {
+      std::printf("%-8d %-8s %8.3f %14.3f %18lld\n", threads, name,
+                  static_cast<double>(result->successes) / options.queries, result->median(),
+                  result->comparisons / options.queries);
+    }
+    std::printf("%-8d speed-up of mrs over seqslam: %.1fx in median time, %.1fx in comparisons\n\n", threads,
+                brute.median() / fast.median(),
+                static_cast<double>(brute.comparisons) / static_cast<double>(std::max(1LL, fast.comparisons)));
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   mrs_vpr::retainFreedMemory();  // As the node and the tools do.
-  try {
-    const Options options = parse(argc, argv);
-    mrs_vpr::Parameters params;
-    params.sequence.velocity_step = options.velocity_step;
-    params.validate();
-
-    // The second traversal may run up to 1.2x faster: keep it inside the route.
-    mrs_vpr::SyntheticRouteParams route_params;
-    route_params.reference_frames = options.reference_frames;
-    route_params.query_frames = static_cast<int>(options.reference_frames / route_params.speed_max) - 10;
-    route_params.seed = options.seed;
-    std::fprintf(stderr, "generating a route of %d + %d frames...\n", route_params.reference_frames,
-                 route_params.query_frames);
-    const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
-
-    mrs_vpr::RecognizerParams unbounded;
-    unbounded.max_frames = 0;
-    mrs_vpr::PlaceRecognizer reference(params, unbounded);
-    mrs_vpr::DescriptorSequence query(reference.extractor().size());
-    for (const cv::Mat& image : route.reference) reference.addFrame(image);
-    for (const cv::Mat& image : route.query) query.append(reference.describe(image));
-
-    std::mt19937_64 rng(options.seed);
-    std::uniform_int_distribution<int> start_at(0, query.size() - options.sequence_length);
-    std::vector<int> starts;
-    for (int i = 0; i < options.queries; ++i) starts.push_back(start_at(rng));
-
-    std::printf("MRS-VPR vs brute-force SeqSLAM on the same %d queries (synthetic route, seed %llu)\n",
-                options.queries, static_cast<unsigned long long>(options.seed));
-    std::printf("M = %d reference frames, N = %d frame test sequences, velocity step %.2f, "
-                "success = within %d frames\n",
-                reference.size(), options.sequence_length, options.velocity_step, options.tolerance);
-    std::printf("each method repeats the queries until it has run %.1f s; a query's time is the median of its runs\n\n",
-                options.min_time_s);
-    std::printf("%-8s %-8s %8s %14s %18s\n", "threads", "method", "success", "median ms/query",
-                "comparisons/query");
-    for (int threads : options.threads) {
-      cv::setNumThreads(threads);
-      const MethodResult brute = runQueries(reference, "seqslam", query, starts, route.query_to_reference, options);
-      const MethodResult fast = runQueries(reference, "mrs", query, starts, route.query_to_reference, options);
-      for (const auto& [name, result] : {std::pair{"seqslam", &brute}, std::pair{"mrs", &fast}}) {
-        std::printf("%-8d %-8s %8.3f %14.3f %18lld\n", threads, name,
-                    static_cast<double>(result->successes) / options.queries, result->median(),
-                    result->comparisons / options.queries);
-      }
-      std::printf("%-8d speed-up of mrs over seqslam: %.1fx in median time, %.1fx in comparisons\n\n", threads,
-                  brute.median() / fast.median(),
-                  static_cast<double>(brute.comparisons) / static_cast<double>(std::max(1LL, fast.comparisons)));
-    }
-    return 0;
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "mrs_vpr_benchmark: error: %s\n", error.what());
-    return 1;
-  }
+  return mrs_vpr::tools::runTool("mrs_vpr_benchmark", run, argc, argv);
 }
