@@ -20,14 +20,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <random>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <vector>
 
+#include <boost/program_options.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -35,6 +36,11 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "command_line.hpp"
+#include "list_option.hpp"
+#include "tool_main.hpp"
+
+namespace po = boost::program_options;
 
 namespace {
 
@@ -58,12 +64,19 @@ struct Options {
   long long truth_offset = -1;
 };
 
+/// A map size as written on the command line: frames, or thousands ("10k") or millions ("1M").
 long long parseSize(const std::string& text) {
+  const std::invalid_argument bad("--sizes: bad size '" + text + "' (e.g. 10k, 1M; >= 2k)");
   std::size_t used = 0;
-  const double value = std::stod(text, &used);
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::logic_error&) {  // No number at all, or out of range.
+    throw bad;
+  }
   const std::string unit = text.substr(used);
   const double scale = unit.empty() ? 1 : unit == "k" ? 1e3 : unit == "M" ? 1e6 : -1;
-  if (scale < 0 || value * scale < 2000) throw std::invalid_argument("bad size '" + text + "' (e.g. 10k, 1M; >= 2k)");
+  if (scale < 0 || !(value * scale >= 2000) || value * scale > 1e12) throw bad;
   return static_cast<long long>(value * scale);
 }
 
@@ -80,45 +93,36 @@ constexpr const char* kUsage =
     "Writes map databases of real frames (DIR: the shared data folder) once, then loads each in a fresh\n"
     "process and prints load time, resident bytes a frame and both methods' query times.\n";
 
-Options parse(int argc, char** argv) {
+/// Parses the command line; returns nothing after printing the help.
+std::optional<Options> parse(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help" || flag == "-h") {
-      std::fputs(kUsage, stdout);
-      std::exit(0);
-    }
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-      return argv[++i];
-    };
-    if (flag == "--data") {
-      options.data = value();
-    } else if (flag == "--sizes") {
-      options.sizes.clear();
-      std::stringstream list(value());
-      for (std::string item; std::getline(list, item, ',');) options.sizes.push_back(parseSize(item));
-    } else if (flag == "--dir") {
-      options.dir = value();
-    } else if (flag == "--length") {
-      options.length = std::stoi(value());
-    } else if (flag == "--queries") {
-      options.queries = std::stoi(value());
-    } else if (flag == "--brute-queries") {
-      options.brute_queries = std::stoi(value());
-    } else if (flag == "--threads") {
-      options.threads = std::stoi(value());
-    } else if (flag == "--seed") {
-      options.seed = std::stoull(value());
-    } else if (flag == "--measure") {
-      options.measure = value();
-    } else if (flag == "--truth-offset") {
-      options.truth_offset = std::stoll(value());
-    } else {
-      throw std::invalid_argument("unknown option " + flag + " (see --help)");
-    }
-  }
-  if (options.data.empty()) throw std::invalid_argument("--data DIR is required (the shared data folder)");
+  std::vector<std::string> sizes;
+  for (const long long frames : options.sizes) sizes.push_back(sizeName(frames));
+  std::int64_t seed = static_cast<std::int64_t>(options.seed);  // Signed, so that a negative seed is refused.
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("data", po::value(&options.data)->required(), "the shared data folder (nordland/, corridor/)")
+      ("sizes", mrs_vpr::benchmark::listValue(&sizes), "map sizes in frames, comma-separated (e.g. 10k, 1M; >= 2k)")
+      ("dir", po::value(&options.dir)->default_value(options.dir), "folder of the map databases, kept between runs")
+      ("length", po::value(&options.length)->default_value(options.length), "N: frames per test sequence")
+      ("queries", po::value(&options.queries)->default_value(options.queries), "queries per map and kind (mrs)")
+      ("brute-queries", po::value(&options.brute_queries)->default_value(options.brute_queries),
+       "how many of them brute force answers too")
+      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
+      ("seed", po::value(&seed)->default_value(seed), "seed of the maps and of the queries")
+      // The parent runs one child per map, with these two: the map to measure and where its true places are.
+      ("measure", po::value(&options.measure), "internal: measure this map database in this process")
+      ("truth-offset", po::value(&options.truth_offset)->default_value(options.truth_offset),
+       "internal: index of the measured map's first true place");
+  // clang-format on
+  po::variables_map variables;
+  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  options.sizes.clear();
+  for (const std::string& size : sizes) options.sizes.push_back(parseSize(size));
+  if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
+  options.seed = static_cast<std::uint64_t>(seed);
   if (options.length < 10 || options.queries < 1 || options.brute_queries < 0 || options.threads < 1) {
     throw std::invalid_argument("--length >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1");
   }
@@ -320,7 +324,9 @@ int measure(const Options& options) {
 }
 
 int run(int argc, char** argv) {
-  const Options options = parse(argc, argv);
+  const std::optional<Options> parsed = parse(argc, argv);
+  if (!parsed) return 0;
+  const Options& options = *parsed;
   if (!options.measure.empty()) return measure(options);
 
   ::mkdir(options.dir.c_str(), 0755);
@@ -372,10 +378,5 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   mrs_vpr::retainFreedMemory();  // As the node and the tools do.
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "mrs_vpr_map_scale_benchmark: error: %s\n", error.what());
-    return 1;
-  }
+  return mrs_vpr::tools::runTool("mrs_vpr_map_scale_benchmark", run, argc, argv);
 }

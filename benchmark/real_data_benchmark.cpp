@@ -23,11 +23,12 @@
 #include <fstream>
 #include <map>
 #include <memory>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
@@ -39,6 +40,11 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
+#include "command_line.hpp"
+#include "list_option.hpp"
+#include "tool_main.hpp"
+
+namespace po = boost::program_options;
 
 namespace {
 
@@ -63,55 +69,69 @@ struct Options {
   std::vector<std::string> methods = {"seqslam", "mrs"};
 };
 
-std::vector<std::string> splitList(const std::string& text) {
-  std::vector<std::string> items;
-  std::stringstream list(text);
-  for (std::string item; std::getline(list, item, ',');) items.push_back(item);
-  return items;
-}
+constexpr const char* kUsage =
+    "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
+    "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
+    "                              [--skip-per-frame] [--skip-global] [--diagnose]\n"
+    "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
+    "                              [--methods seqslam,mrs] [--json FILE]\n"
+    "\n"
+    "Both methods on the same queries of real frames: Nordland winter against summer references of\n"
+    "about 1.8k frames and 9k (with real distractors), known ground and out of the map, global and\n"
+    "per-frame. DIR holds nordland/{summer,winter} and corridor/{ref,query}.\n";
 
-Options parse(int argc, char** argv) {
+/// Parses the command line; returns nothing after printing the help.
+std::optional<Options> parse(int argc, char** argv) {
   Options options;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help") {
-      std::puts("mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
-                "                       [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
-                "                       [--skip-per-frame] [--skip-global] [--diagnose]\n"
-                "                       [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
-                "                       [--methods seqslam,mrs] [--json FILE]\n"
-                "DIR holds nordland/{summer,winter} and corridor/{ref,query}.");
-      std::exit(0);
-    }
-    if (flag == "--skip-per-frame") { options.per_frame = false; continue; }
-    if (flag == "--skip-global") { options.global = false; continue; }
-    if (flag == "--diagnose") { options.diagnose = true; continue; }
-    if (i + 1 >= argc) throw std::invalid_argument(flag + " needs a value");
-    const std::string value = argv[++i];
-    if (flag == "--data") options.data = value;
-    else if (flag == "--part") options.part = value;
-    else if (flag == "--json") options.json = value;
-    else if (flag == "--queries") options.queries = std::stoi(value);
-    else if (flag == "--threads") options.threads = std::stoi(value);
-    else if (flag == "--tolerance") options.tolerance = std::stoi(value);
-    else if (flag == "--seed") options.seed = std::stoull(value);
-    else if (flag == "--hypotheses") options.hypotheses = std::stoi(value);
-    else if (flag == "--min-coarse-frames") options.min_coarse_frames = std::stoi(value);
-    else if (flag == "--references") options.references = splitList(value);
-    else if (flag == "--methods") options.methods = splitList(value);
-    else if (flag == "--lengths") {
-      options.lengths.clear();
-      for (const std::string& item : splitList(value)) options.lengths.push_back(std::stoi(item));
-    } else {
-      throw std::invalid_argument("unknown flag " + flag);
-    }
-  }
-  if (options.data.empty()) throw std::invalid_argument("--data DIR is required (the folder with nordland/ and corridor/)");
+  std::int64_t seed = static_cast<std::int64_t>(options.seed);  // Signed, so that a negative seed is refused.
+  bool skip_per_frame = false;
+  bool skip_global = false;
+  po::options_description description("Options");
+  // clang-format off
+  description.add_options()
+      ("help,h", "print this help")
+      ("data", po::value(&options.data)->required(), "the folder with nordland/ and corridor/")
+      ("part", po::value(&options.part)->default_value(options.part),
+       "tune (first half of the route) | check (second half) | all: the part whose queries are reported")
+      ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of each global row")
+      ("lengths", mrs_vpr::benchmark::listValue(&options.lengths), "N of the global rows, comma-separated")
+      ("references", mrs_vpr::benchmark::listValue(&options.references), "1.8k and/or 9k, comma-separated")
+      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
+      ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
+       "frames of error still counted correct (global rows)")
+      ("seed", po::value(&seed)->default_value(seed), "seed of the global query positions")
+      ("skip-per-frame", po::bool_switch(&skip_per_frame), "no per-frame rows")
+      ("skip-global", po::bool_switch(&skip_global), "no global rows")
+      ("diagnose", po::bool_switch(&options.diagnose), "print where MRS kept the truth, level by level")
+      ("hypotheses", po::value(&options.hypotheses)->default_value(options.hypotheses),
+       "mrs: hypotheses carried down from the coarsest level")
+      ("min-coarse-frames", po::value(&options.min_coarse_frames)->default_value(options.min_coarse_frames),
+       "mrs: fewest rows of a coarse level")
+      ("methods", mrs_vpr::benchmark::listValue(&options.methods), "seqslam and/or mrs, comma-separated")
+      ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");
+  // clang-format on
+  po::variables_map variables;
+  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  options.per_frame = !skip_per_frame;
+  options.global = !skip_global;
+  if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
+  options.seed = static_cast<std::uint64_t>(seed);
   if (options.part != "tune" && options.part != "check" && options.part != "all") {
     throw std::invalid_argument("--part must be tune, check or all");
   }
   if (options.queries < 1 || options.threads < 1 || options.tolerance < 0) {
     throw std::invalid_argument("--queries and --threads must be >= 1, --tolerance >= 0");
+  }
+  for (const int length : options.lengths) {
+    if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
+  }
+  for (const std::string& size : options.references) {
+    if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");
+  }
+  for (const std::string& method : options.methods) {
+    if (method != "mrs" && method != "seqslam") {
+      throw std::invalid_argument("--methods: unknown method '" + method + "' (expected seqslam or mrs)");
+    }
   }
   return options;
 }
@@ -404,7 +424,9 @@ std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64
 }
 
 int run(int argc, char** argv) {
-  const Options options = parse(argc, argv);
+  const std::optional<Options> parsed = parse(argc, argv);
+  if (!parsed) return 0;
+  const Options& options = *parsed;
   cv::setNumThreads(options.threads);
   mrs_vpr::Parameters params;
   // Velocity step 0.02 for both methods: 0.1 leaves up to 15 frames of drift at N = 300, so neither
@@ -446,7 +468,6 @@ int run(int argc, char** argv) {
   std::vector<std::unique_ptr<mrs_vpr::SequenceMatcher>> matchers;
   for (const std::string& method : options.methods) matchers.push_back(mrs_vpr::makeMatcher(method, params));
   for (const std::string& size : options.references) {
-    if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");
     const bool distractors = size == "9k";
     Reference known = buildReference(frames, extractor, 0, route, distractors, size);
     known.descriptors.keepCoarseCells(params.mrs.levels, params.descriptor);
@@ -508,10 +529,5 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   mrs_vpr::retainFreedMemory();  // As the node and the tools do.
-  try {
-    return run(argc, argv);
-  } catch (const std::exception& error) {
-    std::fprintf(stderr, "mrs_vpr_real_benchmark: error: %s\n", error.what());
-    return 1;
-  }
+  return mrs_vpr::tools::runTool("mrs_vpr_real_benchmark", run, argc, argv);
 }
