@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 
 namespace {
@@ -23,43 +23,7 @@ namespace {
 constexpr double kFramePeriod = 0.05;  // [s], 20 Hz as in the demo
 constexpr int kQueryLength = 80;       // the demo's queries: 80 frames from 60, 120, ..., 300
 
-/// The newest ~map_info of a node.
-class MapInfoInbox {
- public:
-  MapInfoInbox(ros::NodeHandle& nh, const std::string& topic)
-      : sub_(nh.subscribe(topic, 10, &MapInfoInbox::callback, this)) {}
-
-  /// Waits until the newest message satisfies `predicate`; returns whether it did.
-  template <typename Predicate>
-  bool waitFor(Predicate predicate, mrs_vpr::MapInfo& found, double timeout = 30.0) {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (received_ && predicate(latest_)) {
-          found = latest_;
-          return true;
-        }
-      }
-      ros::WallDuration(0.02).sleep();
-    }
-    std::lock_guard<std::mutex> lock(mutex_);
-    found = latest_;
-    return false;
-  }
-
- private:
-  void callback(const mrs_vpr::MapInfo& message) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_ = message;
-    received_ = true;
-  }
-
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  mrs_vpr::MapInfo latest_;
-  bool received_ = false;
-};
+using mrs_vpr::testing_support::MapInfoWatch;
 
 sensor_msgs::Image toImage(const cv::Mat& bgr, double stamp) {
   sensor_msgs::Image message;
@@ -133,9 +97,14 @@ class CompressedTransportTest : public ::testing::Test {
     }
     const auto frames = static_cast<std::uint32_t>(route_->reference.size());
     for (const std::string& node : kNodes) {
-      MapInfoInbox inbox(nh_, node + "/map_info");
+      MapInfoWatch watch(nh_, node);
       mrs_vpr::MapInfo info;
-      ASSERT_TRUE(inbox.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == frames; }, info))
+      ASSERT_TRUE(watch.waitFor(
+          [&](const mrs_vpr::MapInfo& m) {
+            info = m;
+            return m.frames == frames;
+          },
+          30.0))
           << node << " holds " << info.frames << " frames, not " << frames;
       EXPECT_EQ(info.frames_failed, 0U) << node;
       EXPECT_EQ(info.frames_received, frames) << node;
@@ -193,9 +162,14 @@ TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
 TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapping) {
   ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 100);
   waitForSubscriber(jpeg);
-  MapInfoInbox inbox(nh_, "/jpeg/mrs_vpr/map_info");
+  MapInfoWatch watch(nh_, "/jpeg/mrs_vpr");
   mrs_vpr::MapInfo before;
-  ASSERT_TRUE(inbox.waitFor([](const mrs_vpr::MapInfo&) { return true; }, before));
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        before = m;
+        return true;
+      },
+      30.0));
 
   const cv::Mat& image = route_->reference[0];
   double stamp = 5000.0;
@@ -217,8 +191,12 @@ TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapp
 
   const auto failed = before.frames_failed + bad.size();
   mrs_vpr::MapInfo after;
-  ASSERT_TRUE(inbox.waitFor(
-      [&](const mrs_vpr::MapInfo& m) { return m.frames_failed == failed && m.frames == before.frames + 1; }, after))
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        after = m;
+        return m.frames_failed == failed && m.frames == before.frames + 1;
+      },
+      30.0))
       << "failed " << after.frames_failed << ", frames " << after.frames;
   EXPECT_EQ(after.frames_received, before.frames_received + bad.size() + 1);
   const auto answer = query("/jpeg/mrs_vpr", 120, "mrs");
@@ -233,7 +211,7 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_small_queue/query", ros::Duration(30.0)));
   ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/burst", 100);
   waitForSubscriber(publisher);
-  MapInfoInbox inbox(nh, "/mrs_vpr_small_queue/map_info");
+  MapInfoWatch watch(nh, "/mrs_vpr_small_queue");
   cv::RNG rng(3);
   std::vector<sensor_msgs::Image> frames;
   for (const cv::Size size : {cv::Size(4000, 3000), cv::Size(640, 480)}) {
@@ -254,8 +232,11 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   ++published;
 
   mrs_vpr::MapInfo info;
-  ASSERT_TRUE(inbox.waitFor(
-      [&](const mrs_vpr::MapInfo& m) { return m.frames_received == static_cast<std::uint64_t>(published); }, info,
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        info = m;
+        return m.frames_received == static_cast<std::uint64_t>(published);
+      },
       60.0))
       << "received " << info.frames_received << " of " << published;
   EXPECT_EQ(info.frames + info.frames_failed, info.frames_received);

@@ -15,6 +15,7 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
+#include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 
 namespace {
@@ -47,11 +48,6 @@ class Inbox {
       }
       ros::WallDuration(0.02).sleep();
     }
-    std::lock_guard<std::mutex> lock(mutex_);
-    return messages_;
-  }
-
-  std::vector<Message> messages() {
     std::lock_guard<std::mutex> lock(mutex_);
     return messages_;
   }
@@ -99,7 +95,7 @@ class DebugImageTest : public ::testing::Test {
         images.publish(toMessage(route_->reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
         ros::WallDuration(0.002).sleep();
       }
-      ASSERT_TRUE(waitForMapInfo([](const mrs_vpr::MapInfo& m) { return m.frames == 400; }));
+      ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 400; }, 20.0));
       mapped_ = true;
     }
   }
@@ -107,19 +103,8 @@ class DebugImageTest : public ::testing::Test {
   /// The newest ~map_info, after waiting `settle` seconds for a change to be republished (20 Hz).
   mrs_vpr::MapInfo latestMapInfo(double settle = 0.5) {
     ros::WallDuration(settle).sleep();
-    const auto messages = map_info_.waitForCount(1);
-    return messages.empty() ? mrs_vpr::MapInfo() : messages.back();
-  }
-
-  template <typename Predicate>
-  bool waitForMapInfo(Predicate predicate, double timeout = 20.0) {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline) {
-      const auto messages = map_info_.messages();
-      if (!messages.empty() && predicate(messages.back())) return true;
-      ros::WallDuration(0.02).sleep();
-    }
-    return false;
+    map_info_.waitFor([](const mrs_vpr::MapInfo&) { return true; }, 10.0);
+    return map_info_.latest();
   }
 
   /// Query frames [first, first + count) as an explicit test sequence; the call must succeed.
@@ -139,7 +124,7 @@ class DebugImageTest : public ::testing::Test {
 
   ros::NodeHandle nh_;
   ros::ServiceClient query_;
-  Inbox<mrs_vpr::MapInfo> map_info_{nh_, "mrs_vpr_debug/map_info"};
+  mrs_vpr::testing_support::MapInfoWatch map_info_{nh_, "mrs_vpr_debug"};
 };
 
 mrs_vpr::SyntheticRoute* DebugImageTest::route_ = nullptr;
@@ -193,7 +178,7 @@ TEST_F(DebugImageTest, ASubscriberGetsOneImagePerAnswer) {
   EXPECT_GT(red, band.height / 4) << "the dashed trajectory should cross the band from top to bottom";
   EXPECT_TRUE(seqslam.accepted);
 
-  EXPECT_TRUE(waitForMapInfo([](const mrs_vpr::MapInfo& m) { return m.debug_images == 2; }))
+  EXPECT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.debug_images == 2; }, 20.0))
       << "~map_info should count the two images drawn";
 
   // Once the subscriber leaves, drawing stops again.

@@ -15,7 +15,6 @@
 #include <memory>
 #include <filesystem>
 #include <fstream>
-#include <mutex>
 #include <random>
 #include <string>
 #include <thread>
@@ -32,6 +31,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/temporary_folder.hpp"
 
@@ -119,42 +119,7 @@ class NodeProcess {
   int status_ = 0;
 };
 
-/// The latest ~map_info of a node.
-class MapInfoWatch {
- public:
-  MapInfoWatch(ros::NodeHandle& nh, const std::string& node)
-      : sub_(nh.subscribe("/" + node + "/map_info", 10, &MapInfoWatch::callback, this)) {}
-
-  /// Waits until a MapInfo satisfies `predicate`.
-  template <typename Predicate>
-  bool waitFor(Predicate predicate, double seconds = 30.0) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < deadline) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (received_ && predicate(latest_)) return true;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return false;
-  }
-  mrs_vpr::MapInfo latest() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return latest_;
-  }
-
- private:
-  void callback(const mrs_vpr::MapInfo& info) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    latest_ = info;
-    received_ = true;
-  }
-
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  mrs_vpr::MapInfo latest_;
-  bool received_ = false;
-};
+using mrs_vpr::testing_support::MapInfoWatch;
 
 std::string contents(const std::string& file) {
   std::ifstream in(file, std::ios::binary);
@@ -194,7 +159,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
   /// Waits until the node's map holds `frames` frames, all committed to its database.
   static void waitPersisted(MapInfoWatch& info, std::uint32_t frames) {
     ASSERT_TRUE(info.waitFor(
-        [&](const mrs_vpr::MapInfo& m) { return m.frames == frames && m.frames_persisted == frames; }))
+        [&](const mrs_vpr::MapInfo& m) { return m.frames == frames && m.frames_persisted == frames; }, 30.0))
         << "map_info: " << info.latest().frames << " frames, " << info.latest().frames_persisted
         << " persisted; expected " << frames;
   }
@@ -238,13 +203,13 @@ TEST_F(MapDatabaseNodeTest, ARestartedNodeKeepsItsMapAndAnswersAboutTheFirstPart
   const std::string database = path("map.db");
   {
     auto node = startNode("mapper", database);
-    MapInfoWatch info(nh_, node->name());
+    MapInfoWatch info(nh_, "/" + node->name());
     publishReference(0, 200);
     waitPersisted(info, 200);
     EXPECT_EQ(node->stop(), 0);
   }
   auto node = startNode("mapper", database);
-  MapInfoWatch info(nh_, node->name());
+  MapInfoWatch info(nh_, "/" + node->name());
   waitPersisted(info, 200);  // Loaded at start-up, before any frame arrives.
   publishReference(200, 300);
   waitPersisted(info, 300);
@@ -277,7 +242,7 @@ TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) 
   ASSERT_EQ(std::system(command.c_str()), 0) << contents(path("build_map.log"));
 
   auto node = startNode("mapper", path("node.db"));
-  MapInfoWatch info(nh_, node->name());
+  MapInfoWatch info(nh_, "/" + node->name());
   publishReference(0, 150);
   waitPersisted(info, 150);
   EXPECT_EQ(node->stop(), 0);
@@ -297,7 +262,7 @@ TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) 
 
 TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   auto node = startNode("mapper", path("map.db"));
-  MapInfoWatch info(nh_, node->name());
+  MapInfoWatch info(nh_, "/" + node->name());
   publishReference(0, 120);
   waitPersisted(info, 120);
 
@@ -360,7 +325,7 @@ TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {
     SCOPED_TRACE("round " + std::to_string(round));
     const std::string database = path("crash" + std::to_string(round) + ".db");
     auto node = startNode("crasher" + std::to_string(round), database);
-    MapInfoWatch info(nh_, node->name());
+    MapInfoWatch info(nh_, "/" + node->name());
     const int frames = std::uniform_int_distribution<int>(60, 150)(rng);
     std::uint64_t reported = 0;
     for (int i = 0; i < frames; ++i) {

@@ -21,6 +21,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 
 namespace {
@@ -128,13 +129,18 @@ class NodeTest : public ::testing::Test {
     map_frames_ += static_cast<std::uint32_t>(end - begin);
     const std::uint32_t expected = map_frames_;
     mrs_vpr::MapInfo info;
-    ASSERT_TRUE(map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, info))
+    ASSERT_TRUE(map_info_.waitFor(
+        [&](const mrs_vpr::MapInfo& m) {
+          info = m;
+          return m.frames == expected;
+        },
+        20.0))
         << "the map did not reach " << expected << " frames";
     EXPECT_EQ(info.descriptor_size, 64U * 32U);
     EXPECT_EQ(info.frames_failed, 0U);
     EXPECT_EQ(info.frames_dropped, 0U);
     EXPECT_GT(info.memory_bytes, static_cast<std::uint64_t>(expected) * 64U * 32U - 1U);
-    ASSERT_TRUE(auto_map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, info));
+    ASSERT_TRUE(auto_map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, 20.0));
   }
 
   /// The explicit test sequence: query frames [first, first + count).
@@ -168,8 +174,8 @@ class NodeTest : public ::testing::Test {
   ros::NodeHandle nh_;
   ros::Publisher image_pub_;
   ros::ServiceClient query_;
-  Inbox<mrs_vpr::MapInfo> map_info_{nh_, "mrs_vpr/map_info"};
-  Inbox<mrs_vpr::MapInfo> auto_map_info_{nh_, "mrs_vpr_auto/map_info"};
+  mrs_vpr::testing_support::MapInfoWatch map_info_{nh_, "mrs_vpr"};
+  mrs_vpr::testing_support::MapInfoWatch auto_map_info_{nh_, "mrs_vpr_auto"};
   Inbox<mrs_vpr::LoopClosure> loop_closures_{nh_, "mrs_vpr/loop_closure"};
   Inbox<mrs_vpr::LoopClosure> auto_loop_closures_{nh_, "mrs_vpr_auto/loop_closure"};
 };
@@ -341,7 +347,12 @@ TEST_F(NodeTest, ResetEmptiesTheMap) {
   EXPECT_TRUE(trigger.response.success);
   EXPECT_EQ(trigger.response.message, "cleared " + std::to_string(map_frames_) + " frames (no ~database)");
   mrs_vpr::MapInfo info;
-  ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 0; }, info));
+  ASSERT_TRUE(map_info_.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        info = m;
+        return m.frames == 0;
+      },
+      20.0));
   EXPECT_EQ(info.frames_received, map_frames_);
 
   auto srv = explicitQuery(100, 20, "mrs");
