@@ -8,7 +8,7 @@
 
 #include <boost/program_options.hpp>
 
-#include "tool_main.hpp"
+#include "tools/tool_main.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {

@@ -26,7 +26,7 @@
 #include "mrs_vpr/visualization/match_image.hpp"
 #include "command_line.hpp"
 #include "list_option.hpp"
-#include "tool_main.hpp"
+#include "tools/tool_main.hpp"
 
 namespace po = boost::program_options;
 
@@ -85,7 +85,9 @@ std::optional<Options> parse(int argc, char** argv) {
     if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
   }
   for (const std::string& method : options.methods) {
-    if (!isMethod(method)) throw std::invalid_argument("--methods: unknown method '" + method + "' (expected mrs or seqslam)");
+    if (!isMethod(method)) {
+      throw std::invalid_argument("--methods: unknown method '" + method + "' (expected mrs or seqslam)");
+    }
   }
   if (!isMethod(options.picture_method)) {
     throw std::invalid_argument("--picture-method must be mrs or seqslam, not '" + options.picture_method + "'");

@@ -38,7 +38,7 @@
 #include "mrs_vpr/store/map_database.hpp"
 #include "command_line.hpp"
 #include "list_option.hpp"
-#include "tool_main.hpp"
+#include "tools/tool_main.hpp"
 
 namespace po = boost::program_options;
 

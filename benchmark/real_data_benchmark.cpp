@@ -42,7 +42,7 @@
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "command_line.hpp"
 #include "list_option.hpp"
-#include "tool_main.hpp"
+#include "tools/tool_main.hpp"
 
 namespace po = boost::program_options;
 

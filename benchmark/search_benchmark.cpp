@@ -31,7 +31,7 @@
 #include "mrs_vpr/synthetic_route.hpp"
 #include "command_line.hpp"
 #include "list_option.hpp"
-#include "tool_main.hpp"
+#include "tools/tool_main.hpp"
 
 namespace po = boost::program_options;
 
