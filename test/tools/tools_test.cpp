@@ -1,5 +1,6 @@
-// Runs the installed command-line tools (mrs_vpr_eval, images_to_bag) on generated data in a
-// temporary folder: results, JSON fields, and one-line errors with exit code 1 on bad input.
+// Runs the installed command-line tools (mrs_vpr_eval, images_to_bag, ..., and the benchmarks) on
+// generated data in a temporary folder: results, JSON fields, and one-line errors with exit code 1 on
+// bad input.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -483,6 +485,191 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   EXPECT_EQ(truncated.status, 1) << truncated.err;
   EXPECT_FALSE(fs::exists(broken));
   EXPECT_FALSE(fs::exists(broken + ".part"));
+}
+
+/// A benchmark binary, and one of its comma-separated list options.
+struct Benchmark {
+  std::string name;
+  std::string path;
+  std::string required;  ///< The options it cannot run without (values never read by the tests below).
+  std::string list_option;
+};
+
+std::vector<Benchmark> benchmarks() {
+  return {{"mrs_vpr_benchmark", MRS_VPR_BENCHMARK_PATH, "", "--threads"},
+          {"mrs_vpr_real_benchmark", MRS_VPR_REAL_BENCHMARK_PATH, "--data nowhere", "--lengths"},
+          {"mrs_vpr_map_scale_benchmark", MRS_VPR_MAP_SCALE_BENCHMARK_PATH, "--data nowhere", "--sizes"},
+          {"mrs_vpr_debug_image_benchmark", MRS_VPR_DEBUG_IMAGE_BENCHMARK_PATH, "--reference nowhere --query nowhere",
+           "--lengths"}};
+}
+
+/// Expects exit code 1 and one line on stderr, "<name>: error: ...", that contains `text`.
+void expectBenchmarkError(const Benchmark& benchmark, const Result& result, const std::string& text) {
+  EXPECT_EQ(result.status, 1) << benchmark.name << "\n" << result.err;
+  EXPECT_EQ(result.err.rfind(benchmark.name + ": error: ", 0), 0U) << result.err;
+  EXPECT_NE(result.err.find(text), std::string::npos) << benchmark.name << "\n" << result.err;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.out, "") << benchmark.name;
+}
+
+TEST_F(ToolsTest, BenchmarksPrintTheirUsageOnHelp) {
+  for (const Benchmark& benchmark : benchmarks()) {
+    for (const char* help : {" --help", " -h"}) {
+      const Result result = run(benchmark.path + help);
+      EXPECT_EQ(result.status, 0) << benchmark.name << help << "\n" << result.err;
+      EXPECT_EQ(result.out.rfind("Usage: " + benchmark.name + " ", 0), 0U) << result.out;
+      // Every option is listed with its default, lists as they are written.
+      EXPECT_NE(result.out.find("\nOptions:\n"), std::string::npos) << result.out;
+      EXPECT_NE(result.out.find(benchmark.list_option + " arg (="), std::string::npos) << result.out;
+      EXPECT_EQ(result.err, "") << benchmark.name;
+    }
+  }
+  EXPECT_NE(run(std::string(MRS_VPR_BENCHMARK_PATH) + " --help").out.find("--threads arg (=1,2)"), std::string::npos);
+  EXPECT_NE(run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --help").out.find("--lengths arg (=100,200,300)"),
+            std::string::npos);
+  EXPECT_NE(run(std::string(MRS_VPR_MAP_SCALE_BENCHMARK_PATH) + " --help").out.find("--sizes arg (=10k,100k,1M)"),
+            std::string::npos);
+}
+
+TEST_F(ToolsTest, BenchmarksRefuseBadOptionsInOneLineNamingThem) {
+  for (const Benchmark& benchmark : benchmarks()) {
+    const std::string command = benchmark.path + " " + benchmark.required;
+    expectBenchmarkError(benchmark, run(command + " --no-such-option 3"), "unrecognised option '--no-such-option'");
+    expectBenchmarkError(benchmark, run(command + " --queries"), "option '--queries' is missing");
+    expectBenchmarkError(benchmark, run(command + " --queries many"),
+                         "the argument ('many') for option '--queries' is invalid");
+    // A list with a bad, empty or trailing item is refused whole.
+    for (const std::string list : {"10,x", "10,,20", "10,"}) {
+      const Result result = run(command + " " + benchmark.list_option + " " + list);
+      if (benchmark.list_option == "--sizes") {  // Items are sizes such as 10k, checked one by one.
+        expectBenchmarkError(benchmark, result, "--sizes");
+      } else {
+        expectBenchmarkError(benchmark, result,
+                             "the argument ('" + list + "') for option '" + benchmark.list_option + "' is invalid");
+      }
+    }
+    // A word that belongs to no option ("--lengths 100 200" for "100,200") is not dropped silently.
+    expectBenchmarkError(benchmark, run(command + " " + benchmark.list_option + " 10 20"), "unexpected argument '20'");
+  }
+  const Benchmark real = benchmarks()[1];
+  expectBenchmarkError(real, run(real.path + " --queries 2"), "the option '--data' is required but missing");
+  expectBenchmarkError(real, run(real.path + " --data nowhere --part most"), "--part must be tune, check or all");
+  expectBenchmarkError(real, run(real.path + " --data nowhere --references 1.8k,5k"), "--references takes 1.8k");
+  expectBenchmarkError(real, run(real.path + " --data nowhere --methods mrs,fastest"), "unknown method 'fastest'");
+  expectBenchmarkError(real, run(real.path + " --data nowhere --seed -1"), "--seed must be >= 0");
+  const Benchmark scale = benchmarks()[2];
+  expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 10k,lots"), "bad size 'lots'");
+  expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 1k"), "bad size '1k'");
+  const Benchmark debug = benchmarks()[3];
+  expectBenchmarkError(debug, run(debug.path + " --reference nowhere"), "the option '--query' is required but missing");
+  expectBenchmarkError(debug, run(debug.path + " --reference a --query b --picture-method best"),
+                       "--picture-method must be mrs or seqslam");
+  const Benchmark search = benchmarks()[0];
+  expectBenchmarkError(search, run(search.path + " --threads 1,0"), "--threads takes counts >= 1");
+  expectBenchmarkError(search, run(search.path + " --reference-frames 600 --sequence-length 600"),
+                       "--sequence-length must be in 2..490");
+}
+
+TEST_F(ToolsTest, TheGeneratedRouteBenchmarkRunsWithTheGivenOptions) {
+  const Result result = run(std::string(MRS_VPR_BENCHMARK_PATH) +
+                            " --reference-frames 600 --sequence-length 20 --queries 3 --threads 1 --min-time 0"
+                            " --tolerance 4 --seed 3 --velocity-step 0.1");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("the same 3 queries (synthetic route, seed 3)"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("M = 600 reference frames, N = 20 frame test sequences, velocity step 0.10, "
+                            "success = within 4 frames"),
+            std::string::npos)
+      << result.out;
+  // One thread count: its two rows and its speed-up, and no second block.
+  EXPECT_NE(result.out.find("\n1        seqslam "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("\n1        mrs "), std::string::npos) << result.out;
+  EXPECT_EQ(result.out.find("\n2        "), std::string::npos) << result.out;
+}
+
+TEST_F(ToolsTest, TheDebugImageBenchmarkRunsWithTheGivenOptions) {
+  const std::string picture = path("debug_image.png");
+  const Result result = run(std::string(MRS_VPR_DEBUG_IMAGE_BENCHMARK_PATH) + " --reference " + path("reference") +
+                            " --query " + path("query") +
+                            " --lengths 10,20 --queries 2 --runs 1 --methods seqslam --threads 1 --output " + picture +
+                            " --picture-length 20 --picture-end 30 --picture-method seqslam");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("reference 150 frames, query 100 frames, 1 thread(s), 2 queries per row"),
+            std::string::npos)
+      << result.out;
+  EXPECT_NE(result.out.find("\nseqslam     10 |"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("\nseqslam     20 |"), std::string::npos) << result.out;
+  EXPECT_EQ(result.out.find("\nmrs "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("query frames 11..30, seqslam"), std::string::npos) << result.out;
+  EXPECT_FALSE(cv::imread(picture).empty());
+}
+
+/// The generated route in the layout of the real data (nordland/{summer,winter}, corridor/{ref,query}):
+/// the reference as summer and as the corridor's reference, the query as winter and the corridor's query.
+fs::path realDataLayout(const fs::path& root) {
+  const fs::path data = root / "real_data";
+  if (fs::exists(data)) return data;
+  fs::create_directories(data / "nordland");
+  fs::create_directories(data / "corridor");
+  fs::create_directory_symlink(root / "reference", data / "nordland" / "summer");
+  fs::create_directory_symlink(root / "query", data / "nordland" / "winter");
+  fs::create_directory_symlink(root / "reference", data / "corridor" / "ref");
+  fs::create_directory_symlink(root / "query", data / "corridor" / "query");
+  return data;
+}
+
+TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark.json");
+  const Result result =
+      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+          " --part all --references 1.8k --lengths 20,30 --queries 3 --methods seqslam --skip-per-frame --tolerance 4"
+          " --seed 5 --json " +
+          output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json document = json::parse(readText(output));
+  EXPECT_EQ(document.at("part"), "all");
+  EXPECT_EQ(document.at("queries"), 3);
+  EXPECT_EQ(document.at("tolerance"), 4);
+  EXPECT_EQ(document.at("seed"), 5);
+  // Global rows only, one per length, of seqslam alone; --part all has no out-of-map rows.
+  const json& rows = document.at("rows");
+  ASSERT_EQ(rows.size(), 2U) << rows.dump();
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].at("method"), "seqslam");
+    EXPECT_EQ(rows[i].at("protocol"), "global");
+    EXPECT_EQ(rows[i].at("out_of_map"), false);
+    EXPECT_EQ(rows[i].at("reference_frames"), 100);  // The route: as many summer frames as there are winter ones.
+    EXPECT_EQ(rows[i].at("sequence_length"), i == 0 ? 20 : 30);
+    EXPECT_EQ(rows[i].at("summary").at("queries"), 3);
+  }
+}
+
+TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
+  const fs::path data = realDataLayout(path(""));
+  const fs::path maps = path("maps");
+  const Result result = run(std::string(MRS_VPR_MAP_SCALE_BENCHMARK_PATH) + " --data " + data.string() +
+                            " --sizes 2k,2.5k --dir " + maps.string() +
+                            " --length 10 --queries 2 --brute-queries 1 --threads 1 --seed 4");
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("queries of N = 10, 2 per map (1 for brute force), threads 1, seed 4"), std::string::npos)
+      << result.out;
+  // Each map is measured by a child process that gets the options again: one row per map and kind of
+  // query, with 2 queries of mrs and 1 of brute force.
+  for (const std::string size : {"2k", "2500"}) {
+    EXPECT_TRUE(fs::exists(maps / ("map-" + size + "-seed4.db"))) << size;
+    for (const std::string kind : {"winter", "summer*"}) {
+      std::istringstream lines(result.out);
+      std::vector<std::string> row;
+      for (std::string line; std::getline(lines, line);) {
+        std::istringstream words(line);
+        std::vector<std::string> tokens{std::istream_iterator<std::string>(words), {}};
+        if (tokens.size() == 11 && tokens[0] == size && tokens[1] == kind) row = tokens;
+      }
+      ASSERT_EQ(row.size(), 11U) << size << " " << kind << "\n" << result.out;
+      EXPECT_EQ(row[7].substr(row[7].find('/')), "/2") << row[7];  // mrs right
+      EXPECT_EQ(row[9].substr(row[9].find('/')), "/1") << row[9];  // brute force right
+    }
+  }
 }
 
 }  // namespace
