@@ -24,9 +24,8 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
-#include "command_line.hpp"
-#include "list_option.hpp"
 #include "tools/tool_main.hpp"
+#include "list_option.hpp"
 
 namespace po = boost::program_options;
 
@@ -80,7 +79,7 @@ std::optional<Options> parse(int argc, char** argv) {
        "mrs | seqslam: the method of the picture");
   // clang-format on
   po::variables_map variables;
-  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   for (const int length : options.lengths) {
     if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
   }

@@ -36,9 +36,8 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
-#include "command_line.hpp"
-#include "list_option.hpp"
 #include "tools/tool_main.hpp"
+#include "list_option.hpp"
 
 namespace po = boost::program_options;
 
@@ -118,7 +117,7 @@ std::optional<Options> parse(int argc, char** argv) {
        "internal: index of the measured map's first true place");
   // clang-format on
   po::variables_map variables;
-  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   options.sizes.clear();
   for (const std::string& size : sizes) options.sizes.push_back(parseSize(size));
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");

@@ -40,9 +40,8 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
-#include "command_line.hpp"
-#include "list_option.hpp"
 #include "tools/tool_main.hpp"
+#include "list_option.hpp"
 
 namespace po = boost::program_options;
 
@@ -111,7 +110,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");
   // clang-format on
   po::variables_map variables;
-  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   options.per_frame = !skip_per_frame;
   options.global = !skip_global;
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");

@@ -29,9 +29,8 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
-#include "command_line.hpp"
-#include "list_option.hpp"
 #include "tools/tool_main.hpp"
+#include "list_option.hpp"
 
 namespace po = boost::program_options;
 
@@ -87,7 +86,7 @@ std::optional<Options> parse(int argc, char** argv) {
        "seconds each method repeats the queries for, at least");
   // clang-format on
   po::variables_map variables;
-  if (!mrs_vpr::benchmark::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
   options.seed = static_cast<std::uint64_t>(seed);
   if (options.reference_frames < 100) throw std::invalid_argument("--reference-frames must be >= 100");

@@ -9,11 +9,20 @@ namespace mrs_vpr {
 namespace tools {
 
 /// Parses the command line into `variables`. Returns false when --help was asked for: the usage
-/// and the options have then been printed and the tool should exit 0.
+/// and the options have then been printed and the tool should exit 0. A word that belongs to no
+/// option is an error that names it: Boost.Program_options would drop it silently, so that
+/// "--lengths 100 200" would run with 100 alone.
 inline bool parseCommandLine(int argc, char** argv, const char* usage,
                              const boost::program_options::options_description& options,
                              boost::program_options::variables_map& variables) {
-  boost::program_options::store(boost::program_options::parse_command_line(argc, argv, options), variables);
+  namespace po = boost::program_options;
+  const po::parsed_options parsed = po::command_line_parser(argc, argv).options(options).run();
+  for (const po::option& option : parsed.options) {
+    if (option.string_key.empty() && !option.original_tokens.empty()) {
+      throw po::error("unexpected argument '" + option.original_tokens.front() + "'");
+    }
+  }
+  po::store(parsed, variables);
   if (variables.count("help") > 0) {
     std::cout << usage << "\n" << options << std::flush;
     return false;

@@ -139,6 +139,8 @@ TEST_F(ToolsTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
               "sequence length 151 is larger than the reference of 150 frames");
   expectError(folders + " --method seqslam --protocol per-frame", "sequence-length");  // Missing flag.
+  // A word of no option (e.g. a second value) is refused, not silently dropped.
+  expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 20", "unexpected argument '20'");
 
   // An unreadable image, named.
   fs::create_directories(path("broken"));
