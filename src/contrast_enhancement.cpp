@@ -191,7 +191,8 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
   cv::Mat enhanced(differences.size(), CV_32F);
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
     for (int row = rows.start; row < rows.end; ++row) {
-      enhanceRowSpan(differences.ptr<float>(row), differences.cols, 0, differences.cols, window, enhanced.ptr<float>(row));
+      enhanceRowSpan(differences.ptr<float>(row), differences.cols, 0, differences.cols, window,
+                     enhanced.ptr<float>(row));
     }
   });
   return enhanced;

@@ -277,7 +277,8 @@ class CoarseToFineSearch {
   /// A hypothesis searches the velocities within fanSpread() of its own from the level above.
   std::vector<double> levelVelocities(const Particle& particle) const {
     const bool after_coarsest = 2 * level_.stride == (1 << levels_);
-    return velocitiesNear(velocities_, particle.velocity, fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest));
+    const double spread = fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest);
+    return velocitiesNear(velocities_, particle.velocity, spread);
   }
 
   /**

@@ -68,29 +68,28 @@ void EndCostTable::computeEnds(int first, int last) {
   const auto span = static_cast<std::size_t>(last - first + 1);
   // Each row's fans lie in one short span of cells: one request per row, all served first (by
   // several threads where the matrix allows), then summed row by row in order.
-  const int rows = level_.rows();
-  std::vector<LazyDifferenceMatrix::RowRequest> requests(static_cast<std::size_t>(rows));
-  std::vector<std::size_t> starts(static_cast<std::size_t>(rows) + 1, 0);
-  for (int r = 0; r < rows; ++r) {
+  const auto rows = static_cast<std::size_t>(level_.rows());
+  std::vector<LazyDifferenceMatrix::RowRequest> requests(rows);
+  std::vector<std::size_t> starts(rows + 1, 0);  // Where each row's values begin in `values`.
+  for (std::size_t r = 0; r < rows; ++r) {
     int low = level_.grid_size;
     int high = 0;
     for (const Fan& fan : fans) {
-      const int offset = offsets_[fan.velocity][static_cast<std::size_t>(r)];
+      const int offset = offsets_[fan.velocity][r];
       low = std::min(low, fan.begin + offset);
       high = std::max(high, fan.end + offset + 1);
     }
-    requests[static_cast<std::size_t>(r)] = {r, low, high, nullptr};
-    starts[static_cast<std::size_t>(r) + 1] = starts[static_cast<std::size_t>(r)] + static_cast<std::size_t>(high - low);
+    requests[r] = {static_cast<int>(r), low, high, nullptr};
+    starts[r + 1] = starts[r] + static_cast<std::size_t>(high - low);
   }
   std::vector<float> values(starts.back());
-  for (int r = 0; r < rows; ++r) requests[static_cast<std::size_t>(r)].out = values.data() + starts[static_cast<std::size_t>(r)];
+  for (std::size_t r = 0; r < rows; ++r) requests[r].out = values.data() + starts[r];
   matrix_->enhancedRows(requests);
   std::vector<float> sums(fans.size() * span, 0.0F);
-  for (int r = 0; r < rows; ++r) {
-    const LazyDifferenceMatrix::RowRequest& request = requests[static_cast<std::size_t>(r)];
+  for (std::size_t r = 0; r < rows; ++r) {
     for (std::size_t f = 0; f < fans.size(); ++f) {
-      const int offset = offsets_[fans[f].velocity][static_cast<std::size_t>(r)];
-      const float* row_values = request.out + (fans[f].begin + offset - request.begin);
+      const int offset = offsets_[fans[f].velocity][r];
+      const float* row_values = requests[r].out + (fans[f].begin + offset - requests[r].begin);
       float* fan_sums = sums.data() + f * span;
       const int count = fans[f].end - fans[f].begin + 1;
       for (int e = 0; e < count; ++e) fan_sums[e] += row_values[e];

@@ -36,7 +36,7 @@ __attribute__((target("avx2"))) __m128i sumLanes(__m256i a, __m256i b, __m256i c
 }
 
 __attribute__((target("avx2"))) void avx2Kernel(const std::uint8_t* query, const std::uint8_t* cells,
-                                                 std::ptrdiff_t pitch, int count, int size, float scale, float* out) {
+                                                std::ptrdiff_t pitch, int count, int size, float scale, float* out) {
   const __m128 scales = _mm_set1_ps(scale);
   int i = 0;
   for (; i + 4 <= count; i += 4) {

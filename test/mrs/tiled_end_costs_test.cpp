@@ -49,8 +49,8 @@ TEST(TiledCostsByAnchor, EqualTheWholeMatrixCosts) {
         const AnchorCosts whole = costsByAnchor(enhanceContrast(differences, window), rows, velocities);
         const AnchorCosts tiled = tiledCostsByAnchor(columns, rows, velocities, window, tileOf(differences));
         expectSameCosts(tiled, whole,
-                        "columns " + std::to_string(columns) + ", anchor " + std::to_string(rows.anchor) +
-                            ", window " + std::to_string(window));
+                        "columns " + std::to_string(columns) + ", anchor " + std::to_string(rows.anchor) + ", window " +
+                            std::to_string(window));
       }
     }
   }
