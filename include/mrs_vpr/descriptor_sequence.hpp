@@ -32,9 +32,9 @@ struct SequenceView {
   /// (cells look back only, so any prefix of the store can use them).
   const CoarseCells* coarse = nullptr;
 
-  const std::uint8_t* frame(int index) const {
-    return data + static_cast<std::ptrdiff_t>(index) * step * descriptor_size;
-  }
+  /// Bytes from one frame of the view to the next.
+  std::ptrdiff_t pitch() const { return static_cast<std::ptrdiff_t>(step) * descriptor_size; }
+  const std::uint8_t* frame(int index) const { return data + index * pitch(); }
   /// Frames [begin, end) of this view. Throws std::out_of_range when the range is invalid.
   SequenceView slice(int begin, int end) const;
   /// Every `stride`-th frame of this view, starting at `first`. Throws std::out_of_range.

@@ -24,9 +24,8 @@ const std::uint8_t* PooledReference::cell(int grid_index) {
 }
 
 PooledReference::Run PooledReference::run(int first, int wanted) {
-  const auto pitch = [](SequenceView view) { return static_cast<std::ptrdiff_t>(view.step) * view.descriptor_size; };
-  if (stride_ == 1) return {reference_.frame(first), pitch(reference_), wanted};
-  if (first < kept_.count) return {kept_.frame(first), pitch(kept_), std::min(wanted, kept_.count - first)};
+  if (stride_ == 1) return {reference_.frame(first), reference_.pitch(), wanted};
+  if (first < kept_.count) return {kept_.frame(first), kept_.pitch(), std::min(wanted, kept_.count - first)};
   for (int index = first; index < first + wanted; ++index) cell(index);  // Computes the missing ones.
   return {cells_.data() + static_cast<std::ptrdiff_t>(first) * cellSize(), cellSize(), wanted};
 }
