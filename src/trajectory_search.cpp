@@ -12,7 +12,6 @@
 namespace mrs_vpr {
 namespace {
 
-
 /// sum[i] = rows[0][i] + ... + rows[count - 1][i] for i < width: the cells of `width` neighbouring
 /// trajectories, row by row. Four rows at a time, so that the inner loop is a contiguous,
 /// vectorisable add that loads and stores the sums a quarter as often.

@@ -34,32 +34,29 @@ void LazyDifferenceMatrix::compare(int row, int begin, int end, float* out) {
 
 const float* LazyDifferenceMatrix::rawRow(int row, int begin, int end) {
   RowInterval& interval = rows_[static_cast<std::size_t>(row)];
-  if (interval.begin == interval.end) {
-    interval.origin = std::max(0, begin - kRoom);
-    interval.values.resize(static_cast<std::size_t>(std::min(columns(), end + kRoom) - interval.origin));
-    compare(row, begin, end, interval.values.data() + (begin - interval.origin));
+  if (interval.values.empty()) {  // Nothing known yet: an empty interval at the request's start.
+    interval.origin = begin;
     interval.begin = begin;
-    interval.end = end;
-  } else if (begin < interval.begin || end > interval.end) {
-    const int new_begin = std::min(begin, interval.begin);
-    const int new_end = std::max(end, interval.end);
-    const int capacity_end = interval.origin + static_cast<int>(interval.values.size());
-    if (new_begin < interval.origin || new_end > capacity_end) {
-      // Out of room: move the known values into a larger buffer, with room again on both sides.
-      const int origin = std::max(0, new_begin - kRoom);
-      std::vector<float> values(static_cast<std::size_t>(std::min(columns(), new_end + kRoom) - origin));
-      std::copy(interval.values.begin() + (interval.begin - interval.origin),
-                interval.values.begin() + (interval.end - interval.origin), values.begin() + (interval.begin - origin));
-      interval.values = std::move(values);
-      interval.origin = origin;
-    }
-    float* values = interval.values.data();  // values[c - origin] for column c.
-    compare(row, new_begin, interval.begin, values + (new_begin - interval.origin));
-    compare(row, interval.end, new_end, values + (interval.end - interval.origin));
-    interval.begin = new_begin;
-    interval.end = new_end;
+    interval.end = begin;
   }
-  return interval.values.data() + (begin - interval.origin);
+  const int new_begin = std::min(begin, interval.begin);
+  const int new_end = std::max(end, interval.end);
+  const int capacity_end = interval.origin + static_cast<int>(interval.values.size());
+  if (new_begin < interval.origin || new_end > capacity_end) {
+    // Out of room: move the known values into a larger buffer, with room again on both sides.
+    const int origin = std::max(0, new_begin - kRoom);
+    std::vector<float> values(static_cast<std::size_t>(std::min(columns(), new_end + kRoom) - origin));
+    std::copy(interval.values.begin() + (interval.begin - interval.origin),
+              interval.values.begin() + (interval.end - interval.origin), values.begin() + (interval.begin - origin));
+    interval.values = std::move(values);
+    interval.origin = origin;
+  }
+  float* values = interval.values.data();  // values[c - origin] for column c.
+  compare(row, new_begin, interval.begin, values + (new_begin - interval.origin));
+  compare(row, interval.end, new_end, values + (interval.end - interval.origin));
+  interval.begin = new_begin;
+  interval.end = new_end;
+  return values + (begin - interval.origin);
 }
 
 void LazyDifferenceMatrix::enhancedRow(int row, int begin, int end, float* out) {
