@@ -15,6 +15,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 
@@ -23,20 +24,8 @@ namespace {
 constexpr double kFramePeriod = 0.05;  // [s], 20 Hz as in the demo
 constexpr int kQueryLength = 80;       // the demo's queries: 80 frames from 60, 120, ..., 300
 
+using mrs_vpr::testing_support::imageMessage;
 using mrs_vpr::testing_support::MapInfoWatch;
-
-sensor_msgs::Image toImage(const cv::Mat& bgr, double stamp) {
-  sensor_msgs::Image message;
-  message.header.stamp = ros::Time(stamp);
-  message.header.frame_id = "camera";
-  message.height = static_cast<std::uint32_t>(bgr.rows);
-  message.width = static_cast<std::uint32_t>(bgr.cols);
-  message.encoding = "bgr8";
-  message.step = static_cast<std::uint32_t>(bgr.cols * 3);
-  message.data.resize(static_cast<std::size_t>(message.step) * bgr.rows);
-  bgr.copyTo(cv::Mat(bgr.rows, bgr.cols, CV_8UC3, message.data.data(), message.step));
-  return message;
-}
 
 /// What image_transport's compressed publisher sends for a bgr8 image.
 sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, const std::string& codec) {
@@ -90,7 +79,7 @@ class CompressedTransportTest : public ::testing::Test {
     waitForSubscriber(png);
     for (std::size_t i = 0; i < route_->reference.size(); ++i) {
       const double stamp = 1000.0 + static_cast<double>(i) * kFramePeriod;
-      raw.publish(toImage(route_->reference[i], stamp));
+      raw.publish(imageMessage(route_->reference[i], stamp));
       jpeg.publish(toCompressed(route_->reference[i], stamp, "jpeg"));
       png.publish(toCompressed(route_->reference[i], stamp, "png"));
       ros::WallDuration(0.002).sleep();
@@ -114,7 +103,7 @@ class CompressedTransportTest : public ::testing::Test {
   mrs_vpr::QuerySequence::Response query(const std::string& node, int first, const std::string& method) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + kQueryLength; ++i) {
-      srv.request.images.push_back(toImage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     ros::ServiceClient client = nh_.serviceClient<mrs_vpr::QuerySequence>(node + "/query");
@@ -217,7 +206,7 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   for (const cv::Size size : {cv::Size(4000, 3000), cv::Size(640, 480)}) {
     cv::Mat image(size, CV_8UC3);
     rng.fill(image, cv::RNG::UNIFORM, 0, 256);
-    frames.push_back(toImage(image, 0.0));
+    frames.push_back(imageMessage(image, 0.0));
   }
   int published = 0;
   for (int i = 0; i < 12; ++i) {  // 6 large frames, and 6 small ones between them

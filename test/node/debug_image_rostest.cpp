@@ -3,7 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -15,62 +14,17 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
+#include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/topic_inbox.hpp"
 
 namespace {
 
+using mrs_vpr::testing_support::imageMessage;
+using mrs_vpr::testing_support::TopicInbox;
+
 constexpr double kFramePeriod = 0.1;  // [s]
-
-/// Messages of a topic, collected by the spinner thread.
-template <typename Message>
-class Inbox {
- public:
-  Inbox(ros::NodeHandle& nh, const std::string& topic) : sub_(nh.subscribe(topic, 100, &Inbox::callback, this)) {}
-
-  /// Waits until the subscription is connected to a publisher: a message published before that is
-  /// never delivered.
-  bool waitConnected(double timeout = 10.0) const {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (sub_.getNumPublishers() == 0 && ros::ok() && ros::WallTime::now() < deadline) {
-      ros::WallDuration(0.02).sleep();
-    }
-    return sub_.getNumPublishers() > 0;
-  }
-
-  /// Waits until `count` messages arrived; returns them.
-  std::vector<Message> waitForCount(std::size_t count, double timeout = 10.0) {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (messages_.size() >= count) return messages_;
-      }
-      ros::WallDuration(0.02).sleep();
-    }
-    std::lock_guard<std::mutex> lock(mutex_);
-    return messages_;
-  }
-
-  void shutdown() { sub_.shutdown(); }
-
- private:
-  void callback(const Message& message) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    messages_.push_back(message);
-  }
-
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  std::vector<Message> messages_;
-};
-
-sensor_msgs::Image toMessage(const cv::Mat& bgr, double stamp) {
-  std_msgs::Header header;
-  header.stamp = ros::Time(stamp);
-  header.frame_id = "camera";
-  return *cv_bridge::CvImage(header, "bgr8", bgr).toImageMsg();
-}
 
 class DebugImageTest : public ::testing::Test {
  protected:
@@ -92,7 +46,7 @@ class DebugImageTest : public ::testing::Test {
       while (images.getNumSubscribers() < 1 && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
       ASSERT_GE(images.getNumSubscribers(), 1U);
       for (std::size_t i = 0; i < route_->reference.size(); ++i) {
-        images.publish(toMessage(route_->reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
+        images.publish(imageMessage(route_->reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
         ros::WallDuration(0.002).sleep();
       }
       ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 400; }, 20.0));
@@ -111,7 +65,7 @@ class DebugImageTest : public ::testing::Test {
   mrs_vpr::QuerySequence::Response query(int first, int count, const std::string& method) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(toMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     EXPECT_TRUE(query_.call(srv)) << "the service call itself failed";
@@ -146,7 +100,7 @@ TEST_F(DebugImageTest, NothingIsDrawnWithoutASubscriber) {
 }
 
 TEST_F(DebugImageTest, ASubscriberGetsOneImagePerAnswer) {
-  Inbox<sensor_msgs::Image> images(nh_, "mrs_vpr_debug/debug_image");
+  TopicInbox<sensor_msgs::Image> images(nh_, "mrs_vpr_debug/debug_image");
   ASSERT_TRUE(images.waitConnected());
   ros::WallDuration(0.3).sleep();  // the node's side of the connection, which it counts, may lag ours
 

@@ -8,12 +8,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <cv_bridge/cv_bridge.h>
 #include <ros/ros.h>
 #include <std_srvs/Trigger.h>
 
@@ -21,74 +19,20 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/topic_inbox.hpp"
 
 namespace {
+
+using mrs_vpr::testing_support::imageMessage;
+using mrs_vpr::testing_support::TopicInbox;
 
 constexpr int kTolerance = 5;          // frames
 constexpr double kReferenceStart = 1000.0;  // stamp of reference frame 0 [s]
 constexpr double kQueryStart = 5000.0;      // stamp of the first query frame played into the map [s]
 constexpr double kFramePeriod = 0.1;        // [s]
-
-/// Latest messages of a topic, collected by the spinner thread.
-template <typename Message>
-class Inbox {
- public:
-  Inbox(ros::NodeHandle& nh, const std::string& topic)
-      : sub_(nh.subscribe(topic, 100, &Inbox::callback, this)) {}
-
-  /// Waits until the subscription is connected to a publisher: a message published before that is
-  /// never delivered, and each test makes a new subscription.
-  bool waitConnected(double timeout = 10.0) const {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (sub_.getNumPublishers() == 0 && ros::ok() && ros::WallTime::now() < deadline) {
-      ros::WallDuration(0.02).sleep();
-    }
-    return sub_.getNumPublishers() > 0;
-  }
-
-  /// Waits until a message satisfies `predicate`; returns it (or a default message on timeout).
-  template <typename Predicate>
-  bool waitFor(Predicate predicate, Message& found, double timeout = 20.0) {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
-    while (ros::ok() && ros::WallTime::now() < deadline) {
-      {
-        std::lock_guard<std::mutex> lock(mutex_);
-        for (auto it = messages_.rbegin(); it != messages_.rend(); ++it) {
-          if (predicate(*it)) {
-            found = *it;
-            return true;
-          }
-        }
-      }
-      ros::WallDuration(0.02).sleep();
-    }
-    return false;
-  }
-
-  void clear() {
-    std::lock_guard<std::mutex> lock(mutex_);
-    messages_.clear();
-  }
-
- private:
-  void callback(const Message& message) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    messages_.push_back(message);
-  }
-
-  ros::Subscriber sub_;
-  std::mutex mutex_;
-  std::vector<Message> messages_;
-};
-
-sensor_msgs::Image toMessage(const cv::Mat& bgr, double stamp, const std::string& encoding = "bgr8") {
-  std_msgs::Header header;
-  header.stamp = ros::Time(stamp);
-  header.frame_id = "camera";
-  return *cv_bridge::CvImage(header, encoding, bgr).toImageMsg();
-}
 
 class NodeTest : public ::testing::Test {
  protected:
@@ -123,7 +67,7 @@ class NodeTest : public ::testing::Test {
     }
     ASSERT_GE(image_pub_.getNumSubscribers(), 2U);
     for (int i = begin; i < end; ++i) {
-      image_pub_.publish(toMessage(frames[static_cast<std::size_t>(i)], start + (i - begin) * kFramePeriod));
+      image_pub_.publish(imageMessage(frames[static_cast<std::size_t>(i)], start + (i - begin) * kFramePeriod));
       ros::WallDuration(0.002).sleep();
     }
     map_frames_ += static_cast<std::uint32_t>(end - begin);
@@ -147,7 +91,7 @@ class NodeTest : public ::testing::Test {
   mrs_vpr::QuerySequence explicitQuery(int first, int count, const std::string& method) const {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(toMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     return srv;
@@ -176,8 +120,8 @@ class NodeTest : public ::testing::Test {
   ros::ServiceClient query_;
   mrs_vpr::testing_support::MapInfoWatch map_info_{nh_, "mrs_vpr"};
   mrs_vpr::testing_support::MapInfoWatch auto_map_info_{nh_, "mrs_vpr_auto"};
-  Inbox<mrs_vpr::LoopClosure> loop_closures_{nh_, "mrs_vpr/loop_closure"};
-  Inbox<mrs_vpr::LoopClosure> auto_loop_closures_{nh_, "mrs_vpr_auto/loop_closure"};
+  TopicInbox<mrs_vpr::LoopClosure> loop_closures_{nh_, "mrs_vpr/loop_closure"};
+  TopicInbox<mrs_vpr::LoopClosure> auto_loop_closures_{nh_, "mrs_vpr_auto/loop_closure"};
 };
 
 mrs_vpr::SyntheticRoute* NodeTest::route_ = nullptr;
@@ -238,7 +182,7 @@ TEST_F(NodeTest, PlacesNotInTheMapAreAnsweredButNotAccepted) {
       SCOPED_TRACE(name + ", method '" + method + "'");
       mrs_vpr::QuerySequence srv;
       for (const cv::Mat& image : images) {
-        srv.request.images.push_back(toMessage(image, stamp, image.channels() == 1 ? "mono8" : "bgr8"));
+        srv.request.images.push_back(imageMessage(image, stamp, image.channels() == 1 ? "mono8" : "bgr8"));
         stamp += kFramePeriod;
       }
       srv.request.method = method;
@@ -280,12 +224,12 @@ TEST_F(NodeTest, BadRequestsAreReportedAndTheNodeKeepsServing) {
   expectFailure(zero_size, "empty image (0 x 0");
 
   auto float_image = explicitQuery(100, 20, "mrs");
-  float_image.request.images[5] = toMessage(cv::Mat(64, 128, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5)), 1.0, "32FC3");
+  float_image.request.images[5] = imageMessage(cv::Mat(64, 128, CV_32FC3, cv::Scalar(0.5, 0.5, 0.5)), 1.0, "32FC3");
   expectFailure(float_image, "images[5]");
   expectFailure(float_image, "unsupported encoding '32FC3'");
 
   auto bayer = explicitQuery(100, 20, "seqslam");
-  bayer.request.images[0] = toMessage(cv::Mat(64, 128, CV_8UC1, cv::Scalar(9)), 1.0, "bayer_rggb8");
+  bayer.request.images[0] = imageMessage(cv::Mat(64, 128, CV_8UC1, cv::Scalar(9)), 1.0, "bayer_rggb8");
   expectFailure(bayer, "unsupported encoding 'bayer_rggb8'");
 
   auto one_image = explicitQuery(100, 1, "mrs");
