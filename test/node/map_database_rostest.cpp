@@ -119,12 +119,9 @@ class NodeProcess {
   int status_ = 0;
 };
 
+using mrs_vpr::testing_support::fileContents;
 using mrs_vpr::testing_support::MapInfoWatch;
 
-std::string contents(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 class MapDatabaseNodeTest : public ::testing::Test {
  protected:
@@ -139,7 +136,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
     parameters.insert(parameters.end(), extra.begin(), extra.end());
     auto node = std::make_unique<NodeProcess>(name, parameters, path(name + ".log"));
     EXPECT_TRUE(ros::service::waitForService(node->service("query"), ros::Duration(30.0)))
-        << "the node did not start; its log:\n" << contents(path(name + ".log"));
+        << "the node did not start; its log:\n" << fileContents(path(name + ".log"));
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (image_pub_.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -239,7 +236,7 @@ TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) 
   }
   const std::string command = std::string(BUILD_MAP_PATH) + " --bag " + path("frames.bag") + " --topic " + kTopic +
                               " --output " + path("offline.db") + " > " + path("build_map.log") + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << contents(path("build_map.log"));
+  ASSERT_EQ(std::system(command.c_str()), 0) << fileContents(path("build_map.log"));
 
   auto node = startNode("mapper", path("node.db"));
   MapInfoWatch info(nh_, "/" + node->name());
@@ -273,12 +270,12 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   EXPECT_EQ(save.response.frames, 120U);
   EXPECT_EQ(storedFrames(path("snapshot.db")).size(), 120U);
   // Saving over a file is refused, naming it; the file stays as it was.
-  const std::string snapshot = contents(path("snapshot.db"));
+  const std::string snapshot = fileContents(path("snapshot.db"));
   ASSERT_TRUE(ros::service::call(node->service("save_map"), save));
   EXPECT_FALSE(save.response.success);
   EXPECT_NE(save.response.message.find(path("snapshot.db")), std::string::npos) << save.response.message;
   EXPECT_NE(save.response.message.find("exists"), std::string::npos) << save.response.message;
-  EXPECT_EQ(contents(path("snapshot.db")), snapshot);
+  EXPECT_EQ(fileContents(path("snapshot.db")), snapshot);
 
   // A file that is not a map: refused, naming it, and the map is kept.
   {
@@ -292,7 +289,7 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   EXPECT_NE(load.response.message.find(path("notes.db")), std::string::npos) << load.response.message;
   EXPECT_NE(load.response.message.find("not a database"), std::string::npos) << load.response.message;
   EXPECT_NE(load.response.message.find("kept"), std::string::npos) << load.response.message;
-  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+  EXPECT_EQ(fileContents(path("notes.db")), "my notes, not a map\n");
 
   std_srvs::Trigger reset;
   ASSERT_TRUE(ros::service::call(node->service("reset"), reset));
@@ -355,16 +352,16 @@ TEST_F(MapDatabaseNodeTest, AnUnusableDatabaseStopsTheNodeAtStartUpNamingIt) {
   }
   NodeProcess node("bad_db", {"database:=" + path("notes.db")}, path("bad_db.log"));
   EXPECT_EQ(node.waitForExit(30.0), 1);
-  const std::string log = contents(path("bad_db.log"));
+  const std::string log = fileContents(path("bad_db.log"));
   EXPECT_NE(log.find(path("notes.db")), std::string::npos) << log;
   EXPECT_NE(log.find("not a database"), std::string::npos) << log;
-  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+  EXPECT_EQ(fileContents(path("notes.db")), "my notes, not a map\n");
 
   // A database another node holds.
   auto owner = startNode("owner", path("map.db"));
   NodeProcess second("second", {"database:=" + path("map.db")}, path("second.log"));
   EXPECT_EQ(second.waitForExit(30.0), 1);
-  const std::string second_log = contents(path("second.log"));
+  const std::string second_log = fileContents(path("second.log"));
   EXPECT_NE(second_log.find("locked by another process"), std::string::npos) << second_log;
   EXPECT_TRUE(owner->running());
   EXPECT_EQ(owner->stop(), 0);

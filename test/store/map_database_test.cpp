@@ -20,6 +20,7 @@ namespace mrs_vpr {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::fileContents;
 
 /// A fresh folder under the system's temporary directory, removed when the test ends.
 class MapDatabaseTest : public ::testing::Test {
@@ -52,10 +53,6 @@ class MapDatabaseTest : public ::testing::Test {
     return "(opened)";
   }
 
-  static std::string contents(const std::string& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
 
   testing_support::TemporaryFolder folder_{"mrs_vpr_store_test"};
 };
@@ -145,7 +142,7 @@ TEST_F(MapDatabaseTest, AFileThatIsNotSqliteIsRefusedAndLeftUntouched) {
   const std::string message = openingError(path("notes.db"));
   EXPECT_NE(message.find(path("notes.db")), std::string::npos) << message;
   EXPECT_NE(message.find("not a database"), std::string::npos) << message;
-  EXPECT_EQ(contents(path("notes.db")), "my notes, not a map\n");
+  EXPECT_EQ(fileContents(path("notes.db")), "my notes, not a map\n");
 }
 
 TEST_F(MapDatabaseTest, AnotherSqliteDatabaseIsRefusedAndLeftUntouched) {
@@ -153,10 +150,10 @@ TEST_F(MapDatabaseTest, AnotherSqliteDatabaseIsRefusedAndLeftUntouched) {
   ASSERT_EQ(sqlite3_open(path("other.db").c_str(), &db), SQLITE_OK);
   sqlite3_exec(db, "CREATE TABLE recipes (name TEXT); INSERT INTO recipes VALUES ('bread')", nullptr, nullptr, nullptr);
   sqlite3_close(db);
-  const std::string before = contents(path("other.db"));
+  const std::string before = fileContents(path("other.db"));
   const std::string message = openingError(path("other.db"));
   EXPECT_NE(message.find("another kind"), std::string::npos) << message;
-  EXPECT_EQ(contents(path("other.db")), before);
+  EXPECT_EQ(fileContents(path("other.db")), before);
 }
 
 TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {

@@ -22,6 +22,7 @@ namespace mrs_vpr {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_support::fileContents;
 
 /// A small generated route, described once for every test.
 const SyntheticRoute& route() {
@@ -100,10 +101,6 @@ class PersistentMapTest : public ::testing::Test {
     return "(no error)";
   }
 
-  static std::string contents(const std::string& file) {
-    std::ifstream in(file, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  }
 
   /// A map database of reference frames [begin, end) at `file`, written by a PersistentMap.
   static void writeMap(const std::string& file, int begin, int end) {
@@ -185,7 +182,7 @@ TEST_F(PersistentMapTest, SaveNeverOverwritesAFile) {
   const std::string message = errorOf([&] { map.save(path("notes.db")); });
   EXPECT_NE(message.find(path("notes.db")), std::string::npos) << message;
   EXPECT_NE(message.find("exists"), std::string::npos) << message;
-  EXPECT_EQ(contents(path("notes.db")), "my notes\n");
+  EXPECT_EQ(fileContents(path("notes.db")), "my notes\n");
   const std::string no_folder = errorOf([&] { map.save(path("missing/map.db")); });
   EXPECT_NE(no_folder.find("no folder"), std::string::npos) << no_folder;
 }
@@ -250,11 +247,11 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
   };
   for (const auto& [file, problem] : cases) {
     SCOPED_TRACE(file);
-    const std::string before = contents(path(file));
+    const std::string before = fileContents(path(file));
     const std::string message = errorOf([&] { map.load(path(file)); });
     EXPECT_NE(message.find(path(file)), std::string::npos) << message;
     EXPECT_NE(message.find(problem), std::string::npos) << message;
-    if (file != "map.db") EXPECT_EQ(contents(path(file)), before) << "the file was changed";
+    if (file != "map.db") EXPECT_EQ(fileContents(path(file)), before) << "the file was changed";
     expectSameFrames(framesOf(recognizer), expectedFrames(0, 30));
   }
   map.commit();
@@ -272,14 +269,14 @@ TEST_F(PersistentMapTest, StartingOnABadDatabaseFailsNamingItAndLeavesItUntouche
   for (const auto& [file, problem] : std::vector<std::pair<std::string, std::string>>{
            {"notes.db", "not a database"}, {"truncated.db", "malformed"}, {"big.db", "more than max_frames"}}) {
     SCOPED_TRACE(file);
-    const std::string before = contents(path(file));
+    const std::string before = fileContents(path(file));
     RecognizerParams capacity;
     capacity.max_frames = 40;
     PlaceRecognizer recognizer(Parameters{}, capacity);
     const std::string message = errorOf([&] { PersistentMap map(recognizer, path(file), CommitPolicy{}); });
     EXPECT_NE(message.find(path(file)), std::string::npos) << message;
     EXPECT_NE(message.find(problem), std::string::npos) << message;
-    EXPECT_EQ(contents(path(file)), before);
+    EXPECT_EQ(fileContents(path(file)), before);
   }
   // A map held by a running owner.
   PlaceRecognizer first_recognizer;

@@ -3,6 +3,8 @@
 #include <stdlib.h>  // mkdtemp
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -32,6 +34,12 @@ class TemporaryFolder {
  private:
   std::filesystem::path root_;
 };
+
+/// The bytes of `file`; empty when it cannot be read.
+inline std::string fileContents(const std::string& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 }  // namespace testing_support
 }  // namespace mrs_vpr
