@@ -22,6 +22,16 @@ XmlRpcValue callerOnly() {
   return params;
 }
 
+/// The parameters of the master's register* calls: this node, the name registered, what it is
+/// (a topic's type, a service's address) and this node's XML-RPC address.
+XmlRpcValue registration(const std::string& name, const std::string& what, const std::string& caller_api) {
+  XmlRpcValue params = callerOnly();
+  params[1] = name;
+  params[2] = what;
+  params[3] = caller_api;
+  return params;
+}
+
 /// A call of the ROS master API; the payload, or std::runtime_error with the master's reason.
 XmlRpcValue callMaster(const std::string& method, const XmlRpcValue& params) {
   XmlRpcValue response;
@@ -133,26 +143,15 @@ std::vector<std::string> MasterWatch::registeredServices() const {
 }
 
 std::string MasterWatch::reregister() const {
-  const std::string caller = ros::this_node::getName();
   const std::string caller_api = ros::XMLRPCManager::instance()->getServerURI();
   int publications = 0;
   for (const auto& topic : topicsOf(callSelf("getPublications", callerOnly()))) {
-    XmlRpcValue params;
-    params[0] = caller;
-    params[1] = topic.first;
-    params[2] = topic.second;
-    params[3] = caller_api;
-    callMaster("registerPublisher", params);
+    callMaster("registerPublisher", registration(topic.first, topic.second, caller_api));
     ++publications;
   }
   int subscriptions = 0;
   for (const auto& topic : topicsOf(callSelf("getSubscriptions", callerOnly()))) {
-    XmlRpcValue params;
-    params[0] = caller;
-    params[1] = topic.first;
-    params[2] = topic.second;
-    params[3] = caller_api;
-    XmlRpcValue publishers = callMaster("registerSubscriber", params);
+    XmlRpcValue publishers = callMaster("registerSubscriber", registration(topic.first, topic.second, caller_api));
     // What roscpp does with the master's answer when it subscribes: connect to those publishers.
     XmlRpcValue update;
     update[0] = std::string("/master");
@@ -167,12 +166,7 @@ std::string MasterWatch::reregister() const {
                                   std::to_string(ros::ConnectionManager::instance()->getTCPPort());
   for (const std::string& service : services_) {
     if (!ros::ServiceManager::instance()->lookupServicePublication(service)) continue;  // since shut down
-    XmlRpcValue params;
-    params[0] = caller;
-    params[1] = service;
-    params[2] = service_api;
-    params[3] = caller_api;
-    callMaster("registerService", params);
+    callMaster("registerService", registration(service, service_api, caller_api));
     ++services;
   }
   return std::to_string(publications) + " publications, " + std::to_string(subscriptions) + " subscriptions and " +
