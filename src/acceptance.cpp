@@ -28,8 +28,8 @@ float costSpread(const std::vector<float>& costs) {
   return 1.4826F * medianOf(samples);
 }
 
-float distinctiveness(float best, float runner_up, float spread) {
-  if (!std::isfinite(best) || !std::isfinite(runner_up) || !(spread > 0.0F)) return 0.0F;
+float distinctiveness(float best, float runner_up, float spread, int rivals) {
+  if (!std::isfinite(best) || !std::isfinite(runner_up) || !(spread > 0.0F) || rivals < kMinRivalEnds) return 0.0F;
   return std::max(0.0F, (runner_up - best) / spread);
 }
 

@@ -85,9 +85,12 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
   const int half = exclusion / 2;
   float best = std::numeric_limits<float>::infinity();
   float runner_up = std::numeric_limits<float>::infinity();
+  int rivals = 0;
   for (int j = 0; j < columns; ++j) {
-    float& slot = std::abs(j - winner) > half ? runner_up : best;
+    const bool rival = std::abs(j - winner) > half;
+    float& slot = rival ? runner_up : best;
     slot = std::min(slot, cost_by_anchor[j]);
+    if (rival && std::isfinite(cost_by_anchor[j])) ++rivals;
   }
   match.reference_index = winner;
   match.sequence_difference = best;
@@ -95,7 +98,8 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
   match.score = (std::isfinite(best) && std::isfinite(runner_up) && runner_up > 0.0F)
                     ? std::clamp(best / runner_up, 0.0F, 1.0F)
                     : 1.0F;
-  match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor));
+  match.rivals = rivals;
+  match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor), rivals);
   return match;
 }
 

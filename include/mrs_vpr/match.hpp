@@ -15,6 +15,9 @@ struct Match {
    * means the same for every method, sequence length and map size (see acceptance.hpp).
    */
   float confidence = 0.0F;
+  /// Ends with a trajectory outside the answer's window: the wrong places the confidence was judged
+  /// against. Below kMinRivalEnds (acceptance.hpp) the confidence is 0: the map is too small to tell.
+  int rivals = 0;
   /// Whether the answer passes the acceptance rule: a match was found and confidence >=
   /// SequenceParams::accept_threshold. Only accepted answers should be used as loop closures.
   bool accepted = false;

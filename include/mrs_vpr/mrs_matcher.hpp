@@ -33,9 +33,10 @@ class MrsMatcher : public SequenceMatcher {
   std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const override;
   std::string name() const override { return "mrs"; }
 
-  /// Levels actually used for a test sequence of `query_length` frames (l_max capped so that the
-  /// coarsest level keeps min_coarse_frames frames).
-  int levelsFor(int query_length) const;
+  /// Levels actually used for a test sequence of `query_length` frames in a reference of
+  /// `reference_count`: l_max, capped so that the coarsest level keeps min_coarse_frames frames of
+  /// the sequence and kMinRivalEnds ends outside the answer's window, on which its confidence rests.
+  int levelsFor(int query_length, int reference_count) const;
 
  private:
   MrsParams mrs_;

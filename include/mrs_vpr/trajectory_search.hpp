@@ -46,7 +46,8 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
 
 /// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
-/// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all).
+/// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all), 0
+/// with fewer than kMinRivalEnds finite ends farther away.
 Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion);
 
 /// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than

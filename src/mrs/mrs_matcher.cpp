@@ -45,6 +45,19 @@ void coarseDifferences(SequenceView query_cells, SequenceView reference, const S
   }
 }
 
+/// Hypotheses closer than this (in cells of the coarsest level, of stride 2^levels) would settle on
+/// the same end.
+int hypothesisSeparation(const SequenceParams& sequence, const MrsParams& mrs, int levels) {
+  return std::max(2 * mrs.index_shift + 1, sequence.match_exclusion / (1 << levels));
+}
+
+/// The rival of the answer on the coarsest level is another place: an end outside the answer's
+/// basin, which on pooled cells is wider than match_exclusion (the hypotheses' separation). At full
+/// resolution it is match_exclusion, as for the brute force.
+int rivalExclusion(const SequenceParams& sequence, const MrsParams& mrs, int levels) {
+  return levels == 0 ? sequence.match_exclusion : 2 * hypothesisSeparation(sequence, mrs, levels);
+}
+
 /// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
 class CoarseToFineSearch {
  public:
@@ -245,15 +258,8 @@ class CoarseToFineSearch {
     return trace;
   }
 
-  /// The rival of the answer on the coarsest level is another place: an end outside the answer's
-  /// basin, which on pooled cells is wider than match_exclusion (the hypotheses' separation). At full
-  /// resolution it is match_exclusion, as for the brute force.
-  int rivalExclusion() const { return levels_ == 0 ? sequence_.match_exclusion : 2 * hypothesisSeparation(); }
-
-  /// Hypotheses closer than this (in cells of the coarsest level) would settle on the same end.
-  int hypothesisSeparation() const {
-    return std::max(2 * mrs_.index_shift + 1, sequence_.match_exclusion / (1 << levels_));
-  }
+  int rivalExclusion() const { return mrs_vpr::rivalExclusion(sequence_, mrs_, levels_); }
+  int hypothesisSeparation() const { return mrs_vpr::hypothesisSeparation(sequence_, mrs_, levels_); }
 
   /// Algorithm 2 for every particle: move to the best end within `radius`. Particles where no
   /// trajectory fits are dropped (they carry no weight). Returns whether any particle moved.
@@ -320,6 +326,7 @@ class CoarseToFineSearch {
     const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion());
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
+    result_.rivals = coarse.rivals;
     applyAcceptance(result_, sequence_.accept_threshold);
     return result_;
   }
@@ -350,10 +357,19 @@ MrsMatcher::MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs, con
   mrs_.validate();
 }
 
-int MrsMatcher::levelsFor(int query_length) const {
-  // The paper's l_max = 4 failed with ~19 coarse frames: never let the coarsest level get too short.
+int MrsMatcher::levelsFor(int query_length, int reference_count) const {
+  const SequenceRows rows = wholeSequenceRows(query_length, sequence_.alignment);
+  const double slowest = velocities(sequence_).front();
   int levels = mrs_.levels;
-  while (levels > 0 && (query_length - 1) / (1 << levels) + 1 < mrs_.min_coarse_frames) --levels;
+  for (; levels > 0; --levels) {
+    // The paper's l_max = 4 failed with ~19 coarse frames: never let the coarsest level get too short.
+    if ((query_length - 1) / (1 << levels) + 1 < mrs_.min_coarse_frames) continue;
+    // The answer's confidence is read on the coarsest level's table of ends, so that table must hold
+    // enough rivals; a small map is searched at a finer stride instead.
+    const SamplingLevel coarsest = SamplingLevel::make(1 << levels, rows, reference_count, slowest);
+    const int window = 2 * (rivalExclusion(sequence_, mrs_, levels) / 2) + 1;
+    if (coarsest.highest_end - coarsest.lowest_end + 1 - window >= kMinRivalEnds) break;
+  }
   return levels;
 }
 
@@ -362,13 +378,15 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query) const { retu
 std::vector<Match> MrsMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
   // Without a coarser level MRS scores every end at full resolution, as the brute force does; the
   // brute force's per-frame path computes the difference matrix once for all frames.
-  if (levelsFor(sequence_.sequence_length) == 0) return SeqSlamMatcher(sequence_).matchEveryFrame(reference, query);
+  if (levelsFor(sequence_.sequence_length, reference.count) == 0) {
+    return SeqSlamMatcher(sequence_).matchEveryFrame(reference, query);
+  }
   return SequenceMatcher::matchEveryFrame(reference, query);
 }
 
 Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);
-  const int levels = levelsFor(query.count);
+  const int levels = levelsFor(query.count, reference.count);
   if (levels > 0) frequencies_.requireDescriptorsOf(reference);
   return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment), levels, sequence_,
                             mrs_, frequencies_)

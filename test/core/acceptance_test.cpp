@@ -40,10 +40,16 @@ TEST(CostSpread, IsZeroWithoutEnoughFiniteCosts) {
 }
 
 TEST(Distinctiveness, IsTheGapInSpreads) {
-  EXPECT_FLOAT_EQ(distinctiveness(1.0F, 4.0F, 0.5F), 6.0F);
-  EXPECT_EQ(distinctiveness(1.0F, kInf, 0.5F), 0.0F);  // No rival: nothing to be sure about.
-  EXPECT_EQ(distinctiveness(1.0F, 4.0F, 0.0F), 0.0F);  // No noise scale.
-  EXPECT_EQ(distinctiveness(2.0F, 1.0F, 0.5F), 0.0F);  // A rival below the answer.
+  EXPECT_FLOAT_EQ(distinctiveness(1.0F, 4.0F, 0.5F, kMinRivalEnds), 6.0F);
+  EXPECT_EQ(distinctiveness(1.0F, kInf, 0.5F, kMinRivalEnds), 0.0F);  // No rival: nothing to be sure about.
+  EXPECT_EQ(distinctiveness(1.0F, 4.0F, 0.0F, kMinRivalEnds), 0.0F);  // No noise scale.
+  EXPECT_EQ(distinctiveness(2.0F, 1.0F, 0.5F, kMinRivalEnds), 0.0F);  // A rival below the answer.
+}
+
+TEST(Distinctiveness, IsZeroAmongTooFewRivals) {
+  // The least bad of a few wrong places can stand out by many spreads by chance.
+  EXPECT_EQ(distinctiveness(1.0F, 4.0F, 0.5F, kMinRivalEnds - 1), 0.0F);
+  EXPECT_EQ(distinctiveness(1.0F, 400.0F, 0.5F, 0), 0.0F);
 }
 
 TEST(ApplyAcceptance, AcceptsAFoundMatchAtTheThreshold) {

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -88,14 +89,14 @@ TEST(WholeSequenceRows, AnchorsAtTheNewestFrameOrAtCountOverTwo) {
 
 TEST(SearchTrajectories, FindsAPlantedCausalTrajectoryAndItsVelocity) {
   const SequenceRows rows{0, 9, 9};
-  const cv::Mat matrix = plantedMatrix(10, 60, rows, 37, 0.9);
+  const cv::Mat matrix = plantedMatrix(10, 160, rows, 37, 0.9);
   const SequenceParams params;
   const Match match = searchTrajectories(matrix, rows, params);
   EXPECT_EQ(match.reference_index, 37);
   EXPECT_FLOAT_EQ(match.sequence_difference, 0.0F);
   EXPECT_FLOAT_EQ(match.score, 0.0F);
   EXPECT_GT(match.confidence, 3.0F);  // A planted path of zeros stands far out of the noise.
-  EXPECT_EQ(match.comparisons, 10 * 60);
+  EXPECT_EQ(match.comparisons, 10 * 160);
   const AnchorCosts costs = costsByAnchor(matrix, rows, velocities(params));
   EXPECT_FLOAT_EQ(costs.cost[37], 0.0F);
   EXPECT_FLOAT_EQ(costs.velocity[37], 0.9F);
@@ -160,8 +161,8 @@ TEST(ScoreFromCosts, ScoreIsBestOverRunnerUpOutsideHalfTheExclusion) {
   EXPECT_EQ(match.reference_index, 2);
   EXPECT_FLOAT_EQ(match.sequence_difference, 1.0F);
   EXPECT_FLOAT_EQ(match.score, 0.5F);
-  // Runner-up 2 (index 4); the costs' median is 2 and their median absolute deviation 1.
-  EXPECT_FLOAT_EQ(match.confidence, (2.0F - 1.0F) / 1.4826F);
+  // Three rivals are too few to tell a place from chance (see kMinRivalEnds).
+  EXPECT_FLOAT_EQ(match.confidence, 0.0F);
   // Without exclusion the neighbour is the runner-up.
   EXPECT_FLOAT_EQ(scoreFromCosts(costs, 0).score, 1.0F / 1.2F);
 }
@@ -175,6 +176,35 @@ TEST(ScoreFromCosts, ExclusionBoundaryIsHalfTheWindow) {
   EXPECT_EQ(match.reference_index, 10);
   EXPECT_FLOAT_EQ(match.score, 0.25F);
   // Most costs are equal: their spread is 0 and nothing can be told apart from the noise.
+  EXPECT_FLOAT_EQ(match.confidence, 0.0F);
+}
+
+/// kMinRivalEnds + 3 ends of costs 10..14; end 1 costs 1, so that ends 0..2 are the answer's window
+/// at exclusion 2 and every other end is a rival.
+std::vector<float> tableWithDistinctEnd(int rivals) {
+  std::vector<float> costs(static_cast<std::size_t>(rivals) + 3);
+  for (std::size_t j = 0; j < costs.size(); ++j) costs[j] = 10.0F + static_cast<float>(j % 5);
+  costs[1] = 1.0F;
+  return costs;
+}
+
+TEST(ScoreFromCosts, ConfidenceIsTheGapInSpreadsOnceThereAreEnoughRivals) {
+  const std::vector<float> costs = tableWithDistinctEnd(kMinRivalEnds);
+  const Match match = scoreFromCosts(costs, 2);
+  EXPECT_EQ(match.reference_index, 1);
+  EXPECT_EQ(match.rivals, kMinRivalEnds);
+  // Runner-up 10 (end 5).
+  EXPECT_FLOAT_EQ(match.confidence, (10.0F - 1.0F) / costSpread(costs));
+  EXPECT_GT(match.confidence, 3.0F);
+  // One rival fewer and the same gap means nothing.
+  EXPECT_FLOAT_EQ(scoreFromCosts(tableWithDistinctEnd(kMinRivalEnds - 1), 2).confidence, 0.0F);
+}
+
+TEST(ScoreFromCosts, EndsWithoutATrajectoryAreNoRivals) {
+  std::vector<float> costs = tableWithDistinctEnd(kMinRivalEnds);
+  costs.back() = kInf;
+  const Match match = scoreFromCosts(costs, 2);
+  EXPECT_EQ(match.rivals, kMinRivalEnds - 1);
   EXPECT_FLOAT_EQ(match.confidence, 0.0F);
 }
 
@@ -197,8 +227,7 @@ TEST(ScoreAround, ScoresAGivenWinner) {
   EXPECT_FLOAT_EQ(match.score, 1.0F);  // 2 / 1, clamped.
   const Match good = scoreAround(costs, 6, 2);
   EXPECT_FLOAT_EQ(good.score, 0.5F);  // 1 / 2.
-  // Median 4, absolute deviations {0, 1, 2, 4, 4, 4, 3}: median 3.
-  EXPECT_FLOAT_EQ(good.confidence, (2.0F - 1.0F) / (1.4826F * 3.0F));
+  EXPECT_FLOAT_EQ(good.confidence, 0.0F);  // Five rivals: too few.
   EXPECT_EQ(scoreAround(costs, 7, 2).reference_index, -1);
   EXPECT_EQ(scoreAround(costs, -1, 2).reference_index, -1);
 }

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
@@ -44,19 +45,30 @@ DescriptorSequence withKeptCells(const DescriptorSequence& reference, const MrsP
 
 TEST(MrsMatcher, LevelsForKeepsEnoughCoarseFrames) {
   const MrsMatcher search(SequenceParams{}, MrsParams{});  // levels 3, min_coarse_frames 64
-  EXPECT_EQ(search.levelsFor(10), 0);
-  EXPECT_EQ(search.levelsFor(126), 0);  // 63 cells at stride 2: too few ...
-  EXPECT_EQ(search.levelsFor(127), 1);  // ... 64 cells at stride 2 (frames 0, 2, ..., 126).
-  EXPECT_EQ(search.levelsFor(200), 1);  // 50 cells at stride 4: too few.
-  EXPECT_EQ(search.levelsFor(252), 1);  // 63 cells at stride 4 ...
-  EXPECT_EQ(search.levelsFor(253), 2);  // ... 64.
-  EXPECT_EQ(search.levelsFor(300), 2);  // 75 at stride 4, 38 at stride 8.
-  EXPECT_EQ(search.levelsFor(505), 3);  // 64 at stride 8.
-  EXPECT_EQ(search.levelsFor(5000), 3);  // Never more than mrs/levels.
+  constexpr int kLargeMap = 100000;
+  EXPECT_EQ(search.levelsFor(10, kLargeMap), 0);
+  EXPECT_EQ(search.levelsFor(126, kLargeMap), 0);  // 63 cells at stride 2: too few ...
+  EXPECT_EQ(search.levelsFor(127, kLargeMap), 1);  // ... 64 cells at stride 2 (frames 0, 2, ..., 126).
+  EXPECT_EQ(search.levelsFor(200, kLargeMap), 1);  // 50 cells at stride 4: too few.
+  EXPECT_EQ(search.levelsFor(252, kLargeMap), 1);  // 63 cells at stride 4 ...
+  EXPECT_EQ(search.levelsFor(253, kLargeMap), 2);  // ... 64.
+  EXPECT_EQ(search.levelsFor(300, kLargeMap), 2);  // 75 at stride 4, 38 at stride 8.
+  EXPECT_EQ(search.levelsFor(505, kLargeMap), 3);  // 64 at stride 8.
+  EXPECT_EQ(search.levelsFor(5000, kLargeMap), 3);  // Never more than mrs/levels.
   MrsParams fewer;
   fewer.min_coarse_frames = 10;
   fewer.levels = 5;
-  EXPECT_EQ(MrsMatcher(SequenceParams{}, fewer).levelsFor(100), 3);  // 13 cells at stride 8, 7 at 16.
+  EXPECT_EQ(MrsMatcher(SequenceParams{}, fewer).levelsFor(100, kLargeMap), 3);  // 13 cells at stride 8, 7 at 16.
+}
+
+TEST(MrsMatcher, LevelsForKeepsEnoughRivalEndsOnTheCoarsestLevel) {
+  // The confidence is read on the coarsest level's ends, so a small map gets a finer one. At N = 300
+  // and stride 4 the trajectories of the slowest velocity end at cells 59 (frame 236) and beyond,
+  // and the answer's window takes 11 cells: 100 rivals need cells 59..169, a map of 674 frames.
+  const MrsMatcher search(SequenceParams{}, MrsParams{});
+  EXPECT_EQ(search.levelsFor(300, 674), 2);
+  EXPECT_EQ(search.levelsFor(300, 673), 1);  // 99 rivals at stride 4; stride 2 has enough.
+  EXPECT_EQ(search.levelsFor(300, 300), 0);  // Not enough at any stride: the brute force's search.
 }
 
 TEST(MrsMatcher, RecoversThePlantedAlignmentOfGlobalQueries) {
@@ -284,12 +296,32 @@ int rankOf(const std::vector<int>& minima, int truth, int stride) {
   return -1;
 }
 
+TEST(MrsMatcher, DescendsTwoLevelsOnALongReference) {
+  // The standard route is too short for two levels at N = 300 (too few rival ends at stride 4).
+  const auto& route = longRoute();
+  const Parameters params = globalSearchParams();
+  const MrsMatcher search(params.sequence, params.mrs);
+  ASSERT_EQ(search.levelsFor(300, route.reference.size()), 2);
+  std::vector<MrsLevelTrace> trace;
+  const Match match = search.match(route.reference.view(), route.query.view(0, 300), &trace);
+  ASSERT_EQ(trace.size(), 3U);
+  EXPECT_EQ(trace[0].stride, 4);
+  EXPECT_EQ(trace[1].stride, 2);
+  EXPECT_EQ(trace[2].stride, 1);
+  const int truth = route.query_to_reference[299];
+  EXPECT_TRUE(within(match.reference_index, truth, 3)) << match.reference_index << " vs " << truth;
+  EXPECT_TRUE(match.accepted) << "confidence " << match.confidence;
+  // The rivals are the coarsest level's cells outside the answer's window.
+  EXPECT_GE(match.rivals, kMinRivalEnds);
+  EXPECT_LT(match.rivals, route.reference.size() / 4);
+}
+
 TEST(MrsMatcher, TraceRecordsEveryLevelCoarsestFirstWithDistinctTableMinima) {
   const auto& route = standardRoute();
   const Parameters params = globalSearchParams();
   const MrsMatcher search(params.sequence, params.mrs);
   for (int length : {150, 200, 300}) {
-    const int levels = search.levelsFor(length);
+    const int levels = search.levelsFor(length, route.reference.size());
     ASSERT_GT(levels, 0) << "N = " << length;
     // The separation of the coarse minima, in cells of the coarsest level (see hypothesisSeparation).
     const int separation = std::max(2 * params.mrs.index_shift + 1, params.sequence.match_exclusion >> levels);
@@ -420,7 +452,7 @@ TEST(MrsMatcher, MoreHypothesesRecoverATruthTheCoarseTableRanksSecond) {
   const SequenceView query = route.query.view(start, end + 1);
 
   Parameters params = globalSearchParams();
-  ASSERT_EQ(MrsMatcher(params.sequence, params.mrs).levelsFor(length), 1);
+  ASSERT_EQ(MrsMatcher(params.sequence, params.mrs).levelsFor(length, reference.size()), 1);
   params.mrs.hypotheses = 8;
   std::vector<MrsLevelTrace> trace;
   const Match several = MrsMatcher(params.sequence, params.mrs).match(reference.view(), query, &trace);
@@ -453,7 +485,7 @@ TEST(MrsMatcher, PerFrameWithoutCoarserLevelsEqualsTheBruteForceFrameByFrame) {
       params.sequence.sequence_length = length;
       params.sequence.alignment = alignment;
       const MrsMatcher mrs(params.sequence, params.mrs);
-      ASSERT_EQ(mrs.levelsFor(length), 0);
+      ASSERT_EQ(mrs.levelsFor(length, route.reference.size()), 0);
       const std::vector<Match> fast = mrs.matchEveryFrame(route.reference.view(), query);
       const std::vector<Match> brute = SeqSlamMatcher(params.sequence).matchEveryFrame(route.reference.view(), query);
       ASSERT_EQ(fast.size(), brute.size());
