@@ -4,9 +4,11 @@
 #include <chrono>
 #include <exception>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 
@@ -19,6 +21,18 @@ constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about b
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
 
 ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) : ros::Time(); }
+
+/// The service's message for an answer: accepted, or why not.
+std::string verdict(const Match& match) {
+  if (match.reference_index < 0) return "no match found";
+  if (match.accepted) return "accepted";
+  if (match.rivals < kMinRivalEnds) {
+    return "not accepted: the map holds " + std::to_string(match.rivals) +
+           " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
+           " to tell a place from chance";
+  }
+  return "not accepted: confidence below ~sequence/accept_threshold";
+}
 
 }  // namespace
 
@@ -272,9 +286,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.confidence = match.confidence;
   response.reference_stamp = toRosTime(answered.reference_stamp);
   response.accepted = match.accepted;
-  response.message = match.reference_index >= 0
-                         ? (response.accepted ? "accepted" : "not accepted: confidence below ~sequence/accept_threshold")
-                         : "no match found";
+  response.message = verdict(match);
   return answered;
 }
 

@@ -303,6 +303,31 @@ TEST_F(NodeTest, ResetEmptiesTheMap) {
   expectFailure(srv, "reference map is empty");
 }
 
+TEST_F(NodeTest, AMapTooSmallToJudgeAnswersButSaysWhyNothingIsAccepted) {
+  // After the reset: 40 frames, so a 10-frame sequence has at most 22 ends outside its answer's
+  // window, too few wrong places to tell a true one from chance.
+  constexpr int kFrames = 40;
+  for (int i = 0; i < kFrames; ++i) {
+    image_pub_.publish(imageMessage(route_->reference[static_cast<std::size_t>(i)], 30000.0 + i * kFramePeriod));
+    ros::WallDuration(0.002).sleep();
+  }
+  ASSERT_TRUE(map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == kFrames; }, 20.0));
+  for (const std::string method : {"mrs", "seqslam"}) {
+    SCOPED_TRACE(method);
+    mrs_vpr::QuerySequence srv;
+    for (int i = 20; i < 30; ++i) {  // Frames of the map itself: the answer is right.
+      srv.request.images.push_back(imageMessage(route_->reference[static_cast<std::size_t>(i)], 31000.0 + i));
+    }
+    srv.request.method = method;
+    const auto response = call(srv);
+    ASSERT_TRUE(response.success) << response.message;
+    EXPECT_NEAR(response.reference_index, 29, 1);
+    EXPECT_FALSE(response.accepted);
+    EXPECT_FLOAT_EQ(response.confidence, 0.0F);
+    EXPECT_NE(response.message.find("ends outside the answer's window"), std::string::npos) << response.message;
+  }
+}
+
 /// Runs a command, returns its exit status and fills `output` with stdout and stderr.
 int run(const std::string& command, std::string& output) {
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
