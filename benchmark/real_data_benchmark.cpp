@@ -7,7 +7,10 @@
 //   - known-ground queries from winter (global protocol, N = 100, 200, 300; per-frame, ds = 10, 50);
 //   - out-of-map queries: winter frames of one half of the route against a reference built from the
 //     other half only (its summer frames and the same kinds of distractors), so every accepted
-//     answer is a false loop closure.
+//     answer is a false loop closure;
+//   - small maps (20 to 300 frames, as a robot's map is when it starts), known ground and out of the map;
+//   - the node's continuous mode on one traversal (summer, then the part again in winter), its map
+//     growing from empty.
 // The route is split in two parts, "tune" (first half) and "check" (second half): design choices are
 // made on one and reported on the other (--part). Both methods answer the same queries in one run.
 //
@@ -39,6 +42,7 @@
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
@@ -411,6 +415,102 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, c
   }
 }
 
+/// Summer frames [begin, end) as a map of their own: a map as small as a robot's when it starts.
+Reference stretchOf(const DescriptorSequence& summer, int begin, int end) {
+  Reference stretch{"stretch", DescriptorSequence(summer.descriptorSize()), {}};
+  for (int frame = begin; frame < end; ++frame) {
+    const cv::Mat descriptor(1, summer.descriptorSize(), CV_8UC1, const_cast<std::uint8_t*>(summer.descriptor(frame)));
+    stretch.descriptors.append(descriptor);
+    stretch.route_frame.push_back(frame);
+  }
+  return stretch;
+}
+
+/// Maps of a few to a few hundred frames: kStretches stretches of the summer frames of each size.
+/// Known ground: stretches of the reported part, queried by the same stretch's winter frames. Out of
+/// the map: stretches of the other part, queried by the whole reported part.
+void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
+                  const Options& options, int part_begin, int part_end, int other_begin, int other_end,
+                  bool out_of_map, Report& report) {
+  constexpr int kStretches = 3;
+  const auto stretchBegin = [](int low, int high, int size, int i) {
+    return low + i * (high - low - size) / (kStretches - 1);
+  };
+  for (int length : {10, 50}) {
+    mrs_vpr::Parameters per_frame = params;
+    per_frame.sequence.sequence_length = length;
+    per_frame.sequence.velocity_step = 0.1;
+    for (int size : {20, 50, 100, 150, 200, 300}) {
+      if (size <= length) continue;
+      const std::string setting = " M=" + std::to_string(size) + " ds=" + std::to_string(length);
+      for (const std::string& method : options.methods) {
+        const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+        std::vector<QueryRecord> known;
+        std::vector<QueryRecord> unknown;
+        for (int i = 0; i < kStretches; ++i) {
+          const int begin = stretchBegin(part_begin, part_end, size, i);
+          const auto records =
+              runPerFrame(*matcher, stretchOf(summer, begin, begin + size), winter, begin, begin + size, false);
+          known.insert(known.end(), records.begin(), records.end());
+          if (!out_of_map) continue;
+          const int other = stretchBegin(other_begin, other_end, size, i);
+          const auto wrong =
+              runPerFrame(*matcher, stretchOf(summer, other, other + size), winter, part_begin, part_end, true);
+          unknown.insert(unknown.end(), wrong.begin(), wrong.end());
+        }
+        report.row("small maps" + setting, method, mrs_vpr::summarise(known, 2), {"per-frame", false, size, length});
+        if (!out_of_map) continue;
+        report.row("out-of-map small maps" + setting, method, mrs_vpr::summarise(unknown, 2),
+                   {"per-frame", true, size, length});
+      }
+    }
+  }
+}
+
+/// The node's continuous mode on one traversal: a robot drives the whole route in summer, then the
+/// reported part again in winter, and after every frame asks where its newest `length` frames lie
+/// among the older ones (PlaceRecognizer::matchRecent, the node's default recent_exclusion). On the
+/// first traversal no place comes back, so every accepted answer is a false loop closure; on the
+/// second, the summer frame of the same place is the truth. The map starts empty and grows.
+void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& winter,
+                   const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end,
+                   Report& report) {
+  constexpr int kLength = 10;  // The node's auto_query_frames default: sequence/sequence_length.
+  mrs_vpr::Parameters continuous = params;
+  continuous.sequence.sequence_length = kLength;
+  continuous.sequence.velocity_step = 0.1;
+  const int route = summer.size();
+  for (const std::string& method : options.methods) {
+    mrs_vpr::PlaceRecognizer recognizer(continuous);
+    const int first_query = 2 * kLength + recognizer.recognizerParameters().recent_exclusion;
+    std::vector<QueryRecord> first_traversal;
+    std::vector<QueryRecord> revisit;
+    const int frames = route + part_end - part_begin;
+    for (int t = 0; t < frames; ++t) {
+      const bool second = t >= route;
+      const int route_frame = second ? part_begin + t - route : t;
+      recognizer.addDescriptor(cv::Mat(1, summer.descriptorSize(), CV_8UC1,
+                                       const_cast<std::uint8_t*>((second ? winter : summer).descriptor(route_frame))));
+      if (t + 1 < first_query) continue;
+      const auto start = std::chrono::steady_clock::now();
+      const mrs_vpr::PlaceAnswer answer = recognizer.matchRecent(kLength, method);
+      QueryRecord record;
+      record.query_index = t;
+      if (second) record.true_indices = {route_frame};
+      record.predicted_index = answer.match.reference_index;
+      record.score = answer.match.score;
+      record.confidence = answer.match.confidence;
+      record.accepted = answer.match.accepted;
+      record.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      (second ? revisit : first_traversal).push_back(record);
+    }
+    report.row("continuous, first traversal ds=10", method, mrs_vpr::summarise(first_traversal, 2),
+               {"continuous", true, route, kLength});
+    report.row("continuous, revisit in winter ds=10", method, mrs_vpr::summarise(revisit, 2),
+               {"continuous", false, route, kLength});
+  }
+}
+
 /// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
 /// out-of-map queries share no frame with the other part's reference.
 std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
@@ -519,7 +619,12 @@ int run(int argc, char** argv) {
       }
     }
   }
-  if (options.per_frame) runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end, report);
+  if (options.per_frame) {
+    runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end, report);
+    const DescriptorSequence summer = describe(frames.summer, extractor);
+    runSmallMaps(summer, winter, params, options, part_begin, part_end, other_begin, other_end, out_of_map, report);
+    runContinuous(summer, winter, params, options, part_begin, part_end, report);
+  }
   report.write(options);
   return 0;
 }
