@@ -27,6 +27,27 @@ class MapDatabaseTest : public ::testing::Test {
  protected:
   std::string path(const std::string& name) const { return folder_.path(name); }
 
+  /// The rows of `sql` run on the database file `file`, opened read-only with SQLite itself; no
+  /// rows (and a failure) when it cannot be opened.
+  static std::vector<std::vector<std::string>> rowsOf(const std::string& file, const char* sql) {
+    std::vector<std::vector<std::string>> rows;
+    sqlite3* db = nullptr;
+    const int opened = sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+    EXPECT_EQ(opened, SQLITE_OK) << file;
+    if (opened == SQLITE_OK) {
+      sqlite3_exec(
+          db, sql,
+          [](void* out, int columns, char** values, char**) {
+            std::vector<std::string>& row = static_cast<std::vector<std::vector<std::string>>*>(out)->emplace_back();
+            for (int c = 0; c < columns; ++c) row.emplace_back(values[c] != nullptr ? values[c] : "");  // NULL: "".
+            return 0;
+          },
+          &rows, nullptr);
+    }
+    sqlite3_close(db);
+    return rows;
+  }
+
   /// Frames whose descriptor bytes, stamps and ids all differ.
   static std::vector<StoredFrame> frames(int count, int first = 0) {
     std::vector<StoredFrame> result;
@@ -84,34 +105,16 @@ TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
     MapDatabase database(path("map.db"), DescriptorParams{});
     database.append(frames(1000));
   }
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open_v2(path("map.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-  int page_size = 0;
-  sqlite3_exec(
-      db, "PRAGMA page_size",
-      [](void* out, int, char** values, char**) {
-        *static_cast<int*>(out) = std::atoi(values[0]);
-        return 0;
-      },
-      &page_size, nullptr);
-  sqlite3_close(db);
-  EXPECT_EQ(page_size, MapDatabase::kPageSize);
+  const auto page_size = rowsOf(path("map.db"), "PRAGMA page_size");
+  ASSERT_EQ(page_size.size(), 1U);
+  EXPECT_EQ(std::atoi(page_size[0][0].c_str()), MapDatabase::kPageSize);
   EXPECT_LT(fs::file_size(path("map.db")), 1000 * 2048 * 125 / 100);  // 4 KiB pages: 200%
 }
 
 TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), DescriptorParams{}); }
-  sqlite3* db = nullptr;
-  ASSERT_EQ(sqlite3_open_v2(path("map.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
   std::map<std::string, std::string> metadata;
-  sqlite3_exec(
-      db, "SELECT key, value FROM metadata",
-      [](void* out, int, char** values, char**) {
-        (*static_cast<std::map<std::string, std::string>*>(out))[values[0]] = values[1];
-        return 0;
-      },
-      &metadata, nullptr);
-  sqlite3_close(db);
+  for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
   EXPECT_EQ(metadata["format_version"], "1");
   EXPECT_EQ(metadata["image_width"], "64");
   EXPECT_EQ(metadata["image_height"], "32");
@@ -228,18 +231,9 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
         ++i;
       });
     }  // Closed: it holds the map exclusively while open.
-    sqlite3* db = nullptr;
-    ASSERT_EQ(sqlite3_open_v2(file.c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
-    std::string integrity;
-    sqlite3_exec(
-        db, "PRAGMA integrity_check",
-        [](void* out, int, char** values, char**) {
-          *static_cast<std::string*>(out) = values[0];
-          return 0;
-        },
-        &integrity, nullptr);
-    sqlite3_close(db);
-    EXPECT_EQ(integrity, "ok");
+    const auto integrity = rowsOf(file, "PRAGMA integrity_check");
+    ASSERT_EQ(integrity.size(), 1U);
+    EXPECT_EQ(integrity[0][0], "ok");
   }
 }
 
