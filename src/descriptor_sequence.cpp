@@ -107,6 +107,10 @@ void DescriptorSequence::clear() {
   for (std::vector<std::uint8_t>& cells : coarse_.levels) cells.clear();
 }
 
+cv::Mat DescriptorSequence::descriptorRow(int index) const {
+  return cv::Mat(1, descriptor_size_, CV_8UC1, const_cast<std::uint8_t*>(descriptor(index)));
+}
+
 const std::uint8_t* DescriptorSequence::descriptor(int index) const {
   if (index < 0 || index >= size()) {
     throw std::out_of_range("frame " + std::to_string(index) + " is outside a sequence of " +

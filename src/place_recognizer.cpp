@@ -109,10 +109,7 @@ void PlaceRecognizer::visitFrames(int begin, int end,
     throw std::invalid_argument("frames [" + std::to_string(begin) + ", " + std::to_string(end) +
                                 ") are not in a map of " + std::to_string(map_.size()));
   }
-  for (int i = begin; i < end; ++i) {
-    const cv::Mat descriptor(1, map_.descriptorSize(), CV_8UC1, const_cast<std::uint8_t*>(map_.descriptor(i)));
-    visit(descriptor, map_.stamp(i));
-  }
+  for (int i = begin; i < end; ++i) visit(map_.descriptorRow(i), map_.stamp(i));
 }
 
 int PlaceRecognizer::pending() const {

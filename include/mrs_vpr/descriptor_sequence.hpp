@@ -69,6 +69,9 @@ class DescriptorSequence {
   bool empty() const { return stamps_.empty(); }
   int descriptorSize() const { return descriptor_size_; }
   const std::uint8_t* descriptor(int index) const;
+  /// The same frame as a 1 x descriptorSize() CV_8UC1 header over the stored bytes: no copy, valid
+  /// until the next append, for reading only (clone() it to keep or change it).
+  cv::Mat descriptorRow(int index) const;
   double stamp(int index) const { return stamps_.at(static_cast<std::size_t>(index)); }
   /// Bytes held by descriptors, stamps and coarse cells (capacity, not just size).
   std::size_t memoryBytes() const;

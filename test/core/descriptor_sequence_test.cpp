@@ -53,6 +53,12 @@ TEST(DescriptorSequence, AppendKeepsDescriptorsAndStampsInOrder) {
   for (int f = 0; f < 5; ++f) {
     EXPECT_TRUE(sameBytes(sequence.descriptor(f), descriptorOf(f))) << "frame " << f;
     EXPECT_DOUBLE_EQ(sequence.stamp(f), 10.0 + f);
+    // The row form reads the same stored bytes, without a copy.
+    const cv::Mat row = sequence.descriptorRow(f);
+    EXPECT_EQ(row.type(), CV_8UC1);
+    EXPECT_EQ(row.rows, 1);
+    EXPECT_EQ(row.cols, kSize);
+    EXPECT_EQ(row.ptr<std::uint8_t>(0), sequence.descriptor(f));
   }
   EXPECT_GE(sequence.memoryBytes(), static_cast<std::size_t>(5 * kSize));
 }
@@ -82,6 +88,7 @@ TEST(DescriptorSequence, OutOfRangeAccessThrowsWithTheFrameAndSize) {
   EXPECT_NE(message.find("frame 10"), std::string::npos) << message;
   EXPECT_NE(message.find("10 frames"), std::string::npos) << message;
   EXPECT_THROW(sequence.descriptor(-1), std::out_of_range);
+  EXPECT_THROW(sequence.descriptorRow(10), std::out_of_range);
   EXPECT_THROW(sequence.stamp(10), std::out_of_range);
 }
 

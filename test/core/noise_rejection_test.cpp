@@ -135,7 +135,7 @@ TEST(NoiseRejection, ARouteFrameFollowedByABlackFrameIsNotAccepted) {
     for (int i = 0; i < kSequences; ++i) {
       const int frame = 10 * i;
       DescriptorSequence query(extractor.size());
-      query.append(cv::Mat(1, extractor.size(), CV_8UC1, const_cast<std::uint8_t*>(route.query.descriptor(frame))), 0);
+      query.append(route.query.descriptorRow(frame), 0);
       query.append(black, 1);
       tally.add(matcher->match(route.reference.view(), query.view()));
     }

@@ -427,9 +427,7 @@ DescriptorSequence withPairSwappedCopy(const DescriptorSequence& reference, cons
       source_frame = from + (i % 2 == 0 ? i + 1 : i - 1);
       source = &query;
     }
-    result.append(cv::Mat(1, reference.descriptorSize(), CV_8U, const_cast<std::uint8_t*>(source->descriptor(source_frame)))
-                      .clone(),
-                  reference.stamp(frame));
+    result.append(source->descriptorRow(source_frame), reference.stamp(frame));
   }
   return result;
 }

@@ -46,7 +46,7 @@ TEST(EndCostTable, LazyCostsEqualTheDenseSearchOnTheEndsAsked) {
     reference.append(row);
   }
   for (int f = 0; f < 12; ++f) {
-    cv::Mat noisy = cv::Mat(1, 32, CV_8U, const_cast<std::uint8_t*>(reference.descriptor(30 + f))).clone();
+    cv::Mat noisy = reference.descriptorRow(30 + f).clone();
     noisy.at<std::uint8_t>(0, f) = static_cast<std::uint8_t>(noisy.at<std::uint8_t>(0, f) ^ 0x55);
     query.append(noisy);
   }
