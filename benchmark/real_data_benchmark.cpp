@@ -29,6 +29,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -335,18 +336,24 @@ class Diagnosis {
   int confidently_wrong_ = 0;
 };
 
-/// The record of query frame `frame` answered by `match` (no true place when out of the map).
-QueryRecord recordOf(const Reference& reference, int frame, const mrs_vpr::Match& match, double time_ms,
-                     bool out_of_map) {
+/// The record of query frame `frame` answered by `match`, whose true places are `truth` (none when
+/// out of the map).
+QueryRecord recordOf(int frame, std::vector<int> truth, const mrs_vpr::Match& match, double time_ms) {
   QueryRecord record;
   record.query_index = frame;
-  if (!out_of_map) record.true_indices = truthOf(reference, frame);
+  record.true_indices = std::move(truth);
   record.predicted_index = match.reference_index;
   record.score = match.score;
   record.confidence = match.confidence;
   record.accepted = match.accepted;
   record.time_ms = time_ms;
   return record;
+}
+
+/// The record of query frame `frame` of the route answered in `reference` by `match`.
+QueryRecord recordOf(const Reference& reference, int frame, const mrs_vpr::Match& match, double time_ms,
+                     bool out_of_map) {
+  return recordOf(frame, out_of_map ? std::vector<int>{} : truthOf(reference, frame), match, time_ms);
 }
 
 /// Runs one method on test sequences ending at the given query frames.
@@ -419,8 +426,7 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, c
 Reference stretchOf(const DescriptorSequence& summer, int begin, int end) {
   Reference stretch{"stretch", DescriptorSequence(summer.descriptorSize()), {}};
   for (int frame = begin; frame < end; ++frame) {
-    const cv::Mat descriptor(1, summer.descriptorSize(), CV_8UC1, const_cast<std::uint8_t*>(summer.descriptor(frame)));
-    stretch.descriptors.append(descriptor);
+    stretch.descriptors.append(summer.descriptorRow(frame));
     stretch.route_frame.push_back(frame);
   }
   return stretch;
@@ -489,20 +495,14 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
     for (int t = 0; t < frames; ++t) {
       const bool second = t >= route;
       const int route_frame = second ? part_begin + t - route : t;
-      recognizer.addDescriptor(cv::Mat(1, summer.descriptorSize(), CV_8UC1,
-                                       const_cast<std::uint8_t*>((second ? winter : summer).descriptor(route_frame))));
+      recognizer.addDescriptor((second ? winter : summer).descriptorRow(route_frame));
       if (t + 1 < first_query) continue;
       const auto start = std::chrono::steady_clock::now();
-      const mrs_vpr::PlaceAnswer answer = recognizer.matchRecent(kLength, method);
-      QueryRecord record;
-      record.query_index = t;
-      if (second) record.true_indices = {route_frame};
-      record.predicted_index = answer.match.reference_index;
-      record.score = answer.match.score;
-      record.confidence = answer.match.confidence;
-      record.accepted = answer.match.accepted;
-      record.time_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      (second ? revisit : first_traversal).push_back(record);
+      const mrs_vpr::Match match = recognizer.matchRecent(kLength, method).match;
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      // The summer frame of a place has the place's route index in the map.
+      (second ? revisit : first_traversal)
+          .push_back(recordOf(t, second ? std::vector<int>{route_frame} : std::vector<int>{}, match, ms));
     }
     report.row("continuous, first traversal ds=10", method, mrs_vpr::summarise(first_traversal, 2),
                {"continuous", true, route, kLength});
