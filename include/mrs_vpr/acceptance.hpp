@@ -29,7 +29,7 @@ constexpr int kSpreadSamples = 4096;
 
 /// Fewest rivals (finite ends outside the answer's exclusion window) a confidence needs. The bound
 /// above reaches 1e-4 at d = 3 only from about 100 ends; among a few dozen wrong places the least bad
-/// one stands out by chance (on real frames, maps of 20 to 60 frames accepted 7% to 0.03% of the
+/// one stands out by chance (on real frames, maps of 20 to 75 frames accepted 7% to 0.03% of the
 /// queries about places outside them), so with fewer rivals nothing is accepted.
 constexpr int kMinRivalEnds = 100;
 
