@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Summarises the test results of a catkin workspace: the names of failed test cases, a RESULT line,
-# then one line "N passed, N failed, N skipped". Exits non-zero when a test failed, a test binary left
-# no result, or no test ran at all.
+# Summarises the test results of a catkin workspace: the names of failed test cases with the first
+# lines of their failure messages, a RESULT line, then one line "N passed, N failed, N skipped".
+# Exits non-zero when a test failed, a test binary left no result, or no test ran at all.
 #
 # Usage: scripts/test_summary.sh RESULTS_DIR     (e.g. .ws/build/test_results)
 set -u
@@ -45,6 +45,12 @@ for folder, _, files in os.walk(sys.argv[1]):
                 failed += 1
                 print("  FAILED: %s.%s (%s)" % (case.get("classname", "?"), case.get("name", "?"), name),
                       file=sys.stderr)
+                # What failed and where: a log that shows only the names cannot be diagnosed.
+                for problem in case.findall("failure") + case.findall("error"):
+                    text = (problem.get("message") or "") + "\n" + (problem.text or "")
+                    lines = [line for line in text.splitlines() if line.strip()]
+                    for line in list(dict.fromkeys(lines))[:12]:
+                        print("      " + line, file=sys.stderr)
             else:
                 passed += 1
 print(passed, failed + unreadable, skipped)
