@@ -58,14 +58,20 @@ class NodeTest : public ::testing::Test {
     ASSERT_TRUE(auto_loop_closures_.waitConnected());
   }
 
-  /// Publishes frames [begin, end) of `frames` stamped start + i * period and waits until both nodes
-  /// have added them to their maps.
-  void playIntoNodes(const std::vector<cv::Mat>& frames, int begin, int end, double start) {
+  /// Each test advertises the camera topic anew: what it publishes before both nodes have connected
+  /// to it is lost.
+  void waitForBothNodes() const {
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
     while (image_pub_.getNumSubscribers() < 2 && ros::WallTime::now() < deadline) {
       ros::WallDuration(0.05).sleep();
     }
     ASSERT_GE(image_pub_.getNumSubscribers(), 2U);
+  }
+
+  /// Publishes frames [begin, end) of `frames` stamped start + i * period and waits until both nodes
+  /// have added them to their maps.
+  void playIntoNodes(const std::vector<cv::Mat>& frames, int begin, int end, double start) {
+    ASSERT_NO_FATAL_FAILURE(waitForBothNodes());
     for (int i = begin; i < end; ++i) {
       image_pub_.publish(imageMessage(frames[static_cast<std::size_t>(i)], start + (i - begin) * kFramePeriod));
       ros::WallDuration(0.002).sleep();
@@ -307,6 +313,7 @@ TEST_F(NodeTest, AMapTooSmallToJudgeAnswersButSaysWhyNothingIsAccepted) {
   // After the reset: 40 frames, so a 10-frame sequence has at most 22 ends outside its answer's
   // window, too few wrong places to tell a true one from chance.
   constexpr int kFrames = 40;
+  ASSERT_NO_FATAL_FAILURE(waitForBothNodes());
   for (int i = 0; i < kFrames; ++i) {
     image_pub_.publish(imageMessage(route_->reference[static_cast<std::size_t>(i)], 30000.0 + i * kFramePeriod));
     ros::WallDuration(0.002).sleep();
