@@ -95,7 +95,11 @@ int run(int argc, char** argv) {
                              " s (is the mrs_vpr node running? ROS_MASTER_URI=" + ros::master::getURI() + ")");
   }
   const auto sent = std::chrono::steady_clock::now();
-  if (!ros::service::call(service, query)) {
+  // A persistent connection: on a one-shot one, roscpp can fail a call whose answer was already sent
+  // when it sees the server hang up before reading that answer (ros/ros_comm#1976).
+  ros::NodeHandle nh;
+  ros::ServiceClient client = nh.serviceClient<mrs_vpr::QuerySequence>(service, /*persistent=*/true);
+  if (!client.call(query)) {
     throw std::runtime_error("calling " + service + " failed (the node may have died or the types differ)");
   }
   const double round_trip_ms =

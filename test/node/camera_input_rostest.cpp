@@ -18,6 +18,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/service_call.hpp"
 
 namespace {
 
@@ -106,8 +107,7 @@ class CompressedTransportTest : public ::testing::Test {
       srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
-    ros::ServiceClient client = nh_.serviceClient<mrs_vpr::QuerySequence>(node + "/query");
-    EXPECT_TRUE(client.call(srv)) << node;
+    EXPECT_TRUE(mrs_vpr::testing_support::callService(node + "/query", srv)) << node;
     return srv.response;
   }
 

@@ -17,6 +17,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/service_call.hpp"
 #include "support/topic_inbox.hpp"
 
 namespace {
@@ -39,7 +40,7 @@ class DebugImageTest : public ::testing::Test {
 
   void SetUp() override {
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr_debug/query", ros::Duration(30.0)));
-    query_ = nh_.serviceClient<mrs_vpr::QuerySequence>("mrs_vpr_debug/query");
+    query_ = mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh_, "mrs_vpr_debug/query");
     if (!mapped_) {
       ros::Publisher images = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
       const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);

@@ -33,6 +33,7 @@
 #include "mrs_vpr/synthetic_route.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/service_call.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
@@ -169,7 +170,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
                                                                  ros::Time(9000.0 + i * kFramePeriod), "camera"));
     }
     srv.request.method = "seqslam";
-    EXPECT_TRUE(ros::service::call(node.service("query"), srv));
+    EXPECT_TRUE(mrs_vpr::testing_support::callService(node.service("query"), srv));
     return srv.response;
   }
 
@@ -265,13 +266,13 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
 
   mrs_vpr::SaveMap save;
   save.request.path = path("snapshot.db");
-  ASSERT_TRUE(ros::service::call(node->service("save_map"), save));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
   EXPECT_TRUE(save.response.success) << save.response.message;
   EXPECT_EQ(save.response.frames, 120U);
   EXPECT_EQ(storedFrames(path("snapshot.db")).size(), 120U);
   // Saving over a file is refused, naming it; the file stays as it was.
   const std::string snapshot = fileContents(path("snapshot.db"));
-  ASSERT_TRUE(ros::service::call(node->service("save_map"), save));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
   EXPECT_FALSE(save.response.success);
   EXPECT_NE(save.response.message.find(path("snapshot.db")), std::string::npos) << save.response.message;
   EXPECT_NE(save.response.message.find("exists"), std::string::npos) << save.response.message;
@@ -284,7 +285,7 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   }
   mrs_vpr::LoadMap load;
   load.request.path = path("notes.db");
-  ASSERT_TRUE(ros::service::call(node->service("load_map"), load));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
   EXPECT_FALSE(load.response.success);
   EXPECT_NE(load.response.message.find(path("notes.db")), std::string::npos) << load.response.message;
   EXPECT_NE(load.response.message.find("not a database"), std::string::npos) << load.response.message;
@@ -292,14 +293,14 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   EXPECT_EQ(fileContents(path("notes.db")), "my notes, not a map\n");
 
   std_srvs::Trigger reset;
-  ASSERT_TRUE(ros::service::call(node->service("reset"), reset));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reset"), reset));
   EXPECT_TRUE(reset.response.success);
   EXPECT_NE(reset.response.message.find("cleared 120 frames from the map and from the database"), std::string::npos)
       << reset.response.message;
   waitPersisted(info, 0);
 
   load.request.path = path("snapshot.db");
-  ASSERT_TRUE(ros::service::call(node->service("load_map"), load));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
   EXPECT_TRUE(load.response.success) << load.response.message;
   EXPECT_EQ(load.response.frames, 120U);
   waitPersisted(info, 120);

@@ -22,6 +22,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/service_call.hpp"
 #include "support/topic_inbox.hpp"
 
 namespace {
@@ -49,7 +50,7 @@ class NodeTest : public ::testing::Test {
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr/query", ros::Duration(30.0)));
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr_auto/query", ros::Duration(30.0)));
     image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
-    query_ = nh_.serviceClient<mrs_vpr::QuerySequence>("mrs_vpr/query");
+    query_ = mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh_, "mrs_vpr/query");
     if (!reference_published_) {
       playIntoNodes(route_->reference, 0, static_cast<int>(route_->reference.size()), kReferenceStart);
       reference_published_ = true;
@@ -291,9 +292,8 @@ TEST_F(NodeTest, RecentFramesAndContinuousMode) {
 }
 
 TEST_F(NodeTest, ResetEmptiesTheMap) {
-  ros::ServiceClient reset = nh_.serviceClient<std_srvs::Trigger>("mrs_vpr/reset");
   std_srvs::Trigger trigger;
-  ASSERT_TRUE(reset.call(trigger));
+  ASSERT_TRUE(mrs_vpr::testing_support::callService("mrs_vpr/reset", trigger));
   EXPECT_TRUE(trigger.response.success);
   EXPECT_EQ(trigger.response.message, "cleared " + std::to_string(map_frames_) + " frames (no ~database)");
   mrs_vpr::MapInfo info;
