@@ -31,7 +31,7 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
        &P::auto_query_frames},
       {{"map_info_rate", Range::openClosed(0, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
        &P::map_info_rate},
-      {{"database", {}, {}, "a file path; empty = memory only",
+      {{"database", Range{}, {}, "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
        &P::database},
   };
