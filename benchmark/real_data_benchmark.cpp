@@ -9,6 +9,7 @@
 //     other half only (its summer frames and the same kinds of distractors), so every accepted
 //     answer is a false loop closure;
 //   - small maps (20 to 300 frames, as a robot's map is when it starts), known ground and out of the map;
+//   - the reported part's winter frames played backwards (places in the map that no trajectory follows);
 //   - the node's continuous mode on one traversal (summer, then the part again in winter), its map
 //     growing from empty.
 // The route is split in two parts, "tune" (first half) and "check" (second half): design choices are
@@ -473,6 +474,35 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
   }
 }
 
+/// The reported part's winter frames played backwards against the summer frames of the whole route:
+/// every place is in the map, but no trajectory of the search (forward speeds only) passes through
+/// them in that order, so the search cannot find them. Scored against the true places: an accepted
+/// answer must still be right.
+void runBackwards(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
+                  const Options& options, int part_begin, int part_end, Report& report) {
+  DescriptorSequence backwards(winter.descriptorSize());
+  for (int frame = part_end - 1; frame >= part_begin; --frame) backwards.append(winter.descriptorRow(frame));
+  for (int length : {10, 50}) {
+    mrs_vpr::Parameters per_frame = params;
+    per_frame.sequence.sequence_length = length;
+    per_frame.sequence.velocity_step = 0.1;
+    for (const std::string& method : options.methods) {
+      const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+      const auto start = std::chrono::steady_clock::now();
+      const std::vector<mrs_vpr::Match> matches = matcher->matchEveryFrame(summer.view(), backwards.view());
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      std::vector<QueryRecord> records;
+      for (int i = 0; i < backwards.size(); ++i) {
+        const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
+        if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
+        records.push_back(recordOf(i, {part_end - 1 - i}, match, ms / backwards.size()));
+      }
+      report.row("winter backwards M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length), method,
+                 mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
+    }
+  }
+}
+
 /// The node's continuous mode on one traversal: a robot drives the whole route in summer, then the
 /// reported part again in winter, and after every frame asks where its newest `length` frames lie
 /// among the older ones (PlaceRecognizer::matchRecent, the node's default recent_exclusion). On the
@@ -623,6 +653,7 @@ int run(int argc, char** argv) {
     runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end, report);
     const DescriptorSequence summer = describe(frames.summer, extractor);
     runSmallMaps(summer, winter, params, options, part_begin, part_end, other_begin, other_end, out_of_map, report);
+    runBackwards(summer, winter, params, options, part_begin, part_end, report);
     runContinuous(summer, winter, params, options, part_begin, part_end, report);
   }
   report.write(options);
