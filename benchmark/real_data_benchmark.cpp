@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -382,18 +383,38 @@ std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, cons
   return records;
 }
 
-std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
-                                     const DescriptorSequence& query, int first, int last, bool out_of_map) {
+/// `params` for the per-frame rows: sequences of `length` frames at OpenSeqSLAM's velocity step 0.1,
+/// enough for short sequences.
+mrs_vpr::Parameters perFrameParams(const mrs_vpr::Parameters& params, int length) {
+  mrs_vpr::Parameters per_frame = params;
+  per_frame.sequence.sequence_length = length;
+  per_frame.sequence.velocity_step = 0.1;
+  return per_frame;
+}
+
+/// The answers to every frame of `query` with a full sequence, in `map`; frame i's true places are
+/// `truth_of(i)`.
+std::vector<QueryRecord> perFrameRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
+                                         mrs_vpr::SequenceView query,
+                                         const std::function<std::vector<int>(int)>& truth_of) {
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<mrs_vpr::Match> matches =
-      matcher.matchEveryFrame(reference.descriptors.view(), query.view(first, last));
+  const std::vector<mrs_vpr::Match> matches = matcher.matchEveryFrame(map, query);
   const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   std::vector<QueryRecord> records;
-  for (int i = 0; i < last - first; ++i) {
+  for (int i = 0; i < query.count; ++i) {
     const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
     if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
-    records.push_back(recordOf(reference, first + i, match, total_ms / (last - first), out_of_map));
+    records.push_back(recordOf(i, truth_of(i), match, total_ms / query.count));
   }
+  return records;
+}
+
+std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                     const DescriptorSequence& query, int first, int last, bool out_of_map) {
+  auto records = perFrameRecords(matcher, reference.descriptors.view(), query.view(first, last), [&](int i) {
+    return out_of_map ? std::vector<int>{} : truthOf(reference, first + i);
+  });
+  for (QueryRecord& record : records) record.query_index += first;
   return records;
 }
 
@@ -407,9 +428,7 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, c
   Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
   corridor.route_frame.assign(static_cast<std::size_t>(corridor.descriptors.size()), -1);
   for (int length : {10, 50}) {
-    mrs_vpr::Parameters per_frame = params;
-    per_frame.sequence.sequence_length = length;
-    per_frame.sequence.velocity_step = 0.1;
+    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (const std::string& method : options.methods) {
       const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
       const int corridor_frames = corridor.descriptors.size();
@@ -444,9 +463,7 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
     return low + i * (high - low - size) / (kStretches - 1);
   };
   for (int length : {10, 50}) {
-    mrs_vpr::Parameters per_frame = params;
-    per_frame.sequence.sequence_length = length;
-    per_frame.sequence.velocity_step = 0.1;
+    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (int size : {20, 50, 100, 150, 200, 300}) {
       if (size <= length) continue;
       const std::string setting = " M=" + std::to_string(size) + " ds=" + std::to_string(length);
@@ -483,20 +500,11 @@ void runBackwards(const DescriptorSequence& summer, const DescriptorSequence& wi
   DescriptorSequence backwards(winter.descriptorSize());
   for (int frame = part_end - 1; frame >= part_begin; --frame) backwards.append(winter.descriptorRow(frame));
   for (int length : {10, 50}) {
-    mrs_vpr::Parameters per_frame = params;
-    per_frame.sequence.sequence_length = length;
-    per_frame.sequence.velocity_step = 0.1;
+    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (const std::string& method : options.methods) {
       const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
-      const auto start = std::chrono::steady_clock::now();
-      const std::vector<mrs_vpr::Match> matches = matcher->matchEveryFrame(summer.view(), backwards.view());
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      std::vector<QueryRecord> records;
-      for (int i = 0; i < backwards.size(); ++i) {
-        const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
-        if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
-        records.push_back(recordOf(i, {part_end - 1 - i}, match, ms / backwards.size()));
-      }
+      const auto records = perFrameRecords(*matcher, summer.view(), backwards.view(),
+                                           [&](int i) { return std::vector<int>{part_end - 1 - i}; });
       report.row("winter backwards M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length), method,
                  mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
     }
@@ -512,9 +520,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
                    const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end,
                    Report& report) {
   constexpr int kLength = 10;  // The node's auto_query_frames default: sequence/sequence_length.
-  mrs_vpr::Parameters continuous = params;
-  continuous.sequence.sequence_length = kLength;
-  continuous.sequence.velocity_step = 0.1;
+  const mrs_vpr::Parameters continuous = perFrameParams(params, kLength);
   const int route = summer.size();
   for (const std::string& method : options.methods) {
     mrs_vpr::PlaceRecognizer recognizer(continuous);
@@ -633,9 +639,7 @@ int run(int argc, char** argv) {
     }
     if (options.per_frame) {
       for (int length : {10, 50}) {
-        mrs_vpr::Parameters per_frame = params;
-        per_frame.sequence.sequence_length = length;
-        per_frame.sequence.velocity_step = 0.1;  // OpenSeqSLAM's, enough for short sequences.
+        const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
         for (const std::string& method : options.methods) {
           const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
           const auto known_records = runPerFrame(*matcher, known, winter, part_begin, part_end, false);
