@@ -19,6 +19,7 @@
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
+#include "support/subscriber_wait.hpp"
 
 namespace {
 
@@ -27,6 +28,7 @@ constexpr int kQueryLength = 80;       // the demo's queries: 80 frames from 60,
 
 using mrs_vpr::testing_support::imageMessage;
 using mrs_vpr::testing_support::MapInfoWatch;
+using mrs_vpr::testing_support::waitForSubscribers;
 
 /// What image_transport's compressed publisher sends for a bgr8 image.
 sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, const std::string& codec) {
@@ -36,15 +38,6 @@ sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, cons
   message.format = "bgr8; " + codec + " compressed bgr8";
   cv::imencode(codec == "jpeg" ? ".jpg" : ".png", bgr, message.data);
   return message;
-}
-
-template <typename Publisher>
-void waitForSubscriber(const Publisher& publisher) {
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(30.0);
-  while (publisher.getNumSubscribers() == 0 && ros::WallTime::now() < deadline) {
-    ros::WallDuration(0.05).sleep();
-  }
-  ASSERT_GT(publisher.getNumSubscribers(), 0U) << publisher.getTopic() << " has no subscriber";
 }
 
 class CompressedTransportTest : public ::testing::Test {
@@ -75,9 +68,9 @@ class CompressedTransportTest : public ::testing::Test {
     ros::Publisher raw = nh_.advertise<sensor_msgs::Image>("/camera/raw", 1000);
     ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 1000);
     ros::Publisher png = nh_.advertise<sensor_msgs::CompressedImage>("/camera/png/compressed", 1000);
-    waitForSubscriber(raw);
-    waitForSubscriber(jpeg);
-    waitForSubscriber(png);
+    for (const ros::Publisher& publisher : {raw, jpeg, png}) {
+      ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << publisher.getTopic() << " has no subscriber";
+    }
     for (std::size_t i = 0; i < route_->reference.size(); ++i) {
       const double stamp = 1000.0 + static_cast<double>(i) * kFramePeriod;
       raw.publish(imageMessage(route_->reference[i], stamp));
@@ -150,7 +143,7 @@ TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
 
 TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapping) {
   ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 100);
-  waitForSubscriber(jpeg);
+  ASSERT_TRUE(waitForSubscribers(jpeg, 1, 30.0)) << "/camera/jpeg/compressed has no subscriber";
   MapInfoWatch watch(nh_, "/jpeg/mrs_vpr");
   mrs_vpr::MapInfo before;
   ASSERT_TRUE(watch.waitFor(
@@ -199,7 +192,7 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   ros::NodeHandle nh;
   ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_small_queue/query", ros::Duration(30.0)));
   ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/burst", 100);
-  waitForSubscriber(publisher);
+  ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << "/camera/burst has no subscriber";
   MapInfoWatch watch(nh, "/mrs_vpr_small_queue");
   cv::RNG rng(3);
   std::vector<sensor_msgs::Image> frames;

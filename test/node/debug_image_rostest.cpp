@@ -18,6 +18,7 @@
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
+#include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
 
 namespace {
@@ -43,9 +44,7 @@ class DebugImageTest : public ::testing::Test {
     query_ = mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh_, "mrs_vpr_debug/query");
     if (!mapped_) {
       ros::Publisher images = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
-      const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
-      while (images.getNumSubscribers() < 1 && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
-      ASSERT_GE(images.getNumSubscribers(), 1U);
+      ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(images, 1, 20.0));
       for (std::size_t i = 0; i < route_->reference.size(); ++i) {
         images.publish(imageMessage(route_->reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
         ros::WallDuration(0.002).sleep();

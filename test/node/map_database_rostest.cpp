@@ -34,6 +34,7 @@
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
+#include "support/subscriber_wait.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
@@ -138,11 +139,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
     auto node = std::make_unique<NodeProcess>(name, parameters, path(name + ".log"));
     EXPECT_TRUE(ros::service::waitForService(node->service("query"), ros::Duration(30.0)))
         << "the node did not start; its log:\n" << fileContents(path(name + ".log"));
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (image_pub_.getNumSubscribers() == 0 && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    EXPECT_GT(image_pub_.getNumSubscribers(), 0U);
+    EXPECT_TRUE(mrs_vpr::testing_support::waitForSubscribers(image_pub_, 1, 20.0));
     return node;
   }
 

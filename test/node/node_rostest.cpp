@@ -23,6 +23,7 @@
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
+#include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
 
 namespace {
@@ -59,20 +60,11 @@ class NodeTest : public ::testing::Test {
     ASSERT_TRUE(auto_loop_closures_.waitConnected());
   }
 
-  /// Each test advertises the camera topic anew: what it publishes before both nodes have connected
-  /// to it is lost.
-  void waitForBothNodes() const {
-    const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20.0);
-    while (image_pub_.getNumSubscribers() < 2 && ros::WallTime::now() < deadline) {
-      ros::WallDuration(0.05).sleep();
-    }
-    ASSERT_GE(image_pub_.getNumSubscribers(), 2U);
-  }
-
   /// Publishes frames [begin, end) of `frames` stamped start + i * period and waits until both nodes
   /// have added them to their maps.
   void playIntoNodes(const std::vector<cv::Mat>& frames, int begin, int end, double start) {
-    ASSERT_NO_FATAL_FAILURE(waitForBothNodes());
+    // Each test advertises the camera topic anew: wait until both nodes have connected to it.
+    ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(image_pub_, 2, 20.0));
     for (int i = begin; i < end; ++i) {
       image_pub_.publish(imageMessage(frames[static_cast<std::size_t>(i)], start + (i - begin) * kFramePeriod));
       ros::WallDuration(0.002).sleep();
@@ -313,7 +305,7 @@ TEST_F(NodeTest, AMapTooSmallToJudgeAnswersButSaysWhyNothingIsAccepted) {
   // After the reset: 40 frames, so a 10-frame sequence has at most 22 ends outside its answer's
   // window, too few wrong places to tell a true one from chance.
   constexpr int kFrames = 40;
-  ASSERT_NO_FATAL_FAILURE(waitForBothNodes());
+  ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(image_pub_, 2, 20.0));
   for (int i = 0; i < kFrames; ++i) {
     image_pub_.publish(imageMessage(route_->reference[static_cast<std::size_t>(i)], 30000.0 + i * kFramePeriod));
     ros::WallDuration(0.002).sleep();
