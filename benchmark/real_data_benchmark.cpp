@@ -418,13 +418,22 @@ std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, co
   return records;
 }
 
+/// Summer frames [begin, end) as a map of their own, each the true place of its route frame.
+Reference stretchOf(const DescriptorSequence& summer, int begin, int end) {
+  Reference stretch{"stretch", DescriptorSequence(summer.descriptorSize()), {}};
+  for (int frame = begin; frame < end; ++frame) {
+    stretch.descriptors.append(summer.descriptorRow(frame));
+    stretch.route_frame.push_back(frame);
+  }
+  return stretch;
+}
+
 /// Out-of-map queries from another world: the corridor's frames against a map of the Nordland summer
 /// frames, and Nordland winter frames of the reported part against a map of the corridor.
-void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, const mrs_vpr::DescriptorExtractor& extractor,
-                   const mrs_vpr::Parameters& params, const Options& options, int part_begin, int part_end,
-                   Report& report) {
-  const int route = static_cast<int>(frames.summer.size());
-  const Reference nordland = buildReference(frames, extractor, 0, route, false, "nordland");
+void runOtherWorld(const RealFrames& frames, const DescriptorSequence& summer, const DescriptorSequence& winter,
+                   const mrs_vpr::DescriptorExtractor& extractor, const mrs_vpr::Parameters& params,
+                   const Options& options, int part_begin, int part_end, Report& report) {
+  const Reference nordland = stretchOf(summer, 0, summer.size());
   Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
   corridor.route_frame.assign(static_cast<std::size_t>(corridor.descriptors.size()), -1);
   for (int length : {10, 50}) {
@@ -440,16 +449,6 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& winter, c
                  {"per-frame", true, corridor_frames, length});
     }
   }
-}
-
-/// Summer frames [begin, end) as a map of their own: a map as small as a robot's when it starts.
-Reference stretchOf(const DescriptorSequence& summer, int begin, int end) {
-  Reference stretch{"stretch", DescriptorSequence(summer.descriptorSize()), {}};
-  for (int frame = begin; frame < end; ++frame) {
-    stretch.descriptors.append(summer.descriptorRow(frame));
-    stretch.route_frame.push_back(frame);
-  }
-  return stretch;
 }
 
 /// Maps of a few to a few hundred frames: kStretches stretches of the summer frames of each size.
@@ -654,8 +653,8 @@ int run(int argc, char** argv) {
     }
   }
   if (options.per_frame) {
-    runOtherWorld(frames, winter, extractor, params, options, part_begin, part_end, report);
     const DescriptorSequence summer = describe(frames.summer, extractor);
+    runOtherWorld(frames, summer, winter, extractor, params, options, part_begin, part_end, report);
     runSmallMaps(summer, winter, params, options, part_begin, part_end, other_begin, other_end, out_of_map, report);
     runBackwards(summer, winter, params, options, part_begin, part_end, report);
     runContinuous(summer, winter, params, options, part_begin, part_end, report);
