@@ -72,6 +72,8 @@ struct Options {
   std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
   int min_coarse_frames = mrs_vpr::MrsParams{}.min_coarse_frames;
+  double velocity_min = mrs_vpr::SequenceParams{}.velocity_min;
+  double velocity_max = mrs_vpr::SequenceParams{}.velocity_max;
   std::vector<std::string> methods = {"seqslam", "mrs"};
 };
 
@@ -80,6 +82,7 @@ constexpr const char* kUsage =
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
+    "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs] [--json FILE]\n"
     "\n"
     "Both methods on the same queries of real frames: Nordland winter against summer references of\n"
@@ -113,6 +116,10 @@ std::optional<Options> parse(int argc, char** argv) {
        "mrs: hypotheses carried down from the coarsest level")
       ("min-coarse-frames", po::value(&options.min_coarse_frames)->default_value(options.min_coarse_frames),
        "mrs: fewest rows of a coarse level")
+      ("velocity-min", po::value(&options.velocity_min)->default_value(options.velocity_min),
+       "slowest reference frames per query frame, every row")
+      ("velocity-max", po::value(&options.velocity_max)->default_value(options.velocity_max),
+       "fastest reference frames per query frame, every row")
       ("methods", mrs_vpr::benchmark::listValue(&options.methods), "seqslam and/or mrs, comma-separated")
       ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");
   // clang-format on
@@ -490,22 +497,42 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
   }
 }
 
-/// The reported part's winter frames played backwards against the summer frames of the whole route:
-/// every place is in the map, but no trajectory of the search (forward speeds only) passes through
-/// them in that order, so the search cannot find them. Scored against the true places: an accepted
+/// The reported part's winter frames replayed at speeds the route was not driven at, against the
+/// summer frames of the whole route: backwards, at twice the speed (every other frame), at half
+/// (every frame twice), and stopping for kStopFrames frames (one second at 30 Hz) after every
+/// kStopEvery. Every place is in the map, but the default velocities (0.8 to 1.2 map frames a query
+/// frame) fit none of these, or a stop only in part. Scored against the true places: an accepted
 /// answer must still be right.
-void runBackwards(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
-                  const Options& options, int part_begin, int part_end, Report& report) {
-  DescriptorSequence backwards(winter.descriptorSize());
-  for (int frame = part_end - 1; frame >= part_begin; --frame) backwards.append(winter.descriptorRow(frame));
-  for (int length : {10, 50}) {
-    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
-    for (const std::string& method : options.methods) {
-      const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
-      const auto records = perFrameRecords(*matcher, summer.view(), backwards.view(),
-                                           [&](int i) { return std::vector<int>{part_end - 1 - i}; });
-      report.row("winter backwards M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length), method,
-                 mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
+void runReplays(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
+                const Options& options, int part_begin, int part_end, Report& report) {
+  struct Replay {
+    std::string name;
+    std::vector<int> frames;  ///< The winter frame of each replayed frame.
+  };
+  constexpr int kStopEvery = 100;
+  constexpr int kStopFrames = 30;
+  std::vector<Replay> replays{
+      {"backwards", {}}, {"at twice the speed", {}}, {"at half the speed", {}}, {"with stops", {}}};
+  for (int frame = part_end - 1; frame >= part_begin; --frame) replays[0].frames.push_back(frame);
+  for (int frame = part_begin; frame < part_end; frame += 2) replays[1].frames.push_back(frame);
+  for (int frame = part_begin; frame < part_end; ++frame) {
+    replays[2].frames.insert(replays[2].frames.end(), 2, frame);
+    const bool stop = (frame - part_begin) % kStopEvery == kStopEvery - 1;
+    replays[3].frames.insert(replays[3].frames.end(), stop ? 1 + kStopFrames : 1, frame);
+  }
+  for (const Replay& replay : replays) {
+    DescriptorSequence query(winter.descriptorSize());
+    for (const int frame : replay.frames) query.append(winter.descriptorRow(frame));
+    for (int length : {10, 50}) {
+      const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
+      for (const std::string& method : options.methods) {
+        const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+        const auto records = perFrameRecords(*matcher, summer.view(), query.view(), [&](int i) {
+          return std::vector<int>{replay.frames[static_cast<std::size_t>(i)]};
+        });
+        report.row("winter " + replay.name + " M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length),
+                   method, mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
+      }
     }
   }
 }
@@ -568,6 +595,8 @@ int run(int argc, char** argv) {
   params.sequence.velocity_step = 0.02;
   params.mrs.hypotheses = options.hypotheses;
   params.mrs.min_coarse_frames = options.min_coarse_frames;
+  params.sequence.velocity_min = options.velocity_min;
+  params.sequence.velocity_max = options.velocity_max;
   params.validate();
   const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
 
@@ -590,9 +619,10 @@ int run(int argc, char** argv) {
   const int other_end = options.part == "check" ? half : route;
 
   std::printf("Real-data benchmark: Nordland summer (reference) / winter (query), corridor; part '%s' "
-              "(route frames %d..%d of %d), threads %d, tolerance %d, velocity step %.2f, seed %llu\n",
+              "(route frames %d..%d of %d), threads %d, tolerance %d, velocities %.2f..%.2f step %.2f, seed %llu\n",
               options.part.c_str(), part_begin, part_end - 1, route, options.threads, options.tolerance,
-              params.sequence.velocity_step, static_cast<unsigned long long>(options.seed));
+              params.sequence.velocity_min, params.sequence.velocity_max, params.sequence.velocity_step,
+              static_cast<unsigned long long>(options.seed));
   std::printf("success = top-1 within tolerance; accepted = the core's acceptance rule at its default (%.1f)\n\n",
               params.sequence.accept_threshold);
   if (!out_of_map) std::printf("no out-of-map rows: --part all leaves no part of the route outside the map\n\n");
@@ -656,7 +686,7 @@ int run(int argc, char** argv) {
     const DescriptorSequence summer = describe(frames.summer, extractor);
     runOtherWorld(frames, summer, winter, extractor, params, options, part_begin, part_end, report);
     runSmallMaps(summer, winter, params, options, part_begin, part_end, other_begin, other_end, out_of_map, report);
-    runBackwards(summer, winter, params, options, part_begin, part_end, report);
+    runReplays(summer, winter, params, options, part_begin, part_end, report);
     runContinuous(summer, winter, params, options, part_begin, part_end, report);
   }
   report.write(options);
