@@ -1,0 +1,37 @@
+#pragma once
+
+#include <Eigen/Core>
+
+namespace mrs_vpr {
+namespace node {
+
+/**
+ * Decides which frames become keyframes by the distance the robot has travelled: a frame is kept
+ * when the robot is at least `min_travel` metres (straight line, in the odometry frame) from where
+ * the last keyframe was taken. The search's trajectories assume that the robot covers about as much
+ * ground per frame as when the map was taken; frames taken at fixed distances give that at any
+ * speed, and a robot that stands still adds none (a stop within a test sequence would otherwise
+ * place it ahead of where it is). min_travel = 0 keeps every frame. No ROS inside.
+ */
+class TravelPolicy {
+ public:
+  explicit TravelPolicy(double min_travel);
+
+  /// Whether frames are chosen by distance at all (min_travel > 0).
+  bool enabled() const { return min_travel_ > 0.0; }
+  /// True when a frame taken at `position` should be kept. Does not remember it: call keep() once
+  /// the frame has really been added.
+  bool wants(const Eigen::Vector3d& position) const;
+  /// Records where a keyframe was taken.
+  void keep(const Eigen::Vector3d& position);
+  /// Forgets the last keyframe (after the map is reset or replaced).
+  void reset();
+
+ private:
+  double min_travel_;
+  bool has_keyframe_ = false;
+  Eigen::Vector3d last_position_ = Eigen::Vector3d::Zero();
+};
+
+}  // namespace node
+}  // namespace mrs_vpr
