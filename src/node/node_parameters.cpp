@@ -21,6 +21,16 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
         "Seconds (by header stamp) between keyframes; 0 = no limit."},
        &P::min_frame_interval},
       {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
+      {{"min_travel", Range::atLeast(0), {}, "",
+        "Metres the robot travels (~base_frame in ~odom_frame, by tf) between keyframes; 0 = off. For a "
+        "robot that stops or changes speed."},
+       &P::min_travel},
+      {{"odom_frame", Range{}, {}, "a tf frame", "Fixed frame in which ~min_travel is measured."}, &P::odom_frame},
+      {{"base_frame", Range{}, {}, "a tf frame", "The robot's frame, whose travel ~min_travel measures."},
+       &P::base_frame},
+      {{"tf_timeout", Range::openClosed(0, 10), {}, "",
+        "Longest wait for the robot's pose at an image's stamp [s] (~min_travel > 0)."},
+       &P::tf_timeout},
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
       {{"auto_query_period", Range::atLeast(0), {}, "",
@@ -209,6 +219,10 @@ void NodeParameters::validate() const {
     requireInRange(commitParameters(), commit);
   } catch (const std::invalid_argument& error) {
     throwPrivate(error);
+  }
+  if (min_travel > 0.0 && (odom_frame.empty() || base_frame.empty() || odom_frame == base_frame)) {
+    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
+                                "(got '" + odom_frame + "' and '" + base_frame + "')");
   }
 }
 

@@ -41,6 +41,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
     : params_(params),
       recognizer_(params.core, params.recognizer),
       keyframe_policy_(params.min_frame_interval, params.frame_stride),
+      travel_policy_(params.min_travel),
       nh_(nh),
       private_nh_(private_nh),
       query_nh_(private_nh),
@@ -60,6 +61,10 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   if (params_.auto_query_period > 0.0) {
     auto_query_timer_ = query_nh_.createTimer(ros::Duration(params_.auto_query_period),
                                               &PlaceRecognitionNode::autoQueryCallback, this);
+  }
+  if (travel_policy_.enabled()) {
+    tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
   }
   recognizer_.reserveAhead();
   publishMapInfoIfChanged();
@@ -142,6 +147,24 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
       return;
     }
   }
+  std::optional<Eigen::Vector3d> position;
+  if (travel_policy_.enabled()) {
+    std::string error;
+    position = robotPosition(header.stamp, error);
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!position) {
+      keyframe_policy_.skip(stamp);
+      ++frames_without_pose_;
+      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: skipping a frame from %s: no pose of %s in %s at its stamp (%s)",
+                        imageTopic().c_str(), params_.base_frame.c_str(), params_.odom_frame.c_str(), error.c_str());
+      return;
+    }
+    if (!travel_policy_.wants(*position)) {
+      keyframe_policy_.skip(stamp);
+      ++frames_skipped_;
+      return;
+    }
+  }
 
   // The expensive part runs without any lock.
   const auto start = std::chrono::steady_clock::now();
@@ -178,11 +201,25 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   ++map_version_;
   std::lock_guard<std::mutex> lock(state_mutex_);
   keyframe_policy_.keep(stamp);
+  if (position) travel_policy_.keep(*position);
   camera_frame_id_ = header.frame_id;
   const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   frame_time_total_ms_ += elapsed_ms;
   ++frames_timed_;
   frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+}
+
+std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Time& stamp, std::string& error) const {
+  try {
+    // A zero stamp (an unstamped camera) asks for the newest pose.
+    const geometry_msgs::TransformStamped pose = tf_buffer_->lookupTransform(
+        params_.odom_frame, params_.base_frame, stamp, ros::Duration(params_.tf_timeout));
+    const geometry_msgs::Vector3& t = pose.transform.translation;
+    return Eigen::Vector3d(t.x, t.y, t.z);
+  } catch (const tf2::TransformException& exception) {
+    error = exception.what();
+    return std::nullopt;
+  }
 }
 
 void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
@@ -350,6 +387,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   }
   info.frames_received = frames_received_.load();
   info.frames_skipped = frames_skipped_.load();
+  info.frames_without_pose = frames_without_pose_.load();
   info.frames_dropped = frames_dropped_.load();
   info.frames_failed = frames_failed_.load();
   info.debug_images = debug_image_->rendered();

@@ -80,7 +80,8 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("descriptor/image_width"), 1U);
   EXPECT_EQ(names.count("min_frame_interval"), 1U);
   EXPECT_EQ(names.count("database"), 1U);
-  EXPECT_EQ(descriptions.size(), 34U);
+  EXPECT_EQ(names.count("min_travel"), 1U);
+  EXPECT_EQ(descriptions.size(), 38U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and
@@ -142,6 +143,22 @@ TEST(NodeParameters, TheDatabaseIsAnyPathAndEmptyMeansMemoryOnly) {
   EXPECT_EQ(descriptionsByName().at("database").default_value, "\"\"");
   params.commit.period = 0.0;
   EXPECT_EQ(errorOf(params), "~commit_period must be in (0, 3600], got 0");
+}
+
+TEST(NodeParameters, TravelNeedsTwoDifferentFramesOnlyWhenOn) {
+  NodeParameters params;
+  params.odom_frame = "";
+  EXPECT_EQ(errorOf(params), "");  // ~min_travel 0: the frames are not used.
+  params.min_travel = 0.5;
+  EXPECT_EQ(errorOf(params),
+            "~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 (got '' and "
+            "'base_link')");
+  params.odom_frame = "base_link";
+  EXPECT_NE(errorOf(params), "");
+  params.odom_frame = "map";
+  EXPECT_EQ(errorOf(params), "");
+  params.tf_timeout = 0.0;
+  EXPECT_EQ(errorOf(params), "~tf_timeout must be in (0, 10], got 0");
 }
 
 TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include <image_transport/image_transport.h>
@@ -12,6 +13,8 @@
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
 
 #include "mrs_vpr/LoadMap.h"
 #include "mrs_vpr/MapInfo.h"
@@ -25,6 +28,7 @@
 #include "mrs_vpr/node/master_watch.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/node/sequence_gaps.hpp"
+#include "mrs_vpr/node/travel_policy.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
 
 namespace mrs_vpr {
@@ -77,6 +81,9 @@ class PlaceRecognitionNode {
   /// description, admission and counters. `summary` describes the message for a warning.
   template <typename Convert, typename Summary>
   void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
+  /// Where ~base_frame was in ~odom_frame at `stamp` (waiting up to ~tf_timeout for tf), or nothing
+  /// with the reason in `error`.
+  std::optional<Eigen::Vector3d> robotPosition(const ros::Time& stamp, std::string& error) const;
   /// Counts (received and failed) and reports the frames missing before the one numbered `seq`.
   void countMissingFrames(std::uint32_t seq);
   /// The topic the camera frames come from, for messages.
@@ -106,10 +113,11 @@ class PlaceRecognitionNode {
   /// recognizer_'s map and ~database: every keyframe goes through it. Thread-safe.
   std::unique_ptr<PersistentMap> map_;
 
-  // The keyframe policy, the camera's frame id and the frame timings, under state_mutex_, which is
+  // The keyframe policies, the camera's frame id and the frame timings, under state_mutex_, which is
   // only ever held for a few instructions.
   std::mutex state_mutex_;
   KeyframePolicy keyframe_policy_;
+  TravelPolicy travel_policy_;
   SequenceGaps sequence_gaps_;  // frames lost before the image callback
   std::string camera_frame_id_;
   double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
@@ -118,12 +126,17 @@ class PlaceRecognitionNode {
 
   std::atomic<std::uint64_t> frames_received_{0};
   std::atomic<std::uint64_t> frames_skipped_{0};
+  std::atomic<std::uint64_t> frames_without_pose_{0};
   std::atomic<std::uint64_t> frames_dropped_{0};
   std::atomic<std::uint64_t> frames_failed_{0};
   std::atomic<std::uint64_t> map_version_{0};  // bumped whenever frames are added or the map is reset
   std::uint64_t auto_query_version_ = 0;      // map_version_ at the last continuous-mode query
   MapInfo last_map_info_;
   bool map_info_published_ = false;
+
+  // The robot's poses, for ~min_travel only (null otherwise: no /tf subscription).
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;

@@ -1,0 +1,95 @@
+// Drives the node of travel_keyframes.test: the robot's pose on /tf and a camera frame at each pose.
+// With ~min_travel 1 m, a frame becomes a keyframe each metre; a stop adds none, and a frame whose
+// pose is unknown is skipped and counted while the node runs on.
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include <ros/ros.h>
+#include <sensor_msgs/Image.h>
+#include <tf2_msgs/TFMessage.h>
+
+#include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/synthetic_route.hpp"
+#include "support/image_message.hpp"
+#include "support/map_info_watch.hpp"
+#include "support/rostest_main.hpp"
+#include "support/subscriber_wait.hpp"
+
+namespace {
+
+constexpr double kFramePeriod = 0.05;  // [s]
+constexpr double kStart = 1000.0;      // stamp of the first frame [s]
+const char* const kNode = "mrs_vpr_travel";
+
+using mrs_vpr::testing_support::imageMessage;
+using mrs_vpr::testing_support::MapInfoWatch;
+using mrs_vpr::testing_support::waitForSubscribers;
+
+/// The robot at x metres along odom's x axis, at `stamp`.
+tf2_msgs::TFMessage poseAt(double x, double stamp) {
+  geometry_msgs::TransformStamped pose;
+  pose.header.stamp = ros::Time(stamp);
+  pose.header.frame_id = "odom";
+  pose.child_frame_id = "base_link";
+  pose.transform.translation.x = x;
+  pose.transform.rotation.w = 1.0;
+  tf2_msgs::TFMessage message;
+  message.transforms.push_back(pose);
+  return message;
+}
+
+TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
+  ros::NodeHandle nh;
+  MapInfoWatch map_info(nh, std::string("/") + kNode);
+  ros::Publisher tf_pub = nh.advertise<tf2_msgs::TFMessage>("/tf", 1000);
+  ros::Publisher image_pub = nh.advertise<sensor_msgs::Image>("camera/image", 1000);
+  ASSERT_TRUE(waitForSubscribers(tf_pub, 1, 30.0));
+  ASSERT_TRUE(waitForSubscribers(image_pub, 1, 30.0));
+
+  // Driving 4 m at 0.25 m a frame, standing still for 30 frames (odometry jitters by 1 cm), then
+  // driving 2 m at 0.5 m a frame: keyframes at 0, 1, 2, 3, 4, 5 and 6 m.
+  std::vector<double> positions;
+  for (int i = 0; i <= 16; ++i) positions.push_back(0.25 * i);
+  for (int i = 0; i < 30; ++i) positions.push_back(4.0 + (i % 2 == 0 ? 0.01 : -0.01));
+  for (int i = 1; i <= 4; ++i) positions.push_back(4.0 + 0.5 * i);
+  mrs_vpr::SyntheticRouteParams route_params;
+  route_params.reference_frames = static_cast<int>(positions.size());
+  route_params.query_frames = 2;
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const double stamp = kStart + static_cast<double>(i) * kFramePeriod;
+    tf_pub.publish(poseAt(positions[i], stamp));
+    image_pub.publish(imageMessage(route.reference[i], stamp));
+  }
+  const auto total = static_cast<std::uint64_t>(positions.size());
+  ASSERT_TRUE(map_info.waitFor([&](const mrs_vpr::MapInfo& info) { return info.frames_received == total; }, 60.0))
+      << "received " << map_info.latest().frames_received << " of " << total;
+  ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 7; }, 10.0))
+      << "map frames: " << map_info.latest().frames;
+  const mrs_vpr::MapInfo driven = map_info.latest();
+  EXPECT_EQ(driven.frames_skipped, total - 7);
+  EXPECT_EQ(driven.frames_without_pose, 0U);
+  EXPECT_EQ(driven.frames_failed, 0U);
+
+  // A frame stamped long before any pose: skipped and counted, the map unchanged, the node alive.
+  image_pub.publish(imageMessage(route.reference[0], kStart - 100.0));
+  ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames_without_pose == 1; }, 30.0))
+      << "frames without pose: " << map_info.latest().frames_without_pose;
+  EXPECT_EQ(map_info.latest().frames, 7U);
+
+  // Driving on keeps adding keyframes.
+  const double stamp = kStart + static_cast<double>(positions.size()) * kFramePeriod;
+  tf_pub.publish(poseAt(7.0, stamp));
+  image_pub.publish(imageMessage(route.reference[1], stamp));
+  EXPECT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 8; }, 30.0))
+      << "map frames: " << map_info.latest().frames;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_travel_keyframes_rostest");
+}
