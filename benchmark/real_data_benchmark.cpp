@@ -497,12 +497,23 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
   }
 }
 
+/// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
+/// out-of-map queries share no frame with the other part's reference.
+std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
+  const int first_end = low + length - 1;
+  const std::vector<mrs_vpr::TestSequence> tests =
+      mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
+  std::vector<int> ends;
+  for (const mrs_vpr::TestSequence& test : tests) ends.push_back(first_end + test.start);
+  return ends;
+}
+
 /// The reported part's winter frames replayed at speeds the route was not driven at, against the
 /// summer frames of the whole route: backwards, at twice the speed (every other frame), at half
 /// (every frame twice), and stopping for kStopFrames frames (one second at 30 Hz) after every
 /// kStopEvery. Every place is in the map, but the default velocities (0.8 to 1.2 map frames a query
-/// frame) fit none of these, or a stop only in part. Scored against the true places: an accepted
-/// answer must still be right.
+/// frame) fit none of these, or a stop only in part. Per-frame rows at ds = 10 and 50, global rows
+/// at the benchmark's lengths, scored against the true places: an accepted answer must still be right.
 void runReplays(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
                 const Options& options, int part_begin, int part_end, Report& report) {
   struct Replay {
@@ -523,13 +534,29 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
   for (const Replay& replay : replays) {
     DescriptorSequence query(winter.descriptorSize());
     for (const int frame : replay.frames) query.append(winter.descriptorRow(frame));
-    for (int length : {10, 50}) {
+    const auto truth_of = [&](int i) { return std::vector<int>{replay.frames[static_cast<std::size_t>(i)]}; };
+    // Global queries, as a robot's ~query of N frames: the same seeded ends for both methods.
+    for (int length : options.global ? options.lengths : std::vector<int>{}) {
+      const std::vector<int> ends = queryEnds(0, query.size() - 1, length, options.queries, options.seed);
+      for (const std::string& method : options.methods) {
+        const auto matcher = mrs_vpr::makeMatcher(method, params);
+        std::vector<QueryRecord> records;
+        for (const int end : ends) {
+          const auto start = std::chrono::steady_clock::now();
+          const mrs_vpr::Match match = matcher->match(summer.view(), query.view(end - length + 1, end + 1));
+          const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+          records.push_back(recordOf(end, truth_of(end), match, ms));
+        }
+        report.row("global winter " + replay.name + " N=" + std::to_string(length) + " M=" +
+                       std::to_string(summer.size()),
+                   method, mrs_vpr::summarise(records, options.tolerance), {"global", false, summer.size(), length});
+      }
+    }
+    for (int length : options.per_frame ? std::vector<int>{10, 50} : std::vector<int>{}) {
       const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
       for (const std::string& method : options.methods) {
         const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
-        const auto records = perFrameRecords(*matcher, summer.view(), query.view(), [&](int i) {
-          return std::vector<int>{replay.frames[static_cast<std::size_t>(i)]};
-        });
+        const auto records = perFrameRecords(*matcher, summer.view(), query.view(), truth_of);
         report.row("winter " + replay.name + " M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length),
                    method, mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
       }
@@ -571,17 +598,6 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
     report.row("continuous, revisit in winter ds=10", method, mrs_vpr::summarise(revisit, 2),
                {"continuous", false, route, kLength});
   }
-}
-
-/// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
-/// out-of-map queries share no frame with the other part's reference.
-std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
-  const int first_end = low + length - 1;
-  const std::vector<mrs_vpr::TestSequence> tests =
-      mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
-  std::vector<int> ends;
-  for (const mrs_vpr::TestSequence& test : tests) ends.push_back(first_end + test.start);
-  return ends;
 }
 
 int run(int argc, char** argv) {
@@ -682,13 +698,13 @@ int run(int argc, char** argv) {
       }
     }
   }
+  const DescriptorSequence summer = describe(frames.summer, extractor);
   if (options.per_frame) {
-    const DescriptorSequence summer = describe(frames.summer, extractor);
     runOtherWorld(frames, summer, winter, extractor, params, options, part_begin, part_end, report);
     runSmallMaps(summer, winter, params, options, part_begin, part_end, other_begin, other_end, out_of_map, report);
-    runReplays(summer, winter, params, options, part_begin, part_end, report);
-    runContinuous(summer, winter, params, options, part_begin, part_end, report);
   }
+  runReplays(summer, winter, params, options, part_begin, part_end, report);
+  if (options.per_frame) runContinuous(summer, winter, params, options, part_begin, part_end, report);
   report.write(options);
   return 0;
 }
