@@ -151,16 +151,19 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   if (travel_policy_.enabled()) {
     std::string error;
     position = robotPosition(header.stamp, error);
-    std::lock_guard<std::mutex> lock(state_mutex_);
+    bool travelled = false;
+    {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      travelled = position && travel_policy_.wants(*position);
+      if (!travelled) keyframe_policy_.skip(stamp);
+    }
     if (!position) {
-      keyframe_policy_.skip(stamp);
       ++frames_without_pose_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: skipping a frame from %s: no pose of %s in %s at its stamp (%s)",
                         imageTopic().c_str(), params_.base_frame.c_str(), params_.odom_frame.c_str(), error.c_str());
       return;
     }
-    if (!travel_policy_.wants(*position)) {
-      keyframe_policy_.skip(stamp);
+    if (!travelled) {
       ++frames_skipped_;
       return;
     }
