@@ -633,16 +633,26 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
   EXPECT_EQ(document.at("queries"), 3);
   EXPECT_EQ(document.at("tolerance"), 4);
   EXPECT_EQ(document.at("seed"), 5);
-  // Global rows only, one per length, of seqslam alone; --part all has no out-of-map rows.
+  // Global rows only, one per length, of seqslam alone; --part all has no out-of-map rows. First the
+  // route's map, then the four replays (backwards, twice and half the speed, stops) in the whole
+  // summer map.
   const json& rows = document.at("rows");
-  ASSERT_EQ(rows.size(), 2U) << rows.dump();
+  ASSERT_EQ(rows.size(), 2U + 4U * 2U) << rows.dump();
+  const std::vector<std::string> replays = {"backwards", "at twice the speed", "at half the speed", "with stops"};
   for (std::size_t i = 0; i < rows.size(); ++i) {
     EXPECT_EQ(rows[i].at("method"), "seqslam");
     EXPECT_EQ(rows[i].at("protocol"), "global");
     EXPECT_EQ(rows[i].at("out_of_map"), false);
-    EXPECT_EQ(rows[i].at("reference_frames"), 100);  // The route: as many summer frames as there are winter ones.
-    EXPECT_EQ(rows[i].at("sequence_length"), i == 0 ? 20 : 30);
+    const int length = i % 2 == 0 ? 20 : 30;
+    EXPECT_EQ(rows[i].at("sequence_length"), length);
     EXPECT_EQ(rows[i].at("summary").at("queries"), 3);
+    if (i < 2) {
+      EXPECT_EQ(rows[i].at("reference_frames"), 100);  // The route: as many summer frames as there are winter ones.
+    } else {
+      EXPECT_EQ(rows[i].at("reference_frames"), 150);  // Every summer frame.
+      EXPECT_EQ(rows[i].at("setting"), "global winter " + replays[(i - 2) / 2] + " N=" + std::to_string(length) +
+                                           " M=150");
+    }
   }
 }
 
