@@ -1,6 +1,7 @@
 // Drives the node of travel_keyframes.test: the robot's pose on /tf and a camera frame at each pose.
-// With ~min_travel 1 m, a frame becomes a keyframe each metre; a stop adds none, and a frame whose
-// pose is unknown is skipped and counted while the node runs on.
+// With ~min_travel 1 m, a frame becomes a keyframe each metre; a stop adds none, a frame whose pose
+// is unknown is skipped and counted while the node runs on, and after ~reset the next frame is kept
+// wherever it is.
 
 #include <gtest/gtest.h>
 
@@ -8,6 +9,7 @@
 
 #include <ros/ros.h>
 #include <sensor_msgs/Image.h>
+#include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include "mrs_vpr/MapInfo.h"
@@ -15,6 +17,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 
 namespace {
@@ -81,11 +84,21 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   EXPECT_EQ(map_info.latest().frames, 7U);
 
   // Driving on keeps adding keyframes.
-  const double stamp = kStart + static_cast<double>(positions.size()) * kFramePeriod;
+  double stamp = kStart + static_cast<double>(positions.size()) * kFramePeriod;
   tf_pub.publish(poseAt(7.0, stamp));
   image_pub.publish(imageMessage(route.reference[1], stamp));
-  EXPECT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 8; }, 30.0))
+  ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 8; }, 30.0))
       << "map frames: " << map_info.latest().frames;
+
+  // After ~reset the map starts again from the next frame, only 0.1 m from the last keyframe.
+  std_srvs::Trigger reset;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(std::string("/") + kNode + "/reset", reset));
+  ASSERT_TRUE(reset.response.success) << reset.response.message;
+  stamp += kFramePeriod;
+  tf_pub.publish(poseAt(7.1, stamp));
+  image_pub.publish(imageMessage(route.reference[2], stamp));
+  EXPECT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 1; }, 30.0))
+      << "map frames after the reset: " << map_info.latest().frames;
 }
 
 }  // namespace
