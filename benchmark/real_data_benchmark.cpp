@@ -359,32 +359,42 @@ QueryRecord recordOf(int frame, std::vector<int> truth, const mrs_vpr::Match& ma
   return record;
 }
 
-/// The record of query frame `frame` of the route answered in `reference` by `match`.
-QueryRecord recordOf(const Reference& reference, int frame, const mrs_vpr::Match& match, double time_ms,
-                     bool out_of_map) {
-  return recordOf(frame, out_of_map ? std::vector<int>{} : truthOf(reference, frame), match, time_ms);
-}
-
-/// Runs one method on test sequences ending at the given query frames.
-std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
-                                   const DescriptorSequence& query, const std::vector<int>& ends, int length,
-                                   bool out_of_map, Diagnosis* diagnosis, int tolerance, double accept_threshold) {
+/// One method's answers to the test sequences of `length` frames of `query` that end at `ends`, in
+/// `map`; the sequence ending at frame e has the true places truth_of(e). With `diagnosis`, MRS's
+/// levels are traced into it.
+std::vector<QueryRecord> globalRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
+                                       const DescriptorSequence& query, const std::vector<int>& ends, int length,
+                                       const std::function<std::vector<int>(int)>& truth_of, Diagnosis* diagnosis,
+                                       int tolerance, double accept_threshold) {
   std::vector<QueryRecord> records;
   const auto* mrs = dynamic_cast<const mrs_vpr::MrsMatcher*>(&matcher);
   for (int end : ends) {
     const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
     std::vector<mrs_vpr::MrsLevelTrace> trace;
     const auto start = std::chrono::steady_clock::now();
-    const mrs_vpr::Match match = (mrs != nullptr && diagnosis != nullptr)
-                                     ? mrs->match(reference.descriptors.view(), test, &trace)
-                                     : matcher.match(reference.descriptors.view(), test);
+    const mrs_vpr::Match match =
+        (mrs != nullptr && diagnosis != nullptr) ? mrs->match(map, test, &trace) : matcher.match(map, test);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const QueryRecord& record = records.emplace_back(recordOf(reference, end, match, ms, out_of_map));
-    if (diagnosis != nullptr && !out_of_map) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
-    if (out_of_map && match.accepted && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+    const QueryRecord& record = records.emplace_back(recordOf(end, truth_of(end), match, ms));
+    if (diagnosis != nullptr) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
+  }
+  return records;
+}
+
+/// Runs one method on test sequences ending at the given frames of the route, in `reference`.
+std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                   const DescriptorSequence& query, const std::vector<int>& ends, int length,
+                                   bool out_of_map, Diagnosis* diagnosis, int tolerance, double accept_threshold) {
+  const auto records = globalRecords(
+      matcher, reference.descriptors.view(), query, ends, length,
+      [&](int end) { return out_of_map ? std::vector<int>{} : truthOf(reference, end); },
+      out_of_map ? nullptr : diagnosis, tolerance, accept_threshold);
+  if (out_of_map && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+    for (const QueryRecord& record : records) {
+      if (!record.accepted) continue;
       std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
-                   matcher.name().c_str(), length, end, match.reference_index,
-                   reference.route_frame[static_cast<std::size_t>(match.reference_index)], match.confidence);
+                   matcher.name().c_str(), length, record.query_index, record.predicted_index,
+                   reference.route_frame[static_cast<std::size_t>(record.predicted_index)], record.confidence);
     }
   }
   return records;
@@ -540,13 +550,8 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
       const std::vector<int> ends = queryEnds(0, query.size() - 1, length, options.queries, options.seed);
       for (const std::string& method : options.methods) {
         const auto matcher = mrs_vpr::makeMatcher(method, params);
-        std::vector<QueryRecord> records;
-        for (const int end : ends) {
-          const auto start = std::chrono::steady_clock::now();
-          const mrs_vpr::Match match = matcher->match(summer.view(), query.view(end - length + 1, end + 1));
-          const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-          records.push_back(recordOf(end, truth_of(end), match, ms));
-        }
+        const auto records = globalRecords(*matcher, summer.view(), query, ends, length, truth_of, nullptr,
+                                           options.tolerance, params.sequence.accept_threshold);
         report.row("global winter " + replay.name + " N=" + std::to_string(length) + " M=" +
                        std::to_string(summer.size()),
                    method, mrs_vpr::summarise(records, options.tolerance), {"global", false, summer.size(), length});
