@@ -14,16 +14,12 @@
 namespace mrs_vpr {
 namespace bag {
 
-namespace {
-
-const BagReaderTable& reader() {
+const BagReaderTable& bagReader() {
   // A function-local static is initialised once, also when several threads read bags at once.
   static const BagReaderTable& table =
       plugins::load<BagReaderTable>(kBagReaderPluginFile, kBagReaderSymbol, "bag reader");
   return table;
 }
-
-}  // namespace
 
 bool isBagPath(const std::string& path) {
   if (path.size() < 4) return false;
@@ -34,12 +30,12 @@ bool isBagPath(const std::string& path) {
 }
 
 int countImages(const std::string& bag_path, const std::string& topic) {
-  return reader().count_images(bag_path, topic);
+  return bagReader().count_images(bag_path, topic);
 }
 
 void forEachImage(const std::string& bag_path, const std::string& topic, const ImageVisitor& visit, int start,
                   int count) {
-  reader().for_each_image(bag_path, topic, visit, start, count);
+  bagReader().for_each_image(bag_path, topic, visit, start, count);
 }
 
 std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, const std::string& topic,

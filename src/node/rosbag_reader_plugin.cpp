@@ -2,11 +2,13 @@
 // on the first bag read, so that a tool run that reads no bag starts without them.
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/image_encodings.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include "bag_reader_table.hpp"
 #include "image_message_copy.hpp"
@@ -18,6 +20,8 @@ namespace {
 
 constexpr const char* kImageType = "sensor_msgs/Image";
 constexpr const char* kCompressedType = "sensor_msgs/CompressedImage";
+constexpr const char* kTransformTopic = "/tf";
+constexpr const char* kStaticTransformTopic = "/tf_static";
 
 void openBag(rosbag::Bag& bag, const std::string& path) {
   try {
@@ -103,12 +107,31 @@ void forEachImageWithRosbag(const std::string& bag_path, const std::string& topi
   }
 }
 
+void forEachTransformWithRosbag(const std::string& bag_path, const TransformVisitor& visit) {
+  rosbag::Bag bag;
+  openBag(bag, bag_path);
+  rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{kTransformTopic, kStaticTransformTopic}));
+  if (view.size() == 0) {
+    throw std::runtime_error("bag '" + bag_path + "' has no /tf or /tf_static messages: the robot's poses are needed");
+  }
+  for (const rosbag::MessageInstance& instance : view) {
+    const tf2_msgs::TFMessage::ConstPtr message = instance.instantiate<tf2_msgs::TFMessage>();
+    if (!message) {
+      throw std::runtime_error("topic '" + instance.getTopic() + "' of bag '" + bag_path + "' carries " +
+                               instance.getDataType() + ", not tf2_msgs/TFMessage");
+    }
+    const bool is_static = instance.getTopic() == kStaticTransformTopic;
+    for (const geometry_msgs::TransformStamped& transform : message->transforms) visit(transform, is_static);
+  }
+}
+
 }  // namespace
 }  // namespace bag
 }  // namespace mrs_vpr
 
 extern "C" const mrs_vpr::bag::BagReaderTable* mrs_vpr_rosbag_reader_table() {
   static const mrs_vpr::bag::BagReaderTable table{&mrs_vpr::bag::countImagesWithRosbag,
-                                                  &mrs_vpr::bag::forEachImageWithRosbag};
+                                                  &mrs_vpr::bag::forEachImageWithRosbag,
+                                                  &mrs_vpr::bag::forEachTransformWithRosbag};
   return &table;
 }

@@ -17,5 +17,16 @@ std::string invalidArgumentMessage(Action action) {
   return "";
 }
 
+/// The message of the std::runtime_error that `action` throws ("" when it throws none).
+template <typename Action>
+std::string runtimeErrorMessage(Action action) {
+  try {
+    action();
+  } catch (const std::runtime_error& error) {
+    return error.what();
+  }
+  return "";
+}
+
 }  // namespace testing_support
 }  // namespace mrs_vpr

@@ -11,21 +11,27 @@ namespace node {
  * the last keyframe was taken. The search's trajectories assume that the robot covers about as much
  * ground per frame as when the map was taken; frames taken at fixed distances give that at any
  * speed, and a robot that stands still adds none (a stop within a test sequence would otherwise
- * place it ahead of where it is). min_travel = 0 keeps every frame. No ROS inside.
+ * place it ahead of where it is). min_travel = 0 keeps every frame. No ROS inside, and defined
+ * here, so that the node and the bag tools use it without linking each other's libraries.
  */
 class TravelPolicy {
  public:
-  explicit TravelPolicy(double min_travel);
+  explicit TravelPolicy(double min_travel) : min_travel_(min_travel) {}
 
   /// Whether frames are chosen by distance at all (min_travel > 0).
   bool enabled() const { return min_travel_ > 0.0; }
   /// True when a frame taken at `position` should be kept. Does not remember it: call keep() once
   /// the frame has really been added.
-  bool wants(const Eigen::Vector3d& position) const;
+  bool wants(const Eigen::Vector3d& position) const {
+    return !enabled() || !has_keyframe_ || (position - last_position_).norm() >= min_travel_;
+  }
   /// Records where a keyframe was taken.
-  void keep(const Eigen::Vector3d& position);
+  void keep(const Eigen::Vector3d& position) {
+    has_keyframe_ = true;
+    last_position_ = position;
+  }
   /// Forgets the last keyframe (after the map is reset or replaced).
-  void reset();
+  void reset() { has_keyframe_ = false; }
 
  private:
   double min_travel_;

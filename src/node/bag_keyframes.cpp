@@ -1,0 +1,93 @@
+#include "mrs_vpr/node/bag_keyframes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "mrs_vpr/node/bag_images.hpp"
+
+namespace mrs_vpr {
+namespace bag {
+namespace {
+
+void validate(const TravelSettings& settings) {
+  if (!(std::isfinite(settings.min_travel) && settings.min_travel >= 0.0)) {
+    std::ostringstream message;
+    message << "min_travel must be a finite number of metres >= 0, got " << settings.min_travel;
+    throw std::invalid_argument(message.str());
+  }
+  if (settings.min_travel > 0.0 &&
+      (settings.odom_frame.empty() || settings.base_frame.empty() || settings.odom_frame == settings.base_frame)) {
+    throw std::invalid_argument("keyframes by travel need two different, non-empty frames; got odom frame '" +
+                                settings.odom_frame + "' and base frame '" + settings.base_frame + "'");
+  }
+}
+
+}  // namespace
+
+BagKeyframes::BagKeyframes(const std::string& bag_path, TravelSettings settings)
+    : settings_(std::move(settings)), policy_(settings_.min_travel) {
+  validate(settings_);
+  if (policy_.enabled()) poses_ = std::make_unique<BagPoses>(bag_path);
+}
+
+bool BagKeyframes::keep(const ros::Time& stamp) {
+  if (!policy_.enabled()) {
+    ++kept_;
+    return true;
+  }
+  std::string why;
+  const std::optional<Eigen::Vector3d> position =
+      poses_->positionAt(settings_.odom_frame, settings_.base_frame, stamp, why);
+  if (!position) {
+    if (without_pose_++ == 0) first_missing_pose_ = why;
+    return false;
+  }
+  if (!policy_.wants(*position)) {
+    ++too_near_;
+    return false;
+  }
+  policy_.keep(*position);
+  ++kept_;
+  return true;
+}
+
+std::string BagKeyframes::summary() const {
+  std::ostringstream line;
+  line << kept_ << " keyframes of " << kept_ + too_near_ + without_pose_ << " frames at min_travel "
+       << settings_.min_travel << " m (" << too_near_ << " too near, " << without_pose_ << " without a pose of '"
+       << settings_.base_frame << "' in '" << settings_.odom_frame << "')";
+  return line.str();
+}
+
+std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_path, const std::string& topic, int start,
+                                                      int count, BagKeyframes& keyframes) {
+  if (start < 0 || count < 0) {
+    throw std::runtime_error("invalid keyframe range: start " + std::to_string(start) + ", count " +
+                             std::to_string(count));
+  }
+  const int available = countImages(bag_path, topic);
+  std::vector<sensor_msgs::ImageConstPtr> chosen;
+  // forEachImage cannot stop early, so the messages are read in growing chunks until enough are chosen.
+  int next = start;
+  for (int chunk = std::max(64, 2 * count); static_cast<int>(chosen.size()) < count && next < available;
+       next += chunk, chunk = std::min(2 * chunk, available)) {
+    forEachImage(
+        bag_path, topic,
+        [&](int, const sensor_msgs::ImageConstPtr& image) {
+          if (static_cast<int>(chosen.size()) < count && keyframes.keep(image->header.stamp)) chosen.push_back(image);
+        },
+        next, std::min(chunk, available - next));
+  }
+  if (static_cast<int>(chosen.size()) < count) {
+    throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(chosen.size()) +
+                             " keyframes from message " + std::to_string(start) + " on, fewer than " +
+                             std::to_string(count) + ": " + keyframes.summary());
+  }
+  return chosen;
+}
+
+}  // namespace bag
+}  // namespace mrs_vpr

@@ -1,0 +1,138 @@
+// Keyframes of a bag by the distance travelled, from the bag's own /tf (what build_map and
+// query_bag --min-travel use).
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mrs_vpr/node/bag_keyframes.hpp"
+#include "support/error_message.hpp"
+#include "support/temporary_folder.hpp"
+#include "support/travel_bag.hpp"
+
+namespace mrs_vpr {
+namespace bag {
+namespace {
+
+using testing_support::driveStopDrive;
+using testing_support::frameStamp;
+
+constexpr const char* kTopic = "/camera/image_raw";
+
+class BagKeyframesTest : public ::testing::Test {
+ protected:
+  BagKeyframesTest() : folder_("mrs_vpr_bag_keyframes_test") {
+    testing_support::writeTravelBag(bag(), kTopic, driveStopDrive());
+  }
+  std::string bag() const { return folder_.path("drive.bag"); }
+  std::string bagWithoutPoses() const {
+    const std::string path = folder_.path("no_poses.bag");
+    testing_support::writeTravelBag(path, kTopic, driveStopDrive(), /*with_poses=*/false);
+    return path;
+  }
+  /// Indices of the frames `keyframes` keeps, offering it every frame of the drive in order.
+  static std::vector<int> keptFrames(BagKeyframes& keyframes) {
+    std::vector<int> kept;
+    for (int i = 0; i < static_cast<int>(driveStopDrive().size()); ++i) {
+      if (keyframes.keep(frameStamp(i))) kept.push_back(i);
+    }
+    return kept;
+  }
+
+  testing_support::TemporaryFolder folder_;
+};
+
+TEST_F(BagKeyframesTest, KeepsAFrameEachMetreAndNoneWhileTheRobotStandsStill) {
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  BagKeyframes keyframes(bag(), travel);
+  // The frames at 0, 1, 2, 3 and 4 m (every fourth of the first drive), then 5 and 6 m (every second
+  // frame after the stop): none of the 30 frames of the stop, whose odometry jitters by 1 cm.
+  EXPECT_EQ(keptFrames(keyframes), (std::vector<int>{0, 4, 8, 12, 16, 48, 50}));
+  EXPECT_EQ(keyframes.kept(), 7);
+  EXPECT_EQ(keyframes.tooNear(), 44);
+  EXPECT_EQ(keyframes.withoutPose(), 0);
+  EXPECT_EQ(keyframes.summary(),
+            "7 keyframes of 51 frames at min_travel 1 m (44 too near, 0 without a pose of 'base_link' in 'odom')");
+}
+
+TEST_F(BagKeyframesTest, ACameraFrameBehindAStaticTransformIsSpacedAlike) {
+  // camera is 0.25 m ahead of base_link, known only from /tf_static.
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  travel.base_frame = "camera";
+  BagKeyframes keyframes(bag(), travel);
+  EXPECT_EQ(keptFrames(keyframes), (std::vector<int>{0, 4, 8, 12, 16, 48, 50}));
+  EXPECT_EQ(keyframes.withoutPose(), 0);
+}
+
+TEST_F(BagKeyframesTest, AFrameWithoutAPoseIsSkippedCountedAndExplained) {
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  BagKeyframes keyframes(bag(), travel);
+  // Before the first pose: tf cannot tell where the robot was.
+  EXPECT_FALSE(keyframes.keep(ros::Time(50.0)));
+  EXPECT_EQ(keyframes.withoutPose(), 1);
+  EXPECT_NE(keyframes.firstMissingPose().find("extrapolation"), std::string::npos) << keyframes.firstMissingPose();
+  // A frame the bag has no frame for at all.
+  travel.base_frame = "gripper";
+  BagKeyframes unknown(bag(), travel);
+  EXPECT_FALSE(unknown.keep(frameStamp(3)));
+  EXPECT_NE(unknown.firstMissingPose().find("gripper"), std::string::npos) << unknown.firstMissingPose();
+  // The frames after it are still chosen.
+  EXPECT_EQ(keptFrames(keyframes), (std::vector<int>{0, 4, 8, 12, 16, 48, 50}));
+}
+
+TEST_F(BagKeyframesTest, OffKeepsEveryFrameAndNeedsNoPoses) {
+  BagKeyframes keyframes(bagWithoutPoses(), TravelSettings{});
+  EXPECT_EQ(keptFrames(keyframes).size(), driveStopDrive().size());
+  EXPECT_EQ(keyframes.tooNear(), 0);
+}
+
+TEST_F(BagKeyframesTest, ABagWithoutTfIsRefusedByName) {
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  const std::string path = bagWithoutPoses();
+  const std::string message = testing_support::runtimeErrorMessage([&] { BagKeyframes keyframes(path, travel); });
+  EXPECT_NE(message.find("no /tf or /tf_static"), std::string::npos) << message;
+  EXPECT_NE(message.find(path), std::string::npos) << message;
+}
+
+TEST_F(BagKeyframesTest, BadSettingsAreRefused) {
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    TravelSettings travel;
+    travel.min_travel = bad;
+    const std::string message = testing_support::invalidArgumentMessage([&] { BagKeyframes keyframes(bag(), travel); });
+    EXPECT_NE(message.find("min_travel must be"), std::string::npos) << bad << ": " << message;
+  }
+  TravelSettings same;
+  same.min_travel = 1.0;
+  same.base_frame = "odom";
+  const std::string message = testing_support::invalidArgumentMessage([&] { BagKeyframes keyframes(bag(), same); });
+  EXPECT_NE(message.find("two different, non-empty frames"), std::string::npos) << message;
+}
+
+TEST_F(BagKeyframesTest, ReadKeyframesTakesCountKeyframesFromStart) {
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  BagKeyframes keyframes(bag(), travel);
+  // From frame 10 (2.5 m): 2.5, 3.5 and, after the stop at 4 m (0.5 m on), 4.5 m.
+  const std::vector<sensor_msgs::ImageConstPtr> images = readKeyframes(bag(), kTopic, 10, 3, keyframes);
+  ASSERT_EQ(images.size(), 3U);
+  EXPECT_EQ(images[0]->header.stamp, frameStamp(10));
+  EXPECT_EQ(images[1]->header.stamp, frameStamp(14));
+  EXPECT_EQ(images[2]->header.stamp, frameStamp(47));
+
+  BagKeyframes too_few(bag(), travel);
+  const std::string message =
+      testing_support::runtimeErrorMessage([&] { readKeyframes(bag(), kTopic, 10, 5, too_few); });
+  EXPECT_NE(message.find("has 4 keyframes from message 10 on, fewer than 5"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace bag
+}  // namespace mrs_vpr
