@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/node/bag_keyframes.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
@@ -20,12 +22,14 @@ namespace po = boost::program_options;
 namespace {
 
 constexpr const char* kUsage =
-    "Usage: build_map (--images DIR | --bag BAG --topic T) --output MAP.db [--append] [--force]\n"
-    "                 [--image-width W] [--image-height H] [--patch-size P]\n"
+    "Usage: build_map (--images DIR | --bag BAG --topic T [--min-travel M [--odom-frame F] [--base-frame B]])\n"
+    "                 --output MAP.db [--append] [--force] [--image-width W] [--image-height H] [--patch-size P]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps, in the SQLite map database MAP.db. A new map is written to MAP.db.part and\n"
-    "renamed only when complete; an existing MAP.db is extended with --append or replaced with --force.\n";
+    "renamed only when complete; an existing MAP.db is extended with --append or replaced with --force.\n"
+    "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
+    "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n";
 
 /// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
 constexpr std::size_t kBatch = 1000;
@@ -37,6 +41,7 @@ int run(int argc, char** argv) {
   std::string output;
   bool append = false;
   bool force = false;
+  mrs_vpr::bag::TravelSettings travel;
   mrs_vpr::DescriptorParams params;
   po::options_description description("Options");
   // clang-format off
@@ -48,6 +53,10 @@ int run(int argc, char** argv) {
       ("output", po::value(&output)->required(), "map database to write (*.db)")
       ("append", po::bool_switch(&append), "add to an existing map")
       ("force", po::bool_switch(&force), "replace an existing map")
+      ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
+       "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
+      ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
+      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
       ("image-width", po::value(&params.image_width)->default_value(params.image_width), "descriptor width [px]")
       ("image-height", po::value(&params.image_height)->default_value(params.image_height), "descriptor height [px]")
       ("patch-size", po::value(&params.patch_size)->default_value(params.patch_size), "patch normalisation size [px]");
@@ -57,11 +66,17 @@ int run(int argc, char** argv) {
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  if (travel.min_travel != 0.0 && bag_path.empty()) {
+    throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
+  }
   const bool exists = std::filesystem::exists(output);
   if (exists && !append && !force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
   }
   const mrs_vpr::DescriptorExtractor extractor(params);
+  // Reads the bag's poses before anything is written, so that a bag without /tf leaves no file.
+  std::optional<mrs_vpr::bag::BagKeyframes> keyframes;
+  if (travel.min_travel != 0.0) keyframes.emplace(bag_path, travel);
 
   // A new map is built aside and renamed when complete; an appended one commits batch by batch.
   const bool in_place = exists && append;
@@ -79,11 +94,18 @@ int run(int argc, char** argv) {
     };
     mrs_vpr::tools::readTraversal(images.empty() ? bag_path : images, topic, "map", extractor,
                                   [&](const cv::Mat& descriptor, double stamp) {
+                                    if (keyframes && !keyframes->keep(ros::Time(stamp))) return;
                                     batch.push_back({descriptor.clone(), stamp, "", -1});
                                     if (batch.size() >= kBatch) flush();
                                   });
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
+    if (keyframes) {
+      std::cerr << "build_map: " << keyframes->summary() << "\n";
+      if (keyframes->withoutPose() > 0) {
+        std::cerr << "build_map: warning: the first frame without a pose: " << keyframes->firstMissingPose() << "\n";
+      }
+    }
   } catch (...) {
     if (!in_place) std::filesystem::remove(target);
     throw;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/node/bag_keyframes.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -21,12 +23,14 @@ using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
 namespace {
 
 constexpr const char* kUsage =
-    "Usage: query_bag --bag B.bag --topic T --start I --count N [--method mrs|seqslam]\n"
-    "                 [--service /mrs_vpr/query] [--timeout SEC]\n"
+    "Usage: query_bag --bag B.bag --topic T --start I --count N [--min-travel M [--odom-frame F]\n"
+    "                 [--base-frame B]] [--method mrs|seqslam] [--service /mrs_vpr/query] [--timeout SEC]\n"
     "       query_bag --recent-frames K [--method mrs|seqslam] [--service /mrs_vpr/query]\n"
     "\n"
     "Calls the mrs_vpr node's query service (mrs_vpr/QuerySequence) with frames I..I+N-1 of topic T\n"
     "(oldest first), or with the node's own K most recent frames, and prints the response as JSON.\n"
+    "With --min-travel, the test sequence is the N frames from I on that are M metres apart by the\n"
+    "bag's own /tf (B in F), as the node's ~min_travel keeps them: a map spaced so is queried alike.\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
 int run(int argc, char** argv) {
@@ -46,6 +50,7 @@ int run(int argc, char** argv) {
   int count = 0;
   int recent_frames = 0;
   double timeout = 10.0;
+  mrs_vpr::bag::TravelSettings travel;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
@@ -54,6 +59,10 @@ int run(int argc, char** argv) {
       ("topic", po::value(&topic), "image topic in the bag")
       ("start", po::value(&start)->default_value(start), "first frame (index among the topic's messages)")
       ("count", po::value(&count), "frames in the test sequence")
+      ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
+       "metres between the sequence's frames, by the bag's /tf (0: consecutive frames)")
+      ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
+      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method)->default_value(method), "mrs | seqslam")
       ("service", po::value(&service)->default_value(service), "the node's query service")
@@ -71,6 +80,7 @@ int run(int argc, char** argv) {
   json request = {{"method", method}, {"service", service}};
   if (variables.count("recent-frames") > 0) {
     if (variables.count("bag") > 0) throw std::invalid_argument("give either --bag or --recent-frames, not both");
+    if (travel.min_travel != 0.0) throw std::invalid_argument("--min-travel needs --bag, not --recent-frames");
     if (recent_frames < 1) throw std::invalid_argument("--recent-frames must be >= 1");
     query.request.recent_frames = static_cast<std::uint32_t>(recent_frames);
     request["recent_frames"] = recent_frames;
@@ -80,13 +90,21 @@ int run(int argc, char** argv) {
     }
     if (start < 0) throw std::invalid_argument("--start must be >= 0");
     if (count < 1) throw std::invalid_argument("--count must be >= 1");
-    for (const sensor_msgs::ImageConstPtr& image : mrs_vpr::bag::readImages(bag_path, topic, start, count)) {
-      query.request.images.push_back(*image);
-    }
     request["bag"] = bag_path;
     request["topic"] = topic;
     request["start"] = start;
     request["count"] = count;
+    std::vector<sensor_msgs::ImageConstPtr> images;
+    if (travel.min_travel == 0.0) {
+      images = mrs_vpr::bag::readImages(bag_path, topic, start, count);
+    } else {
+      mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);
+      images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes);
+      request["min_travel"] = travel.min_travel;
+      // Where the sequence ends in the bag: frames from --start on that were read to choose it.
+      request["frames_read"] = keyframes.kept() + keyframes.tooNear() + keyframes.withoutPose();
+    }
+    for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
     request["last_stamp"] = query.request.images.back().header.stamp.toSec();
   }
 

@@ -23,6 +23,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
+#include "support/travel_bag.hpp"
 
 namespace {
 
@@ -447,6 +448,55 @@ TEST_F(ToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
                            path("small.db") + " --image-width 32 --image-height 16");
   ASSERT_EQ(other.status, 0) << other.err;
   expectError("--reference " + path("small.db") + rest, "image_width 32 in the map, 64 here");
+}
+
+TEST_F(ToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
+  // The robot drives 4 m, stands still for 30 frames and drives 2 m on (support/travel_bag.hpp).
+  const std::string bag = path("drive.bag");
+  mrs_vpr::testing_support::writeTravelBag(bag, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive());
+  const std::string build = std::string(BUILD_MAP_PATH) + " --bag " + bag + " --topic /camera/image_raw --output ";
+  const Result every_frame = run(build + path("every_frame.db"));
+  ASSERT_EQ(every_frame.status, 0) << every_frame.err;
+  EXPECT_NE(every_frame.err.find("51 frames added to 0"), std::string::npos) << every_frame.err;
+
+  const Result by_travel = run(build + path("by_travel.db") + " --min-travel 1");
+  ASSERT_EQ(by_travel.status, 0) << by_travel.err;
+  EXPECT_NE(by_travel.err.find("7 frames added to 0"), std::string::npos) << by_travel.err;
+  EXPECT_NE(by_travel.err.find("7 keyframes of 51 frames at min_travel 1 m (44 too near, 0 without a pose"),
+            std::string::npos)
+      << by_travel.err;
+
+  // Frames tf has no pose for are skipped, and the user is told why.
+  const Result unknown_frame = run(build + path("gripper.db") + " --min-travel 1 --base-frame gripper");
+  ASSERT_EQ(unknown_frame.status, 0) << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("0 frames added to 0"), std::string::npos) << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("warning: the first frame without a pose"), std::string::npos)
+      << unknown_frame.err;
+}
+
+TEST_F(ToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
+  const std::string no_poses = path("no_poses.bag");
+  mrs_vpr::testing_support::writeTravelBag(no_poses, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive(),
+                                           false);
+  const Result without_tf = run(std::string(BUILD_MAP_PATH) + " --bag " + no_poses +
+                                " --topic /camera/image_raw --min-travel 1 --output " + path("no_poses.db"));
+  EXPECT_EQ(without_tf.status, 1);
+  EXPECT_NE(without_tf.err.find("has no /tf or /tf_static messages"), std::string::npos) << without_tf.err;
+  EXPECT_FALSE(fs::exists(path("no_poses.db")));
+  EXPECT_FALSE(fs::exists(path("no_poses.db.part")));
+
+  const Result folder = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --min-travel 1" +
+                            " --output " + path("folder.db"));
+  EXPECT_EQ(folder.status, 1);
+  EXPECT_NE(folder.err.find("--min-travel needs --bag"), std::string::npos) << folder.err;
+  const Result negative = run(std::string(BUILD_MAP_PATH) + " --bag " + no_poses +
+                              " --topic /camera/image_raw --min-travel=-1 --output " + path("negative.db"));
+  EXPECT_EQ(negative.status, 1);
+  EXPECT_NE(negative.err.find("min_travel must be a finite number of metres >= 0"), std::string::npos)
+      << negative.err;
+  const Result recent = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --min-travel 1");
+  EXPECT_EQ(recent.status, 1);
+  EXPECT_NE(recent.err.find("--min-travel needs --bag, not --recent-frames"), std::string::npos) << recent.err;
 }
 
 TEST_F(ToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
