@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -33,8 +36,35 @@ float distinctiveness(float best, float runner_up, float spread, int rivals) {
   return std::max(0.0F, (runner_up - best) / spread);
 }
 
-void applyAcceptance(Match& match, double threshold) {
-  match.accepted = match.reference_index >= 0 && match.confidence >= threshold;
+bool atVelocityBound(const Match& match, const SequenceParams& params) {
+  const std::vector<double> searched = velocities(params);
+  // With one or two velocities every answer is at a bound: the user has fixed the speed.
+  if (searched.size() < 3 || match.reference_index < 0) return false;
+  // The match's velocity is a float copy of a searched one: nearer than half a step is the same.
+  const auto at = [&](double bound) { return std::abs(match.velocity - bound) < 0.5 * params.velocity_step; };
+  return at(searched.front()) || at(searched.back());
+}
+
+void applyAcceptance(Match& match, const SequenceParams& params) {
+  match.accepted =
+      match.reference_index >= 0 && match.confidence >= params.accept_threshold && !atVelocityBound(match, params);
+}
+
+std::string acceptanceVerdict(const Match& match, const SequenceParams& params) {
+  if (match.reference_index < 0) return "no match found";
+  if (match.accepted) return "accepted";
+  if (match.rivals < kMinRivalEnds) {
+    return "not accepted: the map holds " + std::to_string(match.rivals) +
+           " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
+           " to tell a place from chance";
+  }
+  if (match.confidence < params.accept_threshold) return "not accepted: confidence below sequence/accept_threshold";
+  std::ostringstream message;
+  message << "not accepted: the best trajectory runs at " << match.velocity
+          << " map frames a frame, the slowest or fastest of sequence/velocity_min..velocity_max ("
+          << params.velocity_min << ".." << params.velocity_max
+          << "): the robot may be moving outside that range (another speed, a stop, backwards)";
+  return message.str();
 }
 
 }  // namespace mrs_vpr

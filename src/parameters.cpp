@@ -68,7 +68,8 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
         "causal: the test sequence ends at the frame localised; centred: it is in the middle."},
        &P::alignment},
       {{"sequence/accept_threshold", Range::closed(0, 1000), {}, "",
-        "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this."},
+        "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this "
+        "and its trajectory is not at the slowest or fastest velocity."},
        &P::accept_threshold},
   };
   return table;

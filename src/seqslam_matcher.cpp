@@ -14,7 +14,7 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   const cv::Mat enhanced =
       enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
   Match match = searchTrajectories(enhanced, wholeSequenceRows(query.count, sequence_.alignment), sequence_);
-  applyAcceptance(match, sequence_.accept_threshold);
+  applyAcceptance(match, sequence_);
   return match;
 }
 
@@ -30,7 +30,7 @@ std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, Seque
       if (rows.first < 0 || rows.last >= query.count) continue;
       matches[frame] = searchTrajectories(enhanced, rows, sequence_);
       matches[frame].comparisons = static_cast<long long>(reference.count);  // One new row per frame.
-      applyAcceptance(matches[frame], sequence_.accept_threshold);
+      applyAcceptance(matches[frame], sequence_);
     }
   });
   return matches;

@@ -180,7 +180,9 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
 }
 
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
-  Match match = scoreFromCosts(costsByAnchor(enhanced, rows, velocities(params)).cost, params.match_exclusion);
+  const AnchorCosts costs = costsByAnchor(enhanced, rows, velocities(params));
+  Match match = scoreFromCosts(costs.cost, params.match_exclusion);
+  if (match.reference_index >= 0) match.velocity = costs.velocity[static_cast<std::size_t>(match.reference_index)];
   match.comparisons = static_cast<long long>(rows.last - rows.first + 1) * enhanced.cols;
   return match;
 }

@@ -1,8 +1,10 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "mrs_vpr/match.hpp"
+#include "mrs_vpr/parameters.hpp"
 
 namespace mrs_vpr {
 
@@ -37,7 +39,22 @@ constexpr int kMinRivalEnds = 100;
 /// fewer than kMinRivalEnds `rivals`.
 float distinctiveness(float best, float runner_up, float spread, int rivals);
 
-/// Sets match.accepted: a match was found and its confidence reaches `threshold`.
-void applyAcceptance(Match& match, double threshold);
+/**
+ * True when the answer's trajectory runs at the slowest or the fastest of the velocities searched
+ * (when at least three are). The best fit then lies at the edge of the speeds the search assumes, and
+ * the robot's true speed relative to the map may lie beyond it: a robot at half the map's speed, or
+ * driving the route backwards, fits no trajectory, and the least bad wrong place can still stand out
+ * by chance. On real frames, every such answer accepted at sequence length 50 was wrong (8 of 8 at
+ * half the speed, 3 of 3 backwards), and no accepted answer at the map's own speed ran at a bound.
+ */
+bool atVelocityBound(const Match& match, const SequenceParams& params);
+
+/// Sets match.accepted: a match was found, its confidence reaches params.accept_threshold, and its
+/// trajectory is not at a velocity bound (atVelocityBound).
+void applyAcceptance(Match& match, const SequenceParams& params);
+
+/// For the user: "accepted", or why not ("no match found", too few rivals, confidence below the
+/// threshold, or a trajectory at a velocity bound), naming the parameters involved.
+std::string acceptanceVerdict(const Match& match, const SequenceParams& params);
 
 }  // namespace mrs_vpr

@@ -18,9 +18,12 @@ struct Match {
   /// Ends with a trajectory outside the answer's window: the wrong places the confidence was judged
   /// against. Below kMinRivalEnds (acceptance.hpp) the confidence is 0: the map is too small to tell.
   int rivals = 0;
-  /// Whether the answer passes the acceptance rule: a match was found and confidence >=
-  /// SequenceParams::accept_threshold. Only accepted answers should be used as loop closures.
+  /// Whether the answer passes the acceptance rule (applyAcceptance): a match was found, confidence
+  /// >= SequenceParams::accept_threshold and its velocity is not a bound of the searched ones. Only
+  /// accepted answers should be used as loop closures.
   bool accepted = false;
+  /// Reference frames per test frame along the answer's trajectory (0 when no match was found).
+  float velocity = 0.0F;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

@@ -44,8 +44,9 @@ struct SequenceParams {
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up.
   WindowAlignment alignment = WindowAlignment::kCausal;
   /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
-  /// deviations of the query's own end costs) reaches this. 3 is a three-sigma rule, not a value
-  /// fitted to a data set; see acceptance.hpp for its derivation and the README for checks.
+  /// deviations of the query's own end costs) reaches this and its trajectory does not run at the
+  /// slowest or fastest velocity. 3 is a three-sigma rule, not a value fitted to a data set; see
+  /// acceptance.hpp for its derivation and the README for checks.
   double accept_threshold = 3.0;
 
   void validate() const;

@@ -322,12 +322,13 @@ class CoarseToFineSearch {
     if (best_.index < 0) return result_;
     result_.reference_index = best_.index;
     result_.sequence_difference = best_.cost;
+    result_.velocity = best_.velocity;
     const int coarse_stride = 1 << levels_;
     const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion());
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
     result_.rivals = coarse.rivals;
-    applyAcceptance(result_, sequence_.accept_threshold);
+    applyAcceptance(result_, sequence_);
     return result_;
   }
 

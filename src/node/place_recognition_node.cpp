@@ -22,18 +22,6 @@ std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
 
 ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) : ros::Time(); }
 
-/// The service's message for an answer: accepted, or why not.
-std::string verdict(const Match& match) {
-  if (match.reference_index < 0) return "no match found";
-  if (match.accepted) return "accepted";
-  if (match.rivals < kMinRivalEnds) {
-    return "not accepted: the map holds " + std::to_string(match.rivals) +
-           " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
-           " to tell a place from chance";
-  }
-  return "not accepted: confidence below ~sequence/accept_threshold";
-}
-
 }  // namespace
 
 PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros::NodeHandle& private_nh,
@@ -326,7 +314,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.confidence = match.confidence;
   response.reference_stamp = toRosTime(answered.reference_stamp);
   response.accepted = match.accepted;
-  response.message = verdict(match);
+  response.message = acceptanceVerdict(match, params_.core.sequence);
   return answered;
 }
 

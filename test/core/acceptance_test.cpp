@@ -53,16 +53,84 @@ TEST(Distinctiveness, IsZeroAmongTooFewRivals) {
 }
 
 TEST(ApplyAcceptance, AcceptsAFoundMatchAtTheThreshold) {
+  SequenceParams params;  // Velocities 0.8 .. 1.2.
   Match match;
   match.reference_index = 7;
   match.confidence = 3.0F;
-  applyAcceptance(match, 3.0);
+  match.velocity = 1.0F;
+  params.accept_threshold = 3.0;
+  applyAcceptance(match, params);
   EXPECT_TRUE(match.accepted);
-  applyAcceptance(match, 3.5);
+  params.accept_threshold = 3.5;
+  applyAcceptance(match, params);
   EXPECT_FALSE(match.accepted);
   match.reference_index = -1;
-  applyAcceptance(match, 0.0);
+  params.accept_threshold = 0.0;
+  applyAcceptance(match, params);
   EXPECT_FALSE(match.accepted);  // Nothing found is never accepted.
+}
+
+TEST(ApplyAcceptance, RefusesATrajectoryAtTheSlowestOrFastestVelocity) {
+  SequenceParams params;  // 0.8, 0.9, 1.0, 1.1, 1.2
+  Match match;
+  match.reference_index = 7;
+  match.confidence = 10.0F;
+  for (float velocity : {0.8F, 1.2F}) {
+    match.velocity = velocity;
+    EXPECT_TRUE(atVelocityBound(match, params)) << velocity;
+    applyAcceptance(match, params);
+    EXPECT_FALSE(match.accepted) << velocity;
+  }
+  for (float velocity : {0.9F, 1.0F, 1.1F}) {
+    match.velocity = velocity;
+    EXPECT_FALSE(atVelocityBound(match, params)) << velocity;
+    applyAcceptance(match, params);
+    EXPECT_TRUE(match.accepted) << velocity;
+  }
+  // A finer grid: its own bounds, not 0.8 + one coarse step.
+  params.velocity_step = 0.02;
+  match.velocity = 0.82F;
+  EXPECT_FALSE(atVelocityBound(match, params));
+  match.velocity = 0.8F;
+  EXPECT_TRUE(atVelocityBound(match, params));
+}
+
+TEST(ApplyAcceptance, OneOrTwoVelocitiesAreTheUsersFixedSpeedNotABound) {
+  SequenceParams params;
+  params.velocity_min = 1.0;
+  params.velocity_max = 1.0;
+  Match match;
+  match.reference_index = 7;
+  match.confidence = 10.0F;
+  match.velocity = 1.0F;
+  applyAcceptance(match, params);
+  EXPECT_TRUE(match.accepted);
+  params.velocity_max = 1.1;  // 1.0 and 1.1.
+  match.velocity = 1.1F;
+  applyAcceptance(match, params);
+  EXPECT_TRUE(match.accepted);
+}
+
+TEST(AcceptanceVerdict, SaysWhyAnAnswerIsNotAccepted) {
+  SequenceParams params;
+  Match match;
+  EXPECT_EQ(acceptanceVerdict(match, params), "no match found");
+  match.reference_index = 7;
+  match.rivals = kMinRivalEnds - 1;
+  EXPECT_NE(acceptanceVerdict(match, params).find("ends outside the answer's window"), std::string::npos);
+  match.rivals = kMinRivalEnds;
+  match.confidence = 2.0F;
+  match.velocity = 1.0F;
+  EXPECT_EQ(acceptanceVerdict(match, params), "not accepted: confidence below sequence/accept_threshold");
+  match.confidence = 5.0F;
+  match.velocity = 0.8F;
+  applyAcceptance(match, params);
+  const std::string at_bound = acceptanceVerdict(match, params);
+  EXPECT_NE(at_bound.find("runs at 0.8 map frames a frame, the slowest or fastest of"), std::string::npos) << at_bound;
+  EXPECT_NE(at_bound.find("(0.8..1.2)"), std::string::npos) << at_bound;
+  match.velocity = 1.0F;
+  applyAcceptance(match, params);
+  EXPECT_EQ(acceptanceVerdict(match, params), "accepted");
 }
 
 }  // namespace
