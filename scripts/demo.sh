@@ -153,7 +153,8 @@ with open(truth_file) as f:
 print()
 print("true: reference frame of the query's newest frame; predicted: the node's answer (by its stamp);")
 print("conf: confidence, the gap to the best rival in standard deviations of the query's own costs;")
-print("acc: confidence >= ~sequence/accept_threshold (3); time_ms: the node's time")
+print("acc: confidence >= ~sequence/accept_threshold (3), on a trajectory not at the slowest or fastest")
+print("velocity searched (the node's message says why not); time_ms: the node's time")
 print()
 print("%-8s %-11s %6s %10s %6s %6s %5s %9s" % ("method", "query", "true", "predicted", "error", "conf", "acc", "time_ms"))
 errors = {"mrs": [], "seqslam": []}
