@@ -345,20 +345,6 @@ class Diagnosis {
   int confidently_wrong_ = 0;
 };
 
-/// The record of query frame `frame` answered by `match`, whose true places are `truth` (none when
-/// out of the map).
-QueryRecord recordOf(int frame, std::vector<int> truth, const mrs_vpr::Match& match, double time_ms) {
-  QueryRecord record;
-  record.query_index = frame;
-  record.true_indices = std::move(truth);
-  record.predicted_index = match.reference_index;
-  record.score = match.score;
-  record.confidence = match.confidence;
-  record.accepted = match.accepted;
-  record.time_ms = time_ms;
-  return record;
-}
-
 /// One method's answers to the test sequences of `length` frames of `query` that end at `ends`, in
 /// `map`; the sequence ending at frame e has the true places truth_of(e). With `diagnosis`, MRS's
 /// levels are traced into it.
@@ -375,7 +361,7 @@ std::vector<QueryRecord> globalRecords(const mrs_vpr::SequenceMatcher& matcher, 
     const mrs_vpr::Match match =
         (mrs != nullptr && diagnosis != nullptr) ? mrs->match(map, test, &trace) : matcher.match(map, test);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const QueryRecord& record = records.emplace_back(recordOf(end, truth_of(end), match, ms));
+    const QueryRecord& record = records.emplace_back(mrs_vpr::queryRecordOf(end, truth_of(end), match, ms));
     if (diagnosis != nullptr) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
   }
   return records;
@@ -421,7 +407,7 @@ std::vector<QueryRecord> perFrameRecords(const mrs_vpr::SequenceMatcher& matcher
   for (int i = 0; i < query.count; ++i) {
     const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
     if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
-    records.push_back(recordOf(i, truth_of(i), match, total_ms / query.count));
+    records.push_back(mrs_vpr::queryRecordOf(i, truth_of(i), match, total_ms / query.count));
   }
   return records;
 }
@@ -596,7 +582,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       // The summer frame of a place has the place's route index in the map.
       (second ? revisit : first_traversal)
-          .push_back(recordOf(t, second ? std::vector<int>{route_frame} : std::vector<int>{}, match, ms));
+          .push_back(mrs_vpr::queryRecordOf(t, second ? std::vector<int>{route_frame} : std::vector<int>{}, match, ms));
     }
     report.row("continuous, first traversal ds=10", method, mrs_vpr::summarise(first_traversal, 2),
                {"continuous", true, route, kLength});

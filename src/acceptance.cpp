@@ -46,8 +46,11 @@ bool atVelocityBound(const Match& match, const SequenceParams& params) {
 }
 
 void applyAcceptance(Match& match, const SequenceParams& params) {
-  match.accepted =
-      match.reference_index >= 0 && match.confidence >= params.accept_threshold && !atVelocityBound(match, params);
+  match.at_velocity_bound = atVelocityBound(match, params);
+  // As among too few rivals, there is then nothing to be sure about: the gap was measured among
+  // trajectories that do not fit how the robot moved.
+  if (match.at_velocity_bound) match.confidence = 0.0F;
+  match.accepted = match.reference_index >= 0 && match.confidence >= params.accept_threshold && !match.at_velocity_bound;
 }
 
 std::string acceptanceVerdict(const Match& match, const SequenceParams& params) {
@@ -58,13 +61,15 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
            " to tell a place from chance";
   }
-  if (match.confidence < params.accept_threshold) return "not accepted: confidence below sequence/accept_threshold";
-  std::ostringstream message;
-  message << "not accepted: the best trajectory runs at " << match.velocity
-          << " map frames a frame, the slowest or fastest of sequence/velocity_min..velocity_max ("
-          << params.velocity_min << ".." << params.velocity_max
-          << "): the robot may be moving outside that range (another speed, a stop, backwards)";
-  return message.str();
+  if (match.at_velocity_bound) {
+    std::ostringstream message;
+    message << "not accepted: the best trajectory runs at " << match.velocity
+            << " map frames a frame, the slowest or fastest of sequence/velocity_min..velocity_max ("
+            << params.velocity_min << ".." << params.velocity_max
+            << "): the robot may be moving outside that range (another speed, a stop, backwards)";
+    return message.str();
+  }
+  return "not accepted: confidence below sequence/accept_threshold";
 }
 
 }  // namespace mrs_vpr

@@ -50,7 +50,8 @@ float distinctiveness(float best, float runner_up, float spread, int rivals);
 bool atVelocityBound(const Match& match, const SequenceParams& params);
 
 /// Sets match.accepted: a match was found, its confidence reaches params.accept_threshold, and its
-/// trajectory is not at a velocity bound (atVelocityBound).
+/// trajectory is not at a velocity bound (atVelocityBound; such a match gets confidence 0, as one
+/// among too few rivals does, and match.at_velocity_bound).
 void applyAcceptance(Match& match, const SequenceParams& params);
 
 /// For the user: "accepted", or why not ("no match found", too few rivals, confidence below the

@@ -11,7 +11,7 @@ struct Match {
   /**
    * Distinctiveness: by how many standard deviations of the costs of all ends the best sequence
    * beats its best rival (the lowest cost farther than match_exclusion / 2 from it), >= 0; higher is
-   * surer. Unlike the ratio of `score`, it is measured in the noise of this very query, so a threshold
+   * surer; 0 when the answer's trajectory runs at a velocity bound. Unlike the ratio of `score`, it is measured in the noise of this very query, so a threshold
    * means the same for every method, sequence length and map size (see acceptance.hpp).
    */
   float confidence = 0.0F;
@@ -24,6 +24,9 @@ struct Match {
   bool accepted = false;
   /// Reference frames per test frame along the answer's trajectory (0 when no match was found).
   float velocity = 0.0F;
+  /// The trajectory runs at the slowest or fastest velocity searched (atVelocityBound): such an
+  /// answer has confidence 0 and is never accepted.
+  bool at_velocity_bound = false;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

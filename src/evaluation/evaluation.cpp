@@ -7,6 +7,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -61,6 +62,19 @@ double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance) {
   const auto correct = std::count_if(records.begin(), records.end(),
                                      [tolerance](const QueryRecord& r) { return isCorrect(r, tolerance); });
   return static_cast<double>(correct) / static_cast<double>(records.size());
+}
+
+QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& match, double time_ms) {
+  QueryRecord record;
+  record.query_index = query_index;
+  record.true_indices = std::move(truth);
+  record.predicted_index = match.reference_index;
+  record.score = match.score;
+  record.confidence = match.confidence;
+  record.accepted = match.accepted;
+  record.at_velocity_bound = match.at_velocity_bound;
+  record.time_ms = time_ms;
+  return record;
 }
 
 std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& records, int tolerance) {

@@ -151,20 +151,6 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   return options;
 }
 
-
-mrs_vpr::QueryRecord makeRecord(int query_index, const std::vector<int>& truth, const mrs_vpr::Match& match,
-                                double time_ms) {
-  mrs_vpr::QueryRecord record;
-  record.query_index = query_index;
-  record.true_indices = truth;
-  record.predicted_index = match.reference_index;
-  record.score = match.score;
-  record.confidence = match.confidence;
-  record.accepted = match.accepted;
-  record.time_ms = time_ms;
-  return record;
-}
-
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
@@ -186,7 +172,8 @@ std::vector<mrs_vpr::QueryRecord> runPerFrame(mrs_vpr::PlaceRecognizer& referenc
   for (int frame : frames) {
     const auto true_indices = mrs_vpr::truthFor(frame, truth, reference.size());
     if (!true_indices) continue;
-    records.push_back(makeRecord(frame, *true_indices, matches.at(static_cast<std::size_t>(frame)), per_query_ms));
+    records.push_back(
+        mrs_vpr::queryRecordOf(frame, *true_indices, matches.at(static_cast<std::size_t>(frame)), per_query_ms));
   }
   return records;
 }
@@ -217,7 +204,7 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
     const Clock::time_point start = Clock::now();
     const mrs_vpr::Match match =
         reference.match(query.view(test.start, test.start + test.length), options.method).match;
-    records.push_back(makeRecord(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
+    records.push_back(mrs_vpr::queryRecordOf(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
   }
   progress.update(done);
   progress.finish();
@@ -298,6 +285,7 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
                     {"score", record.score},
                     {"confidence", record.confidence},
                     {"accepted", record.accepted},
+                    {"at_velocity_bound", record.at_velocity_bound},
                     {"time_ms", record.time_ms},
                     {"correct", mrs_vpr::isCorrect(record, tolerance)}});
   }

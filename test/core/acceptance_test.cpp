@@ -77,15 +77,25 @@ TEST(ApplyAcceptance, RefusesATrajectoryAtTheSlowestOrFastestVelocity) {
   match.confidence = 10.0F;
   for (float velocity : {0.8F, 1.2F}) {
     match.velocity = velocity;
+    match.confidence = 10.0F;
     EXPECT_TRUE(atVelocityBound(match, params)) << velocity;
     applyAcceptance(match, params);
     EXPECT_FALSE(match.accepted) << velocity;
+    EXPECT_TRUE(match.at_velocity_bound) << velocity;
+    EXPECT_EQ(match.confidence, 0.0F) << velocity;  // Nothing to be sure about, as among too few rivals.
+    params.accept_threshold = 0.0;  // Not even when every confidence is enough.
+    applyAcceptance(match, params);
+    EXPECT_FALSE(match.accepted) << velocity;
+    params.accept_threshold = 3.0;
   }
   for (float velocity : {0.9F, 1.0F, 1.1F}) {
     match.velocity = velocity;
+    match.confidence = 10.0F;
     EXPECT_FALSE(atVelocityBound(match, params)) << velocity;
     applyAcceptance(match, params);
     EXPECT_TRUE(match.accepted) << velocity;
+    EXPECT_FALSE(match.at_velocity_bound) << velocity;
+    EXPECT_EQ(match.confidence, 10.0F) << velocity;
   }
   // A finer grid: its own bounds, not 0.8 + one coarse step.
   params.velocity_step = 0.02;
@@ -129,6 +139,7 @@ TEST(AcceptanceVerdict, SaysWhyAnAnswerIsNotAccepted) {
   EXPECT_NE(at_bound.find("runs at 0.8 map frames a frame, the slowest or fastest of"), std::string::npos) << at_bound;
   EXPECT_NE(at_bound.find("(0.8..1.2)"), std::string::npos) << at_bound;
   match.velocity = 1.0F;
+  match.confidence = 5.0F;
   applyAcceptance(match, params);
   EXPECT_EQ(acceptanceVerdict(match, params), "accepted");
 }

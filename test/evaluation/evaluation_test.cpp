@@ -118,6 +118,25 @@ TEST(Evaluation, PrecisionRecallCurveByHand) {
   EXPECT_DOUBLE_EQ(recallAtFullPrecision(curve), 0.2);
 }
 
+TEST(Evaluation, AQueryRecordCopiesTheMatch) {
+  Match match;
+  match.reference_index = 12;
+  match.confidence = 4.0F;
+  match.score = 0.25F;
+  match.accepted = true;
+  const QueryRecord record = queryRecordOf(7, {12}, match, 2.5);
+  EXPECT_EQ(record.query_index, 7);
+  EXPECT_EQ(record.true_indices, std::vector<int>{12});
+  EXPECT_EQ(record.predicted_index, 12);
+  EXPECT_FLOAT_EQ(record.confidence, 4.0F);
+  EXPECT_FLOAT_EQ(record.score, 0.25F);
+  EXPECT_TRUE(record.accepted);
+  EXPECT_FALSE(record.at_velocity_bound);
+  EXPECT_DOUBLE_EQ(record.time_ms, 2.5);
+  match.at_velocity_bound = true;
+  EXPECT_TRUE(queryRecordOf(7, {12}, match, 2.5).at_velocity_bound);
+}
+
 TEST(Evaluation, EqualConfidencesAreAcceptedTogether) {
   const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.5F), record(1, {1}, 30, 0.5F)};
   const std::vector<PrPoint> curve = precisionRecallCurve(records, 0);

@@ -190,8 +190,10 @@ TEST_F(ToolsTest, RecordsCarryTheAcceptanceRuleAndTheSummaryCountsIt) {
   int accepted_correct = 0;
   for (const json& record : records) {
     ASSERT_TRUE(record.at("accepted").is_boolean()) << record;
-    // The core's rule, the same for every method: found and confidence >= the threshold.
-    const bool expected = record.at("predicted_index").get<int>() >= 0 && record.at("confidence").get<double>() >= 3.0;
+    // The core's rule, the same for every method: found, confidence >= the threshold and a
+    // trajectory inside the velocity bounds.
+    const bool expected = record.at("predicted_index").get<int>() >= 0 && record.at("confidence").get<double>() >= 3.0 &&
+                          !record.at("at_velocity_bound").get<bool>();
     EXPECT_EQ(record.at("accepted").get<bool>(), expected) << record;
     accepted += expected ? 1 : 0;
     accepted_correct += expected && record.at("correct").get<bool>() ? 1 : 0;

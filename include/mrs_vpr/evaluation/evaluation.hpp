@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
 
 namespace mrs_vpr {
@@ -22,8 +23,14 @@ struct QueryRecord {
   float score = 1.0F;             ///< Best / runner-up, lower is better.
   float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
   bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
+  /// The answer's trajectory runs at a velocity bound (Match::at_velocity_bound; confidence 0).
+  bool at_velocity_bound = false;
   double time_ms = 0.0;           ///< Time spent on this query.
 };
+
+/// The record of the answer `match` to the query localising `query_index`, whose true places are
+/// `truth` (none when the place is not in the map).
+QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& match, double time_ms);
 
 /// One point of a precision-recall curve.
 struct PrPoint {
