@@ -6,7 +6,8 @@ anchor + v * k, which mostly falls between two reference frames. OpenSeqSLAM and
 to the nearest column. The alternative is to read the linear blend of the two columns around it.
 
 This reuses reference_bias.py's NumPy copy of the core's per-frame path (its "rounded" rows equal
-`mrs_vpr_eval --protocol per-frame --tolerance 2`) and changes only the crossings. For the sequence
+`mrs_vpr_eval --protocol per-frame --tolerance 2` before the velocity-bound rule, see there) and
+changes only the crossings. For the sequence
 lengths 10 and 50 it prints, on Nordland (winter against summer) and the corridor: top-1, PR-AUC and
 the accepted answers at the core's threshold (3); and for out-of-map queries (the winter frames of
 one half of the Nordland route against the summer frames of the other) how many were accepted and

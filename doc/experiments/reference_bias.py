@@ -12,8 +12,10 @@ answers. Two ways to take that bias out before the local contrast enhancement we
 This is a NumPy re-implementation of the core's per-frame path (descriptor, difference matrix,
 contrast enhancement, causal trajectory search, confidence = gap to the best rival in robust
 spreads, acceptance at 3). Its "none" rows reproduce `mrs_vpr_eval --protocol per-frame
---sequence-length 10 --tolerance 2` on the same data exactly, so the other rows differ from the
-project only in the bias removal.
+--sequence-length 10 --tolerance 2` on the same data exactly as it was before the velocity-bound
+rule (commit 32728c6; since then answers at a velocity bound get confidence 0, PR-AUC 0.8144), so
+the other rows differ from the project only in the bias removal. It leaves out the 100-rival
+minimum, so its corridor figures rank confidences that the core reports as 0 in a 111-frame map.
 
   doc/experiments/reference_bias.py DATA_DIR    (DATA_DIR holds nordland/ and corridor/)
 
