@@ -79,7 +79,6 @@ def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
     data = sys.argv[1]
-    half = pipeline.TUNE_HALF_END
     nordland = pipeline.difference_matrix(os.path.join(data, "nordland/winter"),
                                           os.path.join(data, "nordland/summer"), "*.png")
     corridor = pipeline.difference_matrix(os.path.join(data, "corridor/query"),
@@ -93,20 +92,15 @@ def main():
         print(f"ds = {length}, tolerance {tolerance}")
         for blended in (False, True):
             name = "blended" if blended else "rounded"
-            frames, correct, confidence = answers(nordland, lambda q, r: abs(q - r) <= tolerance, length, blended)
-            tune = frames < half
-            print(f"  {name}  Nordland whole {pipeline.summary(correct, confidence)}\n"
-                  f"  {'':7}  Nordland tune  {pipeline.summary(correct[tune], confidence[tune])}\n"
-                  f"  {'':7}  Nordland check {pipeline.summary(correct[~tune], confidence[~tune])}")
-            for part_name, part in (("tune queries, check map", nordland[:half, half:]),
-                                    ("check queries, tune map", nordland[half:, :half])):
+            pipeline.print_halves(name, *answers(nordland, lambda q, r: abs(q - r) <= tolerance, length, blended))
+            for part_name, part in pipeline.out_of_map_parts(nordland):
                 _, _, confidence = answers(part, lambda q, r: False, length, blended)
-                print(f"  {'':7}  out of the map ({part_name}): {(confidence >= pipeline.ACCEPT_THRESHOLD).sum()} of "
+                print(f"  {'':10} out of the map ({part_name}): {(confidence >= pipeline.ACCEPT_THRESHOLD).sum()} of "
                       f"{len(confidence)} accepted, confidence largest {confidence.max():.2f}, "
                       f"99th percentile {np.percentile(confidence, 99):.2f}")
             _, correct, confidence = answers(
                 corridor, lambda q, r: any(abs(r - t) <= tolerance for t in truth.get(q, [])), length, blended)
-            print(f"  {'':7}  corridor       {pipeline.summary(correct, confidence)}")
+            print(f"  {'':10} corridor {pipeline.summary(correct, confidence)}")
 
 
 if __name__ == "__main__":

@@ -122,6 +122,20 @@ def average_precision(correct, confidence):
     return area
 
 
+def out_of_map_parts(nordland):
+    """The queries of one half of the route against the summer frames of the other, both ways."""
+    return (("tune queries, check map", nordland[:TUNE_HALF_END, TUNE_HALF_END:]),
+            ("check queries, tune map", nordland[TUNE_HALF_END:, :TUNE_HALF_END]))
+
+
+def print_halves(label, frames, correct, confidence):
+    """The summary of the whole Nordland route and of its tune and check halves."""
+    tune = frames < TUNE_HALF_END
+    print(f"  {label:10} whole {summary(correct, confidence)}\n"
+          f"  {'':10} tune  {summary(correct[tune], confidence[tune])}\n"
+          f"  {'':10} check {summary(correct[~tune], confidence[~tune])}")
+
+
 def evaluate(differences, is_correct, method):
     last_frames = np.arange(SEQUENCE_LENGTH - 1, differences.shape[0])
     correct, confidence = [], []
@@ -148,14 +162,8 @@ def main():
     nordland = difference_matrix(os.path.join(data, "nordland/winter"), os.path.join(data, "nordland/summer"), "*.png")
     print(f"Nordland winter against summer, {nordland.shape[0]} frames, ds = {SEQUENCE_LENGTH}, tolerance {TOLERANCE}")
     for method in methods:
-        frames, correct, confidence = evaluate(nordland, lambda q, r: abs(q - r) <= TOLERANCE, method)
-        tune = frames < TUNE_HALF_END
-        print(f"  {method:10} whole {summary(correct, confidence)}\n"
-              f"  {'':10} tune  {summary(correct[tune], confidence[tune])}\n"
-              f"  {'':10} check {summary(correct[~tune], confidence[~tune])}")
-        # Out of the map: the queries of one part against the summer frames of the other.
-        for name, part in (("tune queries, check map", nordland[:TUNE_HALF_END, TUNE_HALF_END:]),
-                           ("check queries, tune map", nordland[TUNE_HALF_END:, :TUNE_HALF_END])):
+        print_halves(method, *evaluate(nordland, lambda q, r: abs(q - r) <= TOLERANCE, method))
+        for name, part in out_of_map_parts(nordland):
             _, _, confidence = evaluate(part, lambda q, r: False, method)
             print(f"  {'':10} out of the map ({name}): {(confidence >= ACCEPT_THRESHOLD).sum()} of "
                   f"{len(confidence)} accepted, highest confidence {confidence.max():.2f}")
