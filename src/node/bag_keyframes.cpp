@@ -18,8 +18,7 @@ void validate(const TravelSettings& settings) {
     message << "min_travel must be a finite number of metres >= 0, got " << settings.min_travel;
     throw std::invalid_argument(message.str());
   }
-  if (settings.min_travel > 0.0 &&
-      (settings.odom_frame.empty() || settings.base_frame.empty() || settings.odom_frame == settings.base_frame)) {
+  if (settings.min_travel > 0.0 && !node::TravelPolicy::measurableBetween(settings.odom_frame, settings.base_frame)) {
     throw std::invalid_argument("keyframes by travel need two different, non-empty frames; got odom frame '" +
                                 settings.odom_frame + "' and base frame '" + settings.base_frame + "'");
   }
@@ -56,7 +55,7 @@ bool BagKeyframes::keep(const ros::Time& stamp) {
 
 std::string BagKeyframes::summary() const {
   std::ostringstream line;
-  line << kept_ << " keyframes of " << kept_ + too_near_ + without_pose_ << " frames at min_travel "
+  line << kept_ << " keyframes of " << frames() << " frames at min_travel "
        << settings_.min_travel << " m (" << too_near_ << " too near, " << without_pose_ << " without a pose of '"
        << settings_.base_frame << "' in '" << settings_.odom_frame << "')";
   return line.str();

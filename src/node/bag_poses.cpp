@@ -1,9 +1,9 @@
 #include "mrs_vpr/node/bag_poses.hpp"
 
 #include <tf2/buffer_core.h>
-#include <tf2/exceptions.h>
 
 #include "bag_reader_table.hpp"
+#include "mrs_vpr/node/robot_position.hpp"
 
 namespace mrs_vpr {
 namespace bag {
@@ -31,13 +31,7 @@ BagPoses::~BagPoses() = default;
 
 std::optional<Eigen::Vector3d> BagPoses::positionAt(const std::string& odom_frame, const std::string& base_frame,
                                                     const ros::Time& stamp, std::string& why) const {
-  try {
-    const geometry_msgs::Vector3 t = buffer_->lookupTransform(odom_frame, base_frame, stamp).transform.translation;
-    return Eigen::Vector3d(t.x, t.y, t.z);
-  } catch (const tf2::TransformException& exception) {
-    why = exception.what();
-    return std::nullopt;
-  }
+  return node::robotPositionFrom([&] { return buffer_->lookupTransform(odom_frame, base_frame, stamp); }, why);
 }
 
 }  // namespace bag

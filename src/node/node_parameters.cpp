@@ -11,6 +11,8 @@
 #include <XmlRpcValue.h>
 #include <ros/param.h>
 
+#include "mrs_vpr/node/travel_policy.hpp"
+
 namespace mrs_vpr {
 namespace node {
 
@@ -220,7 +222,7 @@ void NodeParameters::validate() const {
   } catch (const std::invalid_argument& error) {
     throwPrivate(error);
   }
-  if (min_travel > 0.0 && (odom_frame.empty() || base_frame.empty() || odom_frame == base_frame)) {
+  if (min_travel > 0.0 && !TravelPolicy::measurableBetween(odom_frame, base_frame)) {
     throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
                                 "(got '" + odom_frame + "' and '" + base_frame + "')");
   }

@@ -11,6 +11,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
+#include "mrs_vpr/node/robot_position.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -201,16 +202,13 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
 }
 
 std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Time& stamp, std::string& error) const {
-  try {
-    // A zero stamp (an unstamped camera) asks for the newest pose.
-    const geometry_msgs::TransformStamped pose = tf_buffer_->lookupTransform(
-        params_.odom_frame, params_.base_frame, stamp, ros::Duration(params_.tf_timeout));
-    const geometry_msgs::Vector3& t = pose.transform.translation;
-    return Eigen::Vector3d(t.x, t.y, t.z);
-  } catch (const tf2::TransformException& exception) {
-    error = exception.what();
-    return std::nullopt;
-  }
+  // A zero stamp (an unstamped camera) asks for the newest pose.
+  return robotPositionFrom(
+      [&] {
+        return tf_buffer_->lookupTransform(params_.odom_frame, params_.base_frame, stamp,
+                                           ros::Duration(params_.tf_timeout));
+      },
+      error);
 }
 
 void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {

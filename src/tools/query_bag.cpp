@@ -102,7 +102,7 @@ int run(int argc, char** argv) {
       images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes);
       request["min_travel"] = travel.min_travel;
       // Where the sequence ends in the bag: frames from --start on that were read to choose it.
-      request["frames_read"] = keyframes.kept() + keyframes.tooNear() + keyframes.withoutPose();
+      request["frames_read"] = keyframes.frames();
     }
     for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
     request["last_stamp"] = query.request.images.back().header.stamp.toSec();

@@ -36,6 +36,8 @@ class BagKeyframes {
   bool keep(const ros::Time& stamp);
 
   const TravelSettings& settings() const { return settings_; }
+  /// Frames offered to keep() so far, kept or not.
+  int frames() const { return kept_ + too_near_ + without_pose_; }
   int kept() const { return kept_; }
   /// Frames nearer than min_travel to the last keyframe.
   int tooNear() const { return too_near_; }

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <string>
+
 #include <Eigen/Core>
 
 namespace mrs_vpr {
@@ -17,6 +19,11 @@ namespace node {
 class TravelPolicy {
  public:
   explicit TravelPolicy(double min_travel) : min_travel_(min_travel) {}
+
+  /// Whether travel can be measured between these frames: two different, non-empty tf frames.
+  static bool measurableBetween(const std::string& odom_frame, const std::string& base_frame) {
+    return !odom_frame.empty() && !base_frame.empty() && odom_frame != base_frame;
+  }
 
   /// Whether frames are chosen by distance at all (min_travel > 0).
   bool enabled() const { return min_travel_ > 0.0; }
