@@ -19,6 +19,7 @@
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
+#include "support/travel_drive.hpp"
 
 namespace {
 
@@ -32,14 +33,8 @@ using mrs_vpr::testing_support::waitForSubscribers;
 
 /// The robot at x metres along odom's x axis, at `stamp`.
 tf2_msgs::TFMessage poseAt(double x, double stamp) {
-  geometry_msgs::TransformStamped pose;
-  pose.header.stamp = ros::Time(stamp);
-  pose.header.frame_id = "odom";
-  pose.child_frame_id = "base_link";
-  pose.transform.translation.x = x;
-  pose.transform.rotation.w = 1.0;
   tf2_msgs::TFMessage message;
-  message.transforms.push_back(pose);
+  message.transforms.push_back(mrs_vpr::testing_support::transformAt(ros::Time(stamp), "odom", "base_link", x));
   return message;
 }
 
@@ -53,10 +48,7 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
 
   // Driving 4 m at 0.25 m a frame, standing still for 30 frames (odometry jitters by 1 cm), then
   // driving 2 m at 0.5 m a frame: keyframes at 0, 1, 2, 3, 4, 5 and 6 m.
-  std::vector<double> positions;
-  for (int i = 0; i <= 16; ++i) positions.push_back(0.25 * i);
-  for (int i = 0; i < 30; ++i) positions.push_back(4.0 + (i % 2 == 0 ? 0.01 : -0.01));
-  for (int i = 1; i <= 4; ++i) positions.push_back(4.0 + 0.5 * i);
+  const std::vector<double> positions = mrs_vpr::testing_support::driveStopDrive();
   mrs_vpr::SyntheticRouteParams route_params;
   route_params.reference_frames = static_cast<int>(positions.size());
   route_params.query_frames = 2;
