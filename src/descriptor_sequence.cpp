@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "mrs_vpr/mrs/compact_cells.hpp"
 
 namespace mrs_vpr {
 
@@ -22,14 +22,10 @@ SequenceView SequenceView::slice(int begin, int end) const {
 
 SequenceView SequenceView::coarseCells(int stride, const DescriptorParams& geometry) const {
   if (coarse == nullptr || step != 1 || count == 0) return {};
-  const DescriptorParams& kept = coarse->frequencies->geometry();
-  if (kept.image_width != geometry.image_width || kept.image_height != geometry.image_height ||
-      kept.patch_size != geometry.patch_size) {
-    return {};
-  }
+  if (!coarse->kind->geometry().sameFrontEnd(geometry)) return {};
   for (std::size_t level = 0; level < coarse->levels.size(); ++level) {
     if (stride == (2 << level)) {
-      return {coarse->levels[level].data(), (count - 1) / stride + 1, coarse->frequencies->cellSize(), 1};
+      return {coarse->levels[level].data(), (count - 1) / stride + 1, coarse->kind->cellSize(), 1};
     }
   }
   return {};
@@ -64,24 +60,23 @@ void DescriptorSequence::append(const cv::Mat& descriptor, double stamp) {
 
 void DescriptorSequence::appendCoarseCells(int last) {
   if (coarse_.levels.empty()) return;
-  const auto cell_size = static_cast<std::size_t>(coarse_.frequencies->cellSize());
+  const auto cell_size = static_cast<std::size_t>(coarse_.kind->cellSize());
   for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const int stride = 2 << level;
     if (last % stride != 0) continue;
     std::vector<std::uint8_t>& cells = coarse_.levels[level];
     cells.resize(cells.size() + cell_size);
-    coarse_.frequencies->cell(view(), last, stride, cells.data() + cells.size() - cell_size);
+    coarse_.kind->cell(view(), last, stride, cells.data() + cells.size() - cell_size);
   }
 }
 
 void DescriptorSequence::keepCoarseCells(int levels, const DescriptorParams& geometry) {
-  auto frequencies = std::make_shared<const PatchFrequencies>(geometry);
-  if (frequencies->descriptorSize() != descriptor_size_) {
-    throw std::invalid_argument("coarse cells for " + std::to_string(geometry.image_width) + " x " +
-                                std::to_string(geometry.image_height) + " descriptors cannot be kept for descriptors of " +
+  auto kind = makeCompactCells(geometry);
+  if (kind->descriptorSize() != descriptor_size_) {
+    throw std::invalid_argument("coarse cells of the " + geometry.describe() + " front end cannot be kept for descriptors of " +
                                 std::to_string(descriptor_size_) + " bytes");
   }
-  coarse_.frequencies = std::move(frequencies);
+  coarse_.kind = std::move(kind);
   coarse_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
   for (int frame = 0; frame < size(); ++frame) appendCoarseCells(frame);
 }
@@ -97,7 +92,7 @@ void DescriptorSequence::reserve(int frames) {
   stamps_.reserve(static_cast<std::size_t>(frames));
   for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const std::size_t cells = static_cast<std::size_t>(frames) / (std::size_t{2} << level) + 1;
-    coarse_.levels[level].reserve(cells * static_cast<std::size_t>(coarse_.frequencies->cellSize()));
+    coarse_.levels[level].reserve(cells * static_cast<std::size_t>(coarse_.kind->cellSize()));
   }
 }
 

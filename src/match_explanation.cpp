@@ -5,14 +5,11 @@
 #include <limits>
 
 #include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/front_end/front_end.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace {
-
-cv::Mat thumbnail(const std::uint8_t* descriptor, const DescriptorParams& params) {
-  return cv::Mat(params.image_height, params.image_width, CV_8UC1, const_cast<std::uint8_t*>(descriptor)).clone();
-}
 
 /// The reference frame a trajectory of `velocity` ending at `end` (at test frame `anchor`) visits at `t`:
 /// the rule of the searches (trajectory_search.hpp).
@@ -51,10 +48,11 @@ MatchExplanation explainMatch(SequenceView reference, SequenceView query, const 
   explanation.query_frames = query.count;
   explanation.anchor = wholeSequenceRows(query.count, params.alignment).anchor;
   if (query.count == 0) return explanation;
-  explanation.query_thumbnail = thumbnail(query.frame(explanation.anchor), descriptor);
+  const std::unique_ptr<const FrontEnd> front_end = makeFrontEnd(descriptor);
+  explanation.query_thumbnail = front_end->picture(query.frame(explanation.anchor));
   const int end = match.reference_index;
   if (end < 0 || end >= reference.count) return explanation;
-  explanation.reference_thumbnail = thumbnail(reference.frame(end), descriptor);
+  explanation.reference_thumbnail = front_end->picture(reference.frame(end));
 
   explanation.velocity = bestVelocity(reference, query, end, explanation.anchor, params);
   int lowest = end;

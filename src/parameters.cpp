@@ -32,13 +32,29 @@ std::string join(const std::vector<std::string>& words) {
 const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters() {
   using P = DescriptorParams;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"descriptor/image_width", Range::closed(4, 1024), {}, "", "Width the image is resized to [px]."},
+      {{"descriptor/type", {}, {kHogFrontEnd, kThumbnailFrontEnd}, "",
+        "Front end: hog (OpenCV's histograms of oriented gradients) or thumbnail (OpenSeqSLAM's "
+        "patch-normalised image)."},
+       &P::type},
+      {{"descriptor/image_width", Range::closed(4, 1024), {}, "", "Thumbnail: width the image is resized to [px]."},
        &P::image_width},
-      {{"descriptor/image_height", Range::closed(4, 1024), {}, "", "Height the image is resized to [px]."},
+      {{"descriptor/image_height", Range::closed(4, 1024), {}, "", "Thumbnail: height the image is resized to [px]."},
        &P::image_height},
       {{"descriptor/patch_size", Range::closed(1, 1024), {}, "dividing image_width and image_height",
-        "Side of the patch-normalisation patches [px]."},
+        "Thumbnail: side of the patch-normalisation patches [px]."},
        &P::patch_size},
+      {{"descriptor/hog/window_width", Range::closed(8, 1024), {}, "", "HOG: width the image is resized to [px]."},
+       &P::hog_window_width},
+      {{"descriptor/hog/window_height", Range::closed(8, 1024), {}, "", "HOG: height the image is resized to [px]."},
+       &P::hog_window_height},
+      {{"descriptor/hog/cell_size", Range::closed(2, 512), {}, "dividing both window sides into 2 cells or more",
+        "HOG: side of a histogram cell [px]; blocks are 2 x 2 cells, one cell apart."},
+       &P::hog_cell_size},
+      {{"descriptor/hog/bins", Range::closed(2, 36), {}, "", "HOG: orientation bins over 0..180 degrees."},
+       &P::hog_bins},
+      {{"descriptor/hog/blur", Range::closed(0, 16), {}, "",
+        "HOG: standard deviation of the Gaussian that smooths the window before its gradients [px]; 0 = none."},
+       &P::hog_blur},
   };
   return table;
 }
@@ -205,6 +221,45 @@ void DescriptorParams::validate() const {
                                                "image_width " + std::to_string(image_width) +
                                                    ", image_height " + std::to_string(image_height)));
   }
+  // A block is 2 x 2 cells, so the window needs at least two cells each way.
+  if (hog_window_width % hog_cell_size != 0 || hog_window_height % hog_cell_size != 0 ||
+      hog_window_width < 2 * hog_cell_size || hog_window_height < 2 * hog_cell_size) {
+    throw std::invalid_argument(parameterInfo(descriptorParameters(), "descriptor/hog/cell_size")
+                                    .rejection(std::to_string(hog_cell_size),
+                                               "window " + std::to_string(hog_window_width) + " x " +
+                                                   std::to_string(hog_window_height)));
+  }
+  if (descriptorSize() > kMaxDescriptorBytes) {
+    const std::string name = isHog() ? "descriptor/hog/cell_size" : "descriptor/patch_size";
+    throw std::invalid_argument(name + ": " + describe() + " gives descriptors of " + std::to_string(descriptorSize()) +
+                                " bytes, more than the " + std::to_string(kMaxDescriptorBytes) + " allowed");
+  }
+}
+
+int DescriptorParams::descriptorSize() const {
+  if (!isHog()) return image_width * image_height;
+  const int blocks_x = hog_window_width / hog_cell_size - 1;
+  const int blocks_y = hog_window_height / hog_cell_size - 1;
+  return blocks_x * blocks_y * 4 * hog_bins;
+}
+
+std::string DescriptorParams::describe() const {
+  if (isHog()) {
+    return std::string(kHogFrontEnd) + " (" + std::to_string(hog_window_width) + " x " +
+           std::to_string(hog_window_height) + " window, cells of " + std::to_string(hog_cell_size) + " px, " +
+           std::to_string(hog_bins) + " bins, blur " + formatNumber(hog_blur) + " px)";
+  }
+  return std::string(kThumbnailFrontEnd) + " (" + std::to_string(image_width) + " x " + std::to_string(image_height) +
+         ", patches of " + std::to_string(patch_size) + " px)";
+}
+
+bool DescriptorParams::sameFrontEnd(const DescriptorParams& other) const {
+  if (type != other.type) return false;
+  if (isHog()) {
+    return hog_window_width == other.hog_window_width && hog_window_height == other.hog_window_height &&
+           hog_cell_size == other.hog_cell_size && hog_bins == other.hog_bins && hog_blur == other.hog_blur;
+  }
+  return image_width == other.image_width && image_height == other.image_height && patch_size == other.patch_size;
 }
 
 void SequenceParams::validate() const {

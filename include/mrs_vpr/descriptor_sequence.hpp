@@ -11,12 +11,12 @@
 
 namespace mrs_vpr {
 
-class PatchFrequencies;
+class CompactCells;
 
-/// The compact cells of MRS's coarse levels (see mrs/patch_frequencies.hpp) that a store keeps for
+/// The compact cells of MRS's coarse levels (see mrs/compact_cells.hpp) that a store keeps for
 /// strides 2, 4, ..., so that a coarse-to-fine search need not transform the whole map per query.
 struct CoarseCells {
-  std::shared_ptr<const PatchFrequencies> frequencies;
+  std::shared_ptr<const CompactCells> kind;
   /// levels[i]: the cells of stride 2^(i+1), cell J ending at frame J * stride.
   std::vector<std::vector<std::uint8_t>> levels;
 };
@@ -40,7 +40,7 @@ struct SequenceView {
   /// Every `stride`-th frame of this view, starting at `first`. Throws std::out_of_range.
   SequenceView subsample(int first, int stride) const;
   /// The store's coarse cells of `stride` for this view (cells 0 .. (count - 1) / stride), or an
-  /// empty view when the store does not keep them or keeps them for another descriptor geometry.
+  /// empty view when the store does not keep them or keeps them for another front end.
   SequenceView coarseCells(int stride, const DescriptorParams& geometry) const;
 };
 
@@ -60,9 +60,9 @@ class DescriptorSequence {
   void clear();
 
   /// Also keeps MRS's coarse cells of strides 2, 4, ..., 2^levels for descriptors of `geometry`
-  /// (see mrs/patch_frequencies.hpp), updated on every append: 84 bytes a frame at 64 x 32 with 8 x
-  /// 8 patches and 3 levels. levels == 0 stops keeping them. Throws std::invalid_argument when the
-  /// geometry is invalid or does not give this sequence's descriptor size.
+  /// (see mrs/compact_cells.hpp), updated on every append: 84 bytes a frame for 64 x 32 thumbnails
+  /// with 8 x 8 patches and 3 levels. levels == 0 stops keeping them. Throws std::invalid_argument
+  /// when the geometry is invalid or does not give this sequence's descriptor size.
   void keepCoarseCells(int levels, const DescriptorParams& geometry);
 
   int size() const { return static_cast<int>(stamps_.size()); }

@@ -17,8 +17,9 @@ namespace mrs_vpr {
  * PlaceRecognizer fills it only when asked, so a query without it costs nothing more.
  */
 struct MatchExplanation {
-  /// Descriptor of the test frame the answer localises (the newest one when causal), shaped as the
-  /// image it was made from: CV_8UC1, image_height x image_width, 128 + 32 z per pixel.
+  /// Picture of the descriptor of the test frame the answer localises (the newest one when causal),
+  /// CV_8UC1, as its front end draws it (FrontEnd::picture): a thumbnail is its own image, HOG's
+  /// histograms are drawn as edges on the window's grid.
   cv::Mat query_thumbnail;
   /// The same for the matched reference frame; empty when there is no match.
   cv::Mat reference_thumbnail;
@@ -49,7 +50,7 @@ struct MatchExplanation {
  * `reference` with `params`. Costs at most kMaxBandSide^2 + velocities * query.count descriptor
  * comparisons, whatever the map's size: the band is subsampled to at most kMaxBandSide rows and
  * columns. The trajectory is the searched velocity whose straight line to the answer has the
- * lowest mean raw difference; `descriptor` gives the thumbnails' shape.
+ * lowest mean raw difference; `descriptor` gives the front end that draws the descriptors.
  */
 MatchExplanation explainMatch(SequenceView reference, SequenceView query, const Match& match,
                               const SequenceParams& params, const DescriptorParams& descriptor);

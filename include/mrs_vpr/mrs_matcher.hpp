@@ -1,6 +1,8 @@
 #pragma once
 
-#include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include <memory>
+
+#include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
 namespace mrs_vpr {
@@ -21,8 +23,8 @@ struct MrsLevelTrace {
 /// MRS-VPR: coarse-to-fine particle search over temporally subsampled sequences (Yin et al.).
 class MrsMatcher : public SequenceMatcher {
  public:
-  /// `descriptor` gives the geometry of the descriptors matched, which the coarse levels' cells
-  /// (patch frequencies) need.
+  /// `descriptor` gives the front end of the descriptors matched, whose compact cells the coarse
+  /// levels compare (mrs/compact_cells.hpp).
   MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs, const DescriptorParams& descriptor = {});
 
   Match match(SequenceView reference, SequenceView query) const override;
@@ -40,7 +42,7 @@ class MrsMatcher : public SequenceMatcher {
 
  private:
   MrsParams mrs_;
-  PatchFrequencies frequencies_;
+  std::shared_ptr<const CompactCells> compact_;
 };
 
 }  // namespace mrs_vpr

@@ -14,11 +14,40 @@ namespace mrs_vpr {
 // (defined in parameters.cpp): validate() checks them and the node prints them with --help, so the
 // message and the reference cannot disagree. The field comments below give meanings only.
 
-/// Image pre-processing (OpenSeqSLAM front end). Defaults are OpenSeqSLAM's.
+/// The largest descriptor allowed [bytes], a 1024 x 1024 thumbnail: a map holds one per frame.
+constexpr int kMaxDescriptorBytes = 1 << 20;
+
+/// The front ends an image can be described by (DescriptorParams::type).
+inline constexpr const char* kThumbnailFrontEnd = "thumbnail";
+inline constexpr const char* kHogFrontEnd = "hog";
+
+/**
+ * How an image becomes a descriptor: the front end, and the parameters of each. Only the fields of the
+ * chosen type are used. The thumbnail's defaults are OpenSeqSLAM's; HOG's are those of the comparison
+ * in the README (128 x 64 window, cells of 16 px, 9 orientation bins, blocks of 2 x 2 cells).
+ */
 struct DescriptorParams {
+  std::string type = kHogFrontEnd;  ///< kHogFrontEnd or kThumbnailFrontEnd.
+  // The thumbnail: grey, resized, every patch normalised (OpenSeqSLAM).
   int image_width = 64;  ///< Width after resizing [px].
   int image_height = 32; ///< Height after resizing [px].
   int patch_size = 8;    ///< Side of the normalisation patches [px]; divides width and height.
+  // HOG: OpenCV's histograms of oriented gradients of the grey image resized to the window.
+  int hog_window_width = 128;  ///< Width of the window the image is resized to [px].
+  int hog_window_height = 64;  ///< Height of that window [px].
+  int hog_cell_size = 16;      ///< Side of a histogram cell [px]; divides the window, which holds 2 x 2 or more.
+  int hog_bins = 9;            ///< Orientation bins over 0..180 degrees.
+  /// Standard deviation of the Gaussian that smooths the window before its gradients are taken [px],
+  /// 0 = none: gradients of a noisy (night) image are mostly noise at the scale of a pixel.
+  double hog_blur = 2.0;
+
+  bool isHog() const { return type == kHogFrontEnd; }
+  /// Bytes per descriptor of this front end.
+  int descriptorSize() const;
+  /// For messages: "hog (128 x 64 window, cells of 16 px, 9 bins)", "thumbnail (64 x 32, patches of 8 px)".
+  std::string describe() const;
+  /// Same type, and equal in the fields that type uses: descriptors of one can be compared with the other's.
+  bool sameFrontEnd(const DescriptorParams& other) const;
 
   /// Throws std::invalid_argument naming the first parameter out of range.
   void validate() const;

@@ -17,8 +17,8 @@ constexpr int kRoom = 32;
 }  // namespace
 
 LazyDifferenceMatrix::LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride,
-                                           const PatchFrequencies& frequencies, int contrast_window)
-    : query_(query), reference_(reference, stride, frequencies), contrast_window_(contrast_window),
+                                           const CompactCells& compact, int contrast_window)
+    : query_(query), reference_(reference, stride, compact), contrast_window_(contrast_window),
       rows_(static_cast<std::size_t>(query.count)) {}
 
 void LazyDifferenceMatrix::compare(int row, int begin, int end, float* out) {

@@ -15,7 +15,7 @@
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
 #include "mrs_vpr/mrs/particle_evaluation.hpp"
 #include "mrs_vpr/mrs/particle_filter.hpp"
-#include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
@@ -26,12 +26,12 @@ namespace mrs_vpr {
 namespace {
 
 /// Differences between the test cells and columns [begin, end) of the reference grid of the
-/// coarsest level, on patch frequencies, into `differences`. The grid's cells come from the ones the
+/// coarsest level, on compact cells, into `differences`. The grid's cells come from the ones the
 /// reference's store keeps (complete cells only); the rest (all of them when it keeps none, else the
 /// last, partial one) are computed now.
 void coarseDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
-                       const PatchFrequencies& frequencies, int begin, int end, cv::Mat& differences) {
-  const SequenceView kept = reference.coarseCells(level.stride, frequencies.geometry());
+                       const CompactCells& compact, int begin, int end, cv::Mat& differences) {
+  const SequenceView kept = reference.coarseCells(level.stride, compact.geometry());
   const int known_end = std::clamp(std::min(kept.count, level.grid_size), begin, end);
   if (known_end > begin) {
     cv::Mat columns = differences.colRange(0, known_end - begin);
@@ -39,7 +39,7 @@ void coarseDifferences(SequenceView query_cells, SequenceView reference, const S
   }
   if (known_end < end) {
     const DescriptorSequence cells =
-        frequencies.cells(reference, known_end * level.stride, level.stride, end - known_end);
+        compact.cells(reference, known_end * level.stride, level.stride, end - known_end);
     cv::Mat columns = differences.colRange(known_end - begin, end - begin);
     computeDifferenceMatrix(query_cells, cells.view(), columns);
   }
@@ -62,9 +62,9 @@ int rivalExclusion(const SequenceParams& sequence, const MrsParams& mrs, int lev
 class CoarseToFineSearch {
  public:
   CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
-                     const SequenceParams& sequence, const MrsParams& mrs, const PatchFrequencies& frequencies)
+                     const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact)
       : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
-        frequencies_(frequencies),
+        compact_(compact),
         velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
   Match run(std::vector<MrsLevelTrace>* trace) {
@@ -83,7 +83,7 @@ class CoarseToFineSearch {
  private:
   /// The coarsest level. Uniformly spread particles with their +-Id_shift windows, velocity fans
   /// and contrast windows would touch nearly every cell of it anyway, so its matrix is computed
-  /// densely (vectorised, on compact cells: patch frequencies), a tile at a time, and every end is
+  /// densely (vectorised, on compact cells), a tile at a time, and every end is
   /// scored once; particles then read the table. The table also gives the runner-up for the
   /// confidence. At full resolution (no coarser level) it is the brute force's table.
   void scoreCoarsestLevel() {
@@ -99,7 +99,7 @@ class CoarseToFineSearch {
     }
     std::atomic<long long> compared{0};
     const auto tile = [&](int begin, int end, cv::Mat& raw) {
-      coarseDifferences(cells, reference_, level_, frequencies_, begin, end, raw);
+      coarseDifferences(cells, reference_, level_, compact_, begin, end, raw);
       compared.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
     };
     coarse_costs_ = std::make_unique<EndCostTable>(
@@ -110,14 +110,14 @@ class CoarseToFineSearch {
 
   /// Comparisons are counted in descriptor comparisons: a cell costs this share of one.
   double cellShare() const {
-    return level_.stride == 1 ? 1.0 : static_cast<double>(frequencies_.cellSize()) / frequencies_.descriptorSize();
+    return level_.stride == 1 ? 1.0 : static_cast<double>(compact_.cellSize()) / compact_.descriptorSize();
   }
 
   /// The test sequence at the current level, row k - k_min ending at frame anchor + k * stride:
   /// the frames themselves at full resolution, else cells computed into `storage`.
   SequenceView levelQuery(DescriptorSequence& storage) const {
     if (level_.stride == 1) return query_.slice(rows_.first, rows_.last + 1);
-    storage = frequencies_.cells(query_, rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
+    storage = compact_.cells(query_, rows_.anchor + level_.k_min * level_.stride, level_.stride, level_.rows());
     return storage.view();
   }
 
@@ -169,7 +169,7 @@ class CoarseToFineSearch {
     const auto settle_range = [&](const cv::Range& range) {
       for (int i = range.start; i < range.end; ++i) {
         Particle& particle = particles_[static_cast<std::size_t>(i)];
-        LazyDifferenceMatrix matrix(cells, reference_, level_.stride, frequencies_,
+        LazyDifferenceMatrix matrix(cells, reference_, level_.stride, compact_,
                                     comparing ? sequence_.contrast_window : 0);
         EndCostTable costs(matrix, level_, levelVelocities(particle), level_.stride > 1);
         bests[static_cast<std::size_t>(i)] = settle(particle, costs);
@@ -338,7 +338,7 @@ class CoarseToFineSearch {
   int levels_;
   const SequenceParams& sequence_;
   const MrsParams& mrs_;
-  const PatchFrequencies& frequencies_;
+  const CompactCells& compact_;
   std::vector<double> velocities_;
   std::mt19937_64 rng_;
 
@@ -354,7 +354,7 @@ class CoarseToFineSearch {
 }  // namespace
 
 MrsMatcher::MrsMatcher(const SequenceParams& sequence, const MrsParams& mrs, const DescriptorParams& descriptor)
-    : SequenceMatcher(sequence), mrs_(mrs), frequencies_(descriptor) {
+    : SequenceMatcher(sequence), mrs_(mrs), compact_(makeCompactCells(descriptor)) {
   mrs_.validate();
 }
 
@@ -388,9 +388,9 @@ std::vector<Match> MrsMatcher::matchEveryFrame(SequenceView reference, SequenceV
 Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   checkInputs(reference, query);
   const int levels = levelsFor(query.count, reference.count);
-  if (levels > 0) frequencies_.requireDescriptorsOf(reference);
+  if (levels > 0) compact_->requireDescriptorsOf(reference);
   return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment), levels, sequence_,
-                            mrs_, frequencies_)
+                            mrs_, *compact_)
       .run(trace);
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/front_end/thumbnail_front_end.hpp"
 #include "simd/vector_kernel.hpp"
 
 namespace mrs_vpr {
@@ -54,74 +54,32 @@ void transformPatches(const std::uint16_t* sums, int width, int height, int side
   }
 }
 
-/// sum[i] = the sum of byte i of frames first .. last of `view` (descriptor_size values).
-MRS_VPR_VECTOR_KERNEL
-void sumFrames(SequenceView view, int first, int last, std::uint16_t* __restrict sum) {
-  const int size = view.descriptor_size;
-  std::fill(sum, sum + size, 0);
-  // uint16 sums hold up to 257 frames of uint8; plain loops over restrict pointers vectorise.
-  for (int f = first; f <= last; ++f) {
-    const std::uint8_t* __restrict frame = view.frame(f);
-    for (int i = 0; i < size; ++i) sum[i] = static_cast<std::uint16_t>(sum[i] + frame[i]);
-  }
-}
-
 }  // namespace
 
-PatchFrequencies::PatchFrequencies(const DescriptorParams& geometry) : geometry_(geometry) {
-  geometry_.validate();
-  const int side = geometry_.patch_size;
+PatchFrequencies::PatchFrequencies(const DescriptorParams& geometry) : CompactCells(geometry) {
+  if (geometry.isHog()) {
+    throw std::invalid_argument("patch frequencies are the compact cells of thumbnails, not of " + geometry.describe());
+  }
+  const int side = geometry.patch_size;
   for (int x = 0; x < side; ++x) {
     wave_.push_back(static_cast<float>(std::sqrt(2.0 / side) * std::cos(M_PI * (2 * x + 1) / (2.0 * side))));
   }
 }
 
 int PatchFrequencies::cellSize() const {
-  const int side = geometry_.patch_size;
-  return (geometry_.image_width / side) * (geometry_.image_height / side) * kPerPatch;
+  const int side = geometry().patch_size;
+  return (geometry().image_width / side) * (geometry().image_height / side) * kPerPatch;
 }
 
 void PatchFrequencies::project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const {
   // A normalised patch of side P has a norm of kLevelsPerStd * P levels, which bounds each of its
   // orthonormal coefficients: +-that bound maps to +-128, so a byte saturates only at the extreme.
-  const int side = geometry_.patch_size;
-  const float scale = 128.0F / (DescriptorExtractor::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
+  const int side = geometry().patch_size;
+  const float scale = 128.0F / (ThumbnailFrontEnd::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
   thread_local std::vector<float> accumulators;
-  accumulators.resize(2 * static_cast<std::size_t>(geometry_.image_width));
-  transformPatches(sums, geometry_.image_width, geometry_.image_height, side, wave_.data(), scale, cell,
+  accumulators.resize(2 * static_cast<std::size_t>(geometry().image_width));
+  transformPatches(sums, geometry().image_width, geometry().image_height, side, wave_.data(), scale, cell,
                    accumulators.data());
-}
-
-void PatchFrequencies::cell(SequenceView view, int end, int stride, std::uint8_t* out) const {
-  const int size = descriptorSize();
-  const int first = std::max(0, end - stride + 1);
-  const int last = std::min(end, view.count - 1);
-  thread_local std::vector<std::uint16_t> sums;
-  sums.resize(static_cast<std::size_t>(size));
-  sumFrames(view, first, last, sums.data());
-  project(sums.data(), last - first + 1, out);
-}
-
-DescriptorSequence PatchFrequencies::cells(SequenceView view, int first_end, int stride, int count) const {
-  requireDescriptorsOf(view);
-  // Cells are independent: threads share them, each writing its own rows.
-  cv::Mat rows(std::max(0, count), cellSize(), CV_8U);
-  cv::parallel_for_(cv::Range(0, rows.rows), [&](const cv::Range& range) {
-    for (int i = range.start; i < range.end; ++i) cell(view, first_end + i * stride, stride, rows.ptr(i));
-  });
-  DescriptorSequence result(cellSize());
-  result.reserve(rows.rows);
-  for (int i = 0; i < rows.rows; ++i) result.append(rows.row(i));
-  return result;
-}
-
-void PatchFrequencies::requireDescriptorsOf(SequenceView view) const {
-  if (view.descriptor_size != descriptorSize()) {
-    throw std::invalid_argument("MRS's coarse levels need descriptors of image_width x image_height = " +
-                                std::to_string(geometry_.image_width) + " x " + std::to_string(geometry_.image_height) +
-                                " = " + std::to_string(descriptorSize()) + " bytes, got " +
-                                std::to_string(view.descriptor_size));
-  }
 }
 
 }  // namespace mrs_vpr

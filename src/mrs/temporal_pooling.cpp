@@ -4,9 +4,9 @@
 
 namespace mrs_vpr {
 
-PooledReference::PooledReference(SequenceView reference, int stride, const PatchFrequencies& frequencies)
-    : reference_(reference), kept_(stride > 1 ? reference.coarseCells(stride, frequencies.geometry()) : SequenceView{}),
-      stride_(stride), frequencies_(frequencies) {}
+PooledReference::PooledReference(SequenceView reference, int stride, const CompactCells& compact)
+    : reference_(reference), kept_(stride > 1 ? reference.coarseCells(stride, compact.geometry()) : SequenceView{}),
+      stride_(stride), compact_(compact) {}
 
 const std::uint8_t* PooledReference::cell(int grid_index) {
   if (stride_ == 1) return reference_.frame(grid_index);
@@ -17,7 +17,7 @@ const std::uint8_t* PooledReference::cell(int grid_index) {
   }
   std::uint8_t* cell = cells_.data() + static_cast<std::ptrdiff_t>(grid_index) * cellSize();
   if (!known_[static_cast<std::size_t>(grid_index)]) {
-    frequencies_.cell(reference_, grid_index * stride_, stride_, cell);
+    compact_.cell(reference_, grid_index * stride_, stride_, cell);
     known_[static_cast<std::size_t>(grid_index)] = 1;
   }
   return cell;

@@ -74,9 +74,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   query_spinner_->start();
   master_watch_ = std::make_unique<MasterWatch>();  // Last: it re-registers what is advertised above.
 
-  ROS_INFO("mrs_vpr: listening on %s (transport %s); descriptor %d x %d, default method %s%s",
-           imageTopic().c_str(), hints.getTransport().c_str(),
-           params_.core.descriptor.image_width, params_.core.descriptor.image_height,
+  ROS_INFO("mrs_vpr: listening on %s (transport %s); front end %s, default method %s%s", imageTopic().c_str(),
+           hints.getTransport().c_str(), params_.core.descriptor.describe().c_str(),
            params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
 }
 
@@ -163,7 +162,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   cv::Mat descriptor;
   try {
     const ImageFrame frame = convert();
-    descriptor = frame_describer_.describe(frame.image(), frame.order);
+    descriptor = recognizer_.describe(frame.image(), frame.order);
   } catch (const std::exception& error) {  // std::invalid_argument, and cv::Exception or bad_alloc
     ++frames_failed_;
     {

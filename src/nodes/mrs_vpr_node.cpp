@@ -25,7 +25,7 @@ void printHelp() {
       "             ~save_map (mrs_vpr/SaveMap), ~load_map (mrs_vpr/LoadMap)\n\n"
       "Parameters (private):\n");
   for (const auto& p : mrs_vpr::node::describeParameters()) {
-    std::printf("  ~%-26s %-6s default %-8s range %s\n      %s\n", p.name.c_str(), p.type.c_str(),
+    std::printf("  ~%-29s %-6s default %-8s range %s\n      %s\n", p.name.c_str(), p.type.c_str(),
                 p.default_value.c_str(), p.range.c_str(), p.meaning.c_str());
   }
 }

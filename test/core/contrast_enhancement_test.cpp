@@ -7,7 +7,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/contrast_enhancement.hpp"
-#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/front_end/thumbnail_front_end.hpp"
 
 namespace mrs_vpr {
 namespace {

@@ -10,9 +10,12 @@
 
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 constexpr int kSize = 16;
 
@@ -132,7 +135,7 @@ TEST(SequenceView, InvalidSliceOrSubsampleThrowsOutOfRangeWithTheRange) {
 
 /// kSize-byte descriptors as 4 x 4 images of 2 x 2 patches: 4 patches, 12-byte coarse cells.
 DescriptorParams smallGeometry() {
-  DescriptorParams geometry;
+  DescriptorParams geometry = thumbnailParams();
   geometry.image_width = 4;
   geometry.image_height = 4;
   geometry.patch_size = 2;
@@ -169,7 +172,7 @@ TEST(DescriptorSequence, KeptCoarseCellsEqualCellsComputedOnDemand) {
 TEST(DescriptorSequence, CoarseCellsCostAFractionOfTheDescriptors) {
   // The default 64 x 32 descriptors with 8 x 8 patches: 96-byte cells at strides 2, 4 and 8 are
   // 48 + 24 + 12 = 84 bytes a frame beside the 2048-byte descriptor and its 8-byte stamp.
-  const DescriptorParams geometry;
+  const DescriptorParams geometry = thumbnailParams();
   DescriptorSequence sequence(2048);
   sequence.keepCoarseCells(3, geometry);
   const int frames = 8000;
@@ -195,8 +198,8 @@ TEST(DescriptorSequence, PrefixSlicesKeepTheCoarseCellsOtherViewsDoNot) {
 
 TEST(DescriptorSequence, KeepCoarseCellsRejectsAGeometryOfAnotherSize) {
   DescriptorSequence sequence(kSize);
-  const std::string message = messageOf<std::invalid_argument>([&] { sequence.keepCoarseCells(2, DescriptorParams{}); });
-  EXPECT_NE(message.find("64 x 32"), std::string::npos) << message;
+  const std::string message = messageOf<std::invalid_argument>([&] { sequence.keepCoarseCells(2, thumbnailParams()); });
+  EXPECT_NE(message.find("thumbnail (64 x 32, patches of 8 px)"), std::string::npos) << message;
   EXPECT_NE(message.find("16 bytes"), std::string::npos) << message;
   DescriptorParams odd = smallGeometry();
   odd.patch_size = 3;

@@ -9,14 +9,17 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "support/error_message.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
 
+using testing_support::thumbnailParams;
+
 using testing_support::invalidArgumentMessage;
 
 DescriptorParams paramsOf(int width, int height, int patch) {
-  DescriptorParams params;
+  DescriptorParams params = thumbnailParams();
   params.image_width = width;
   params.image_height = height;
   params.patch_size = patch;
@@ -33,7 +36,7 @@ cv::Mat colourImage(int width, int height, int seed) {
 }
 
 TEST(DescriptorExtractor, DefaultDescriptorIsOneContinuousRowOfWTimesHBytes) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   EXPECT_EQ(extractor.size(), 64 * 32);
   const cv::Mat descriptor = extractor.compute(colourImage(160, 90, 1));
   EXPECT_EQ(descriptor.type(), CV_8UC1);
@@ -43,7 +46,7 @@ TEST(DescriptorExtractor, DefaultDescriptorIsOneContinuousRowOfWTimesHBytes) {
 }
 
 TEST(DescriptorExtractor, RefusesImagesBeyondThePixelLimitBeforeConvertingThem) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   // One row keeps the test's own memory small; the limit counts pixels, whatever the shape.
   const cv::Mat largest(1, static_cast<int>(DescriptorExtractor::kMaxImagePixels), CV_8UC1, cv::Scalar(7));
   EXPECT_NO_THROW(extractor.compute(largest));
@@ -90,7 +93,7 @@ TEST(DescriptorExtractor, SaturatesBeyondFourStandardDeviations) {
 }
 
 TEST(DescriptorExtractor, SixteenBitImageGivesTheSameDescriptorAsItsEightBitOriginal) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   cv::Mat gray;
   cv::cvtColor(colourImage(128, 64, 2), gray, cv::COLOR_BGR2GRAY);
   cv::Mat wide;
@@ -103,7 +106,7 @@ TEST(DescriptorExtractor, SixteenBitImageGivesTheSameDescriptorAsItsEightBitOrig
 }
 
 TEST(DescriptorExtractor, RgbOrderOfASwappedImageGivesTheBgrResult) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat bgr = colourImage(128, 64, 3);
   cv::Mat rgb;
   cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
@@ -114,7 +117,7 @@ TEST(DescriptorExtractor, RgbOrderOfASwappedImageGivesTheBgrResult) {
 }
 
 TEST(DescriptorExtractor, FourChannelImagesIgnoreAlphaAndHonourChannelOrder) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat bgr = colourImage(128, 64, 4);
   cv::Mat bgra;
   cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
@@ -134,7 +137,7 @@ TEST(DescriptorExtractor, FourChannelImagesIgnoreAlphaAndHonourChannelOrder) {
 }
 
 TEST(DescriptorExtractor, NonContinuousRoiIsDescribedLikeItsCopy) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat big = colourImage(200, 120, 5);
   const cv::Mat roi = big(cv::Rect(30, 20, 128, 64));
   ASSERT_FALSE(roi.isContinuous());
@@ -142,13 +145,13 @@ TEST(DescriptorExtractor, NonContinuousRoiIsDescribedLikeItsCopy) {
 }
 
 TEST(DescriptorExtractor, EmptyImageThrowsNamingTheProblem) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const std::string message = invalidArgumentMessage([&] { extractor.compute(cv::Mat()); });
   EXPECT_NE(message.find("empty"), std::string::npos) << message;
 }
 
 TEST(DescriptorExtractor, UnsupportedTypesThrowNamingTheType) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const std::string float_message =
       invalidArgumentMessage([&] { extractor.compute(cv::Mat(64, 128, CV_32FC3, cv::Scalar::all(0.5))); });
   EXPECT_NE(float_message.find("unsupported image type"), std::string::npos) << float_message;
@@ -168,14 +171,14 @@ TEST(DescriptorExtractor, InvalidParametersThrowNamingTheParameter) {
 }
 
 TEST(DescriptorExtractor, SameImageSameDescriptorAndDifferentImagesDiffer) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat a = colourImage(128, 64, 6);
   EXPECT_EQ(cv::norm(extractor.compute(a), extractor.compute(a.clone()), cv::NORM_INF), 0.0);
   EXPECT_GT(cv::norm(extractor.compute(a), extractor.compute(colourImage(128, 64, 7)), cv::NORM_L1), 0.0);
 }
 
 TEST(DescriptorExtractor, IsInvariantToBrightnessAndContrastChanges) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat image = colourImage(128, 64, 8);
   cv::Mat changed;
   image.convertTo(changed, -1, 0.5, 40.0);  // Half the contrast, brighter.

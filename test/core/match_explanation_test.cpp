@@ -14,6 +14,7 @@ namespace mrs_vpr {
 namespace {
 
 using testing_support::globalSearchParams;
+using testing_support::routeDescriptor;
 using testing_support::standardRoute;
 using testing_support::within;
 
@@ -83,7 +84,7 @@ TEST(MatchExplanation, TheTrajectoryEndsAtTheAnswerAndFollowsTheTrueAlignment) {
 TEST(MatchExplanation, NoMatchGivesOnlyTheQueryThumbnail) {
   const auto& route = standardRoute();
   const MatchExplanation explanation =
-      explainMatch(route.reference.view(), route.query.view(0, 20), Match{}, SequenceParams{}, DescriptorParams{});
+      explainMatch(route.reference.view(), route.query.view(0, 20), Match{}, SequenceParams{}, routeDescriptor());
   EXPECT_FALSE(explanation.query_thumbnail.empty());
   EXPECT_TRUE(explanation.reference_thumbnail.empty());
   EXPECT_TRUE(explanation.band.empty());

@@ -27,6 +27,8 @@ namespace {
 using testing_support::DescribedRoute;
 using testing_support::describeRoute;
 using testing_support::globalSearchParams;
+using testing_support::routeDescriptor;
+using testing_support::routeParameters;
 using testing_support::standardRoute;
 using testing_support::within;
 
@@ -67,7 +69,7 @@ cv::Mat noiseImage(std::mt19937_64& generator) {
 }
 
 DescriptorSequence noiseSequence(int frames, std::mt19937_64& generator) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{routeDescriptor()};
   DescriptorSequence sequence(extractor.size());
   for (int i = 0; i < frames; ++i) sequence.append(extractor.compute(noiseImage(generator)), i);
   return sequence;
@@ -76,7 +78,7 @@ DescriptorSequence noiseSequence(int frames, std::mt19937_64& generator) {
 /// Tally of `method` at the default parameters over kSequences noise sequences of `frames` frames.
 Tally noiseQueries(const std::string& method, int frames) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher(method, Parameters{});
+  const auto matcher = makeMatcher(method, routeParameters());
   std::mt19937_64 generator(kNoiseSeed);
   Tally tally;
   for (int i = 0; i < kSequences; ++i) {
@@ -127,10 +129,10 @@ TEST(NoiseRejection, TwoFrameNoiseSequencesAreNeverAccepted) {
 TEST(NoiseRejection, ARouteFrameFollowedByABlackFrameIsNotAccepted) {
   // One real frame is no sequence: a black frame (every patch constant) carries no place at all.
   const auto& route = standardRoute();
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{routeDescriptor()};
   const cv::Mat black = extractor.compute(cv::Mat::zeros(64, 128, CV_8UC3));
   for (const std::string& method : kMethods) {
-    const auto matcher = makeMatcher(method, Parameters{});
+    const auto matcher = makeMatcher(method, routeParameters());
     Tally tally;
     for (int i = 0; i < kSequences; ++i) {
       const int frame = 10 * i;
@@ -161,7 +163,7 @@ TEST(NoiseRejection, ACameraBlackedOutInTheMapAndAgainElsewhereGivesNoFalseLoopC
   // and 1 of 42 with 0, 1, 10 and 20 frames black; none with 29 or 30 (highest confidence 0.63 and
   // 0.17).
   const auto& route = standardRoute();
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{routeDescriptor()};
   const cv::Mat black = extractor.compute(cv::Mat::zeros(64, 128, CV_8UC3));
   constexpr int kBlackBegin = 200;
   constexpr int kFrames = 30;
@@ -202,7 +204,7 @@ TEST(NoiseRejection, SequencesOfAnUnmappedRouteAreNeverAccepted) {
   // take it through its coarse-to-fine levels.
   for (const std::string& method : kMethods) {
     for (int frames : {50, 100, 200}) {
-      const Tally tally = routeQueries(method, Parameters{}, unmappedRoute().query, frames);
+      const Tally tally = routeQueries(method, routeParameters(), unmappedRoute().query, frames);
       EXPECT_EQ(tally.accepted, 0) << method << ", " << frames << " frames: " << tally;
     }
   }
@@ -215,7 +217,7 @@ TEST(NoiseRejection, SequencesOfAnUnmappedRouteAreNeverAcceptedInASmallMap) {
   for (const std::string& method : kMethods) {
     for (int map_frames : {20, 30, 50, 80, 110}) {
       const Tally tally =
-          routeQueries(method, Parameters{}, unmappedRoute().query, 10, standardRoute().reference.view(0, map_frames));
+          routeQueries(method, routeParameters(), unmappedRoute().query, 10, standardRoute().reference.view(0, map_frames));
       EXPECT_EQ(tally.accepted, 0) << method << ", map of " << map_frames << " frames: " << tally;
     }
   }

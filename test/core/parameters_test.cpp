@@ -227,8 +227,8 @@ TEST(Parameters, TablesNameEveryParameterOnceUnderItsGroup) {
   add(descriptorParameters(), "descriptor");
   add(sequenceParameters(), "sequence");
   add(mrsParameters(), "mrs");
-  // Every field of DescriptorParams, SequenceParams and MrsParams.
-  EXPECT_EQ(names.size(), 3U + 8U + 10U);
+  // Every field of DescriptorParams (the type, the thumbnail's 3, HOG's 5), SequenceParams and MrsParams.
+  EXPECT_EQ(names.size(), 9U + 8U + 10U);
 }
 
 TEST(WindowAlignment, ParsesBothSpellingsAndRoundTrips) {

@@ -14,6 +14,7 @@ namespace mrs_vpr {
 namespace {
 
 using testing_support::globalSearchParams;
+using testing_support::routeParameters;
 using testing_support::within;
 
 /// The recognizer takes images, not descriptors.
@@ -45,7 +46,8 @@ TEST(PlaceRecognizer, DefaultConstructedWithTheDocumentedDefaults) {
   EXPECT_EQ(recognizer.size(), 0);
   EXPECT_EQ(recognizer.parameters().sequence.accept_threshold, SequenceParams{}.accept_threshold);
   EXPECT_EQ(recognizer.recognizerParameters().default_method, "mrs");
-  EXPECT_EQ(recognizer.describe(route().reference[0]).total(), 64U * 32U);
+  EXPECT_EQ(recognizer.parameters().descriptor.type, "hog");
+  EXPECT_EQ(recognizer.describe(route().reference[0]).total(), 756U);  // 7 x 3 blocks of 4 cells x 9 bins.
 }
 
 TEST(PlaceRecognizer, FindsAndAcceptsAStretchOfTheMappedRouteWithBothMethods) {
@@ -79,7 +81,7 @@ TEST(PlaceRecognizer, MatchRecentSearchesOnlyOlderFramesBeyondTheExclusion) {
 }
 
 TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {
-  PlaceRecognizer recognizer;
+  PlaceRecognizer recognizer(routeParameters());
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10)); }).find("reference map is empty"), std::string::npos);
   mapReference(recognizer);
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10), "fast"); }).find("unknown method 'fast'"),
@@ -104,11 +106,11 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
 TEST(PlaceRecognizer, InvalidParametersAreRefusedAtConstruction) {
   RecognizerParams limits;
   limits.max_frames = 1;
-  EXPECT_THROW(PlaceRecognizer(Parameters{}, limits), std::invalid_argument);
+  EXPECT_THROW(PlaceRecognizer(routeParameters(), limits), std::invalid_argument);
   limits = RecognizerParams{};
   limits.default_method = "fast";
-  EXPECT_THROW(PlaceRecognizer(Parameters{}, limits), std::invalid_argument);
-  Parameters params;
+  EXPECT_THROW(PlaceRecognizer(routeParameters(), limits), std::invalid_argument);
+  Parameters params = routeParameters();
   params.mrs.hypotheses = 1;
   EXPECT_THROW(PlaceRecognizer{params}, std::invalid_argument);
 }
@@ -116,7 +118,7 @@ TEST(PlaceRecognizer, InvalidParametersAreRefusedAtConstruction) {
 TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
   RecognizerParams limits;
   limits.max_frames = 5;
-  PlaceRecognizer recognizer(Parameters{}, limits);
+  PlaceRecognizer recognizer(routeParameters(), limits);
   for (int i = 0; i < 5; ++i) EXPECT_EQ(recognizer.addFrame(route().reference[i]), FrameAdmission::kAdmitted);
   EXPECT_EQ(recognizer.addFrame(route().reference[5]), FrameAdmission::kMapFull);
   EXPECT_EQ(recognizer.size(), 5);
@@ -128,7 +130,7 @@ TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
 TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
   RecognizerParams limits;
   limits.max_frames = 300;
-  PlaceRecognizer recognizer(Parameters{}, limits);
+  PlaceRecognizer recognizer(routeParameters(), limits);
   const std::size_t empty = recognizer.state().memory_bytes;
   recognizer.reserve(200);
   const std::size_t reserved = recognizer.state().memory_bytes;
@@ -151,7 +153,7 @@ TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacit
   limits.max_frames = 700;
   limits.max_pending_frames = 1000;
   limits.recent_exclusion = 0;
-  PlaceRecognizer recognizer(Parameters{}, limits);
+  PlaceRecognizer recognizer(routeParameters(), limits);
   for (int i = 0; i < 100; ++i) recognizer.addFrame(route().reference[static_cast<std::size_t>(i)]);
 
   std::atomic<bool> adding{true};

@@ -16,12 +16,13 @@ namespace {
 
 using testing_support::invalidArgumentMessage;
 using testing_support::globalSearchParams;
+using testing_support::routeParameters;
 using testing_support::standardRoute;
 using testing_support::within;
 
 /// The std::invalid_argument message of `action`, "" when it throws none.
 TEST(MakeMatcher, BuildsBothMethodsAndRejectsOthers) {
-  const Parameters params;
+  const Parameters params = routeParameters();
   EXPECT_EQ(makeMatcher("seqslam", params)->name(), "seqslam");
   EXPECT_EQ(makeMatcher("mrs", params)->name(), "mrs");
   const std::string message = invalidArgumentMessage([&] { makeMatcher("fast", params); });
@@ -52,7 +53,7 @@ TEST(SeqSlamMatcher, RecoversThePlantedAlignmentOfGlobalQueries) {
 
 TEST(SeqSlamMatcher, IdenticalFramesGiveTheExactEndIndex) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("seqslam", Parameters{});
+  const auto matcher = makeMatcher("seqslam", routeParameters());
   for (int end : {99, 345, 599}) {
     const Match match = matcher->match(route.reference.view(), route.reference.view(end - 79, end + 1));
     EXPECT_EQ(match.reference_index, end);
@@ -78,7 +79,7 @@ TEST(SeqSlamMatcher, CentredAlignmentReportsTheMiddleFrame) {
 
 TEST(SeqSlamMatcher, MatchEveryFrameGetsMostFramesRightAndSkipsIncompleteSequences) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("seqslam", Parameters{});  // Per-frame protocol, sequence_length 10.
+  const auto matcher = makeMatcher("seqslam", routeParameters());  // Per-frame protocol, sequence_length 10.
   const std::vector<Match> matches = matcher->matchEveryFrame(route.reference.view(), route.query.view());
   ASSERT_EQ(matches.size(), static_cast<std::size_t>(route.query.size()));
   for (int frame = 0; frame < 9; ++frame) EXPECT_EQ(matches[static_cast<std::size_t>(frame)].reference_index, -1);
@@ -93,7 +94,7 @@ TEST(SeqSlamMatcher, MatchEveryFrameGetsMostFramesRightAndSkipsIncompleteSequenc
 
 TEST(SeqSlamMatcher, MatchEveryFrameAgreesWithMatchOnEachSequence) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("seqslam", Parameters{});
+  const auto matcher = makeMatcher("seqslam", routeParameters());
   const SequenceView query = route.query.view(100, 160);
   const std::vector<Match> every = matcher->matchEveryFrame(route.reference.view(), query);
   for (int frame : {9, 30, 59}) {
@@ -105,7 +106,7 @@ TEST(SeqSlamMatcher, MatchEveryFrameAgreesWithMatchOnEachSequence) {
 
 TEST(SeqSlamMatcher, CentredMatchEveryFrameSkipsBothEnds) {
   const auto& route = standardRoute();
-  Parameters params;
+  Parameters params = routeParameters();
   params.sequence.alignment = WindowAlignment::kCentred;
   const auto matcher = makeMatcher("seqslam", params);
   // Identical frames: every complete frame maps exactly onto itself (+100).

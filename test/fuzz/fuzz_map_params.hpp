@@ -8,6 +8,7 @@ namespace mrs_vpr {
 /// pages long, so that the fuzzer's mutations reach the frames' rows instead of blank pages.
 inline DescriptorParams fuzzMapParams() {
   DescriptorParams params;
+  params.type = kThumbnailFrontEnd;
   params.image_width = 8;
   params.image_height = 4;
   params.patch_size = 4;

@@ -25,6 +25,8 @@ namespace {
 using testing_support::invalidArgumentMessage;
 using testing_support::longRoute;
 using testing_support::globalSearchParams;
+using testing_support::routeDescriptor;
+using testing_support::routeParameters;
 using testing_support::standardRoute;
 using testing_support::within;
 
@@ -39,7 +41,7 @@ void expectIdentical(const Match& a, const Match& b) {
 /// A copy of `reference` that keeps the coarse cells MRS reads, as the node's map does.
 DescriptorSequence withKeptCells(const DescriptorSequence& reference, const MrsParams& mrs) {
   DescriptorSequence kept = reference;
-  kept.keepCoarseCells(mrs.levels, DescriptorParams{});
+  kept.keepCoarseCells(mrs.levels, routeDescriptor());
   return kept;
 }
 
@@ -90,7 +92,7 @@ TEST(MrsMatcher, RecoversThePlantedAlignmentOfGlobalQueries) {
 
 TEST(MrsMatcher, FindsACopyOfTheReferenceAwayFromItsEnds) {
   const auto& route = standardRoute();
-  const auto mrs = makeMatcher("mrs", Parameters{});
+  const auto mrs = makeMatcher("mrs", routeParameters());
   for (int end : {199, 420}) {
     EXPECT_EQ(mrs->match(route.reference.view(), route.reference.view(end - 159, end + 1)).reference_index, end);
   }
@@ -103,7 +105,7 @@ TEST(MrsMatcher, FindsACopyOfTheReferenceAtEveryEnd) {
   // 10 frames early, e.g. 464 -> 454).
 
   const auto& route = standardRoute();
-  const auto mrs = makeMatcher("mrs", Parameters{});
+  const auto mrs = makeMatcher("mrs", routeParameters());
   for (int end = 170; end < 590; end += 7) {
     EXPECT_EQ(mrs->match(route.reference.view(), route.reference.view(end - 159, end + 1)).reference_index, end)
         << "end " << end;
@@ -116,7 +118,7 @@ TEST(MrsMatcher, FindsASequenceEndingAtTheNewestReferenceFrame) {
   // 160-frame copy ending at 599 was placed at 586).
 
   const auto& route = standardRoute();
-  const auto mrs = makeMatcher("mrs", Parameters{});
+  const auto mrs = makeMatcher("mrs", routeParameters());
   EXPECT_EQ(mrs->match(route.reference.view(), route.reference.view(440, 600)).reference_index, 599);
 }
 
@@ -137,7 +139,7 @@ TEST(MrsMatcher, CentredAlignmentReportsTheMiddleFrame) {
 
 TEST(MrsMatcher, MatchEveryFrameGetsMostFramesRightAndSkipsIncompleteSequences) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("mrs", Parameters{});  // sequence_length 10
+  const auto matcher = makeMatcher("mrs", routeParameters());  // sequence_length 10
   const SequenceView query = route.query.view(0, 200);
   const std::vector<Match> matches = matcher->matchEveryFrame(route.reference.view(), query);
   ASSERT_EQ(matches.size(), 200U);
@@ -154,7 +156,7 @@ TEST(MrsMatcher, MatchEveryFrameGetsMostFramesRightAndSkipsIncompleteSequences) 
 
 TEST(MrsMatcher, CentredMatchEveryFrameLocalisesTheFrameItself) {
   const auto& route = standardRoute();
-  Parameters params;
+  Parameters params = routeParameters();
   params.sequence.alignment = WindowAlignment::kCentred;
   const auto matcher = makeMatcher("mrs", params);
   // Identical frames 100..139: frame i of the query is reference frame 100 + i; frames without a
@@ -251,7 +253,7 @@ TEST(MrsMatcher, MakesFarFewerComparisonsThanSeqSlamOnALongReference) {
 
 TEST(MrsMatcher, BadInputsThrowWithAClearMessage) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("mrs", Parameters{});
+  const auto matcher = makeMatcher("mrs", routeParameters());
   const std::string too_short =
       invalidArgumentMessage([&] { matcher->match(route.reference.view(), route.query.view(0, 1)); });
   EXPECT_NE(too_short.find("at least 2 frames"), std::string::npos) << too_short;
@@ -265,12 +267,13 @@ TEST(MrsMatcher, BadInputsThrowWithAClearMessage) {
 
   // Descriptors of another geometry than the matcher's: its coarse cells cannot be computed, and
   // the message names both sizes. Without a coarser level (short sequences) the geometry is unused.
-  DescriptorParams other;
+  DescriptorParams other = routeDescriptor();
   other.image_width = 32;
   const MrsMatcher other_geometry(SequenceParams{}, MrsParams{}, other);
   const std::string geometry =
       invalidArgumentMessage([&] { other_geometry.match(route.reference.view(), route.query.view(0, 200)); });
-  EXPECT_NE(geometry.find("32 x 32 = 1024 bytes, got 2048"), std::string::npos) << geometry;
+  EXPECT_NE(geometry.find("thumbnail (32 x 32, patches of 8 px) front end, 1024 bytes, got 2048"), std::string::npos)
+      << geometry;
   EXPECT_NO_THROW(other_geometry.match(route.reference.view(), route.query.view(0, 20)));
 
   Parameters bad;
@@ -281,7 +284,7 @@ TEST(MrsMatcher, BadInputsThrowWithAClearMessage) {
 
 TEST(MrsMatcher, ShortQueriesUseFullResolutionAndStillMatch) {
   const auto& route = standardRoute();
-  const auto matcher = makeMatcher("mrs", Parameters{});
+  const auto matcher = makeMatcher("mrs", routeParameters());
   // 20 frames: levelsFor gives 0, a search at stride 1.
   const Match match = matcher->match(route.reference.view(), route.query.view(250, 270));
   EXPECT_TRUE(within(match.reference_index, route.query_to_reference[269], 3))
@@ -300,7 +303,7 @@ TEST(MrsMatcher, DescendsTwoLevelsOnALongReference) {
   // The standard route is too short for two levels at N = 300 (too few rival ends at stride 4).
   const auto& route = longRoute();
   const Parameters params = globalSearchParams();
-  const MrsMatcher search(params.sequence, params.mrs);
+  const MrsMatcher search(params.sequence, params.mrs, params.descriptor);
   ASSERT_EQ(search.levelsFor(300, route.reference.size()), 2);
   std::vector<MrsLevelTrace> trace;
   const Match match = search.match(route.reference.view(), route.query.view(0, 300), &trace);
@@ -319,7 +322,7 @@ TEST(MrsMatcher, DescendsTwoLevelsOnALongReference) {
 TEST(MrsMatcher, TraceRecordsEveryLevelCoarsestFirstWithDistinctTableMinima) {
   const auto& route = standardRoute();
   const Parameters params = globalSearchParams();
-  const MrsMatcher search(params.sequence, params.mrs);
+  const MrsMatcher search(params.sequence, params.mrs, params.descriptor);
   for (int length : {150, 200, 300}) {
     const int levels = search.levelsFor(length, route.reference.size());
     ASSERT_GT(levels, 0) << "N = " << length;
@@ -381,7 +384,7 @@ TEST(MrsMatcher, HypothesesCountIsRespectedBelowTheCoarsestLevel) {
   for (int hypotheses : {2, 3, 8}) {
     params.mrs.hypotheses = hypotheses;
     std::vector<MrsLevelTrace> trace;
-    MrsMatcher(params.sequence, params.mrs).match(route.reference.view(), query, &trace);
+    MrsMatcher(params.sequence, params.mrs, params.descriptor).match(route.reference.view(), query, &trace);
     ASSERT_EQ(trace.size(), 2U);
     EXPECT_GE(trace[1].candidates.size(), 1U) << hypotheses;
     EXPECT_LE(static_cast<int>(trace[1].candidates.size()), hypotheses) << hypotheses;
@@ -450,10 +453,10 @@ TEST(MrsMatcher, MoreHypothesesRecoverATruthTheCoarseTableRanksSecond) {
   const SequenceView query = route.query.view(start, end + 1);
 
   Parameters params = globalSearchParams();
-  ASSERT_EQ(MrsMatcher(params.sequence, params.mrs).levelsFor(length, reference.size()), 1);
+  ASSERT_EQ(MrsMatcher(params.sequence, params.mrs, params.descriptor).levelsFor(length, reference.size()), 1);
   params.mrs.hypotheses = 8;
   std::vector<MrsLevelTrace> trace;
-  const Match several = MrsMatcher(params.sequence, params.mrs).match(reference.view(), query, &trace);
+  const Match several = MrsMatcher(params.sequence, params.mrs, params.descriptor).match(reference.view(), query, &trace);
   ASSERT_EQ(trace.size(), 2U);
   EXPECT_EQ(rankOf(trace.front().table_minima, decoy_end, 2), 0) << "the decoy is not the coarse minimum";
   EXPECT_EQ(rankOf(trace.front().table_minima, truth, 2), 1) << "truth " << truth;
@@ -479,10 +482,10 @@ TEST(MrsMatcher, PerFrameWithoutCoarserLevelsEqualsTheBruteForceFrameByFrame) {
   const SequenceView query = route.query.view(150, 250);
   for (int length : {10, 40}) {
     for (WindowAlignment alignment : {WindowAlignment::kCausal, WindowAlignment::kCentred}) {
-      Parameters params;
+      Parameters params = routeParameters();
       params.sequence.sequence_length = length;
       params.sequence.alignment = alignment;
-      const MrsMatcher mrs(params.sequence, params.mrs);
+      const MrsMatcher mrs(params.sequence, params.mrs, params.descriptor);
       ASSERT_EQ(mrs.levelsFor(length, route.reference.size()), 0);
       const std::vector<Match> fast = mrs.matchEveryFrame(route.reference.view(), query);
       const std::vector<Match> brute = SeqSlamMatcher(params.sequence).matchEveryFrame(route.reference.view(), query);

@@ -12,9 +12,12 @@
 #include "mrs_vpr/mrs/particle_evaluation.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
@@ -56,7 +59,7 @@ TEST(EndCostTable, LazyCostsEqualTheDenseSearchOnTheEndsAsked) {
   const AnchorCosts dense =
       costsByAnchor(computeDifferenceMatrix(query.view(), reference.view()), level.sequenceRows(), fan);
 
-  const PatchFrequencies unused{DescriptorParams{}};  // Full resolution compares the frames themselves.
+  const PatchFrequencies unused{thumbnailParams()};  // Full resolution compares the frames themselves.
   LazyDifferenceMatrix matrix(query.view(), reference.view(), 1, unused, 0);
   EndCostTable lazy(matrix, level, fan);
   const Evaluation best = lazy.bestInWindow(40, 3);

@@ -10,9 +10,12 @@
 
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -41,10 +44,10 @@ std::vector<std::uint8_t> cellOf(const PatchFrequencies& frequencies, const std:
 }
 
 TEST(PatchFrequencies, ThreeBytesPerPatch) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   EXPECT_EQ(frequencies.descriptorSize(), 2048);
   EXPECT_EQ(frequencies.cellSize(), 32 * 3);  // 8 x 4 patches of 8 x 8 pixels.
-  DescriptorParams small;
+  DescriptorParams small = thumbnailParams();
   small.image_width = 8;
   small.image_height = 4;
   small.patch_size = 2;
@@ -55,7 +58,7 @@ TEST(PatchFrequencies, ThreeBytesPerPatch) {
 }
 
 TEST(PatchFrequencies, EachBasisPatternLandsInItsOwnByte) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   // A horizontal cosine of amplitude 60 along every patch row: coefficient 60 * sqrt(8) in the
   // horizontal slot, stored as 128 + coefficient / 2 (a normalised patch's bound, 256, maps to 128).
   const std::vector<std::uint8_t> horizontal = cellOf(frequencies, {waveDescriptor(60.0, false)}, 0, 1);
@@ -77,7 +80,7 @@ TEST(PatchFrequencies, EachBasisPatternLandsInItsOwnByte) {
 }
 
 TEST(PatchFrequencies, BrightnessOffsetsAreInvisibleAndExtremesSaturateWithoutWrapping) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   for (const int level : {0, 128, 200, 255}) {
     const std::vector<std::uint8_t> cell =
         cellOf(frequencies, {cv::Mat(1, 2048, CV_8U, cv::Scalar(level))}, 0, 1);
@@ -91,7 +94,7 @@ TEST(PatchFrequencies, BrightnessOffsetsAreInvisibleAndExtremesSaturateWithoutWr
 }
 
 TEST(PatchFrequencies, ACellIsTheTransformOfTheMeanOfItsFrames) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   const cv::Mat weak = waveDescriptor(20.0, false);
   const cv::Mat strong = waveDescriptor(100.0, false);
   // Stride 2 ending at frame 1 averages frames 0 and 1: the cell of amplitude 60, within rounding.
@@ -105,7 +108,7 @@ TEST(PatchFrequencies, ACellIsTheTransformOfTheMeanOfItsFrames) {
 }
 
 TEST(PatchFrequencies, CellsOfASequenceEndEveryStride) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   DescriptorSequence sequence(2048);
   cv::RNG rng(5);
   cv::Mat frame(1, 2048, CV_8U);
@@ -124,7 +127,7 @@ TEST(PatchFrequencies, CellsOfASequenceEndEveryStride) {
 }
 
 TEST(PatchFrequencies, DescriptorsOfAnotherSizeAreRefusedNamingBothSizes) {
-  const PatchFrequencies frequencies{DescriptorParams{}};
+  const PatchFrequencies frequencies{thumbnailParams()};
   DescriptorSequence small(64);
   small.append(cv::Mat(1, 64, CV_8U, cv::Scalar(1)));
   try {
@@ -132,7 +135,8 @@ TEST(PatchFrequencies, DescriptorsOfAnotherSizeAreRefusedNamingBothSizes) {
     FAIL() << "no exception";
   } catch (const std::invalid_argument& error) {
     const std::string message = error.what();
-    EXPECT_NE(message.find("64 x 32 = 2048 bytes, got 64"), std::string::npos) << message;
+    EXPECT_NE(message.find("thumbnail (64 x 32, patches of 8 px) front end, 2048 bytes, got 64"), std::string::npos)
+        << message;
   }
 }
 

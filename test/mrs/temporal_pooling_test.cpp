@@ -14,9 +14,12 @@
 #include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 /// `frames` pseudo-random descriptors of `size` bytes, seeded.
 DescriptorSequence randomSequence(int frames, int size, int seed) {
@@ -32,7 +35,7 @@ DescriptorSequence randomSequence(int frames, int size, int seed) {
 
 /// 32-byte descriptors as 8 x 4 images of 2 x 2 patches: 8 patches, 24-byte cells.
 DescriptorParams smallGeometry() {
-  DescriptorParams geometry;
+  DescriptorParams geometry = thumbnailParams();
   geometry.image_width = 8;
   geometry.image_height = 4;
   geometry.patch_size = 2;

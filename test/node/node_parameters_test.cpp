@@ -81,7 +81,9 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("min_frame_interval"), 1U);
   EXPECT_EQ(names.count("database"), 1U);
   EXPECT_EQ(names.count("min_travel"), 1U);
-  EXPECT_EQ(descriptions.size(), 38U);
+  EXPECT_EQ(names.count("descriptor/type"), 1U);
+  EXPECT_EQ(names.count("descriptor/hog/cell_size"), 1U);
+  EXPECT_EQ(descriptions.size(), 44U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and
@@ -165,16 +167,16 @@ TEST(NodeParameters, VelocityStepHelpSaysWhatIsChecked) {
   EXPECT_EQ(descriptionsByName().at("sequence/velocity_step").range, "(0, 10), at most 1000 velocities");
 }
 
-/// `name: value  # comment` entries of a YAML file with at most one level of groups, as
-/// "group/name" -> value; the comment, with its indented continuation lines, goes to `comments`.
-std::map<std::string, std::string> readTwoLevelYaml(std::istream& in, std::map<std::string, std::string>& comments) {
+/// `name: value  # comment` entries of a YAML file of nested groups (by indentation), as
+/// "group/subgroup/name" -> value; the comment, with its indented continuation lines, goes to `comments`.
+std::map<std::string, std::string> readGroupedYaml(std::istream& in, std::map<std::string, std::string>& comments) {
   const auto trim = [](const std::string& text) {
     const auto first = text.find_first_not_of(" \t");
     const auto last = text.find_last_not_of(" \t");
     return first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
   };
   std::map<std::string, std::string> values;
-  std::string group;
+  std::vector<std::pair<std::size_t, std::string>> groups;  // (indentation, name) of the open groups
   std::string last_key;
   std::string line;
   while (std::getline(in, line)) {
@@ -194,15 +196,16 @@ std::map<std::string, std::string> readTwoLevelYaml(std::istream& in, std::map<s
     EXPECT_NE(colon, std::string::npos) << line;
     const std::string key = trim(content.substr(0, colon));
     const std::string value = trim(content.substr(colon + 1));
-    if (!indented) {
-      group.clear();
-    }
+    const std::size_t indentation = content.find_first_not_of(' ');
+    while (!groups.empty() && groups.back().first >= indentation) groups.pop_back();
+    std::string path;
+    for (const auto& open : groups) path += open.second + "/";
     if (value.empty()) {
-      group = key;  // a group's heading
+      groups.emplace_back(indentation, key);  // a group's heading
       last_key.clear();
       continue;
     }
-    last_key = group.empty() ? key : group + "/" + key;
+    last_key = path + key;
     EXPECT_EQ(values.count(last_key), 0U) << "listed twice: " << last_key;
     values[last_key] = value;
     comments[last_key] = comment;
@@ -235,7 +238,7 @@ TEST(NodeParameters, DefaultYamlListsEveryParameterWithItsDefaultAndRange) {
   std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/config/default.yaml");
   ASSERT_TRUE(file.good());
   std::map<std::string, std::string> comments;
-  const auto yaml = readTwoLevelYaml(file, comments);
+  const auto yaml = readGroupedYaml(file, comments);
   const auto help = descriptionsByName();
   for (const auto& [name, description] : help) {
     ASSERT_EQ(yaml.count(name), 1U) << "config/default.yaml does not list " << name;

@@ -13,6 +13,22 @@
 namespace mrs_vpr {
 namespace testing_support {
 
+/// The front end the generated route is described with. Its frames are textures made for OpenSeqSLAM's
+/// thumbnail, whose search and acceptance tests they serve; which front end suits real frames is
+/// measured on real frames (README), and the HOG front end has tests of its own.
+inline DescriptorParams routeDescriptor() {
+  DescriptorParams params;
+  params.type = kThumbnailFrontEnd;
+  return params;
+}
+
+/// The core's defaults with the route's front end.
+inline Parameters routeParameters() {
+  Parameters params;
+  params.descriptor = routeDescriptor();
+  return params;
+}
+
 struct DescribedRoute {
   DescriptorSequence reference{1};
   DescriptorSequence query{1};
@@ -20,7 +36,7 @@ struct DescribedRoute {
 };
 
 inline DescribedRoute describeRoute(const SyntheticRoute& route) {
-  const DescriptorExtractor extractor{DescriptorParams{}};
+  const DescriptorExtractor extractor{routeDescriptor()};
   DescribedRoute described;
   described.reference = DescriptorSequence(extractor.size());
   described.query = DescriptorSequence(extractor.size());
@@ -75,7 +91,7 @@ inline const DescribedRoute& longRoute() {
 /// half a step of 0.1 drifts off the dip after ~20 frames: long sequences need a finer step, as the
 /// benchmark uses (0.02: at most 2 frames of drift over 200 frames).
 inline Parameters globalSearchParams() {
-  Parameters params;
+  Parameters params = routeParameters();
   params.sequence.velocity_step = 0.02;
   return params;
 }

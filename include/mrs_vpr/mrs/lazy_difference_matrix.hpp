@@ -19,8 +19,8 @@ class LazyDifferenceMatrix {
  public:
   /// Rows are the `query` cells; column J is the reference cell of `stride` frames ending at frame
   /// J * stride (temporal_pooling.hpp). contrast_window as SequenceParams::contrast_window.
-  /// `frequencies` must outlive the matrix.
-  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, const PatchFrequencies& frequencies,
+  /// `compact` must outlive the matrix.
+  LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, const CompactCells& compact,
                        int contrast_window);
 
   int rows() const { return query_.count; }

@@ -3,13 +3,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/mrs/compact_cells.hpp"
 
 namespace mrs_vpr {
 
 /**
- * The compact cells of MRS's coarsest level: for every normalisation patch of a descriptor, its
+ * The compact cells of the thumbnail front end: for every normalisation patch of a descriptor, its
  * three lowest 2-D DCT frequencies (horizontal, vertical and both: the 2 x 2 lowest without the
  * mean, which patch normalisation sets to 0), one byte each. A 64 x 32 descriptor with 8 x 8 patches
  * gives 96-byte cells, 1/21 of the descriptor and 3/16 of a cell pooled over runs of 4 pixels.
@@ -24,33 +23,20 @@ namespace mrs_vpr {
  * the frames that exist), as temporal_pooling.hpp pools; the transform is linear, so this is also
  * the mean of the frames' transforms.
  */
-class PatchFrequencies {
+class PatchFrequencies : public CompactCells {
  public:
   /// Frequencies kept per patch.
   static constexpr int kPerPatch = 3;
 
-  /// Cells of descriptors of this geometry. Throws std::invalid_argument when it is invalid.
+  /// Cells of thumbnails of this geometry (image_width, image_height, patch_size). Throws
+  /// std::invalid_argument when it is invalid or not a thumbnail's.
   explicit PatchFrequencies(const DescriptorParams& geometry);
 
-  const DescriptorParams& geometry() const { return geometry_; }
-  /// Bytes of the descriptors transformed.
-  int descriptorSize() const { return geometry_.image_width * geometry_.image_height; }
   /// Bytes per cell: kPerPatch per patch.
-  int cellSize() const;
-
-  /// The cell of the mean of `frames` descriptors whose pixel sums are `sums` (descriptorSize()
-  /// values), into `cell` (cellSize() bytes).
-  void project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const;
-  /// The cell of the `stride` frames of `view` ending at frame `end`.
-  void cell(SequenceView view, int end, int stride, std::uint8_t* out) const;
-  /// Cells ending at first_end, first_end + stride, ... (count of them), as a sequence of cells.
-  DescriptorSequence cells(SequenceView view, int first_end, int stride, int count) const;
-
-  /// Throws std::invalid_argument unless `view` holds descriptors of this geometry.
-  void requireDescriptorsOf(SequenceView view) const;
+  int cellSize() const override;
+  void project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const override;
 
  private:
-  DescriptorParams geometry_;
   std::vector<float> wave_;  ///< The first cosine of the patch's DCT, sample x of a patch row.
 };
 

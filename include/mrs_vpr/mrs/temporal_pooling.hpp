@@ -5,13 +5,13 @@
 #include <vector>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
-#include "mrs_vpr/mrs/patch_frequencies.hpp"
+#include "mrs_vpr/mrs/compact_cells.hpp"
 
 namespace mrs_vpr {
 
 /**
  * Pooling, the low-pass filter of the coarse-to-fine search. A level of stride s > 1 compares
- * "cells": the patch frequencies (patch_frequencies.hpp) of the mean descriptor of the s frames
+ * "cells": the compact cells (compact_cells.hpp) of the mean descriptor of the s frames
  * ending at a frame (frames end - s + 1 .. end, clipped to the frames that exist).
  *
  * Subsampling alone (every s-th frame, as the paper writes) only works when s consecutive frames
@@ -26,11 +26,11 @@ namespace mrs_vpr {
  */
 class PooledReference {
  public:
-  PooledReference(SequenceView reference, int stride, const PatchFrequencies& frequencies);
+  PooledReference(SequenceView reference, int stride, const CompactCells& compact);
 
   int stride() const { return stride_; }
   /// Bytes per cell.
-  int cellSize() const { return stride_ == 1 ? reference_.descriptor_size : frequencies_.cellSize(); }
+  int cellSize() const { return stride_ == 1 ? reference_.descriptor_size : compact_.cellSize(); }
   /// Cells J = 0 .. size() - 1: SamplingLevel's grid, whose last cell may end past the newest frame
   /// (it pools the frames that exist), so that every cell a search of that level asks for is here.
   int size() const { return (reference_.count + stride_ - 2) / stride_ + 1; }
@@ -50,7 +50,7 @@ class PooledReference {
   SequenceView reference_;
   SequenceView kept_;
   int stride_;
-  const PatchFrequencies& frequencies_;
+  const CompactCells& compact_;
   std::vector<std::uint8_t> cells_;  ///< Cells computed here, size() x cellSize() once used.
   std::vector<char> known_;          ///< Which of cells_ are computed.
 };

@@ -23,7 +23,6 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/node/debug_image_publisher.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
-#include "mrs_vpr/node/frame_describer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
 #include "mrs_vpr/node/master_watch.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
@@ -109,7 +108,6 @@ class PlaceRecognitionNode {
 
   NodeParameters params_;
   PlaceRecognizer recognizer_;  ///< The map and both methods; thread-safe.
-  FrameDescriber frame_describer_{recognizer_.extractor()};  ///< The camera's frames, without allocations.
   /// recognizer_'s map and ~database: every keyframe goes through it. Thread-safe.
   std::unique_ptr<PersistentMap> map_;
 
