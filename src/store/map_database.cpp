@@ -4,8 +4,14 @@
 
 #include <ctime>
 #include <filesystem>
+#include <iomanip>
 #include <map>
 #include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace mrs_vpr {
 namespace {
@@ -28,11 +34,90 @@ std::string utcNow() {
   return text;
 }
 
+
+/// A front-end parameter as the metadata table keeps it: integers as integers, fractions in full.
+std::string metadataValue(double value) {
+  std::ostringstream text;
+  text << std::setprecision(17) << value;
+  return text.str();
+}
+
+/// The metadata rows that record the front end of `params` (SQL values, each followed by a comma).
+std::string frontEndRows(const DescriptorParams& params) {
+  std::vector<std::pair<std::string, std::string>> rows = {{"descriptor_type", params.type}};
+  if (params.isHog()) {
+    rows.insert(rows.end(), {{"hog_window_width", metadataValue(params.hog_window_width)},
+                             {"hog_window_height", metadataValue(params.hog_window_height)},
+                             {"hog_cell_size", metadataValue(params.hog_cell_size)},
+                             {"hog_bins", metadataValue(params.hog_bins)},
+                             {"hog_blur", metadataValue(params.hog_blur)}});
+  } else {
+    rows.insert(rows.end(), {{"image_width", metadataValue(params.image_width)},
+                             {"image_height", metadataValue(params.image_height)},
+                             {"patch_size", metadataValue(params.patch_size)}});
+  }
+  std::string sql;
+  for (const auto& [key, value] : rows) sql += " ('" + key + "', '" + value + "'),";
+  return sql;
+}
+
+/// `text` as a number of type T, when the whole of it is one.
+template <typename T>
+std::optional<T> numberIn(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const double value = std::stod(text, &used);
+    if (used != text.size()) return std::nullopt;
+    return static_cast<T>(value);
+  } catch (const std::exception&) {  // empty, or not a number
+    return std::nullopt;
+  }
+}
+
+/// The front end a map's metadata records; none when a value is missing or not a number. Maps
+/// written before there was a choice of front end record no type: they hold thumbnails.
+std::optional<DescriptorParams> storedFrontEnd(const std::map<std::string, std::string>& stored) {
+  const auto value = [&](const std::string& key) {
+    const auto found = stored.find(key);
+    return found == stored.end() ? std::string() : found->second;
+  };
+  DescriptorParams params;
+  params.type = stored.count("descriptor_type") != 0 ? value("descriptor_type") : kThumbnailFrontEnd;
+  bool complete = true;
+  const auto read = [&](const std::string& key, auto& field) {
+    const auto number = numberIn<std::decay_t<decltype(field)>>(value(key));
+    complete = complete && number.has_value();
+    if (number) field = *number;
+  };
+  if (params.type == kHogFrontEnd) {
+    read("hog_window_width", params.hog_window_width);
+    read("hog_window_height", params.hog_window_height);
+    read("hog_cell_size", params.hog_cell_size);
+    read("hog_bins", params.hog_bins);
+    read("hog_blur", params.hog_blur);
+  } else if (params.type == kThumbnailFrontEnd) {
+    read("image_width", params.image_width);
+    read("image_height", params.image_height);
+    read("patch_size", params.patch_size);
+  } else {
+    complete = false;
+  }
+  if (!complete) return std::nullopt;
+  return params;
+}
+
 }  // namespace
 
 MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access)
-    : path_(path), descriptor_bytes_(params.image_width * params.image_height) {
+    : path_(path), params_(params), descriptor_bytes_(params.descriptorSize()) {
   params.validate();
+  open(access, true);
+}
+
+MapDatabase::MapDatabase(const std::string& path, MapAccess access) : path_(path) { open(access, false); }
+
+void MapDatabase::open(MapAccess access, bool params_given) {
+  const std::string& path = path_;
   const bool read_only = access == MapAccess::kReadOnly;
   std::error_code ignored;
   if (read_only && !std::filesystem::is_regular_file(path, ignored)) fail("there is no such file");
@@ -65,10 +150,11 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
     // Nothing is written to a file that is not an empty new one or a map of these descriptors.
     const bool create = names.empty();
     if (create && read_only) fail("it holds no map (an empty database)");
+    if (create && !params_given) fail("it holds no map yet, and no front end was given for a new one");
     if (!create && (names.count("metadata") == 0 || names.count("frames") == 0)) {
       fail("it is an SQLite database of another kind (no mrs_vpr metadata and frames tables)");
     }
-    if (!create) checkMetadata(params);
+    if (!create) checkMetadata(params_given);
     if (read_only) return;  // Nothing to lock or convert: the file is only read.
     // A 2 KiB descriptor fills a default 4 KiB page alone; 64 KiB pages hold 31 frames, so a new map
     // takes half the disk and loads in about half the reads. (Fixed when the file is first written.)
@@ -77,7 +163,7 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
     execute("PRAGMA locking_mode = EXCLUSIVE");
     execute("PRAGMA journal_mode = WAL");
     if (create) {
-      createSchema(params);
+      createSchema(params_);
     } else {
       // Take the lock now, so that a second node fails at start-up rather than at its first frame.
       execute("BEGIN IMMEDIATE; COMMIT");
@@ -109,17 +195,15 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
       "CREATE TABLE metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
       "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp REAL NOT NULL, frame_id TEXT NOT NULL,"
       " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
-      "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "'),"
-      " ('image_width', '" + std::to_string(params.image_width) + "'),"
-      " ('image_height', '" + std::to_string(params.image_height) + "'),"
-      " ('patch_size', '" + std::to_string(params.patch_size) + "'),"
+      "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "')," +
+      frontEndRows(params) +
       " ('descriptor_bytes', '" + std::to_string(descriptor_bytes_) + "'),"
       " ('created', '" + utcNow() + "'),"
       " ('package_version', '" MRS_VPR_PACKAGE_VERSION "');"
       "COMMIT");
 }
 
-void MapDatabase::checkMetadata(const DescriptorParams& params) const {
+void MapDatabase::checkMetadata(bool params_given) {
   std::map<std::string, std::string> stored;
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT key, value FROM metadata", -1, &raw, nullptr) != SQLITE_OK) {
@@ -137,16 +221,22 @@ void MapDatabase::checkMetadata(const DescriptorParams& params) const {
     fail("its format version is '" + stored["format_version"] + "', this package reads " +
          std::to_string(kFormatVersion));
   }
-  std::string mismatch;
-  for (const auto& [key, value] : std::map<std::string, int>{{"image_width", params.image_width},
-                                                              {"image_height", params.image_height},
-                                                              {"patch_size", params.patch_size}}) {
-    if (stored[key] != std::to_string(value)) {
-      mismatch += (mismatch.empty() ? "" : ", ") + key + " " + stored[key] + " in the map, " + std::to_string(value) +
-                  " here";
+  const std::optional<DescriptorParams> written = storedFrontEnd(stored);
+  if (!written) fail("its descriptor type or the parameters of its front end are missing or not numbers");
+  if (!params_given) {
+    try {
+      written->validate();
+    } catch (const std::invalid_argument& error) {
+      fail(std::string("its front end is not valid: ") + error.what());
     }
+    params_ = *written;
+    descriptor_bytes_ = params_.descriptorSize();
+    return;
   }
-  if (!mismatch.empty()) fail("it was written for other descriptors: " + mismatch);
+  if (!written->sameFrontEnd(params_)) {
+    fail("it holds descriptors of the " + written->describe() + " front end, not of the " + params_.describe() +
+         " front end asked for");
+  }
 }
 
 void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {

@@ -15,9 +15,12 @@
 
 #include "mrs_vpr/store/map_database.hpp"
 #include "support/temporary_folder.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 namespace fs = std::filesystem;
 using testing_support::fileContents;
@@ -65,7 +68,7 @@ class MapDatabaseTest : public ::testing::Test {
   }
 
   /// The message of the MapDatabaseError that opening `file` throws, or "(opened)".
-  static std::string openingError(const std::string& file, const DescriptorParams& params = {}) {
+  static std::string openingError(const std::string& file, const DescriptorParams& params = thumbnailParams()) {
     try {
       MapDatabase database(file, params);
     } catch (const MapDatabaseError& error) {
@@ -81,12 +84,12 @@ class MapDatabaseTest : public ::testing::Test {
 TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
   const std::vector<StoredFrame> written = frames(120);
   {
-    MapDatabase database(path("map.db"), DescriptorParams{});
+    MapDatabase database(path("map.db"), thumbnailParams());
     database.append({written.begin(), written.begin() + 50});
     database.append({written.begin() + 50, written.end()});
     EXPECT_EQ(database.size(), 120);
   }
-  const MapDatabase database(path("map.db"), DescriptorParams{});
+  const MapDatabase database(path("map.db"), thumbnailParams());
   std::size_t i = 0;
   database.forEachFrame([&](const StoredFrame& frame) {
     ASSERT_LT(i, written.size());
@@ -102,7 +105,7 @@ TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
 TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
   // With SQLite's default 4 KiB pages each 2 KiB descriptor took a page of its own.
   {
-    MapDatabase database(path("map.db"), DescriptorParams{});
+    MapDatabase database(path("map.db"), thumbnailParams());
     database.append(frames(1000));
   }
   const auto page_size = rowsOf(path("map.db"), "PRAGMA page_size");
@@ -112,10 +115,11 @@ TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
 }
 
 TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
-  { MapDatabase database(path("map.db"), DescriptorParams{}); }
+  { MapDatabase database(path("map.db"), thumbnailParams()); }
   std::map<std::string, std::string> metadata;
   for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
-  EXPECT_EQ(metadata["format_version"], "1");
+  EXPECT_EQ(metadata["format_version"], std::to_string(MapDatabase::kFormatVersion));
+  EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["image_width"], "64");
   EXPECT_EQ(metadata["image_height"], "32");
   EXPECT_EQ(metadata["patch_size"], "8");
@@ -126,15 +130,75 @@ TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
 
 TEST_F(MapDatabaseTest, AMapOfOtherDescriptorsIsRefusedNamingTheMismatch) {
   {
-    MapDatabase database(path("map.db"), DescriptorParams{});
+    MapDatabase database(path("map.db"), thumbnailParams());
     database.append(frames(3));
   }
-  DescriptorParams other;
+  DescriptorParams other = thumbnailParams();
   other.image_width = 32;
   const std::string message = openingError(path("map.db"), other);
   EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
-  EXPECT_NE(message.find("image_width 64 in the map, 32 here"), std::string::npos) << message;
-  EXPECT_EQ(MapDatabase(path("map.db"), DescriptorParams{}).size(), 3);  // Untouched.
+  EXPECT_NE(message.find("it holds descriptors of the thumbnail (64 x 32, patches of 8 px) front end, not of the "
+                         "thumbnail (32 x 32, patches of 8 px) front end asked for"),
+            std::string::npos)
+      << message;
+  EXPECT_EQ(MapDatabase(path("map.db"), thumbnailParams()).size(), 3);  // Untouched.
+}
+
+TEST_F(MapDatabaseTest, AHogMapRecordsItsFrontEndAndAThumbnailReaderIsRefusedNamingBoth) {
+  DescriptorParams hog;
+  hog.hog_blur = 1.5;
+  {
+    MapDatabase database(path("hog.db"), hog);
+    StoredFrame frame;
+    frame.descriptor = cv::Mat(1, hog.descriptorSize(), CV_8UC1, cv::Scalar(9));
+    database.append({frame, frame});
+  }
+  std::map<std::string, std::string> metadata;
+  for (const auto& row : rowsOf(path("hog.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+  EXPECT_EQ(metadata["descriptor_type"], "hog");
+  EXPECT_EQ(metadata["hog_window_width"], "128");
+  EXPECT_EQ(metadata["hog_window_height"], "64");
+  EXPECT_EQ(metadata["hog_cell_size"], "16");
+  EXPECT_EQ(metadata["hog_bins"], "9");
+  EXPECT_EQ(metadata["hog_blur"], "1.5");
+  EXPECT_EQ(metadata["descriptor_bytes"], "756");
+  EXPECT_EQ(metadata.count("image_width"), 0U);
+  EXPECT_EQ(MapDatabase(path("hog.db"), hog).size(), 2);
+  const std::string message = openingError(path("hog.db"), thumbnailParams());
+  EXPECT_NE(message.find("it holds descriptors of the hog (128 x 64 window, cells of 16 px, 9 bins, blur 1.5 px) "
+                         "front end, not of the thumbnail (64 x 32, patches of 8 px) front end asked for"),
+            std::string::npos)
+      << message;
+  hog.hog_blur = 2.0;
+  EXPECT_NE(openingError(path("hog.db"), hog).find("blur 1.5 px"), std::string::npos);
+}
+
+TEST_F(MapDatabaseTest, AMapThatRecordsNoFrontEndHoldsThumbnails) {
+  // Maps written before the front end could be chosen have no descriptor_type.
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(3));
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("map.db").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM metadata WHERE key = 'descriptor_type'", nullptr, nullptr, nullptr), SQLITE_OK);
+  sqlite3_close(db);
+  EXPECT_EQ(MapDatabase(path("map.db"), thumbnailParams()).size(), 3);
+  EXPECT_NE(openingError(path("map.db"), DescriptorParams{}).find("thumbnail (64 x 32, patches of 8 px) front end"),
+            std::string::npos);
+}
+
+TEST_F(MapDatabaseTest, AFrontEndRecordedIncompletelyIsRefusedSayingSo) {
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+  }
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("map.db").c_str(), &db), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "UPDATE metadata SET value = 'wide' WHERE key = 'image_width'", nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  EXPECT_NE(openingError(path("map.db")).find("parameters of its front end are missing or not numbers"),
+            std::string::npos);
 }
 
 TEST_F(MapDatabaseTest, AFileThatIsNotSqliteIsRefusedAndLeftUntouched) {
@@ -161,13 +225,13 @@ TEST_F(MapDatabaseTest, AnotherSqliteDatabaseIsRefusedAndLeftUntouched) {
 
 TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {
   {
-    MapDatabase database(path("map.db"), DescriptorParams{});
+    MapDatabase database(path("map.db"), thumbnailParams());
     database.append(frames(400));
   }
   fs::resize_file(path("map.db"), fs::file_size(path("map.db")) / 2);
   std::string message;
   try {
-    const MapDatabase database(path("map.db"), DescriptorParams{});
+    const MapDatabase database(path("map.db"), thumbnailParams());
     database.forEachFrame([](const StoredFrame&) {});
     message = "(read " + std::to_string(database.size()) + " frames)";
   } catch (const MapDatabaseError& error) {
@@ -178,7 +242,7 @@ TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {
 }
 
 TEST_F(MapDatabaseTest, ASecondOwnerIsRefusedWhileTheFirstHoldsTheMap) {
-  MapDatabase first(path("map.db"), DescriptorParams{});
+  MapDatabase first(path("map.db"), thumbnailParams());
   first.append(frames(2));
   const std::string message = openingError(path("map.db"));
   EXPECT_NE(message.find("locked by another process"), std::string::npos) << message;
@@ -199,7 +263,7 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
     ASSERT_GE(child, 0);
     if (child == 0) {
       close(report[0]);
-      MapDatabase database(file, DescriptorParams{});
+      MapDatabase database(file, thumbnailParams());
       for (int batch = 0;; ++batch) {
         database.append(frames(10, 10 * batch));
         const std::int64_t total = 10 * (batch + 1);
@@ -220,7 +284,7 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
     ASSERT_TRUE(committed) << "the child stopped before its first commit";
 
     {
-      const MapDatabase database(file, DescriptorParams{});
+      const MapDatabase database(file, thumbnailParams());
       EXPECT_GE(database.size(), persisted);
       std::size_t i = 0;
       database.forEachFrame([&](const StoredFrame& frame) {
@@ -238,7 +302,7 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
 }
 
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
-  MapDatabase database(path("map.db"), DescriptorParams{});
+  MapDatabase database(path("map.db"), thumbnailParams());
   database.append(frames(5));
   database.clear();
   EXPECT_EQ(database.size(), 0);
@@ -247,7 +311,7 @@ TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
 }
 
 TEST_F(MapDatabaseTest, BadDescriptorsAreRefusedBeforeAnythingIsWritten) {
-  MapDatabase database(path("map.db"), DescriptorParams{});
+  MapDatabase database(path("map.db"), thumbnailParams());
   std::vector<StoredFrame> batch = frames(3);
   batch[2].descriptor = cv::Mat(1, 10, CV_8UC1);
   EXPECT_THROW(database.append(batch), std::invalid_argument);

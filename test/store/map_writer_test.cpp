@@ -8,9 +8,12 @@
 
 #include "mrs_vpr/store/map_writer.hpp"
 #include "support/temporary_folder.hpp"
+#include "support/front_ends.hpp"
 
 namespace mrs_vpr {
 namespace {
+
+using testing_support::thumbnailParams;
 
 class MapWriterTest : public ::testing::Test {
  protected:
@@ -37,7 +40,7 @@ class MapWriterTest : public ::testing::Test {
 };
 
 TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {
-  MapDatabase database(path(), DescriptorParams{});
+  MapDatabase database(path(), thumbnailParams());
   MapWriter writer(database, CommitPolicy{2.0, 1000});
   for (int i = 0; i < 5; ++i) writer.add(frame(i));
   // Far below the batch size: nothing is written before the period has passed.
@@ -51,7 +54,7 @@ TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {
 }
 
 TEST_F(MapWriterTest, AFullBatchIsCommittedWithoutWaitingForThePeriod) {
-  MapDatabase database(path(), DescriptorParams{});
+  MapDatabase database(path(), thumbnailParams());
   MapWriter writer(database, CommitPolicy{3600.0, 10});
   for (int i = 0; i < 10; ++i) writer.add(frame(i));
   EXPECT_TRUE(waitPersisted(writer, 10, 10.0)) << "the batch waited for the hour-long period";
@@ -59,17 +62,17 @@ TEST_F(MapWriterTest, AFullBatchIsCommittedWithoutWaitingForThePeriod) {
 
 TEST_F(MapWriterTest, StoppingCommitsWhatIsQueued) {
   {
-    MapDatabase database(path(), DescriptorParams{});
+    MapDatabase database(path(), thumbnailParams());
     MapWriter writer(database, CommitPolicy{3600.0, 1000});
     for (int i = 0; i < 7; ++i) writer.add(frame(i));
   }
-  EXPECT_EQ(MapDatabase(path(), DescriptorParams{}).size(), 7);
+  EXPECT_EQ(MapDatabase(path(), thumbnailParams()).size(), 7);
 }
 
 TEST_F(MapWriterTest, FramesReachTheDatabaseInTheOrderAddedWhateverCommitsThem) {
   constexpr int kFrames = 3000;
   {
-    MapDatabase database(path(), DescriptorParams{});
+    MapDatabase database(path(), thumbnailParams());
     MapWriter writer(database, CommitPolicy{0.001, 7});
     // The writer's thread, explicit commits and whole-database tasks all take batches meanwhile.
     std::thread committer([&] {
@@ -84,7 +87,7 @@ TEST_F(MapWriterTest, FramesReachTheDatabaseInTheOrderAddedWhateverCommitsThem) 
     EXPECT_EQ(writer.persisted(), static_cast<std::uint64_t>(kFrames));
   }
   int i = 0;
-  MapDatabase(path(), DescriptorParams{}).forEachFrame([&](const StoredFrame& stored) {
+  MapDatabase(path(), thumbnailParams()).forEachFrame([&](const StoredFrame& stored) {
     EXPECT_EQ(stored.stamp, i) << "frame " << i;
     EXPECT_EQ(cv::norm(stored.descriptor, frame(i).descriptor, cv::NORM_L1), 0.0) << "frame " << i;
     ++i;
@@ -94,10 +97,10 @@ TEST_F(MapWriterTest, FramesReachTheDatabaseInTheOrderAddedWhateverCommitsThem) 
 
 TEST_F(MapWriterTest, PersistedStartsAtTheFramesAlreadyStored) {
   {
-    MapDatabase database(path(), DescriptorParams{});
+    MapDatabase database(path(), thumbnailParams());
     database.append({frame(0), frame(1), frame(2)});
   }
-  MapDatabase database(path(), DescriptorParams{});
+  MapDatabase database(path(), thumbnailParams());
   MapWriter writer(database, CommitPolicy{});
   EXPECT_EQ(writer.persisted(), 3U);
   writer.add(frame(3));

@@ -226,7 +226,8 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
   writeMap(path("truncated.db"), 0, 300);
   fs::resize_file(path("truncated.db"), fs::file_size(path("truncated.db")) / 2);
   {
-    DescriptorParams params;  // Other descriptors.
+    DescriptorParams params;  // Another front end.
+    params.type = kThumbnailFrontEnd;
     params.image_width = 32;
     MapDatabase other(path("small.db"), params);
   }
@@ -240,7 +241,7 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
       {"notes.db", "not a database"},
       {"other.db", "another kind"},
       {"truncated.db", "malformed"},
-      {"small.db", "image_width 32 in the map, 64 here"},
+      {"small.db", "descriptors of the thumbnail (32 x 32, patches of 8 px) front end, not of the hog (128 x 64 window"},
       {"big.db", "50 frames, more than max_frames (40)"},
       {"missing.db", "no such file"},
       {"map.db", "own database"},

@@ -39,11 +39,15 @@ struct StoredFrame {
  * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
  * that users can inspect with `sqlite3` or Python. Schema (format 1):
  *
- *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, image_width, image_height,
- *                                                patch_size, descriptor_bytes, created, package_version
+ *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, descriptor_type (hog, thumbnail),
+ *                                                that front end's parameters (hog_window_width,
+ *                                                hog_window_height, hog_cell_size, hog_bins, hog_blur;
+ *                                                image_width, image_height, patch_size),
+ *                                                descriptor_bytes, created, package_version
  *   frames(id INTEGER PRIMARY KEY, stamp REAL, frame_id TEXT, sequence INTEGER, descriptor BLOB)
  *
- * Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
+ * A map that records no descriptor_type was written before the front end could be chosen: it holds
+ * thumbnails. Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
  * stored: it is rebuilt when the frames are loaded. The database is held with an exclusive lock while
  * open, so that two nodes never write one map. Not thread-safe: one owner at a time.
  */
@@ -59,6 +63,9 @@ class MapDatabase {
    * parameters, cannot be written, or is locked by another process. Never replaces a user's file.
    */
   MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access = MapAccess::kReadWrite);
+  /// Opens the existing map `path` with whatever front end it holds (descriptorParams() tells which);
+  /// throws MapDatabaseError as above, and when there is no map there yet.
+  explicit MapDatabase(const std::string& path, MapAccess access = MapAccess::kReadOnly);
   ~MapDatabase();
 
   MapDatabase(const MapDatabase&) = delete;
@@ -88,17 +95,22 @@ class MapDatabase {
   static void checkSaveTarget(const std::string& path);
 
   const std::string& path() const { return path_; }
+  /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).
+  const DescriptorParams& descriptorParams() const { return params_; }
 
  private:
   [[noreturn]] void fail(const std::string& problem) const;
   void execute(const std::string& sql) const;
+  /// Opens path_; with `params_given`, for params_ (refusing another front end), else adopting the map's.
+  void open(MapAccess access, bool params_given);
   void createSchema(const DescriptorParams& params);
-  void checkMetadata(const DescriptorParams& params) const;
+  void checkMetadata(bool params_given);
   void checkDescriptors(const std::vector<StoredFrame>& frames) const;
   /// Inserts `frames` inside a transaction the caller has begun.
   void insertFrames(const std::vector<StoredFrame>& frames);
 
   std::string path_;
+  DescriptorParams params_;
   int descriptor_bytes_ = 0;
   sqlite3* db_ = nullptr;
 };
