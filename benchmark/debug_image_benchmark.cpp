@@ -24,6 +24,7 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
+#include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
@@ -43,12 +44,14 @@ struct Options {
   int picture_end = -1;  // -1: the middle of the query traversal
   int picture_length = 300;
   std::string picture_method = "mrs";
+  mrs_vpr::DescriptorParams descriptor;
 };
 
 constexpr const char* kUsage =
     "Usage: mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries K] [--runs R]\n"
     "                                     [--methods mrs,seqslam] [--threads T] [--output FILE.png]\n"
     "                                     [--picture-end I] [--picture-length N] [--picture-method mrs|seqslam]\n"
+    "                                     [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Times the same queries without and with the explanation and drawing of ~debug_image, side by side;\n"
     "with --output also writes the picture of one query. Query frame i is assumed to show reference\n"
@@ -78,6 +81,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("picture-method", po::value(&options.picture_method)->default_value(options.picture_method),
        "mrs | seqslam: the method of the picture");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   for (const int length : options.lengths) {
@@ -112,7 +116,9 @@ double maximum(const std::vector<double>& values) { return *std::max_element(val
 
 void run(const Options& options) {
   cv::setNumThreads(options.threads);
-  mrs_vpr::PlaceRecognizer recognizer;  // The node's defaults.
+  mrs_vpr::Parameters params;  // The node's defaults, but for the front end asked for.
+  params.descriptor = options.descriptor;
+  mrs_vpr::PlaceRecognizer recognizer(params);
   // A copy of the map's descriptors, to time the explanation on its own.
   mrs_vpr::DescriptorSequence reference(recognizer.extractor().size());
   mrs_vpr::forEachImage(options.reference, [&](int index, const std::string&, const cv::Mat& image) {

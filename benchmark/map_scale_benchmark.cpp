@@ -36,6 +36,7 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
@@ -60,6 +61,7 @@ struct Options {
   std::uint64_t seed = 42;
   // Internal: measure one map in this process (the parent runs one child per size).
   std::string measure;
+  mrs_vpr::DescriptorParams descriptor;  ///< The front end of the maps written.
   long long truth_offset = -1;
 };
 
@@ -116,6 +118,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("truth-offset", po::value(&options.truth_offset)->default_value(options.truth_offset),
        "internal: index of the measured map's first true place");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   options.sizes.clear();
@@ -184,8 +187,7 @@ class Augmenter {
 
 /// Writes the map of `frames` frames to `path`; returns the index of the first true place.
 long long writeMap(const std::string& path, long long frames, const Options& options) {
-  const mrs_vpr::Parameters params;
-  const mrs_vpr::DescriptorExtractor extractor(params.descriptor);
+  const mrs_vpr::DescriptorExtractor extractor(options.descriptor);
   const std::vector<cv::Mat> summer = mrs_vpr::loadImageFolder(options.data + "/nordland/summer");
   // Winter, the queries' season, is left out, and Nordland distractors are turned upside down (or by
   // 180 degrees), so that no distractor shows a query's place, not even mirrored: the truth is never
@@ -199,7 +201,7 @@ long long writeMap(const std::string& path, long long frames, const Options& opt
 
   const std::string aside = path + ".part";
   std::remove(aside.c_str());
-  mrs_vpr::MapDatabase map(aside, params.descriptor);
+  mrs_vpr::MapDatabase map(aside, options.descriptor);
   std::vector<mrs_vpr::StoredFrame> batch;
   const auto start = Clock::now();
   long long written = 0;
@@ -254,6 +256,7 @@ int measure(const Options& options) {
   // As in mrs_vpr_real_benchmark: 0.1 leaves up to 15 frames of drift at N = 300.
   params.sequence.velocity_step = 0.02;
   params.validate();
+  params.descriptor = mrs_vpr::MapDatabase(options.measure, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
   const auto before = residentBytes();
   const auto load_start = Clock::now();
   mrs_vpr::RecognizerParams limits;
@@ -340,7 +343,8 @@ int run(int argc, char** argv) {
               "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "wrong/acc");
   std::fflush(stdout);
   for (const long long frames : options.sizes) {
-    const std::string path = options.dir + "/map-" + sizeName(frames) + "-seed" + std::to_string(options.seed) + ".db";
+    const std::string path = options.dir + "/map-" + sizeName(frames) + "-" + options.descriptor.type + "-seed" +
+                             std::to_string(options.seed) + ".db";
     const std::string offset_path = path + ".truth";
     long long truth_offset = -1;
     std::ifstream known(offset_path);
@@ -358,7 +362,7 @@ int run(int argc, char** argv) {
           "mrs_vpr_map_scale_benchmark", "--data", options.data, "--measure", path, "--truth-offset",
           std::to_string(truth_offset), "--length", std::to_string(options.length), "--queries",
           std::to_string(options.queries), "--brute-queries", std::to_string(options.brute_queries), "--threads",
-          std::to_string(options.threads), "--seed", std::to_string(options.seed)};
+          std::to_string(options.threads), "--seed", std::to_string(options.seed)};  // The map records its front end.
       std::vector<char*> argv_child;
       for (const std::string& arg : args) argv_child.push_back(const_cast<char*>(arg.c_str()));
       argv_child.push_back(nullptr);

@@ -47,6 +47,7 @@
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
+#include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
@@ -75,6 +76,7 @@ struct Options {
   double velocity_min = mrs_vpr::SequenceParams{}.velocity_min;
   double velocity_max = mrs_vpr::SequenceParams{}.velocity_max;
   std::vector<std::string> methods = {"seqslam", "mrs"};
+  mrs_vpr::DescriptorParams descriptor;
 };
 
 constexpr const char* kUsage =
@@ -84,6 +86,7 @@ constexpr const char* kUsage =
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs] [--json FILE]\n"
+    "                              [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Both methods on the same queries of real frames: Nordland winter against summer references of\n"
     "about 1.8k frames and 9k (with real distractors), known ground and out of the map, global and\n"
@@ -123,6 +126,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("methods", mrs_vpr::benchmark::listValue(&options.methods), "seqslam and/or mrs, comma-separated")
       ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   options.per_frame = !skip_per_frame;
@@ -597,6 +601,7 @@ int run(int argc, char** argv) {
   const Options& options = *parsed;
   cv::setNumThreads(options.threads);
   mrs_vpr::Parameters params;
+  params.descriptor = options.descriptor;
   // Velocity step 0.02 for both methods: 0.1 leaves up to 15 frames of drift at N = 300, so neither
   // could align long sequences whose speed lies between two steps.
   params.sequence.velocity_step = 0.02;
@@ -626,8 +631,10 @@ int run(int argc, char** argv) {
   const int other_end = options.part == "check" ? half : route;
 
   std::printf("Real-data benchmark: Nordland summer (reference) / winter (query), corridor; part '%s' "
-              "(route frames %d..%d of %d), threads %d, tolerance %d, velocities %.2f..%.2f step %.2f, seed %llu\n",
-              options.part.c_str(), part_begin, part_end - 1, route, options.threads, options.tolerance,
+              "(route frames %d..%d of %d), front end %s, threads %d, tolerance %d, velocities %.2f..%.2f step %.2f, "
+              "seed %llu\n",
+              options.part.c_str(), part_begin, part_end - 1, route, params.descriptor.describe().c_str(),
+              options.threads, options.tolerance,
               params.sequence.velocity_min, params.sequence.velocity_max, params.sequence.velocity_step,
               static_cast<unsigned long long>(options.seed));
   std::printf("success = top-1 within tolerance; accepted = the core's acceptance rule at its default (%.1f)\n\n",

@@ -29,6 +29,7 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
@@ -48,6 +49,7 @@ struct Options {
   std::vector<int> threads = {1, 2};
   std::uint64_t seed = 7;
   double min_time_s = 1.0;
+  mrs_vpr::DescriptorParams descriptor;
 };
 
 /// Frames of the second traversal: it may run up to 1.2x faster, so it is kept inside the route.
@@ -58,7 +60,7 @@ int queryFrames(int reference_frames) {
 constexpr const char* kUsage =
     "Usage: mrs_vpr_benchmark [--reference-frames M] [--sequence-length N] [--queries K]\n"
     "                         [--velocity-step S] [--tolerance T] [--threads 1,2] [--seed S]\n"
-    "                         [--min-time SECONDS]\n"
+    "                         [--min-time SECONDS] [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Times MRS-VPR against brute-force SeqSLAM on the same seeded queries of a generated route, side by\n"
     "side for each thread count, and prints success, median time and comparisons a query.\n";
@@ -85,6 +87,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("min-time", po::value(&options.min_time_s)->default_value(options.min_time_s),
        "seconds each method repeats the queries for, at least");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
@@ -147,6 +150,7 @@ int run(int argc, char** argv) {
   if (!parsed) return 0;
   const Options& options = *parsed;
   mrs_vpr::Parameters params;
+  params.descriptor = options.descriptor;
   params.sequence.velocity_step = options.velocity_step;
   params.validate();
 

@@ -14,6 +14,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "descriptor_options.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -23,11 +24,12 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: build_map (--images DIR | --bag BAG --topic T [--min-travel M [--odom-frame F] [--base-frame B]])\n"
-    "                 --output MAP.db [--append] [--force] [--image-width W] [--image-height H] [--patch-size P]\n"
+    "                 --output MAP.db [--append] [--force] [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps, in the SQLite map database MAP.db. A new map is written to MAP.db.part and\n"
-    "renamed only when complete; an existing MAP.db is extended with --append or replaced with --force.\n"
+    "renamed only when complete; an existing MAP.db is extended with --append (with the front end it\n"
+    "records, unless one is given) or replaced with --force.\n"
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
     "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n";
 
@@ -56,11 +58,9 @@ int run(int argc, char** argv) {
       ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
        "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
-      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
-      ("image-width", po::value(&params.image_width)->default_value(params.image_width), "descriptor width [px]")
-      ("image-height", po::value(&params.image_height)->default_value(params.image_height), "descriptor height [px]")
-      ("patch-size", po::value(&params.patch_size)->default_value(params.patch_size), "patch normalisation size [px]");
+      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, params);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
@@ -72,6 +72,10 @@ int run(int argc, char** argv) {
   const bool exists = std::filesystem::exists(output);
   if (exists && !append && !force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
+  }
+  // A map is extended with its own front end, unless the command line names one (which must be the same).
+  if (exists && append && !mrs_vpr::tools::descriptorOptionsGiven(variables)) {
+    params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
   }
   const mrs_vpr::DescriptorExtractor extractor(params);
   // Reads the bag's poses before anything is written, so that a bag without /tf leaves no file.

@@ -15,6 +15,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -31,6 +33,7 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "evaluation_plots.hpp"
+#include "descriptor_options.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -84,6 +87,7 @@ struct Options {
   bool out_of_map = false;
   std::int64_t seed = 42;  // Signed, so that a negative seed is seen and refused, not wrapped.
   mrs_vpr::Parameters params;
+  bool descriptor_given = false;  ///< A descriptor option was set; else a map database's own front end is used.
 };
 
 /// Parses the command line; returns nothing after printing the help.
@@ -116,16 +120,12 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("velocity-step", po::value(&params.sequence.velocity_step)->default_value(params.sequence.velocity_step),
        "step between the velocities tried (0.02 for sequences in the hundreds)")
       ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
-      ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau")
-      ("image-width", po::value(&params.descriptor.image_width)->default_value(params.descriptor.image_width),
-       "descriptor width [px]")
-      ("image-height", po::value(&params.descriptor.image_height)->default_value(params.descriptor.image_height),
-       "descriptor height [px]")
-      ("patch-size", po::value(&params.descriptor.patch_size)->default_value(params.descriptor.patch_size),
-       "patch normalisation size [px]");
+      ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, params.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
 
   if (options.method != "mrs" && options.method != "seqslam") {
     throw std::invalid_argument("unknown method '" + options.method + "' (expected mrs or seqslam)");
@@ -217,8 +217,29 @@ bool isMapDatabase(const std::string& path) {
   return path.size() > 3 && path.compare(path.size() - 3, 3, ".db") == 0;
 }
 
-json parametersToJson(const Options& options) {
-  const mrs_vpr::Parameters& p = options.params;
+/// Every descriptor parameter, named as in the parameter reference without "descriptor/" ("type",
+/// "image_width", "hog/cell_size", ...).
+json descriptorJson(const mrs_vpr::DescriptorParams& descriptor) {
+  json fields = json::object();
+  for (const auto& spec : mrs_vpr::descriptorParameters()) {
+    const std::string name = spec.info.name.substr(spec.info.name.find('/') + 1);
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(descriptor.*member)>;
+          if constexpr (std::is_same_v<Value, mrs_vpr::WindowAlignment>) {
+            fields[name] = mrs_vpr::toString(descriptor.*member);
+          } else {
+            fields[name] = descriptor.*member;
+          }
+        },
+        spec.member);
+  }
+  return fields;
+}
+
+/// The parameters of the run: those of the command line, with `p` as the parameters in effect (the
+/// front end of a map database given as the reference).
+json parametersToJson(const Options& options, const mrs_vpr::Parameters& p) {
   return {
       {"method", options.method},
       {"protocol", options.protocol},
@@ -232,10 +253,7 @@ json parametersToJson(const Options& options) {
       {"seed", options.seed},
       {"threads", options.threads},
       {"out_of_map", options.out_of_map},
-      {"descriptor",
-       {{"image_width", p.descriptor.image_width},
-        {"image_height", p.descriptor.image_height},
-        {"patch_size", p.descriptor.patch_size}}},
+      {"descriptor", descriptorJson(p.descriptor)},
       {"sequence",
        {{"sequence_length", p.sequence.sequence_length},
         {"velocity_min", p.sequence.velocity_min},
@@ -311,13 +329,24 @@ int run(int argc, char** argv) {
   std::optional<mrs_vpr::GroundTruth> truth;
   if (!options.ground_truth.empty()) truth = mrs_vpr::readGroundTruthCsv(options.ground_truth);
 
+  // A map built by build_map or the node holds descriptors already, of the front end it records.
+  std::optional<mrs_vpr::MapDatabase> map;
+  mrs_vpr::Parameters params = options.params;
+  if (isMapDatabase(options.reference)) {
+    if (options.descriptor_given) {
+      map.emplace(options.reference, params.descriptor, mrs_vpr::MapAccess::kReadOnly);
+    } else {
+      map.emplace(options.reference, mrs_vpr::MapAccess::kReadOnly);
+      params.descriptor = map->descriptorParams();
+    }
+  }
   // The reference is the recognizer's map; unbounded, as an offline traversal may be of any length.
   mrs_vpr::RecognizerParams unbounded;
   unbounded.max_frames = 0;
-  mrs_vpr::PlaceRecognizer recognizer(options.params, unbounded);
+  mrs_vpr::PlaceRecognizer recognizer(params, unbounded);
   const mrs_vpr::DescriptorExtractor& extractor = recognizer.extractor();
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
-            << sequence.sequence_length << "\n";
+            << sequence.sequence_length << ", " << params.descriptor.describe() << "\n";
   // The plots draw the difference matrix, which needs the reference's descriptors beside the map's.
   mrs_vpr::DescriptorSequence plotted_reference(extractor.size());
   const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) {
@@ -325,10 +354,8 @@ int run(int argc, char** argv) {
     recognizer.addDescriptor(descriptor, stamp);
   };
   mrs_vpr::tools::Traversal reference;
-  if (isMapDatabase(options.reference)) {
-    // A map built by build_map or the node: descriptors already, of the parameters it names.
-    const mrs_vpr::MapDatabase map(options.reference, options.params.descriptor);
-    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { add_to_map(frame.descriptor.clone(), frame.stamp); });
+  if (map) {
+    map->forEachFrame([&](const mrs_vpr::StoredFrame& frame) { add_to_map(frame.descriptor.clone(), frame.stamp); });
     reference.frames = recognizer.size();
     std::cerr << "  reference: " << reference.frames << " frames from the map database " << options.reference << "\n";
   } else {
@@ -379,7 +406,7 @@ int run(int argc, char** argv) {
         {"protocol", options.protocol},
         {"reference_frames", reference.frames},
         {"query_frames", query.frames},
-        {"parameters", parametersToJson(options)},
+        {"parameters", parametersToJson(options, params)},
         {"summary", summaryToJson(summary)},
         {"timing",
          {{"read_and_describe_s", describe_s},

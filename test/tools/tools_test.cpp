@@ -445,11 +445,27 @@ TEST_F(ToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   EXPECT_EQ(appended.status, 0) << appended.err;
   EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
 
-  // A map of other descriptors is refused, naming the file and the mismatch.
+  // A map of another front end is read with its own front end, unless another one is asked for:
+  // then it is refused, naming the file and both front ends.
   const Result other = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
-                           path("small.db") + " --image-width 32 --image-height 16");
+                           path("small.db") + " --descriptor thumbnail --image-width 32 --image-height 16");
   ASSERT_EQ(other.status, 0) << other.err;
-  expectError("--reference " + path("small.db") + rest, "image_width 32 in the map, 64 here");
+  const Result adopted = run(eval("--reference " + path("small.db") + rest + " --output " + path("small.json")));
+  ASSERT_EQ(adopted.status, 0) << adopted.err;
+  EXPECT_NE(adopted.err.find("thumbnail (32 x 16, patches of 8 px)"), std::string::npos) << adopted.err;
+  const json parameters = json::parse(readText(path("small.json"))).at("parameters").at("descriptor");
+  EXPECT_EQ(parameters.at("type"), "thumbnail");
+  EXPECT_EQ(parameters.at("image_width"), 32);
+  expectError("--reference " + path("small.db") + rest + " --descriptor hog",
+              "holds descriptors of the thumbnail (32 x 16, patches of 8 px) front end, not of the hog (128 x 64 window");
+  // Appending extends a map with the front end it records; another one named is refused.
+  const Result appended_other = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                                    path("small.db") + " --append");
+  EXPECT_EQ(appended_other.status, 0) << appended_other.err;
+  const Result mixed = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                           path("small.db") + " --append --descriptor hog");
+  EXPECT_EQ(mixed.status, 1);
+  EXPECT_NE(mixed.err.find("not of the hog"), std::string::npos) << mixed.err;
 }
 
 TEST_F(ToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
@@ -720,7 +736,7 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   // Each map is measured by a child process that gets the options again: one row per map and kind of
   // query, with 2 queries of mrs and 1 of brute force.
   for (const std::string size : {"2k", "2500"}) {
-    EXPECT_TRUE(fs::exists(maps / ("map-" + size + "-seed4.db"))) << size;
+    EXPECT_TRUE(fs::exists(maps / ("map-" + size + "-hog-seed4.db"))) << size;
     for (const std::string kind : {"winter", "summer*"}) {
       std::istringstream lines(result.out);
       std::vector<std::string> row;

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <string>
+#include <type_traits>
+#include <variant>
+
+#include <boost/program_options.hpp>
+
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+namespace tools {
+
+/// The command-line option of a descriptor parameter: "descriptor/type" is --descriptor,
+/// "descriptor/image_width" --image-width, "descriptor/hog/cell_size" --hog-cell-size.
+inline std::string descriptorOption(const std::string& parameter) {
+  std::string name = parameter.substr(parameter.find('/') + 1);
+  if (name == "type") return "descriptor";
+  for (char& c : name) {
+    if (c == '/' || c == '_') c = '-';
+  }
+  return name;
+}
+
+/// Adds an option for every parameter of the core's descriptor table, with the meaning it gives and
+/// the value `params` holds as the default; the values land in `params`, which must outlive parsing.
+inline void addDescriptorOptions(boost::program_options::options_description& description, DescriptorParams& params) {
+  for (const auto& spec : descriptorParameters()) {
+    std::visit(
+        [&](auto member) {
+          using Value = std::decay_t<decltype(params.*member)>;
+          if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, double> ||
+                        std::is_same_v<Value, std::string>) {
+            description.add_options()(descriptorOption(spec.info.name).c_str(),
+                                      boost::program_options::value(&(params.*member))->default_value(params.*member),
+                                      spec.info.meaning.c_str());
+          }
+        },
+        spec.member);
+  }
+}
+
+/// Whether the command line set any descriptor option (rather than leaving every default).
+inline bool descriptorOptionsGiven(const boost::program_options::variables_map& variables) {
+  for (const auto& spec : descriptorParameters()) {
+    const auto found = variables.find(descriptorOption(spec.info.name));
+    if (found != variables.end() && !found->second.defaulted()) return true;
+  }
+  return false;
+}
+
+}  // namespace tools
+}  // namespace mrs_vpr
