@@ -11,6 +11,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
+#include "mrs_vpr/node/loop_closure_stamps.hpp"
 #include "mrs_vpr/node/robot_position.hpp"
 
 namespace mrs_vpr {
@@ -39,6 +40,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
   loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
+  loop_closure_stamps_pub_ = private_nh_.advertise<std_msgs::Float64MultiArray>("loop_closure_stamps", 10);
   map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
   debug_image_ = std::make_unique<DebugImagePublisher>(private_nh_);
   query_srv_ = query_nh_.advertiseService("query", &PlaceRecognitionNode::queryCallback, this);
@@ -283,7 +285,8 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   }
   response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (response.success) {
-    publishLoopClosure(input.header, answered, response);
+    const std::string unpublished = publishLoopClosure(input.header, answered, response);
+    if (!unpublished.empty()) response.message += "; " + unpublished;
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
   } else {
@@ -315,8 +318,8 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   return answered;
 }
 
-void PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
-                                              const QuerySequence::Response& response) {
+std::string PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                                     const QuerySequence::Response& response) {
   LoopClosure message;
   message.header = header;
   message.reference_index = response.reference_index;
@@ -327,6 +330,16 @@ void PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, co
   message.accepted = response.accepted;
   message.method = answer.method;
   loop_closure_pub_.publish(message);
+
+  std::string why;
+  if (const auto stamps = loopClosureStamps(message, why)) {
+    loop_closure_stamps_pub_.publish(*stamps);
+    return "";
+  }
+  if (why.empty()) return "";  // not accepted: nothing to publish
+  const std::string unpublished = "not published on " + loop_closure_stamps_pub_.getTopic() + ": " + why;
+  ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: an accepted loop closure was %s", unpublished.c_str());
+  return unpublished;
 }
 
 void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
@@ -345,7 +358,7 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
   QuerySequence::Response response;
   try {
     const PlaceAnswer answered = answer(input, response);
-    publishLoopClosure(input.header, answered, response);
+    publishLoopClosure(input.header, answered, response);  // warns itself when stamps cannot go out
   } catch (const std::exception& error) {
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
   }

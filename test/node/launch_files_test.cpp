@@ -1,5 +1,6 @@
 // The launch files' arguments: a parameter file's values stay unless an argument is given
-// (roslaunch --dump-params, no master needed).
+// (roslaunch --dump-params), and topics are remapped only when asked (roslaunch --args); no master
+// needed.
 
 #include <gtest/gtest.h>
 
@@ -7,29 +8,55 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/temporary_folder.hpp"
 
 namespace {
 
-/// The node's parameters as `roslaunch --dump-params mrs_vpr LAUNCH ARGUMENTS` sets them, by name
-/// (without the node's namespace); empty when roslaunch fails.
-std::map<std::string, std::string> nodeParameters(const std::string& launch, const std::string& arguments) {
-  const std::string command = "roslaunch --dump-params mrs_vpr " + launch + " " + arguments + " 2>/dev/null";
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  std::map<std::string, std::string> parameters;
-  if (!pipe) return parameters;
-  const std::string prefix = "/mrs_vpr/";
+/// The standard output of `command`, line by line; nothing when it cannot run.
+std::vector<std::string> outputLines(const std::string& command) {
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((command + " 2>/dev/null").c_str(), "r"), pclose);
+  std::vector<std::string> lines;
+  if (!pipe) return lines;
   char line[4096];
   while (std::fgets(line, sizeof(line), pipe.get()) != nullptr) {
     std::string text(line);
     while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+    lines.push_back(text);
+  }
+  return lines;
+}
+
+/// The node's parameters as `roslaunch --dump-params mrs_vpr LAUNCH ARGUMENTS` sets them, by name
+/// (without the node's namespace); empty when roslaunch fails.
+std::map<std::string, std::string> nodeParameters(const std::string& launch, const std::string& arguments) {
+  std::map<std::string, std::string> parameters;
+  const std::string prefix = "/mrs_vpr/";
+  for (const std::string& text : outputLines("roslaunch --dump-params mrs_vpr " + launch + " " + arguments)) {
     const std::size_t colon = text.find(": ");
     if (text.rfind(prefix, 0) != 0 || colon == std::string::npos) continue;
     parameters[text.substr(prefix.size(), colon - prefix.size())] = text.substr(colon + 2);
   }
   return parameters;
+}
+
+/// The node's remappings (FROM:=TO on its command line, as `roslaunch --args` prints it), by FROM;
+/// the special arguments such as __name are left out. Empty when roslaunch fails.
+std::map<std::string, std::string> nodeRemappings(const std::string& launch, const std::string& arguments) {
+  std::map<std::string, std::string> remappings;
+  for (const std::string& text : outputLines("roslaunch --args /mrs_vpr mrs_vpr " + launch + " " + arguments)) {
+    std::istringstream words(text);
+    std::string word;
+    while (words >> word) {
+      const std::size_t arrow = word.find(":=");
+      if (arrow == std::string::npos || word.rfind("__", 0) == 0) continue;
+      remappings[word.substr(0, arrow)] = word.substr(arrow + 2);
+    }
+  }
+  return remappings;
 }
 
 class LaunchFilesTest : public ::testing::TestWithParam<std::string> {
@@ -81,6 +108,19 @@ TEST_P(LaunchFilesTest, ArgumentsGivenOverrideTheParameterFile) {
   EXPECT_EQ(parameters.at("auto_query_period"), "1.5");
   EXPECT_EQ(parameters.at("image_transport"), "raw");
   EXPECT_EQ(parameters.at("database"), "/maps/other.db");
+}
+
+TEST_P(LaunchFilesTest, LoopClosureStampsStayOnTheNodesOwnTopicUnlessATopicIsGiven) {
+  const auto remappings = nodeRemappings(launch(), "");
+  ASSERT_EQ(remappings.count("image"), 1U) << "roslaunch --args failed for " << GetParam();
+  EXPECT_EQ(remappings.count("~loop_closure_stamps"), 0U);
+}
+
+TEST_P(LaunchFilesTest, LoopClosureStampsGoWhereTheArgumentSays) {
+  const auto remappings = nodeRemappings(launch(), "loop_closure_stamps_topic:=/lio_loop/loop_closure_detection");
+  ASSERT_EQ(remappings.count("image"), 1U) << "roslaunch --args failed for " << GetParam();
+  ASSERT_EQ(remappings.count("~loop_closure_stamps"), 1U);
+  EXPECT_EQ(remappings.at("~loop_closure_stamps"), "/lio_loop/loop_closure_detection");
 }
 
 INSTANTIATE_TEST_SUITE_P(BothLaunchFiles, LaunchFilesTest, ::testing::Values("mrs_vpr.launch", "replay.launch"),

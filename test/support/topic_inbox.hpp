@@ -60,6 +60,12 @@ class TopicInbox {
     return false;
   }
 
+  /// Every message received so far, oldest first.
+  std::vector<Message> received() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
+  }
+
   void clear() {
     std::lock_guard<std::mutex> lock(mutex_);
     messages_.clear();

@@ -35,7 +35,8 @@ namespace node {
 
 /**
  * The ROS face of the place recogniser: subscribes `image`, keeps keyframe descriptors in a reference
- * map, answers `~query` (mrs_vpr/QuerySequence), publishes `~loop_closure` and the latched
+ * map, answers `~query` (mrs_vpr/QuerySequence), publishes `~loop_closure`, the stamps of accepted
+ * ones on `~loop_closure_stamps` (LIO-SAM's convention, see loop_closure_stamps.hpp) and the latched
  * `~map_info`, offers `~reset`, `~save_map` and `~load_map`, keeps the map in `~database` when one
  * is set, and optionally queries on its own every `~auto_query_period` seconds.
  *
@@ -101,8 +102,10 @@ class PlaceRecognitionNode {
 
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
   PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
-  void publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
-                          const QuerySequence::Response& response);
+  /// Publishes the answer on ~loop_closure and, when it is an accepted match, its stamps on
+  /// ~loop_closure_stamps; returns why an accepted match could not go there (empty otherwise).
+  std::string publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                 const QuerySequence::Response& response);
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 
@@ -144,6 +147,7 @@ class PlaceRecognitionNode {
   image_transport::Subscriber image_sub_;       // every transport but `compressed`
   ros::Subscriber compressed_image_sub_;         // `compressed`
   ros::Publisher loop_closure_pub_;
+  ros::Publisher loop_closure_stamps_pub_;  // LIO-SAM's external loop closures: accepted ones only
   ros::Publisher map_info_pub_;
   std::unique_ptr<DebugImagePublisher> debug_image_;  // ~debug_image, drawn only while subscribed
   ros::ServiceServer query_srv_;
