@@ -247,7 +247,7 @@ std::string DescriptorParams::describe() const {
   if (isHog()) {
     return std::string(kHogFrontEnd) + " (" + std::to_string(hog_window_width) + " x " +
            std::to_string(hog_window_height) + " window, cells of " + std::to_string(hog_cell_size) + " px, " +
-           std::to_string(hog_bins) + " bins, blur " + formatNumber(hog_blur) + " px)";
+           std::to_string(hog_bins) + " bins" + (hog_blur > 0.0 ? ", blur " + formatNumber(hog_blur) + " px" : "") + ")";
   }
   return std::string(kThumbnailFrontEnd) + " (" + std::to_string(image_width) + " x " + std::to_string(image_height) +
          ", patches of " + std::to_string(patch_size) + " px)";

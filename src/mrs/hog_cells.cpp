@@ -18,7 +18,7 @@ HogCells::HogCells(const DescriptorParams& geometry)
   const HogFrontEnd hog(geometry);
   const int group_width = (bins_ + kOrientationGroups - 1) / kOrientationGroups;
   const int groups = (bins_ + group_width - 1) / group_width;
-  for (int bin = 0; bin < bins_; ++bin) bin_group_.push_back(bin / group_width);
+  for (int end = group_width; end < bins_ + group_width; end += group_width) group_ends_.push_back(std::min(end, bins_));
   std::vector<int> members(static_cast<std::size_t>(hog.cellsX() * hog.cellsY() * groups), 0);
   histogram_base_.assign(static_cast<std::size_t>(hog.size() / bins_), 0);
   // Histograms lie in the descriptor in OpenCV's order (HogFrontEnd::offset).
@@ -28,7 +28,7 @@ HogCells::HogCells(const DescriptorParams& geometry)
         for (int cy = 0; cy < 2; ++cy) {
           const int base = ((bx + cx) * hog.cellsY() + by + cy) * groups;
           histogram_base_[static_cast<std::size_t>(hog.offset(bx, by, cx, cy) / bins_)] = base;
-          for (int bin = 0; bin < bins_; ++bin) ++members[static_cast<std::size_t>(base + bin_group_[static_cast<std::size_t>(bin)])];
+          for (int bin = 0; bin < bins_; ++bin) ++members[static_cast<std::size_t>(base + bin / group_width)];
         }
       }
     }
@@ -41,9 +41,14 @@ void HogCells::project(const std::uint16_t* sums, int frames, std::uint8_t* cell
   thread_local std::vector<std::uint32_t> totals;
   totals.assign(scale_.size(), 0);
   const std::uint16_t* histogram = sums;
+  // A histogram's bins are contiguous and so are its groups: each group is a short contiguous sum.
   for (const int base : histogram_base_) {
     std::uint32_t* group = totals.data() + base;
-    for (int bin = 0; bin < bins_; ++bin) group[bin_group_[static_cast<std::size_t>(bin)]] += histogram[bin];
+    for (std::size_t g = 0; g < group_ends_.size(); ++g) {
+      std::uint32_t total = 0;
+      for (int bin = g == 0 ? 0 : group_ends_[g - 1]; bin < group_ends_[g]; ++bin) total += histogram[bin];
+      group[g] += total;
+    }
     histogram += bins_;
   }
   const float per_frame = 1.0F / static_cast<float>(frames);

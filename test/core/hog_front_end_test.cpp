@@ -28,11 +28,8 @@ cv::Mat texture(int width, int height, int seed) {
   return image;
 }
 
-DescriptorParams unblurred() {
-  DescriptorParams params;
-  params.hog_blur = 0.0;
-  return params;
-}
+/// The default HOG front end, which does not smooth the window.
+DescriptorParams unblurred() { return DescriptorParams{}; }
 
 TEST(HogFrontEnd, IsTheDefaultWithSevenByThreeBlocksOfFourCellsOfNineBins) {
   const DescriptorExtractor extractor{DescriptorParams{}};
@@ -95,6 +92,23 @@ TEST(HogFrontEnd, BrightnessOffsetsAndBlurredCopiesGiveNearlyTheSameDescriptor) 
   const double same = cv::norm(a, b, cv::NORM_L1);
   const double different = cv::norm(a, other, cv::NORM_L1);
   EXPECT_LT(same, 0.05 * different) << same << " vs " << different;
+}
+
+TEST(HogFrontEnd, BlurKeepsANoisyCopyNearerItsOriginal) {
+  const cv::Mat image = texture(128, 64, 13);
+  cv::Mat noise(image.size(), CV_16SC1);
+  cv::RNG(14).fill(noise, cv::RNG::NORMAL, 0, 30);
+  cv::Mat noisy;
+  cv::add(image, noise, noisy, cv::noArray(), CV_8U);
+  const auto relativeDistance = [&](double blur) {
+    DescriptorParams params;
+    params.hog_blur = blur;
+    const DescriptorExtractor extractor(params);
+    const cv::Mat original = extractor.compute(image);
+    return cv::norm(original, extractor.compute(noisy), cv::NORM_L1) /
+           cv::norm(original, extractor.compute(texture(128, 64, 15)), cv::NORM_L1);
+  };
+  EXPECT_LT(relativeDistance(2.0), 0.8 * relativeDistance(0.0));
 }
 
 TEST(HogFrontEnd, SixteenBitImageGivesTheDescriptorOfItsEightBitOriginal) {
@@ -168,7 +182,11 @@ TEST(DescriptorParams, FrontEndsAreComparedOnTheFieldsTheirTypeUses) {
   DescriptorParams thumbnail = hog;
   thumbnail.type = kThumbnailFrontEnd;
   EXPECT_FALSE(hog.sameFrontEnd(thumbnail));
-  EXPECT_EQ(hog.describe(), "hog (128 x 64 window, cells of 16 px, 9 bins, blur 2 px)");
+  EXPECT_EQ(hog.describe(), "hog (128 x 64 window, cells of 16 px, 9 bins)");
+  DescriptorParams blurred = hog;
+  blurred.hog_blur = 1.5;
+  EXPECT_EQ(blurred.describe(), "hog (128 x 64 window, cells of 16 px, 9 bins, blur 1.5 px)");
+  EXPECT_FALSE(hog.sameFrontEnd(blurred));
   EXPECT_EQ(thumbnail.describe(), "thumbnail (64 x 32, patches of 8 px)");
   EXPECT_EQ(finer.descriptorSize(), 15 * 7 * 4 * 9);
 }

@@ -33,7 +33,7 @@ class HogCells : public CompactCells {
  private:
   int bins_;                         ///< Orientation bins of the descriptor.
   std::vector<int> histogram_base_;  ///< Per histogram of the descriptor (a cell of a block): its first cell byte.
-  std::vector<int> bin_group_;       ///< Per bin: its orientation group.
+  std::vector<int> group_ends_;      ///< Per orientation group: the bin after its last.
   std::vector<float> scale_;         ///< Per cell byte: 1 / the descriptor bytes pooled into it.
 };
 
