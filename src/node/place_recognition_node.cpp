@@ -12,6 +12,7 @@
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/robot_position.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -20,8 +21,6 @@ namespace {
 constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
 
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
-
-ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) : ros::Time(); }
 
 }  // namespace
 
@@ -124,14 +123,24 @@ template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
   countMissingFrames(header.seq);
-  double stamp = header.stamp.toSec();
-  if (stamp <= 0.0) {
-    stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
+  Stamp stamp;
+  try {
+    stamp = stampOf(header.stamp);  // Exact: a double cannot hold every ROS time.
+  } catch (const std::invalid_argument& error) {  // an unnormalised stamp beyond ROS's range
+    ++frames_failed_;
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s: header.stamp %u s + %u ns: %s",
+                      imageTopic().c_str(), header.stamp.sec, header.stamp.nsec, error.what());
+    return;
   }
+  if (stamp.isZero()) {
+    stamp = stampOf(ros::Time::now());  // unstamped camera: the arrival time is the best we have
+  }
+  // The keyframe policy compares intervals, for which seconds in a double are precise enough.
+  const double seconds = stamp.seconds();
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    if (!keyframe_policy_.wants(stamp)) {
-      keyframe_policy_.skip(stamp);
+    if (!keyframe_policy_.wants(seconds)) {
+      keyframe_policy_.skip(seconds);
       ++frames_skipped_;
       return;
     }
@@ -144,7 +153,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
       travelled = position && travel_policy_.wants(*position);
-      if (!travelled) keyframe_policy_.skip(stamp);
+      if (!travelled) keyframe_policy_.skip(seconds);
     }
     if (!position) {
       ++frames_without_pose_;
@@ -168,7 +177,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     ++frames_failed_;
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
-      keyframe_policy_.skip(stamp);
+      keyframe_policy_.skip(seconds);
     }
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%s): %s", imageTopic().c_str(),
                       summary().c_str(), error.what());
@@ -192,7 +201,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   }
   ++map_version_;
   std::lock_guard<std::mutex> lock(state_mutex_);
-  keyframe_policy_.keep(stamp);
+  keyframe_policy_.keep(seconds);
   if (position) travel_policy_.keep(*position);
   camera_frame_id_ = header.frame_id;
   const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -259,7 +268,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
       for (std::size_t i = 0; i < request.images.size(); ++i) {
         const sensor_msgs::Image& image = request.images[i];
         try {
-          input.images->append(describeImage(recognizer_.extractor(), image), image.header.stamp.toSec());
+          input.images->append(describeImage(recognizer_.extractor(), image), stampOf(image.header.stamp));
         } catch (const std::exception& error) {
           throw std::invalid_argument("images[" + std::to_string(i) + "] (" + std::to_string(image.width) +
                                       " x " + std::to_string(image.height) + ", encoding " +
@@ -301,7 +310,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method, explain)
                                       : recognizer_.matchRecent(input.recent_frames, input.method, explain);
   if (!input.images) {
-    input.header.stamp = toRosTime(answered.newest_stamp);
+    input.header.stamp = rosTimeOf(answered.newest_stamp);
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
@@ -310,7 +319,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.reference_index = match.reference_index;
   response.score = match.score;
   response.confidence = match.confidence;
-  response.reference_stamp = toRosTime(answered.reference_stamp);
+  response.reference_stamp = rosTimeOf(answered.reference_stamp);
   response.accepted = match.accepted;
   response.message = acceptanceVerdict(match, params_.core.sequence);
   return answered;
@@ -362,8 +371,8 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   info.memory_bytes = state.memory_bytes;
   info.descriptor_size = static_cast<std::uint32_t>(state.descriptor_size);
   if (state.frames > 0) {
-    info.first_stamp = toRosTime(state.first_stamp);
-    info.last_stamp = toRosTime(state.last_stamp);
+    info.first_stamp = rosTimeOf(state.first_stamp);
+    info.last_stamp = rosTimeOf(state.last_stamp);
   }
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <stdexcept>
 
 namespace mrs_vpr {
 namespace {
@@ -75,6 +76,8 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
     if (create) execute("PRAGMA page_size = " + std::to_string(kPageSize));
     // Exclusive: the lock taken by the first write is kept until the database is closed.
     execute("PRAGMA locking_mode = EXCLUSIVE");
+    // Before the switch to WAL, which rewrites the header: a conversion that fails leaves every byte.
+    if (!create && format_version_ < kFormatVersion) convertToCurrentFormat();
     execute("PRAGMA journal_mode = WAL");
     if (create) {
       createSchema(params);
@@ -107,7 +110,7 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
   execute(
       "BEGIN IMMEDIATE;"
       "CREATE TABLE metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
-      "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp REAL NOT NULL, frame_id TEXT NOT NULL,"
+      "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
       " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
       "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "'),"
       " ('image_width', '" + std::to_string(params.image_width) + "'),"
@@ -119,7 +122,7 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
       "COMMIT");
 }
 
-void MapDatabase::checkMetadata(const DescriptorParams& params) const {
+void MapDatabase::checkMetadata(const DescriptorParams& params) {
   std::map<std::string, std::string> stored;
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT key, value FROM metadata", -1, &raw, nullptr) != SQLITE_OK) {
@@ -133,9 +136,13 @@ void MapDatabase::checkMetadata(const DescriptorParams& params) const {
     if (key != nullptr && value != nullptr) stored[key] = value;
   }
   if (step != SQLITE_DONE) fail(lastProblem(db_));
-  if (stored["format_version"] != std::to_string(kFormatVersion)) {
+  format_version_ = 0;
+  for (int version = kOldestFormatVersion; version <= kFormatVersion; ++version) {
+    if (stored["format_version"] == std::to_string(version)) format_version_ = version;
+  }
+  if (format_version_ == 0) {
     fail("its format version is '" + stored["format_version"] + "', this package reads " +
-         std::to_string(kFormatVersion));
+         std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
   }
   std::string mismatch;
   for (const auto& [key, value] : std::map<std::string, int>{{"image_width", params.image_width},
@@ -147,6 +154,53 @@ void MapDatabase::checkMetadata(const DescriptorParams& params) const {
     }
   }
   if (!mismatch.empty()) fail("it was written for other descriptors: " + mismatch);
+}
+
+namespace {
+
+/// The message of a stamp that cannot be read, naming the frame.
+std::string badStamp(sqlite3_int64 id, const std::string& why) {
+  return "frame " + std::to_string(id) + " has an unusable stamp: " + why;
+}
+
+/// SQL function mrs_vpr_stamp_ns_of(id, seconds): a format-1 stamp in nanoseconds, or an error naming
+/// the frame, so that the conversion rounds exactly as reading a format-1 map does.
+void stampNanosecondsOf(sqlite3_context* context, int, sqlite3_value** arguments) {
+  const sqlite3_int64 id = sqlite3_value_int64(arguments[0]);
+  const int type = sqlite3_value_numeric_type(arguments[1]);
+  try {
+    if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) throw std::invalid_argument("it is not a number");
+    sqlite3_result_int64(context, Stamp::fromSeconds(sqlite3_value_double(arguments[1])).nanoseconds());
+  } catch (const std::invalid_argument& error) {
+    sqlite3_result_error(context, badStamp(id, error.what()).c_str(), -1);
+  }
+}
+
+}  // namespace
+
+void MapDatabase::convertToCurrentFormat() {
+  if (sqlite3_create_function(db_, "mrs_vpr_stamp_ns_of", 2, SQLITE_UTF8 | SQLITE_DETERMINISTIC, nullptr,
+                              &stampNanosecondsOf, nullptr, nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  // A new table rather than a new column: the stamp column of format 1 is REAL, which would turn
+  // every integer written into it back into a double.
+  const std::string convert =
+      "BEGIN IMMEDIATE;"
+      "CREATE TABLE frames_v2 (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
+      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
+      "INSERT INTO frames_v2 SELECT id, mrs_vpr_stamp_ns_of(id, stamp), frame_id, sequence, descriptor FROM frames;"
+      "DROP TABLE frames;"
+      "ALTER TABLE frames_v2 RENAME TO frames;"
+      "UPDATE metadata SET value = '" + std::to_string(kFormatVersion) + "' WHERE key = 'format_version';"
+      "COMMIT";
+  if (sqlite3_exec(db_, convert.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+    const std::string problem = lastProblem(db_);
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    fail("cannot convert it from format " + std::to_string(format_version_) + " to " + std::to_string(kFormatVersion) +
+         " (it is left as it was): " + problem);
+  }
+  format_version_ = kFormatVersion;
 }
 
 void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
@@ -161,13 +215,13 @@ void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const
 
 void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
+  if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
                          &raw, nullptr) != SQLITE_OK) {
     fail(lastProblem(db_));
   }
   const Statement insert(raw, sqlite3_finalize);
   for (const StoredFrame& frame : frames) {
-    sqlite3_bind_double(insert.get(), 1, frame.stamp);
+    sqlite3_bind_int64(insert.get(), 1, frame.stamp.nanoseconds());
     sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
                       SQLITE_TRANSIENT);
     sqlite3_bind_int64(insert.get(), 3, frame.sequence);
@@ -212,10 +266,11 @@ std::int64_t MapDatabase::size() const {
 
 void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "SELECT id, stamp, frame_id, sequence, descriptor FROM frames ORDER BY id", -1, &raw,
-                         nullptr) != SQLITE_OK) {
-    fail(lastProblem(db_));
-  }
+  // Format 1 (read-only: a map opened for writing is converted) has seconds in `stamp`.
+  const bool in_seconds = format_version_ == 1;
+  const std::string select = std::string("SELECT id, ") + (in_seconds ? "stamp" : "stamp_ns") +
+                             ", frame_id, sequence, descriptor FROM frames ORDER BY id";
+  if (sqlite3_prepare_v2(db_, select.c_str(), -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
   const Statement rows(raw, sqlite3_finalize);
   StoredFrame frame;
   int step = SQLITE_ROW;
@@ -224,7 +279,18 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
       fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " holds a descriptor of " +
            std::to_string(sqlite3_column_bytes(rows.get(), 4)) + " bytes, not " + std::to_string(descriptor_bytes_));
     }
-    frame.stamp = sqlite3_column_double(rows.get(), 1);
+    const sqlite3_int64 id = sqlite3_column_int64(rows.get(), 0);
+    const int stamp_type = sqlite3_column_type(rows.get(), 1);
+    try {
+      if (in_seconds && stamp_type != SQLITE_FLOAT && stamp_type != SQLITE_INTEGER) {
+        throw std::invalid_argument("it is not a number");
+      }
+      if (!in_seconds && stamp_type != SQLITE_INTEGER) throw std::invalid_argument("it is not an integer");
+      frame.stamp = in_seconds ? Stamp::fromSeconds(sqlite3_column_double(rows.get(), 1))
+                               : Stamp::fromNanoseconds(sqlite3_column_int64(rows.get(), 1));
+    } catch (const std::invalid_argument& error) {
+      fail(badStamp(id, error.what()));
+    }
     const auto* frame_id = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 2));
     frame.frame_id = frame_id != nullptr ? frame_id : "";
     frame.sequence = sqlite3_column_int64(rows.get(), 3);

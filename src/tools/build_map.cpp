@@ -13,6 +13,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
@@ -92,12 +93,13 @@ int run(int argc, char** argv) {
       stored += static_cast<int>(batch.size());
       batch.clear();
     };
-    mrs_vpr::tools::readTraversal(images.empty() ? bag_path : images, topic, "map", extractor,
-                                  [&](const cv::Mat& descriptor, double stamp) {
-                                    if (keyframes && !keyframes->keep(ros::Time(stamp))) return;
-                                    batch.push_back({descriptor.clone(), stamp, "", -1});
-                                    if (batch.size() >= kBatch) flush();
-                                  });
+    mrs_vpr::tools::readTraversal(
+        images.empty() ? bag_path : images, topic, "map", extractor,
+        [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+          if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
+          batch.push_back({descriptor.clone(), stamp, "", -1});
+          if (batch.size() >= kBatch) flush();
+        });
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
     if (keyframes) {

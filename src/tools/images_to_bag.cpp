@@ -89,6 +89,12 @@ int run(int argc, char** argv) {
 
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
   const std::vector<std::string> files = mrs_vpr::listImageFiles(images);
+  try {
+    mrs_vpr::bag::frameStamp(start_time, static_cast<long long>(files.size()) - 1, rate);  // the latest stamp
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string("the images cannot all be stamped: ") + error.what() +
+                                "; use a higher --rate or an earlier --start-time");
+  }
   FileInProgress output(bag_path);
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
@@ -97,7 +103,7 @@ int run(int argc, char** argv) {
       mrs_vpr::ProgressLine::onStderr("  " + bag_path, "images", static_cast<long long>(files.size()));
   mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
     // Stamps from the frame number, not accumulated, so they never drift.
-    const ros::Time stamp(start_time + index / rate);
+    const ros::Time stamp = mrs_vpr::bag::frameStamp(start_time, index, rate);
     try {
       bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(image, encoding, stamp, frame_id));
     } catch (const std::invalid_argument& error) {

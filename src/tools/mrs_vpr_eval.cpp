@@ -320,7 +320,7 @@ int run(int argc, char** argv) {
             << sequence.sequence_length << "\n";
   // The plots draw the difference matrix, which needs the reference's descriptors beside the map's.
   mrs_vpr::DescriptorSequence plotted_reference(extractor.size());
-  const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) {
+  const auto add_to_map = [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
     if (!options.plots.empty()) plotted_reference.append(descriptor, stamp);
     recognizer.addDescriptor(descriptor, stamp);
   };
@@ -341,7 +341,7 @@ int run(int argc, char** argv) {
   mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
   const mrs_vpr::tools::Traversal query =
       mrs_vpr::tools::readTraversal(options.query, options.topic, "query", extractor,
-                                    [&](const cv::Mat& descriptor, double stamp) {
+                                    [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
                                       query_descriptors.append(descriptor, stamp);
                                     });
   // A map database keeps descriptors, not images: there is no image size to compare.

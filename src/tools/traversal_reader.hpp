@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 namespace mrs_vpr {
 namespace tools {
@@ -21,13 +22,13 @@ struct Traversal {
 
 /**
  * Reads and describes every image of a folder or bag (`topic`), handing each descriptor with its
- * stamp to `append` (a folder's frames are stamped with their index), and reports progress on stderr
- * as `what`. Throws std::runtime_error naming the image when one cannot be read or described, or
- * differs in size from the first.
+ * exact stamp to `append` (a folder's frames are stamped with their index, in seconds), and reports
+ * progress on stderr as `what`. Throws std::runtime_error naming the image when one cannot be read or
+ * described, or differs in size from the first.
  */
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
-                        const std::function<void(const cv::Mat& descriptor, double stamp)>& append);
+                        const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append);
 
 }  // namespace tools
 }  // namespace mrs_vpr

@@ -56,7 +56,7 @@ class MapDatabaseTest : public ::testing::Test {
       StoredFrame frame;
       frame.descriptor = cv::Mat(1, 64 * 32, CV_8UC1);
       rng.fill(frame.descriptor, cv::RNG::UNIFORM, 0, 256);
-      frame.stamp = 1000.0 + 0.1 * i;
+      frame.stamp = Stamp::fromNanoseconds(1'000'000'000'000 + 100'000'000LL * i);
       frame.frame_id = i % 2 == 0 ? "camera" : "";
       frame.sequence = i % 3 == 0 ? -1 : i;
       result.push_back(frame);
@@ -91,7 +91,7 @@ TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
   database.forEachFrame([&](const StoredFrame& frame) {
     ASSERT_LT(i, written.size());
     EXPECT_EQ(cv::norm(frame.descriptor, written[i].descriptor, cv::NORM_L1), 0.0) << i;
-    EXPECT_DOUBLE_EQ(frame.stamp, written[i].stamp);
+    EXPECT_EQ(frame.stamp, written[i].stamp);
     EXPECT_EQ(frame.frame_id, written[i].frame_id);
     EXPECT_EQ(frame.sequence, written[i].sequence);
     ++i;
@@ -115,7 +115,7 @@ TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), DescriptorParams{}); }
   std::map<std::string, std::string> metadata;
   for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
-  EXPECT_EQ(metadata["format_version"], "1");
+  EXPECT_EQ(metadata["format_version"], "2");
   EXPECT_EQ(metadata["image_width"], "64");
   EXPECT_EQ(metadata["image_height"], "32");
   EXPECT_EQ(metadata["patch_size"], "8");
@@ -227,7 +227,7 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
         // Batch b was written as frames(10, 10 b): recompute each batch the same way.
         const std::vector<StoredFrame> batch = frames(10, static_cast<int>(i / 10) * 10);
         EXPECT_EQ(cv::norm(frame.descriptor, batch[i % 10].descriptor, cv::NORM_L1), 0.0) << "frame " << i;
-        EXPECT_DOUBLE_EQ(frame.stamp, batch[i % 10].stamp);
+        EXPECT_EQ(frame.stamp, batch[i % 10].stamp);
         ++i;
       });
     }  // Closed: it holds the map exclusively while open.

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,8 +20,10 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <rosbag/bag.h>
 
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
 #include "support/travel_bag.hpp"
@@ -539,6 +542,55 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   EXPECT_EQ(truncated.status, 1) << truncated.err;
   EXPECT_FALSE(fs::exists(broken));
   EXPECT_FALSE(fs::exists(broken + ".part"));
+}
+
+TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesStampsNoBagCanHold) {
+  // 100 frames at 10 Hz up to 9.9 s before the latest ROS time: through doubles, the stamps there
+  // are off by up to half a microsecond.
+  const std::string bag = path("late.bag");
+  const std::string images = " --images " + path("query") + " --topic /camera/image_raw";
+  const Result late = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + bag +
+                          " --rate 10 --start-time 4294967286");
+  ASSERT_EQ(late.status, 0) << late.err;
+  const auto written = mrs_vpr::bag::readImages(bag, "/camera/image_raw", 0, 100);
+  for (std::uint32_t i = 0; i < 100; ++i) {
+    EXPECT_EQ(written[i]->header.stamp, ros::Time(4294967286U + i / 10, (i % 10) * 100000000U)) << i;
+  }
+  // Stamps beyond 4294967295.999999999 s: refused before anything is written.
+  for (const std::string& timing : {std::string(" --rate 1e-300 --start-time 1000"),
+                                    std::string(" --rate 10 --start-time 4294967290")}) {
+    SCOPED_TRACE(timing);
+    const Result result = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + path("never.bag") + timing);
+    EXPECT_EQ(result.status, 1);
+    EXPECT_NE(result.err.find("images_to_bag: error: the images cannot all be stamped: frame "), std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("beyond the latest ROS time (4294967295.999999999 s); use a higher --rate or an "
+                              "earlier --start-time"),
+              std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(path("never.bag")));
+  }
+}
+
+TEST_F(ToolsTest, BuildMapKeepsTheStampsOfABagExact) {
+  // Frames stamped up to the latest ROS time.
+  const std::string bag = path("latest.bag");
+  {
+    rosbag::Bag writer(bag, rosbag::bagmode::Write);
+    const cv::Mat image = cv::imread(path("reference/00000.png"));
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      const ros::Time stamp(4294967295U, 999999997U + i);
+      writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+    }
+  }
+  const Result built = run(std::string(BUILD_MAP_PATH) + " --bag " + bag + " --topic /camera/image_raw --output " +
+                           path("latest.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  std::vector<mrs_vpr::Stamp> stamps;
+  mrs_vpr::MapDatabase(path("latest.db"), mrs_vpr::DescriptorParams{}, mrs_vpr::MapAccess::kReadOnly)
+      .forEachFrame([&](const mrs_vpr::StoredFrame& frame) { stamps.push_back(frame.stamp); });
+  ASSERT_EQ(stamps.size(), 3U);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(stamps[i].nanoseconds(), mrs_vpr::Stamp::kMaxNanoseconds - 2 + i);
 }
 
 /// A benchmark binary, and one of its comma-separated list options.

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 struct sqlite3;
 
@@ -30,18 +31,23 @@ enum class MapAccess {
 /// One frame as stored: its descriptor and what is known of the image it came from.
 struct StoredFrame {
   cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
-  double stamp = 0.0;        ///< [s]
+  Stamp stamp;               ///< Exact, as the camera gave it.
   std::string frame_id;      ///< Camera frame, empty when unknown.
   std::int64_t sequence = -1;  ///< Camera sequence number, -1 when unknown.
 };
 
 /**
  * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
- * that users can inspect with `sqlite3` or Python. Schema (format 1):
+ * that users can inspect with `sqlite3` or Python. Schema (format 2):
  *
  *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, image_width, image_height,
  *                                                patch_size, descriptor_bytes, created, package_version
- *   frames(id INTEGER PRIMARY KEY, stamp REAL, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *
+ * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. Format 1 (earlier releases) kept
+ * `stamp REAL` seconds instead: such a map is read as it is, converted to the nearest nanosecond,
+ * and converted to format 2 in place, in one transaction, when opened for writing. A stamp outside
+ * Stamp's range (no ROS time) is an error naming the frame, never a stamp that a node cannot publish.
  *
  * Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
  * stored: it is rebuilt when the frames are loaded. The database is held with an exclusive lock while
@@ -49,7 +55,9 @@ struct StoredFrame {
  */
 class MapDatabase {
  public:
-  static constexpr int kFormatVersion = 1;
+  static constexpr int kFormatVersion = 2;
+  /// The oldest format still read (and converted when written).
+  static constexpr int kOldestFormatVersion = 1;
   /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are 2 KiB rows.
   static constexpr int kPageSize = 65536;
 
@@ -93,13 +101,17 @@ class MapDatabase {
   [[noreturn]] void fail(const std::string& problem) const;
   void execute(const std::string& sql) const;
   void createSchema(const DescriptorParams& params);
-  void checkMetadata(const DescriptorParams& params) const;
+  /// Reads the format version and checks the descriptor parameters.
+  void checkMetadata(const DescriptorParams& params);
+  /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
+  void convertToCurrentFormat();
   void checkDescriptors(const std::vector<StoredFrame>& frames) const;
   /// Inserts `frames` inside a transaction the caller has begun.
   void insertFrames(const std::vector<StoredFrame>& frames);
 
   std::string path_;
   int descriptor_bytes_ = 0;
+  int format_version_ = kFormatVersion;
   sqlite3* db_ = nullptr;
 };
 
