@@ -210,14 +210,39 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
 }
 
+std::string PlaceRecognitionNode::unknownTfFrame() const {
+  for (const std::string* frame : {&params_.odom_frame, &params_.base_frame}) {
+    if (!tf_buffer_->_frameExists(*frame)) return *frame;
+  }
+  return "";
+}
+
 std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Time& stamp, std::string& error) const {
+  // A frame that no transform has named is waited for once, as tf may start after the camera. While
+  // it stays unknown, later frames fail at once: waiting ~tf_timeout for each would overflow the
+  // image queue and hide the real problem behind lost frames.
+  const std::string unknown = unknownTfFrame();
+  const auto noSuchFrame = [&](const std::string& frame) {
+    return "frame '" + frame + "' does not exist: no transform on /tf or /tf_static has named it (~odom_frame " +
+           params_.odom_frame + ", ~base_frame " + params_.base_frame + ")";
+  };
+  if (!unknown.empty() && waited_for_unknown_tf_frame_) {
+    error = noSuchFrame(unknown);
+    return std::nullopt;
+  }
   // A zero stamp (an unstamped camera) asks for the newest pose.
-  return robotPositionFrom(
+  std::optional<Eigen::Vector3d> position = robotPositionFrom(
       [&] {
         return tf_buffer_->lookupTransform(params_.odom_frame, params_.base_frame, stamp,
                                            ros::Duration(params_.tf_timeout));
       },
       error);
+  const std::string still_unknown = position ? "" : unknownTfFrame();
+  if (!still_unknown.empty()) {
+    waited_for_unknown_tf_frame_ = true;
+    error = noSuchFrame(still_unknown);
+  }
+  return position;
 }
 
 void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
@@ -234,9 +259,10 @@ void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
   frames_failed_ += missing;
   ROS_WARN_THROTTLE(kWarningPeriod,
                     "mrs_vpr: %llu frames of %s never reached the node (header.seq jumped to %u): the "
-                    "subscriber queue (~image_queue_size = %d) overflowed while frames were described, or the "
+                    "subscriber queue (~image_queue_size = %d) overflowed while frames were described%s, or the "
                     "publisher dropped them; counted as failed",
-                    static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size);
+                    static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size,
+                    travel_policy_.enabled() ? " or waited for the robot's pose (~tf_timeout)" : "");
 }
 
 std::string PlaceRecognitionNode::imageTopic() const {
