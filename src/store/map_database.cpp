@@ -79,6 +79,10 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
     // Before the switch to WAL, which rewrites the header: a conversion that fails leaves every byte.
     if (!create && format_version_ < kFormatVersion) convertToCurrentFormat();
     execute("PRAGMA journal_mode = WAL");
+    // A small log, checkpointed often and cut back after each checkpoint: at 64 KiB pages SQLite's
+    // default (1000 pages, never cut back) keeps a 64 MiB log beside the smallest map.
+    execute("PRAGMA wal_autocheckpoint = " + std::to_string(kWalCheckpointPages));
+    execute("PRAGMA journal_size_limit = " + std::to_string(kWalSizeLimit));
     if (create) {
       createSchema(params);
     } else {

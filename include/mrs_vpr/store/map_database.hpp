@@ -48,6 +48,8 @@ struct StoredFrame {
  * `stamp REAL` seconds instead: such a map is read as it is, converted to the nearest nanosecond,
  * and converted to format 2 in place, in one transaction, when opened for writing. A stamp outside
  * Stamp's range (no ROS time) is an error naming the frame, never a stamp that a node cannot publish.
+ * The write-ahead log is checkpointed every kWalCheckpointPages pages and cut back to
+ * kWalSizeLimit bytes, so that it stays a few MiB whatever the map's size.
  *
  * Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
  * stored: it is rebuilt when the frames are loaded. The database is held with an exclusive lock while
@@ -60,6 +62,11 @@ class MapDatabase {
   static constexpr int kOldestFormatVersion = 1;
   /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are 2 KiB rows.
   static constexpr int kPageSize = 65536;
+  /// The log is copied into the map once it holds this many pages (SQLite's default of 1000 pages
+  /// would let it reach 64 MiB at this page size)...
+  static constexpr int kWalCheckpointPages = 64;
+  /// ...and cut back to this size after each copy [bytes]; a larger transaction may grow it meanwhile.
+  static constexpr std::int64_t kWalSizeLimit = std::int64_t{kWalCheckpointPages} * kPageSize;
 
   /**
    * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
