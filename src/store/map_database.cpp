@@ -1,12 +1,16 @@
 #include "mrs_vpr/store/map_database.hpp"
 
 #include <sqlite3.h>
+#include <unistd.h>
 
+#include <climits>
 #include <ctime>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace mrs_vpr {
 namespace {
@@ -20,6 +24,42 @@ std::string lastProblem(sqlite3* db) {
   const std::string message = sqlite3_errmsg(db);
   if (code == SQLITE_BUSY || code == SQLITE_LOCKED) return "it is locked by another process (" + message + ")";
   return message;
+}
+
+/// The longest suffix SQLite and this class add to a map's name for the files beside it.
+constexpr std::size_t kDatabaseSuffix = sizeof("-journal") - 1;
+/// ... and to a saved map's: PersistentMap writes `path`.build, whose journal is `path`.build-journal.
+constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
+
+/**
+ * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
+ * it), in a user's words; empty when it can. A file that exists must be a regular file; otherwise its
+ * folder must exist and the file system must allow its name. SQLite itself would say only "unable to
+ * open database file" for each of these.
+ */
+std::string pathProblem(const std::string& path, std::size_t suffix) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (path.empty()) return "no path given";
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) return "it is a folder, not a map file (give the path of a file)";
+  if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
+  if (path.size() + suffix >= PATH_MAX) {
+    return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
+           std::to_string(PATH_MAX - 1 - suffix) + ")";
+  }
+  const fs::path absolute = fs::absolute(path, error);
+  const fs::path folder = absolute.parent_path();
+  if (!fs::is_directory(folder, error)) return "there is no folder " + folder.string();
+  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
+  const std::size_t name = absolute.filename().string().size();
+  if (name + suffix > longest) {
+    return "its file name is " + std::to_string(name) + " bytes long, too long for this file system: at most " +
+           std::to_string(longest - suffix) + " (" + std::to_string(longest) + " less the " + std::to_string(suffix) +
+           " of the files written beside it)";
+  }
+  return "";
 }
 
 std::string utcNow() {
@@ -36,7 +76,9 @@ MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params
   params.validate();
   const bool read_only = access == MapAccess::kReadOnly;
   std::error_code ignored;
-  if (read_only && !std::filesystem::is_regular_file(path, ignored)) fail("there is no such file");
+  if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
+  const std::string path_problem = pathProblem(path, kDatabaseSuffix);
+  if (!path_problem.empty()) fail(path_problem);
   const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
@@ -309,17 +351,26 @@ void MapDatabase::clear() { execute("DELETE FROM frames"); }
 
 void MapDatabase::checkIntegrity() const {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "PRAGMA quick_check", -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
+  // A truncated map can have thousands of problems; the first few are enough to tell.
+  constexpr std::size_t kProblems = 10;
+  const std::string check = "PRAGMA quick_check(" + std::to_string(kProblems) + ")";
+  if (sqlite3_prepare_v2(db_, check.c_str(), -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
   const Statement rows(raw, sqlite3_finalize);
-  std::string problems;
+  std::vector<std::string> problems;
   int step = SQLITE_ROW;
   while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
     const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 0));
-    const std::string line = text != nullptr ? text : "";
-    if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
+    std::istringstream lines(text != nullptr ? text : "");
+    for (std::string line; std::getline(lines, line);) {
+      if (line != "ok" && line.rfind("***", 0) != 0) problems.push_back(line);  // "*** in database main ***"
+    }
   }
   if (step != SQLITE_DONE) fail(lastProblem(db_));
-  if (!problems.empty()) fail("it is corrupt (" + problems + ")");
+  if (problems.empty()) return;
+  const std::string count = problems.size() >= kProblems ? "at least " + std::to_string(kProblems) + " problems"
+                                                         : std::to_string(problems.size()) + " problem" +
+                                                               (problems.size() > 1 ? "s" : "");
+  fail("it is corrupt or truncated (SQLite's quick_check finds " + count + "; the first: " + problems.front() + ")");
 }
 
 namespace {
@@ -333,11 +384,15 @@ namespace {
 void MapDatabase::checkSaveTarget(const std::string& path) {
   std::error_code error;
   if (path.empty()) refuseSave(path, "no path given");
+  if (std::filesystem::is_directory(path, error)) {
+    refuseSave(path, "it is a folder (give the path of a new file in it, such as " +
+                         (std::filesystem::path(path) / "map.db").string() + ")");
+  }
   if (std::filesystem::exists(path, error)) {
     refuseSave(path, "the file exists (a map is never overwritten: remove it or choose another name)");
   }
-  const std::filesystem::path folder = std::filesystem::absolute(path, error).parent_path();
-  if (!std::filesystem::is_directory(folder, error)) refuseSave(path, "there is no folder " + folder.string());
+  const std::string problem = pathProblem(path, kSaveSuffix);
+  if (!problem.empty()) refuseSave(path, problem);
 }
 
 void MapDatabase::backupTo(const std::string& path) const {

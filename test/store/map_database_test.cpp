@@ -10,6 +10,7 @@
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -177,6 +178,74 @@ TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {
   }
   EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
   EXPECT_NE(message.find("malformed"), std::string::npos) << message;
+}
+
+TEST_F(MapDatabaseTest, AHeavilyDamagedMapIsReportedInOneShortMessage) {
+  {
+    MapDatabase database(path("map.db"), DescriptorParams{});
+    database.append(frames(3000));
+  }
+  fs::resize_file(path("map.db"), fs::file_size(path("map.db")) / 10);
+  // As a file written by a tool that does not keep the size in the header valid: SQLite then takes the
+  // size from the file and lists every missing page, thousands of bytes.
+  {
+    std::fstream file(path("map.db"), std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(92);
+    file.write("\0\0\0\x09", 4);
+  }
+  std::string message;
+  try {
+    const MapDatabase database(path("map.db"), DescriptorParams{}, MapAccess::kReadOnly);
+    database.checkIntegrity();
+    message = "(sound)";
+  } catch (const MapDatabaseError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("it is corrupt or truncated (SQLite's quick_check finds at least 10 problems; the first: "),
+            std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), 300U) << message;
+}
+
+TEST_F(MapDatabaseTest, PathsThatCannotHoldAMapAreNamedForWhatTheyAre) {
+  fs::create_directory(path("folder"));
+  const std::string long_name = path(std::string(300, 'a') + ".db");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {path("folder"), "it is a folder, not a map file"},
+      {long_name, "its file name is 303 bytes long, too long for this file system: at most 247"},
+      {path("missing/map.db"), "there is no folder " + path("missing")},
+  };
+  for (const auto& [file, problem] : cases) {
+    SCOPED_TRACE(file);
+    const std::string message = openingError(file);
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    std::string read_only;
+    try {
+      MapDatabase database(file, DescriptorParams{}, MapAccess::kReadOnly);
+    } catch (const MapDatabaseError& error) {
+      read_only = error.what();
+    }
+    EXPECT_NE(read_only.find(file == path("folder") ? problem : "there is no such file"), std::string::npos)
+        << read_only;
+  }
+  // A name that fits the file system but not beside the copy a save writes first.
+  const std::vector<std::pair<std::string, std::string>> saves = {
+      {path("folder"), "it is a folder (give the path of a new file in it, such as " + path("folder/map.db") + ")"},
+      {path(std::string(245, 'b')), "its file name is 245 bytes long, too long for this file system: at most 241"},
+      {path("missing/map.db"), "there is no folder " + path("missing")},
+  };
+  for (const auto& [file, problem] : saves) {
+    SCOPED_TRACE(file);
+    std::string message;
+    try {
+      MapDatabase::checkSaveTarget(file);
+    } catch (const MapDatabaseError& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find("cannot save the map to '" + file + "': " + problem), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(MapDatabase::checkSaveTarget(path(std::string(241, 'c'))));
 }
 
 TEST_F(MapDatabaseTest, TheWriteAheadLogStaysSmallWhateverTheCommits) {

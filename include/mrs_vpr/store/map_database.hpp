@@ -71,7 +71,9 @@ class MapDatabase {
   /**
    * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
    * file when it is not an SQLite database, holds another schema, was written for other descriptor
-   * parameters, cannot be written, or is locked by another process. Never replaces a user's file.
+   * parameters, cannot be written, or is locked by another process, and, before SQLite is asked, when
+   * it is a folder, its folder does not exist or its name is too long for the file system (SQLite
+   * would say "unable to open database file" for each). Never replaces a user's file.
    */
   MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access = MapAccess::kReadWrite);
   ~MapDatabase();
@@ -89,7 +91,8 @@ class MapDatabase {
   void clear();
   /// Replaces every frame by `frames` in one transaction: on any failure the old frames stay.
   void replace(const std::vector<StoredFrame>& frames);
-  /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound.
+  /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
+  /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
 
   /**
@@ -99,7 +102,8 @@ class MapDatabase {
    * copy never leaves a partial map. Throws MapDatabaseError naming `path` and the problem.
    */
   void backupTo(const std::string& path) const;
-  /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists or has no folder.
+  /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists, is a folder, has no
+  /// folder, or names a file too long for the file system with the suffixes written beside it.
   static void checkSaveTarget(const std::string& path);
 
   const std::string& path() const { return path_; }
