@@ -70,10 +70,17 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0 && bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
+  // The output is checked before any work: a folder would otherwise be found only when the finished
+  // map is renamed to it.
+  if (std::filesystem::is_directory(output)) {
+    throw std::invalid_argument("'" + output + "' is a folder; --output names the map file to write (e.g. " +
+                                (std::filesystem::path(output) / "map.db").string() + ")");
+  }
   const bool exists = std::filesystem::exists(output);
   if (exists && !append && !force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
   }
+  if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);  // its folder, and a name the file system allows
   const mrs_vpr::DescriptorExtractor extractor(params);
   // Reads the bag's poses before anything is written, so that a bag without /tf leaves no file.
   std::optional<mrs_vpr::bag::BagKeyframes> keyframes;
@@ -82,7 +89,13 @@ int run(int argc, char** argv) {
   // A new map is built aside and renamed when complete; an appended one commits batch by batch.
   const bool in_place = exists && append;
   const std::string target = in_place ? output : output + ".part";
-  for (const char* leftover : {".part", ".part-wal", ".part-shm"}) std::filesystem::remove(output + leftover);
+  const auto removePart = [&] {
+    std::error_code ignored;
+    for (const char* leftover : {".part", ".part-wal", ".part-shm"}) {
+      std::filesystem::remove(output + leftover, ignored);
+    }
+  };
+  removePart();
   int stored = 0;
   try {
     mrs_vpr::MapDatabase map(target, params);
@@ -109,10 +122,17 @@ int run(int argc, char** argv) {
       }
     }
   } catch (...) {
-    if (!in_place) std::filesystem::remove(target);
+    if (!in_place) removePart();
     throw;
   }
-  if (!in_place) std::filesystem::rename(target, output);
+  if (!in_place) {
+    std::error_code error;
+    std::filesystem::rename(target, output, error);
+    if (error) {
+      removePart();
+      throw std::runtime_error("cannot replace '" + output + "' by the new map: " + error.message());
+    }
+  }
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <boost/program_options.hpp>
+#include <ros/names.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
@@ -76,6 +77,14 @@ int run(int argc, char** argv) {
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (topic.empty()) throw std::invalid_argument("--topic must not be empty");
+  std::string why;
+  if (!ros::names::validate(topic, why)) {
+    throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name: " + why);
+  }
+  // Checked before any work: a folder would be found only when the finished bag is renamed.
+  if (std::filesystem::is_directory(bag_path)) {
+    throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");
+  }
   if (std::filesystem::exists(bag_path) && !force) {
     throw std::invalid_argument("'" + bag_path + "' exists; use --force to replace it");
   }

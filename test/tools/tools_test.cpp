@@ -544,7 +544,35 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   EXPECT_FALSE(fs::exists(broken + ".part"));
 }
 
-TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesStampsNoBagCanHold) {
+TEST_F(ToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
+  // --force onto a folder used to describe every frame, then fail to rename and leave OUT.part.
+  fs::create_directories(path("a_folder"));
+  const Result map = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                         path("a_folder") + " --force");
+  EXPECT_EQ(map.status, 1);
+  EXPECT_NE(map.err.find("build_map: error: '" + path("a_folder") + "' is a folder; --output names the map file"),
+            std::string::npos)
+      << map.err;
+  EXPECT_EQ(map.err.find("frames"), std::string::npos) << "work was done first: " << map.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  const Result no_folder = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                               path("nowhere/map.db"));
+  EXPECT_EQ(no_folder.status, 1);
+  EXPECT_NE(no_folder.err.find("there is no folder " + path("nowhere")), std::string::npos) << no_folder.err;
+  EXPECT_EQ(no_folder.err.find("frames"), std::string::npos) << no_folder.err;
+
+  const Result bag = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                         path("a_folder") + " --topic /t --rate 5 --force");
+  EXPECT_EQ(bag.status, 1);
+  EXPECT_NE(bag.err.find("images_to_bag: error: '" + path("a_folder") + "' is a folder; --bag names the bag file"),
+            std::string::npos)
+      << bag.err;
+  EXPECT_EQ(bag.err.find("images in"), std::string::npos) << "work was done first: " << bag.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  EXPECT_TRUE(fs::is_empty(path("a_folder")));
+}
+
+TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
   // 100 frames at 10 Hz up to 9.9 s before the latest ROS time: through doubles, the stamps there
   // are off by up to half a microsecond.
   const std::string bag = path("late.bag");
@@ -570,6 +598,11 @@ TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesStampsNoBagCanHold) {
         << result.err;
     EXPECT_FALSE(fs::exists(path("never.bag")));
   }
+  const Result topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                           path("never.bag") + " --topic 'bad topic!' --rate 10");
+  EXPECT_EQ(topic.status, 1);
+  EXPECT_NE(topic.err.find("--topic 'bad topic!' is not a valid ROS topic name: "), std::string::npos) << topic.err;
+  EXPECT_FALSE(fs::exists(path("never.bag")));
 }
 
 TEST_F(ToolsTest, BuildMapKeepsTheStampsOfABagExact) {
