@@ -112,7 +112,8 @@ int run(int argc, char** argv) {
           if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
           batch.push_back({descriptor.clone(), stamp, "", -1});
           if (batch.size() >= kBatch) flush();
-        });
+        },
+        images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
     if (keyframes) {

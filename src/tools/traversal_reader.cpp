@@ -13,8 +13,9 @@ namespace tools {
 
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
-                        const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append) {
-  const bool bag = mrs_vpr::bag::isBagPath(source);
+                        const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append,
+                        SourceKind kind) {
+  const bool bag = kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
   const int total =
       bag ? mrs_vpr::bag::countImages(source, topic) : static_cast<int>(mrs_vpr::listImageFiles(source).size());
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);

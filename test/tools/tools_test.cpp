@@ -605,9 +605,9 @@ TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
   EXPECT_FALSE(fs::exists(path("never.bag")));
 }
 
-TEST_F(ToolsTest, BuildMapKeepsTheStampsOfABagExact) {
-  // Frames stamped up to the latest ROS time.
-  const std::string bag = path("latest.bag");
+TEST_F(ToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStampsExact) {
+  // A frame stamped at the latest ROS time, in a bag whose name does not end in .bag.
+  const std::string bag = path("latest.recording");
   {
     rosbag::Bag writer(bag, rosbag::bagmode::Write);
     const cv::Mat image = cv::imread(path("reference/00000.png"));
@@ -624,6 +624,15 @@ TEST_F(ToolsTest, BuildMapKeepsTheStampsOfABagExact) {
       .forEachFrame([&](const mrs_vpr::StoredFrame& frame) { stamps.push_back(frame.stamp); });
   ASSERT_EQ(stamps.size(), 3U);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(stamps[i].nanoseconds(), mrs_vpr::Stamp::kMaxNanoseconds - 2 + i);
+
+  // A file that is no bag is named as such, not as a folder.
+  std::ofstream(path("garbage.db")) << "garbage";
+  const Result garbage = run(std::string(BUILD_MAP_PATH) + " --bag " + path("garbage.db") +
+                             " --topic /camera/image_raw --output " + path("garbage_map.db"));
+  EXPECT_EQ(garbage.status, 1);
+  EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
+      << garbage.err;
+  EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
 }
 
 /// A benchmark binary, and one of its comma-separated list options.
