@@ -635,6 +635,25 @@ TEST_F(ToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStampsEx
   EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
 }
 
+TEST_F(ToolsTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
+  std::ofstream(path("plain_file")) << "x";
+  const std::string evaluation = "--reference " + path("reference") + " --query " + path("query") +
+                                 " --method seqslam --protocol per-frame --sequence-length 10";
+  const Result plots = run(eval(evaluation + " --plots " + path("plain_file/plots")));
+  EXPECT_EQ(plots.status, 1);
+  EXPECT_NE(plots.err.find("mrs_vpr_eval: error: --plots '" + path("plain_file/plots") + "': cannot create the folder"),
+            std::string::npos)
+      << plots.err;
+  EXPECT_EQ(plots.err.find("matching"), std::string::npos) << "the evaluation ran first: " << plots.err;
+  const Result output = run(eval(evaluation + " --output " + path("nowhere/evaluation.json")));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_NE(output.err.find("--output '" + path("nowhere/evaluation.json") + "': there is no folder " +
+                            path("nowhere")),
+            std::string::npos)
+      << output.err;
+  EXPECT_EQ(output.err.find("matching"), std::string::npos) << output.err;
+}
+
 /// A benchmark binary, and one of its comma-separated list options.
 struct Benchmark {
   std::string name;
