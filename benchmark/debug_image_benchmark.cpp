@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -123,12 +124,14 @@ void run(const Options& options) {
   mrs_vpr::DescriptorSequence reference(recognizer.extractor().size());
   mrs_vpr::forEachImage(options.reference, [&](int index, const std::string&, const cv::Mat& image) {
     const cv::Mat descriptor = recognizer.describe(image);
-    recognizer.addDescriptor(descriptor, index);
-    reference.append(descriptor, index);
+    const auto stamp = mrs_vpr::Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(index), 0);
+    recognizer.addDescriptor(descriptor, stamp);
+    reference.append(descriptor, stamp);
   });
   mrs_vpr::DescriptorSequence query(recognizer.extractor().size());
   mrs_vpr::forEachImage(options.query, [&](int index, const std::string&, const cv::Mat& image) {
-    query.append(recognizer.describe(image), index);
+    query.append(recognizer.describe(image),
+                 mrs_vpr::Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(index), 0));
   });
   std::printf("reference %d frames, query %d frames, %d thread(s), %d queries per row\n", recognizer.size(),
               query.size(), options.threads, options.queries);

@@ -208,7 +208,7 @@ long long writeMap(const std::string& path, long long frames, const Options& opt
   auto add = [&](const cv::Mat& image) {
     mrs_vpr::StoredFrame frame;
     frame.descriptor = extractor.compute(image);
-    frame.stamp = static_cast<double>(written) / 10.0;
+    frame.stamp = mrs_vpr::Stamp::fromNanoseconds(static_cast<std::int64_t>(written) * 100'000'000);
     frame.sequence = written++;
     batch.push_back(std::move(frame));
     if (batch.size() == 10000) {

@@ -45,7 +45,7 @@ DescriptorSequence::DescriptorSequence(int descriptor_size) : descriptor_size_(d
   }
 }
 
-void DescriptorSequence::append(const cv::Mat& descriptor, double stamp) {
+void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
   if (descriptor.type() != CV_8UC1 || descriptor.total() != static_cast<std::size_t>(descriptor_size_) ||
       !descriptor.isContinuous()) {
     throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " +
@@ -115,7 +115,7 @@ const std::uint8_t* DescriptorSequence::descriptor(int index) const {
 }
 
 std::size_t DescriptorSequence::memoryBytes() const {
-  std::size_t bytes = data_.capacity() + stamps_.capacity() * sizeof(double);
+  std::size_t bytes = data_.capacity() + stamps_.capacity() * sizeof(Stamp);
   for (const std::vector<std::uint8_t>& cells : coarse_.levels) bytes += cells.capacity();
   return bytes;
 }

@@ -44,11 +44,11 @@ cv::Mat PlaceRecognizer::describe(const cv::Mat& image, ChannelOrder order) cons
   return extractor_.compute(image, order);
 }
 
-FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, double stamp, ChannelOrder order) {
+FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, Stamp stamp, ChannelOrder order) {
   return addDescriptor(describe(image, order), stamp);  // Described before any lock is taken.
 }
 
-FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, double stamp) {
+FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, Stamp stamp) {
   if (descriptor.type() != CV_8UC1 || static_cast<int>(descriptor.total()) != extractor_.size()) {
     throw std::invalid_argument("a descriptor must be " + std::to_string(extractor_.size()) + " bytes of CV_8UC1, got " +
                                 std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()));
@@ -103,7 +103,7 @@ void PlaceRecognizer::reserve(int frames) {
 }
 
 void PlaceRecognizer::visitFrames(int begin, int end,
-                                  const std::function<void(const cv::Mat& descriptor, double stamp)>& visit) const {
+                                  const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& visit) const {
   std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
   if (begin < 0 || end > map_.size() || begin > end) {
     throw std::invalid_argument("frames [" + std::to_string(begin) + ", " + std::to_string(end) +

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 namespace mrs_vpr {
 
@@ -54,7 +55,7 @@ class DescriptorSequence {
   explicit DescriptorSequence(int descriptor_size);
 
   /// Appends a 1 x descriptor_size CV_8UC1 row. Throws std::invalid_argument on a size or type mismatch.
-  void append(const cv::Mat& descriptor, double stamp = 0.0);
+  void append(const cv::Mat& descriptor, Stamp stamp = Stamp());
   void reserve(int frames);
   /// Forgets every frame (the pooling stride stays).
   void clear();
@@ -72,7 +73,7 @@ class DescriptorSequence {
   /// The same frame as a 1 x descriptorSize() CV_8UC1 header over the stored bytes: no copy, valid
   /// until the next append, for reading only (clone() it to keep or change it).
   cv::Mat descriptorRow(int index) const;
-  double stamp(int index) const { return stamps_.at(static_cast<std::size_t>(index)); }
+  Stamp stamp(int index) const { return stamps_.at(static_cast<std::size_t>(index)); }
   /// Bytes held by descriptors, stamps and coarse cells (capacity, not just size).
   std::size_t memoryBytes() const;
 
@@ -82,7 +83,7 @@ class DescriptorSequence {
  private:
   int descriptor_size_;
   std::vector<std::uint8_t> data_;
-  std::vector<double> stamps_;
+  std::vector<Stamp> stamps_;
   CoarseCells coarse_;
 
   void appendCoarseCells(int last);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +28,14 @@ cv::Mat decode(const cv::Mat& buffer, int flags);
 
 /// cv::imwrite: false when OpenCV cannot write the file; cv::Exception as OpenCV throws it.
 bool write(const std::string& path, const cv::Mat& image, const std::vector<int>& params = {});
+
+/**
+ * True when a JPEG stream of `size` bytes reaches its end-of-image marker, false when it is cut short
+ * (or not JPEG at all). libjpeg, and so cv::imdecode and cv::imread, decode a truncated stream with a
+ * warning only, filling what is missing with grey; a camera frame or file cut short must be refused
+ * instead. Reads the segments and skips the entropy-coded data of each scan; decodes nothing.
+ */
+bool jpegReachesEndOfImage(const std::uint8_t* data, std::size_t size);
 
 /// cv::imencode into `buffer` in the format of `extension` (".png", ".jpg").
 bool encode(const std::string& extension, const cv::Mat& image, std::vector<std::uint8_t>& buffer,

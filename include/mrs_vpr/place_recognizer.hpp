@@ -17,14 +17,15 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 namespace mrs_vpr {
 
 /// The answer to a query.
 struct PlaceAnswer {
   Match match;                 ///< Reference frame, confidence, acceptance (see Match).
-  double reference_stamp = 0;  ///< Stamp of the matched reference frame (0 when none).
-  double newest_stamp = 0;     ///< Stamp of the test sequence's newest frame (matchRecent; else 0).
+  Stamp reference_stamp;       ///< Stamp of the matched reference frame (0 when none).
+  Stamp newest_stamp;          ///< Stamp of the test sequence's newest frame (matchRecent; else 0).
   int query_length = 0;        ///< Frames of the test sequence.
   std::string method;          ///< The method that answered.
 };
@@ -41,7 +42,7 @@ enum class FrameAdmission {
  * the reference map (with the coarse cells MRS keeps for it) and both methods.
  *
  *   mrs_vpr::PlaceRecognizer recognizer;                 // the documented defaults
- *   for (...) recognizer.addFrame(image, stamp);         // build the map
+ *   for (...) recognizer.addFrame(image, stamp);         // build the map (an exact mrs_vpr::Stamp)
  *   const auto answer = recognizer.match(last_images);   // where do these frames lie?
  *   if (answer.match.accepted) use(answer.match.reference_index);
  *
@@ -62,9 +63,9 @@ class PlaceRecognizer {
   cv::Mat describe(const cv::Mat& image, ChannelOrder order = ChannelOrder::kBgr) const;
 
   /// Appends a frame to the map (described here). Never waits for a running query.
-  FrameAdmission addFrame(const cv::Mat& image, double stamp = 0.0, ChannelOrder order = ChannelOrder::kBgr);
+  FrameAdmission addFrame(const cv::Mat& image, Stamp stamp = Stamp(), ChannelOrder order = ChannelOrder::kBgr);
   /// The same with a descriptor from describe(), for callers that describe outside their own locks.
-  FrameAdmission addDescriptor(const cv::Mat& descriptor, double stamp = 0.0);
+  FrameAdmission addDescriptor(const cv::Mat& descriptor, Stamp stamp = Stamp());
 
   /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
   PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
@@ -99,7 +100,7 @@ class PlaceRecognizer {
 
   /// Calls `visit` with the descriptor (a view, valid during the call) and stamp of map frames
   /// [begin, end), in order, under the map's shared lock: queries go on, new frames wait as pending.
-  void visitFrames(int begin, int end, const std::function<void(const cv::Mat& descriptor, double stamp)>& visit) const;
+  void visitFrames(int begin, int end, const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& visit) const;
 
   /// Moves pending frames into the map, waiting for running queries.
   void flush();
@@ -115,8 +116,8 @@ class PlaceRecognizer {
     int pending = 0;
     std::size_t memory_bytes = 0;
     int descriptor_size = 0;
-    double first_stamp = 0.0;
-    double last_stamp = 0.0;
+    Stamp first_stamp;
+    Stamp last_stamp;
   };
   MapState state() const;
 
@@ -127,7 +128,7 @@ class PlaceRecognizer {
  private:
   struct PendingFrame {
     cv::Mat descriptor;
-    double stamp = 0.0;
+    Stamp stamp;
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;

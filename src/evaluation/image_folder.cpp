@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "mrs_vpr/image_codecs.hpp"
 
@@ -15,10 +18,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool isImageFile(const fs::path& path) {
+/// The extension of `path` in lower case, with its dot.
+std::string extensionOf(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+bool isImageFile(const fs::path& path) {
+  const std::string extension = extensionOf(path);
   static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif",
                                             ".tiff", ".pgm", ".ppm", ".pnm"};
   return std::any_of(std::begin(kExtensions), std::end(kExtensions),
@@ -63,6 +72,15 @@ std::vector<std::string> listImageFiles(const std::string& folder) {
 cv::Mat loadImage(const std::string& path) {
   cv::Mat image = image_codecs::read(path, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw std::runtime_error("cannot read image '" + path + "'");
+  // libjpeg reads a JPEG file cut short with a warning only, grey where it is cut.
+  if (extensionOf(path) == ".jpg" || extensionOf(path) == ".jpeg") {
+    std::ifstream file(path, std::ios::binary);
+    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+    if (!image_codecs::jpegReachesEndOfImage(bytes.data(), bytes.size())) {
+      throw std::runtime_error("image '" + path + "' is a truncated JPEG file (" + std::to_string(bytes.size()) +
+                               " bytes, no end-of-image marker)");
+    }
+  }
   return image;
 }
 

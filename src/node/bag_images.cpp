@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include <opencv2/imgproc.hpp>
 #include <sensor_msgs/image_encodings.h>
 
+#include "mrs_vpr/node/ros_stamp.hpp"
 #include "../plugin_loader/plugin_loader.hpp"
 #include "bag_reader_table.hpp"
 #include "image_message_copy.hpp"
@@ -55,6 +58,25 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
                              " do not exist");
   }
   return images;
+}
+
+ros::Time frameStamp(double start_seconds, long long index, double rate) {
+  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("a frame rate must be > 0 Hz");
+  const Stamp start = Stamp::fromSeconds(start_seconds);
+  const double offset = static_cast<double>(index) / rate;
+  const double latest = static_cast<double>(Stamp::kMaxNanoseconds) * 1e-9;
+  // Compared in seconds first: the offset in nanoseconds may not even fit in 64 bits.
+  const bool fits = offset >= 0.0 && offset <= latest &&
+                    std::llround(offset * 1e9) <= Stamp::kMaxNanoseconds - start.nanoseconds();
+  if (!fits) {
+    std::ostringstream text;
+    text.precision(12);
+    text << "frame " << index << " at " << rate << " Hz from " << start.toString() << " s would be stamped "
+         << start_seconds + offset << " s, beyond the latest ROS time ("
+         << Stamp::fromNanoseconds(Stamp::kMaxNanoseconds).toString() << " s)";
+    throw std::invalid_argument(text.str());
+  }
+  return node::rosTimeOf(Stamp::fromNanoseconds(start.nanoseconds() + std::llround(offset * 1e9)));
 }
 
 sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,

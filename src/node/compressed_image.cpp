@@ -127,6 +127,13 @@ ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
                                 " pixels is larger than the " + std::to_string(DescriptorExtractor::kMaxImagePixels) +
                                 " pixels allowed");
   }
+  // libjpeg decodes a stream cut short with a warning only, grey where it is cut: refused instead.
+  const bool truncated = codec == CompressedCodec::kJpeg &&
+                         !image_codecs::jpegReachesEndOfImage(message.data.data(), message.data.size());
+  if (truncated) {
+    throw std::invalid_argument("corrupt data: the JPEG stream is truncated: it ends after " +
+                                std::to_string(message.data.size()) + " bytes, before its end-of-image marker");
+  }
   cv::Mat image;
   try {
     // Wraps the message's bytes (imdecode only reads them); IMREAD_UNCHANGED keeps grey, depth and alpha.

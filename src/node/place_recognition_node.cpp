@@ -13,6 +13,7 @@
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/loop_closure_stamps.hpp"
 #include "mrs_vpr/node/robot_position.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -21,8 +22,6 @@ namespace {
 constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
 
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
-
-ros::Time toRosTime(double seconds) { return seconds > 0.0 ? ros::Time(seconds) : ros::Time(); }
 
 }  // namespace
 
@@ -125,14 +124,24 @@ template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
   countMissingFrames(header.seq);
-  double stamp = header.stamp.toSec();
-  if (stamp <= 0.0) {
-    stamp = ros::Time::now().toSec();  // unstamped camera: the arrival time is the best we have
+  Stamp stamp;
+  try {
+    stamp = stampOf(header.stamp);  // Exact: a double cannot hold every ROS time.
+  } catch (const std::invalid_argument& error) {  // an unnormalised stamp beyond ROS's range
+    ++frames_failed_;
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s: header.stamp %u s + %u ns: %s",
+                      imageTopic().c_str(), header.stamp.sec, header.stamp.nsec, error.what());
+    return;
   }
+  if (stamp.isZero()) {
+    stamp = stampOf(ros::Time::now());  // unstamped camera: the arrival time is the best we have
+  }
+  // The keyframe policy compares intervals, for which seconds in a double are precise enough.
+  const double seconds = stamp.seconds();
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    if (!keyframe_policy_.wants(stamp)) {
-      keyframe_policy_.skip(stamp);
+    if (!keyframe_policy_.wants(seconds)) {
+      keyframe_policy_.skip(seconds);
       ++frames_skipped_;
       return;
     }
@@ -145,7 +154,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
       travelled = position && travel_policy_.wants(*position);
-      if (!travelled) keyframe_policy_.skip(stamp);
+      if (!travelled) keyframe_policy_.skip(seconds);
     }
     if (!position) {
       ++frames_without_pose_;
@@ -169,7 +178,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     ++frames_failed_;
     {
       std::lock_guard<std::mutex> lock(state_mutex_);
-      keyframe_policy_.skip(stamp);
+      keyframe_policy_.skip(seconds);
     }
     ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%s): %s", imageTopic().c_str(),
                       summary().c_str(), error.what());
@@ -193,7 +202,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   }
   ++map_version_;
   std::lock_guard<std::mutex> lock(state_mutex_);
-  keyframe_policy_.keep(stamp);
+  keyframe_policy_.keep(seconds);
   if (position) travel_policy_.keep(*position);
   camera_frame_id_ = header.frame_id;
   const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -202,14 +211,39 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
 }
 
+std::string PlaceRecognitionNode::unknownTfFrame() const {
+  for (const std::string* frame : {&params_.odom_frame, &params_.base_frame}) {
+    if (!tf_buffer_->_frameExists(*frame)) return *frame;
+  }
+  return "";
+}
+
 std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Time& stamp, std::string& error) const {
+  // A frame that no transform has named is waited for once, as tf may start after the camera. While
+  // it stays unknown, later frames fail at once: waiting ~tf_timeout for each would overflow the
+  // image queue and hide the real problem behind lost frames.
+  const std::string unknown = unknownTfFrame();
+  const auto noSuchFrame = [&](const std::string& frame) {
+    return "frame '" + frame + "' does not exist: no transform on /tf or /tf_static has named it (~odom_frame " +
+           params_.odom_frame + ", ~base_frame " + params_.base_frame + ")";
+  };
+  if (!unknown.empty() && waited_for_unknown_tf_frame_) {
+    error = noSuchFrame(unknown);
+    return std::nullopt;
+  }
   // A zero stamp (an unstamped camera) asks for the newest pose.
-  return robotPositionFrom(
+  std::optional<Eigen::Vector3d> position = robotPositionFrom(
       [&] {
         return tf_buffer_->lookupTransform(params_.odom_frame, params_.base_frame, stamp,
                                            ros::Duration(params_.tf_timeout));
       },
       error);
+  const std::string still_unknown = position ? "" : unknownTfFrame();
+  if (!still_unknown.empty()) {
+    waited_for_unknown_tf_frame_ = true;
+    error = noSuchFrame(still_unknown);
+  }
+  return position;
 }
 
 void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
@@ -226,9 +260,10 @@ void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
   frames_failed_ += missing;
   ROS_WARN_THROTTLE(kWarningPeriod,
                     "mrs_vpr: %llu frames of %s never reached the node (header.seq jumped to %u): the "
-                    "subscriber queue (~image_queue_size = %d) overflowed while frames were described, or the "
+                    "subscriber queue (~image_queue_size = %d) overflowed while frames were described%s, or the "
                     "publisher dropped them; counted as failed",
-                    static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size);
+                    static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size,
+                    travel_policy_.enabled() ? " or waited for the robot's pose (~tf_timeout)" : "");
 }
 
 std::string PlaceRecognitionNode::imageTopic() const {
@@ -260,7 +295,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
       for (std::size_t i = 0; i < request.images.size(); ++i) {
         const sensor_msgs::Image& image = request.images[i];
         try {
-          input.images->append(describeImage(recognizer_.extractor(), image), image.header.stamp.toSec());
+          input.images->append(describeImage(recognizer_.extractor(), image), stampOf(image.header.stamp));
         } catch (const std::exception& error) {
           throw std::invalid_argument("images[" + std::to_string(i) + "] (" + std::to_string(image.width) +
                                       " x " + std::to_string(image.height) + ", encoding " +
@@ -303,7 +338,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method, explain)
                                       : recognizer_.matchRecent(input.recent_frames, input.method, explain);
   if (!input.images) {
-    input.header.stamp = toRosTime(answered.newest_stamp);
+    input.header.stamp = rosTimeOf(answered.newest_stamp);
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
@@ -312,7 +347,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.reference_index = match.reference_index;
   response.score = match.score;
   response.confidence = match.confidence;
-  response.reference_stamp = toRosTime(answered.reference_stamp);
+  response.reference_stamp = rosTimeOf(answered.reference_stamp);
   response.accepted = match.accepted;
   response.message = acceptanceVerdict(match, params_.core.sequence);
   return answered;
@@ -374,8 +409,8 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   info.memory_bytes = state.memory_bytes;
   info.descriptor_size = static_cast<std::uint32_t>(state.descriptor_size);
   if (state.frames > 0) {
-    info.first_stamp = toRosTime(state.first_stamp);
-    info.last_stamp = toRosTime(state.last_stamp);
+    info.first_stamp = rosTimeOf(state.first_stamp);
+    info.last_stamp = rosTimeOf(state.last_stamp);
   }
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);

@@ -54,6 +54,13 @@ void checkTopic(const rosbag::Bag& bag, const std::string& path, const std::stri
 
 /// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8.
 sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed, const std::string& path) {
+  const std::vector<std::uint8_t>& data = compressed->data;
+  // libjpeg would decode a truncated stream, grey where it is cut: such a frame is refused, as the node does.
+  if (data.size() >= 2 && data[0] == 0xFF && data[1] == 0xD8 &&
+      !image_codecs::jpegReachesEndOfImage(data.data(), data.size())) {
+    throw std::runtime_error("a compressed image of bag '" + path + "' is a truncated JPEG stream (" +
+                             std::to_string(data.size()) + " bytes, no end-of-image marker)");
+  }
   cv::Mat image;
   try {
     const cv::Mat buffer(1, static_cast<int>(compressed->data.size()), CV_8UC1,

@@ -1,7 +1,9 @@
 #include "mrs_vpr/store/map_database.hpp"
 
 #include <sqlite3.h>
+#include <unistd.h>
 
+#include <climits>
 #include <ctime>
 #include <filesystem>
 #include <iomanip>
@@ -9,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -25,6 +28,42 @@ std::string lastProblem(sqlite3* db) {
   const std::string message = sqlite3_errmsg(db);
   if (code == SQLITE_BUSY || code == SQLITE_LOCKED) return "it is locked by another process (" + message + ")";
   return message;
+}
+
+/// The longest suffix SQLite and this class add to a map's name for the files beside it.
+constexpr std::size_t kDatabaseSuffix = sizeof("-journal") - 1;
+/// ... and to a saved map's: PersistentMap writes `path`.build, whose journal is `path`.build-journal.
+constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
+
+/**
+ * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
+ * it), in a user's words; empty when it can. A file that exists must be a regular file; otherwise its
+ * folder must exist and the file system must allow its name. SQLite itself would say only "unable to
+ * open database file" for each of these.
+ */
+std::string pathProblem(const std::string& path, std::size_t suffix) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (path.empty()) return "no path given";
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) return "it is a folder, not a map file (give the path of a file)";
+  if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
+  if (path.size() + suffix >= PATH_MAX) {
+    return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
+           std::to_string(PATH_MAX - 1 - suffix) + ")";
+  }
+  const fs::path absolute = fs::absolute(path, error);
+  const fs::path folder = absolute.parent_path();
+  if (!fs::is_directory(folder, error)) return "there is no folder " + folder.string();
+  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
+  const std::size_t name = absolute.filename().string().size();
+  if (name + suffix > longest) {
+    return "its file name is " + std::to_string(name) + " bytes long, too long for this file system: at most " +
+           std::to_string(longest - suffix) + " (" + std::to_string(longest) + " less the " + std::to_string(suffix) +
+           " of the files written beside it)";
+  }
+  return "";
 }
 
 std::string utcNow() {
@@ -120,7 +159,9 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const std::string& path = path_;
   const bool read_only = access == MapAccess::kReadOnly;
   std::error_code ignored;
-  if (read_only && !std::filesystem::is_regular_file(path, ignored)) fail("there is no such file");
+  if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
+  const std::string path_problem = pathProblem(path, kDatabaseSuffix);
+  if (!path_problem.empty()) fail(path_problem);
   const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
@@ -161,7 +202,13 @@ void MapDatabase::open(MapAccess access, bool params_given) {
     if (create) execute("PRAGMA page_size = " + std::to_string(kPageSize));
     // Exclusive: the lock taken by the first write is kept until the database is closed.
     execute("PRAGMA locking_mode = EXCLUSIVE");
+    // Before the switch to WAL, which rewrites the header: a conversion that fails leaves every byte.
+    if (!create && format_version_ < kFormatVersion) convertToCurrentFormat();
     execute("PRAGMA journal_mode = WAL");
+    // A small log, checkpointed often and cut back after each checkpoint: at 64 KiB pages SQLite's
+    // default (1000 pages, never cut back) keeps a 64 MiB log beside the smallest map.
+    execute("PRAGMA wal_autocheckpoint = " + std::to_string(kWalCheckpointPages));
+    execute("PRAGMA journal_size_limit = " + std::to_string(kWalSizeLimit));
     if (create) {
       createSchema(params_);
     } else {
@@ -193,7 +240,7 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
   execute(
       "BEGIN IMMEDIATE;"
       "CREATE TABLE metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
-      "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp REAL NOT NULL, frame_id TEXT NOT NULL,"
+      "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
       " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
       "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "')," +
       frontEndRows(params) +
@@ -217,9 +264,13 @@ void MapDatabase::checkMetadata(bool params_given) {
     if (key != nullptr && value != nullptr) stored[key] = value;
   }
   if (step != SQLITE_DONE) fail(lastProblem(db_));
-  if (stored["format_version"] != std::to_string(kFormatVersion)) {
+  format_version_ = 0;
+  for (int version = kOldestFormatVersion; version <= kFormatVersion; ++version) {
+    if (stored["format_version"] == std::to_string(version)) format_version_ = version;
+  }
+  if (format_version_ == 0) {
     fail("its format version is '" + stored["format_version"] + "', this package reads " +
-         std::to_string(kFormatVersion));
+         std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
   }
   const std::optional<DescriptorParams> written = storedFrontEnd(stored);
   if (!written) fail("its descriptor type or the parameters of its front end are missing or not numbers");
@@ -239,6 +290,53 @@ void MapDatabase::checkMetadata(bool params_given) {
   }
 }
 
+namespace {
+
+/// The message of a stamp that cannot be read, naming the frame.
+std::string badStamp(sqlite3_int64 id, const std::string& why) {
+  return "frame " + std::to_string(id) + " has an unusable stamp: " + why;
+}
+
+/// SQL function mrs_vpr_stamp_ns_of(id, seconds): a format-1 stamp in nanoseconds, or an error naming
+/// the frame, so that the conversion rounds exactly as reading a format-1 map does.
+void stampNanosecondsOf(sqlite3_context* context, int, sqlite3_value** arguments) {
+  const sqlite3_int64 id = sqlite3_value_int64(arguments[0]);
+  const int type = sqlite3_value_numeric_type(arguments[1]);
+  try {
+    if (type != SQLITE_FLOAT && type != SQLITE_INTEGER) throw std::invalid_argument("it is not a number");
+    sqlite3_result_int64(context, Stamp::fromSeconds(sqlite3_value_double(arguments[1])).nanoseconds());
+  } catch (const std::invalid_argument& error) {
+    sqlite3_result_error(context, badStamp(id, error.what()).c_str(), -1);
+  }
+}
+
+}  // namespace
+
+void MapDatabase::convertToCurrentFormat() {
+  if (sqlite3_create_function(db_, "mrs_vpr_stamp_ns_of", 2, SQLITE_UTF8 | SQLITE_DETERMINISTIC, nullptr,
+                              &stampNanosecondsOf, nullptr, nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  // A new table rather than a new column: the stamp column of format 1 is REAL, which would turn
+  // every integer written into it back into a double.
+  const std::string convert =
+      "BEGIN IMMEDIATE;"
+      "CREATE TABLE frames_v2 (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
+      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
+      "INSERT INTO frames_v2 SELECT id, mrs_vpr_stamp_ns_of(id, stamp), frame_id, sequence, descriptor FROM frames;"
+      "DROP TABLE frames;"
+      "ALTER TABLE frames_v2 RENAME TO frames;"
+      "UPDATE metadata SET value = '" + std::to_string(kFormatVersion) + "' WHERE key = 'format_version';"
+      "COMMIT";
+  if (sqlite3_exec(db_, convert.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+    const std::string problem = lastProblem(db_);
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    fail("cannot convert it from format " + std::to_string(format_version_) + " to " + std::to_string(kFormatVersion) +
+         " (it is left as it was): " + problem);
+  }
+  format_version_ = kFormatVersion;
+}
+
 void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
   for (const StoredFrame& frame : frames) {
     if (frame.descriptor.type() != CV_8UC1 || !frame.descriptor.isContinuous() ||
@@ -251,13 +349,13 @@ void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const
 
 void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
+  if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
                          &raw, nullptr) != SQLITE_OK) {
     fail(lastProblem(db_));
   }
   const Statement insert(raw, sqlite3_finalize);
   for (const StoredFrame& frame : frames) {
-    sqlite3_bind_double(insert.get(), 1, frame.stamp);
+    sqlite3_bind_int64(insert.get(), 1, frame.stamp.nanoseconds());
     sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
                       SQLITE_TRANSIENT);
     sqlite3_bind_int64(insert.get(), 3, frame.sequence);
@@ -302,10 +400,11 @@ std::int64_t MapDatabase::size() const {
 
 void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "SELECT id, stamp, frame_id, sequence, descriptor FROM frames ORDER BY id", -1, &raw,
-                         nullptr) != SQLITE_OK) {
-    fail(lastProblem(db_));
-  }
+  // Format 1 (read-only: a map opened for writing is converted) has seconds in `stamp`.
+  const bool in_seconds = format_version_ == 1;
+  const std::string select = std::string("SELECT id, ") + (in_seconds ? "stamp" : "stamp_ns") +
+                             ", frame_id, sequence, descriptor FROM frames ORDER BY id";
+  if (sqlite3_prepare_v2(db_, select.c_str(), -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
   const Statement rows(raw, sqlite3_finalize);
   StoredFrame frame;
   int step = SQLITE_ROW;
@@ -314,7 +413,18 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
       fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " holds a descriptor of " +
            std::to_string(sqlite3_column_bytes(rows.get(), 4)) + " bytes, not " + std::to_string(descriptor_bytes_));
     }
-    frame.stamp = sqlite3_column_double(rows.get(), 1);
+    const sqlite3_int64 id = sqlite3_column_int64(rows.get(), 0);
+    const int stamp_type = sqlite3_column_type(rows.get(), 1);
+    try {
+      if (in_seconds && stamp_type != SQLITE_FLOAT && stamp_type != SQLITE_INTEGER) {
+        throw std::invalid_argument("it is not a number");
+      }
+      if (!in_seconds && stamp_type != SQLITE_INTEGER) throw std::invalid_argument("it is not an integer");
+      frame.stamp = in_seconds ? Stamp::fromSeconds(sqlite3_column_double(rows.get(), 1))
+                               : Stamp::fromNanoseconds(sqlite3_column_int64(rows.get(), 1));
+    } catch (const std::invalid_argument& error) {
+      fail(badStamp(id, error.what()));
+    }
     const auto* frame_id = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 2));
     frame.frame_id = frame_id != nullptr ? frame_id : "";
     frame.sequence = sqlite3_column_int64(rows.get(), 3);
@@ -329,17 +439,26 @@ void MapDatabase::clear() { execute("DELETE FROM frames"); }
 
 void MapDatabase::checkIntegrity() const {
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "PRAGMA quick_check", -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
+  // A truncated map can have thousands of problems; the first few are enough to tell.
+  constexpr std::size_t kProblems = 10;
+  const std::string check = "PRAGMA quick_check(" + std::to_string(kProblems) + ")";
+  if (sqlite3_prepare_v2(db_, check.c_str(), -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
   const Statement rows(raw, sqlite3_finalize);
-  std::string problems;
+  std::vector<std::string> problems;
   int step = SQLITE_ROW;
   while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
     const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), 0));
-    const std::string line = text != nullptr ? text : "";
-    if (line != "ok") problems += (problems.empty() ? "" : "; ") + line;
+    std::istringstream lines(text != nullptr ? text : "");
+    for (std::string line; std::getline(lines, line);) {
+      if (line != "ok" && line.rfind("***", 0) != 0) problems.push_back(line);  // "*** in database main ***"
+    }
   }
   if (step != SQLITE_DONE) fail(lastProblem(db_));
-  if (!problems.empty()) fail("it is corrupt (" + problems + ")");
+  if (problems.empty()) return;
+  const std::string count = problems.size() >= kProblems ? "at least " + std::to_string(kProblems) + " problems"
+                                                         : std::to_string(problems.size()) + " problem" +
+                                                               (problems.size() > 1 ? "s" : "");
+  fail("it is corrupt or truncated (SQLite's quick_check finds " + count + "; the first: " + problems.front() + ")");
 }
 
 namespace {
@@ -353,11 +472,15 @@ namespace {
 void MapDatabase::checkSaveTarget(const std::string& path) {
   std::error_code error;
   if (path.empty()) refuseSave(path, "no path given");
+  if (std::filesystem::is_directory(path, error)) {
+    refuseSave(path, "it is a folder (give the path of a new file in it, such as " +
+                         (std::filesystem::path(path) / "map.db").string() + ")");
+  }
   if (std::filesystem::exists(path, error)) {
     refuseSave(path, "the file exists (a map is never overwritten: remove it or choose another name)");
   }
-  const std::filesystem::path folder = std::filesystem::absolute(path, error).parent_path();
-  if (!std::filesystem::is_directory(folder, error)) refuseSave(path, "there is no folder " + folder.string());
+  const std::string problem = pathProblem(path, kSaveSuffix);
+  if (!problem.empty()) refuseSave(path, problem);
 }
 
 void MapDatabase::backupTo(const std::string& path) const {

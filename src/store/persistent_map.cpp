@@ -24,7 +24,7 @@ void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path,
 }
 
 /// Hands one frame to the recognizer, which must take it (the caller checked the capacity).
-void admit(PlaceRecognizer& recognizer, const cv::Mat& descriptor, double stamp) {
+void admit(PlaceRecognizer& recognizer, const cv::Mat& descriptor, Stamp stamp) {
   FrameAdmission admission = recognizer.addDescriptor(descriptor, stamp);
   if (admission == FrameAdmission::kPendingFull) {
     recognizer.flush();  // Another thread held the map for a moment: wait for it instead of dropping.
@@ -58,7 +58,7 @@ PersistentMap::~PersistentMap() {
   writer_.reset();  // Its last commit, before the database closes.
 }
 
-FrameAdmission PersistentMap::add(const cv::Mat& descriptor, double stamp, const std::string& frame_id,
+FrameAdmission PersistentMap::add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id,
                                   std::int64_t sequence) {
   std::lock_guard<std::mutex> lock(add_mutex_);
   const FrameAdmission admission = recognizer_.addDescriptor(descriptor, stamp);
@@ -140,7 +140,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path) {
     std::vector<StoredFrame> chunk;
     for (int begin = 0; begin < frames; begin += kChunk) {
       chunk.clear();
-      recognizer_.visitFrames(begin, std::min(frames, begin + kChunk), [&](const cv::Mat& descriptor, double stamp) {
+      recognizer_.visitFrames(begin, std::min(frames, begin + kChunk), [&](const cv::Mat& descriptor, Stamp stamp) {
         chunk.push_back({descriptor.clone(), stamp, "", -1});
       });
       copy.append(chunk);

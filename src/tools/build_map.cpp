@@ -13,6 +13,7 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "descriptor_options.hpp"
 #include "tool_main.hpp"
@@ -69,10 +70,17 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0 && bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
+  // The output is checked before any work: a folder would otherwise be found only when the finished
+  // map is renamed to it.
+  if (std::filesystem::is_directory(output)) {
+    throw std::invalid_argument("'" + output + "' is a folder; --output names the map file to write (e.g. " +
+                                (std::filesystem::path(output) / "map.db").string() + ")");
+  }
   const bool exists = std::filesystem::exists(output);
   if (exists && !append && !force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
   }
+  if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);  // its folder, and a name the file system allows
   // A map is extended with its own front end, unless the command line names one (which must be the same).
   if (exists && append && !mrs_vpr::tools::descriptorOptionsGiven(variables)) {
     params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
@@ -85,7 +93,13 @@ int run(int argc, char** argv) {
   // A new map is built aside and renamed when complete; an appended one commits batch by batch.
   const bool in_place = exists && append;
   const std::string target = in_place ? output : output + ".part";
-  for (const char* leftover : {".part", ".part-wal", ".part-shm"}) std::filesystem::remove(output + leftover);
+  const auto removePart = [&] {
+    std::error_code ignored;
+    for (const char* leftover : {".part", ".part-wal", ".part-shm"}) {
+      std::filesystem::remove(output + leftover, ignored);
+    }
+  };
+  removePart();
   int stored = 0;
   try {
     mrs_vpr::MapDatabase map(target, params);
@@ -96,12 +110,14 @@ int run(int argc, char** argv) {
       stored += static_cast<int>(batch.size());
       batch.clear();
     };
-    mrs_vpr::tools::readTraversal(images.empty() ? bag_path : images, topic, "map", extractor,
-                                  [&](const cv::Mat& descriptor, double stamp) {
-                                    if (keyframes && !keyframes->keep(ros::Time(stamp))) return;
-                                    batch.push_back({descriptor.clone(), stamp, "", -1});
-                                    if (batch.size() >= kBatch) flush();
-                                  });
+    mrs_vpr::tools::readTraversal(
+        images.empty() ? bag_path : images, topic, "map", extractor,
+        [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+          if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
+          batch.push_back({descriptor.clone(), stamp, "", -1});
+          if (batch.size() >= kBatch) flush();
+        },
+        images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
     if (keyframes) {
@@ -111,10 +127,17 @@ int run(int argc, char** argv) {
       }
     }
   } catch (...) {
-    if (!in_place) std::filesystem::remove(target);
+    if (!in_place) removePart();
     throw;
   }
-  if (!in_place) std::filesystem::rename(target, output);
+  if (!in_place) {
+    std::error_code error;
+    std::filesystem::rename(target, output, error);
+    if (error) {
+      removePart();
+      throw std::runtime_error("cannot replace '" + output + "' by the new map: " + error.message());
+    }
+  }
   return 0;
 }
 

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <boost/program_options.hpp>
+#include <ros/names.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
@@ -76,6 +77,14 @@ int run(int argc, char** argv) {
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (topic.empty()) throw std::invalid_argument("--topic must not be empty");
+  std::string why;
+  if (!ros::names::validate(topic, why)) {
+    throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name: " + why);
+  }
+  // Checked before any work: a folder would be found only when the finished bag is renamed.
+  if (std::filesystem::is_directory(bag_path)) {
+    throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");
+  }
   if (std::filesystem::exists(bag_path) && !force) {
     throw std::invalid_argument("'" + bag_path + "' exists; use --force to replace it");
   }
@@ -89,6 +98,12 @@ int run(int argc, char** argv) {
 
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
   const std::vector<std::string> files = mrs_vpr::listImageFiles(images);
+  try {
+    mrs_vpr::bag::frameStamp(start_time, static_cast<long long>(files.size()) - 1, rate);  // the latest stamp
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string("the images cannot all be stamped: ") + error.what() +
+                                "; use a higher --rate or an earlier --start-time");
+  }
   FileInProgress output(bag_path);
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
@@ -97,7 +112,7 @@ int run(int argc, char** argv) {
       mrs_vpr::ProgressLine::onStderr("  " + bag_path, "images", static_cast<long long>(files.size()));
   mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
     // Stamps from the frame number, not accumulated, so they never drift.
-    const ros::Time stamp(start_time + index / rate);
+    const ros::Time stamp = mrs_vpr::bag::frameStamp(start_time, index, rate);
     try {
       bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(image, encoding, stamp, frame_id));
     } catch (const std::invalid_argument& error) {

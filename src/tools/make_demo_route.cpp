@@ -38,7 +38,7 @@ void writeBag(const std::string& path, const std::string& topic, const std::vect
   rosbag::Bag bag;
   bag.open(path, rosbag::bagmode::Write);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const ros::Time stamp(start + static_cast<double>(i) / rate);
+    const ros::Time stamp = mrs_vpr::bag::frameStamp(start, static_cast<long long>(i), rate);
     bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera"));
   }
   bag.close();

@@ -1,10 +1,15 @@
 // mrs_vpr_eval: offline evaluation of `seqslam` and `mrs` on two traversals (image folders or bags)
 // with either protocol of the paper notes: per-frame (SeqSLAM style) or global localisation.
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -64,6 +69,25 @@ constexpr const char* kUsage =
     "printed on stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n"
     "--plots DIR writes that JSON (DIR/evaluation.json), pictures of the difference matrix, and the\n"
     "plots of mrs_vpr_plot (PR curve, difference matrix and band, error along the route) into DIR.\n";
+
+/**
+ * Creates `folder` when missing and writes and removes a file in it, so that results that could not
+ * be written are found before the evaluation rather than after it (permissions, a read-only file
+ * system, a file in the way). Throws std::runtime_error naming `option`, the folder and the reason.
+ */
+void requireWritableFolder(const std::string& folder, const std::string& option) {
+  std::error_code error;
+  std::filesystem::create_directories(folder, error);
+  if (error) throw std::runtime_error(option + " '" + folder + "': cannot create the folder: " + error.message());
+  std::string probe = (std::filesystem::path(folder) / ".mrs_vpr_eval_probe.XXXXXX").string();
+  const int file = ::mkstemp(probe.data());
+  if (file < 0) {
+    throw std::runtime_error(option + " '" + folder + "': no file can be written in the folder: " +
+                             std::strerror(errno));
+  }
+  ::close(file);
+  std::filesystem::remove(probe, error);
+}
 
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -148,6 +172,17 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   if (options.seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(options.seed));
   params.mrs.seed = static_cast<std::uint64_t>(options.seed);
   params.validate();
+  if (!options.plots.empty()) requireWritableFolder(options.plots, "--plots");
+  if (!options.output.empty()) {
+    if (std::filesystem::is_directory(options.output)) {
+      throw std::invalid_argument("--output '" + options.output + "' is a folder; give the JSON file to write");
+    }
+    const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
+    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+      throw std::invalid_argument("--output '" + options.output + "': there is no folder " + folder.string());
+    }
+    requireWritableFolder(folder.empty() ? "." : folder.string(), "--output");
+  }
   return options;
 }
 
@@ -349,7 +384,7 @@ int run(int argc, char** argv) {
             << sequence.sequence_length << ", " << params.descriptor.describe() << "\n";
   // The plots draw the difference matrix, which needs the reference's descriptors beside the map's.
   mrs_vpr::DescriptorSequence plotted_reference(extractor.size());
-  const auto add_to_map = [&](const cv::Mat& descriptor, double stamp) {
+  const auto add_to_map = [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
     if (!options.plots.empty()) plotted_reference.append(descriptor, stamp);
     recognizer.addDescriptor(descriptor, stamp);
   };
@@ -368,7 +403,7 @@ int run(int argc, char** argv) {
   mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
   const mrs_vpr::tools::Traversal query =
       mrs_vpr::tools::readTraversal(options.query, options.topic, "query", extractor,
-                                    [&](const cv::Mat& descriptor, double stamp) {
+                                    [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
                                       query_descriptors.append(descriptor, stamp);
                                     });
   // A map database keeps descriptors, not images: there is no image size to compare.

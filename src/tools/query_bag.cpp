@@ -2,6 +2,7 @@
 // answer as one JSON object on stdout.
 
 #include <chrono>
+#include <cstdint>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,9 @@ constexpr const char* kUsage =
     "With --min-travel, the test sequence is the N frames from I on that are M metres apart by the\n"
     "bag's own /tf (B in F), as the node's ~min_travel keeps them: a map spaced so is queried alike.\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
+
+/// A ROS time in integer nanoseconds, exact where seconds in a double are not (4294967295.999999999 s).
+std::int64_t exactNanoseconds(const ros::Time& time) { return static_cast<std::int64_t>(time.toNSec()); }
 
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
@@ -105,7 +109,9 @@ int run(int argc, char** argv) {
       request["frames_read"] = keyframes.frames();
     }
     for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
-    request["last_stamp"] = query.request.images.back().header.stamp.toSec();
+    const ros::Time& last = query.request.images.back().header.stamp;
+    request["last_stamp"] = last.toSec();
+    request["last_stamp_ns"] = exactNanoseconds(last);
   }
 
   if (!ros::service::waitForService(service, ros::Duration(timeout))) {
@@ -128,6 +134,7 @@ int run(int argc, char** argv) {
                        {"message", response.message},
                        {"reference_index", response.reference_index},
                        {"reference_stamp", response.reference_stamp.toSec()},
+                       {"reference_stamp_ns", exactNanoseconds(response.reference_stamp)},
                        {"score", response.score},
                        {"confidence", response.confidence},
                        {"accepted", static_cast<bool>(response.accepted)},

@@ -6,19 +6,21 @@
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 
 namespace mrs_vpr {
 namespace tools {
 
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
-                        const std::function<void(const cv::Mat& descriptor, double stamp)>& append) {
-  const bool bag = mrs_vpr::bag::isBagPath(source);
+                        const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append,
+                        SourceKind kind) {
+  const bool bag = kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
   const int total =
       bag ? mrs_vpr::bag::countImages(source, topic) : static_cast<int>(mrs_vpr::listImageFiles(source).size());
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;
-  const auto add = [&](const cv::Mat& descriptor, double stamp) {
+  const auto add = [&](const cv::Mat& descriptor, Stamp stamp) {
     append(descriptor, stamp);
     progress.update(++traversal.frames);
   };
@@ -37,7 +39,7 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
       const std::string name = what + " message " + std::to_string(index) + " of '" + source + "'";
       checkSize(cv::Size(static_cast<int>(image->width), static_cast<int>(image->height)), name);
       try {
-        add(mrs_vpr::node::describeImage(extractor, *image, image), image->header.stamp.toSec());
+        add(mrs_vpr::node::describeImage(extractor, *image, image), mrs_vpr::node::stampOf(image->header.stamp));
       } catch (const std::invalid_argument& error) {
         throw std::runtime_error(name + ": " + error.what());
       }
@@ -47,7 +49,7 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
       checkSize(image.size(), "image '" + path + "'");
       try {
         // cv::imread gives BGR; the frame index is the stamp, as a folder has no times.
-        add(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), index);
+        add(extractor.compute(image, mrs_vpr::ChannelOrder::kBgr), Stamp::fromSecondsAndNanoseconds(index, 0));
       } catch (const std::invalid_argument& error) {
         throw std::runtime_error("image '" + path + "': " + error.what());
       }

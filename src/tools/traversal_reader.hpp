@@ -9,9 +9,17 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 namespace mrs_vpr {
 namespace tools {
+
+/// How a traversal's source is read.
+enum class SourceKind {
+  kByName,  ///< A bag when its name ends in .bag, else an image folder (the evaluator's DIR|BAG).
+  kBag,     ///< A bag, whatever its name (build_map --bag).
+  kFolder,  ///< An image folder, whatever its name (build_map --images).
+};
 
 /// What was read of a traversal: how many frames, and the size of its images.
 struct Traversal {
@@ -21,13 +29,15 @@ struct Traversal {
 
 /**
  * Reads and describes every image of a folder or bag (`topic`), handing each descriptor with its
- * stamp to `append` (a folder's frames are stamped with their index), and reports progress on stderr
- * as `what`. Throws std::runtime_error naming the image when one cannot be read or described, or
- * differs in size from the first.
+ * exact stamp to `append` (a folder's frames are stamped with their index, in seconds), and reports
+ * progress on stderr as `what`. `kind` says whether `source` is a bag or a folder. Throws
+ * std::runtime_error naming the image when one cannot be read or described, or differs in size from
+ * the first, and naming the bag when it cannot be opened.
  */
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
-                        const std::function<void(const cv::Mat& descriptor, double stamp)>& append);
+                        const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append,
+                        SourceKind kind = SourceKind::kByName);
 
 }  // namespace tools
 }  // namespace mrs_vpr

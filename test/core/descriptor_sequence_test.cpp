@@ -28,7 +28,7 @@ cv::Mat descriptorOf(int frame, int size = kSize) {
 
 DescriptorSequence sequenceOf(int frames, int size = kSize) {
   DescriptorSequence sequence(size);
-  for (int f = 0; f < frames; ++f) sequence.append(descriptorOf(f, size), 0.5 * f);
+  for (int f = 0; f < frames; ++f) sequence.append(descriptorOf(f, size), Stamp::fromNanoseconds(500'000'000LL * f));
   return sequence;
 }
 
@@ -50,12 +50,12 @@ TEST(DescriptorSequence, AppendKeepsDescriptorsAndStampsInOrder) {
   DescriptorSequence sequence(kSize);
   EXPECT_TRUE(sequence.empty());
   EXPECT_EQ(sequence.descriptorSize(), kSize);
-  for (int f = 0; f < 5; ++f) sequence.append(descriptorOf(f), 10.0 + f);
+  for (int f = 0; f < 5; ++f) sequence.append(descriptorOf(f), Stamp::fromSecondsAndNanoseconds(10 + f, 7));
   ASSERT_EQ(sequence.size(), 5);
   EXPECT_FALSE(sequence.empty());
   for (int f = 0; f < 5; ++f) {
     EXPECT_TRUE(sameBytes(sequence.descriptor(f), descriptorOf(f))) << "frame " << f;
-    EXPECT_DOUBLE_EQ(sequence.stamp(f), 10.0 + f);
+    EXPECT_EQ(sequence.stamp(f), Stamp::fromSecondsAndNanoseconds(10 + f, 7));
     // The row form reads the same stored bytes, without a copy.
     const cv::Mat row = sequence.descriptorRow(f);
     EXPECT_EQ(row.type(), CV_8UC1);

@@ -23,7 +23,7 @@ void mapReference(PlaceRecognizer& recognizer) {
   const SequenceView reference = standardRoute().reference.view();
   for (int i = 0; i < reference.count; ++i) {
     recognizer.addDescriptor(cv::Mat(1, reference.descriptor_size, CV_8UC1, const_cast<std::uint8_t*>(reference.frame(i))),
-                             i);
+                             Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i), 0));
   }
 }
 
@@ -126,7 +126,7 @@ TEST(MatchExplanation, MatchRecentExplainsTheNewestFrames) {
   const SequenceView query = standardRoute().query.view();
   for (int i = 100; i < 250; ++i) {
     recognizer.addDescriptor(cv::Mat(1, query.descriptor_size, CV_8UC1, const_cast<std::uint8_t*>(query.frame(i))),
-                             1000.0 + i);
+                             Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(1000 + i), 0));
   }
   MatchExplanation explanation;
   const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam", &explanation);

@@ -71,7 +71,7 @@ cv::Mat noiseImage(std::mt19937_64& generator) {
 DescriptorSequence noiseSequence(int frames, std::mt19937_64& generator) {
   const DescriptorExtractor extractor{routeDescriptor()};
   DescriptorSequence sequence(extractor.size());
-  for (int i = 0; i < frames; ++i) sequence.append(extractor.compute(noiseImage(generator)), i);
+  for (int i = 0; i < frames; ++i) sequence.append(extractor.compute(noiseImage(generator)));
   return sequence;
 }
 
@@ -137,8 +137,8 @@ TEST(NoiseRejection, ARouteFrameFollowedByABlackFrameIsNotAccepted) {
     for (int i = 0; i < kSequences; ++i) {
       const int frame = 10 * i;
       DescriptorSequence query(extractor.size());
-      query.append(route.query.descriptorRow(frame), 0);
-      query.append(black, 1);
+      query.append(route.query.descriptorRow(frame));
+      query.append(black);
       tally.add(matcher->match(route.reference.view(), query.view()));
     }
     EXPECT_EQ(tally.accepted, 0) << method << ": " << tally;
@@ -149,7 +149,7 @@ TEST(NoiseRejection, ARouteFrameFollowedByABlackFrameIsNotAccepted) {
 DescriptorSequence mapBlackedOut(const DescriptorSequence& reference, const cv::Mat& black, int begin, int end) {
   DescriptorSequence map(reference.descriptorSize());
   for (int i = 0; i < reference.size(); ++i) {
-    map.append(i >= begin && i < end ? black : reference.descriptorRow(i), i);
+    map.append(i >= begin && i < end ? black : reference.descriptorRow(i));
   }
   return map;
 }
@@ -182,7 +182,7 @@ TEST(NoiseRejection, ACameraBlackedOutInTheMapAndAgainElsewhereGivesNoFalseLoopC
           if (truth >= kBlackBegin - kFrames && truth < black_end + kFrames) continue;  // elsewhere only
           DescriptorSequence query(extractor.size());
           for (int i = first; i <= newest; ++i) {
-            query.append(i > newest - blacked_out ? black : route.query.descriptorRow(i), i);
+            query.append(i > newest - blacked_out ? black : route.query.descriptorRow(i));
           }
           const Match match = matcher->match(map.view(), query.view());
           tally.add(match);

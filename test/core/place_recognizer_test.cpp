@@ -27,7 +27,7 @@ std::vector<cv::Mat> queryImages(int first, int count) {
 /// A recognizer whose map is the route's reference traversal, stamped 100 + frame / 10.
 void mapReference(PlaceRecognizer& recognizer) {
   for (std::size_t i = 0; i < route().reference.size(); ++i) {
-    ASSERT_EQ(recognizer.addFrame(route().reference[i], 100.0 + static_cast<double>(i) / 10.0),
+    ASSERT_EQ(recognizer.addFrame(route().reference[i], Stamp::fromNanoseconds(100'000'000'000 + 100'000'000 * i)),
               FrameAdmission::kAdmitted);
   }
 }
@@ -61,7 +61,7 @@ TEST(PlaceRecognizer, FindsAndAcceptsAStretchOfTheMappedRouteWithBothMethods) {
     const PlaceAnswer answer = recognizer.match(queryImages(first, count), method);
     EXPECT_TRUE(within(answer.match.reference_index, truth, 3)) << method << ": " << answer.match.reference_index;
     EXPECT_TRUE(answer.match.accepted) << method << ": confidence " << answer.match.confidence;
-    EXPECT_DOUBLE_EQ(answer.reference_stamp, 100.0 + answer.match.reference_index / 10.0);
+    EXPECT_EQ(answer.reference_stamp.nanoseconds(), 100'000'000'000 + 100'000'000LL * answer.match.reference_index);
     EXPECT_EQ(answer.query_length, count);
     EXPECT_EQ(answer.method, method.empty() ? "mrs" : method);
   }
@@ -73,11 +73,13 @@ TEST(PlaceRecognizer, MatchRecentSearchesOnlyOlderFramesBeyondTheExclusion) {
   PlaceRecognizer recognizer(globalSearchParams(), limits);
   mapReference(recognizer);
   // The second traversal's frames 100..249 follow the first one: they are the newest 150 frames.
-  for (int i = 100; i < 250; ++i) recognizer.addFrame(route().query[static_cast<std::size_t>(i)], 1000.0 + i);
+  for (int i = 100; i < 250; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+  }
   const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
   EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[249], 3)) << answer.match.reference_index;
   EXPECT_LT(answer.match.reference_index, 750 - 150 - 50);  // Only [0, 550) is searched.
-  EXPECT_DOUBLE_EQ(answer.newest_stamp, 1249.0);
+  EXPECT_EQ(answer.newest_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
 }
 
 TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {

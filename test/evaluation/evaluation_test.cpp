@@ -339,6 +339,22 @@ TEST(ImageFolder, ClearErrors) {
   EXPECT_EQ(message.find('\n'), std::string::npos);
 }
 
+TEST(ImageFolder, ATruncatedJpegFileIsRefusedNotReadHalfGrey) {
+  TempFolder folder;
+  cv::Mat texture(120, 160, CV_8UC3);
+  cv::randu(texture, cv::Scalar::all(0), cv::Scalar::all(256));
+  std::vector<std::uint8_t> jpeg;
+  cv::imencode(".jpg", texture, jpeg);
+  std::ofstream(folder.path("0.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
+                                                                static_cast<std::streamsize>(jpeg.size()));
+  std::ofstream(folder.path("1.JPEG"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size() / 2));
+  EXPECT_EQ(loadImage(folder.path("0.jpg")).size(), texture.size());
+  EXPECT_EQ(errorOf([&] { loadImageFolder(folder.path()); }),
+            "image '" + folder.path("1.JPEG") + "' is a truncated JPEG file (" + std::to_string(jpeg.size() / 2) +
+                " bytes, no end-of-image marker)");
+}
+
 // ------------------------------------------------------------------------------------------------
 // Ground-truth CSV
 

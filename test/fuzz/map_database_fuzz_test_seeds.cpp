@@ -25,7 +25,7 @@ void writeMap(const fs::path& file, const mrs_vpr::DescriptorParams& params, int
   for (int i = 0; i < frames; ++i) {
     batch[i].descriptor = cv::Mat(1, params.image_width * params.image_height, CV_8UC1);
     rng.fill(batch[i].descriptor, cv::RNG::UNIFORM, 0, 256);
-    batch[i].stamp = 10.0 + i;
+    batch[i].stamp = mrs_vpr::Stamp::fromSecondsAndNanoseconds(10 + i, 0);
     batch[i].frame_id = i % 2 == 0 ? "camera" : "";
     batch[i].sequence = i;
   }

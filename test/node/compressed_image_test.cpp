@@ -146,6 +146,36 @@ TEST(CompressedImage, RefusesCorruptData) {
   EXPECT_NE(errorOf(headless_jpeg).find("corrupt data"), std::string::npos) << errorOf(headless_jpeg);
 }
 
+TEST(CompressedImage, RefusesATruncatedJpegThatLibjpegWouldFillWithGrey) {
+  // libjpeg decodes a JPEG cut short with a warning only, grey where the data is missing.
+  const sensor_msgs::CompressedImage whole = compress(texturedBgr(320, 240), "jpeg");
+  for (const double kept : {0.95, 0.5, 0.3, 0.15}) {
+    SCOPED_TRACE(kept);
+    sensor_msgs::CompressedImage cut = whole;
+    cut.data.resize(static_cast<std::size_t>(static_cast<double>(whole.data.size()) * kept));
+    EXPECT_NE(errorOf(cut).find("corrupt data"), std::string::npos) << errorOf(cut);
+  }
+  sensor_msgs::CompressedImage cut = whole;
+  cut.data.resize(whole.data.size() / 2);
+  EXPECT_NE(errorOf(cut).find("the JPEG stream is truncated: it ends after " + std::to_string(cut.data.size()) +
+                              " bytes, before its end-of-image marker"),
+            std::string::npos)
+      << errorOf(cut);
+  // Complete streams still decode: with trailing bytes after the marker, with restart markers, and
+  // progressive (several scans).
+  sensor_msgs::CompressedImage padded = whole;
+  padded.data.insert(padded.data.end(), 16, 0x00);
+  EXPECT_EQ(errorOf(padded), "");
+  for (const std::vector<int>& options : {std::vector<int>{cv::IMWRITE_JPEG_RST_INTERVAL, 4},
+                                          std::vector<int>{cv::IMWRITE_JPEG_PROGRESSIVE, 1}}) {
+    sensor_msgs::CompressedImage other = whole;
+    cv::imencode(".jpg", texturedBgr(320, 240), other.data, options);
+    EXPECT_EQ(errorOf(other), "") << options[0];
+    other.data.resize(other.data.size() * 2 / 3);
+    EXPECT_NE(errorOf(other).find("truncated"), std::string::npos) << options[0] << ": " << errorOf(other);
+  }
+}
+
 /// Writes `width` x `height` into the header of an encoded image, as a malicious or broken camera could.
 void forgeSize(sensor_msgs::CompressedImage& message, CompressedCodec codec, std::uint32_t width,
                std::uint32_t height) {

@@ -20,6 +20,7 @@
 #include <thread>
 #include <vector>
 
+#include <nlohmann/json.hpp>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <std_srvs/Trigger.h>
@@ -29,8 +30,10 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "support/format_one_map.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
@@ -50,6 +53,9 @@ const mrs_vpr::SyntheticRoute& route() {
   static const mrs_vpr::SyntheticRoute generated = generateSyntheticRoute(mrs_vpr::SyntheticRouteParams{});
   return generated;  // 400 reference frames, 300 query frames
 }
+
+/// The exact stamp of reference frame i, as published.
+mrs_vpr::Stamp referenceStamp(int i) { return mrs_vpr::node::stampOf(ros::Time(kReferenceStart + i * kFramePeriod)); }
 
 sensor_msgs::ImagePtr referenceMessage(int i) {
   return mrs_vpr::bag::toImageMessage(route().reference[static_cast<std::size_t>(i)], "bgr8",
@@ -308,7 +314,7 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   const auto frames = storedFrames(path("map.db"));
   ASSERT_EQ(frames.size(), 140U);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    EXPECT_DOUBLE_EQ(frames[i].stamp, kReferenceStart + static_cast<double>(i) * kFramePeriod) << i;
+    EXPECT_EQ(frames[i].stamp, referenceStamp(static_cast<int>(i))) << i;
   }
 }
 
@@ -338,9 +344,86 @@ TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {
     // At most about one commit period (30 frames) and the frames in flight are lost.
     EXPECT_GE(static_cast<int>(stored.size()), frames - 45);
     for (std::size_t i = 0; i < stored.size(); ++i) {
-      EXPECT_DOUBLE_EQ(stored[i].stamp, kReferenceStart + static_cast<double>(i) * kFramePeriod) << i;
+      EXPECT_EQ(stored[i].stamp, referenceStamp(static_cast<int>(i))) << i;
     }
   }
+}
+
+TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
+  // {4294967295, 999999999} as seconds in a double is 4294967296.0, beyond ROS's range: the node
+  // aborted ("Time is out of dual 32-bit range") once such a frame was in its map, and at every
+  // later start, as the frame had been committed first.
+  const ros::Time latest(4294967295U, 999999999U);
+  {
+    auto node = startNode("latest", path("map.db"));
+    MapInfoWatch info(nh_, "/" + node->name());
+    publishReference(0, 79);
+    sensor_msgs::ImagePtr last = referenceMessage(79);
+    last->header.stamp = latest;
+    image_pub_.publish(last);
+    waitPersisted(info, 80);
+    EXPECT_EQ(info.latest().last_stamp, latest);
+    // A stamp a message can carry but no time can hold (nanoseconds beyond a second, past the end):
+    // a failed frame, and the node runs on.
+    sensor_msgs::ImagePtr beyond = referenceMessage(0);
+    beyond->header.stamp.sec = 4294967295U;
+    beyond->header.stamp.nsec = 1999999999U;
+    image_pub_.publish(beyond);
+    ASSERT_TRUE(info.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames_failed == 1; }, 20.0))
+        << "frames failed: " << info.latest().frames_failed;
+    EXPECT_EQ(info.latest().frames, 80U);
+    // The newest frames as the test sequence: its newest stamp is the latest time.
+    mrs_vpr::QuerySequence recent;
+    recent.request.recent_frames = 10;
+    ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+    EXPECT_TRUE(recent.response.success) << recent.response.message;
+    // query_bag reports both stamps of its answer exactly, in nanoseconds.
+    {
+      rosbag::Bag bag(path("late.bag"), rosbag::bagmode::Write);
+      for (int i = 60; i < 80; ++i) {
+        sensor_msgs::ImagePtr frame = referenceMessage(i);
+        if (i == 79) frame->header.stamp = latest;
+        bag.write(kTopic, frame->header.stamp, frame);
+      }
+    }
+    const std::string command = std::string(QUERY_BAG_PATH) + " --bag " + path("late.bag") + " --topic " + kTopic +
+                                " --start 0 --count 20 --method seqslam --service " + node->service("query") + " > " +
+                                path("answer.json") + " 2> " + path("query_bag.log");
+    ASSERT_EQ(std::system(command.c_str()), 0) << fileContents(path("query_bag.log"));
+    const nlohmann::json answer = nlohmann::json::parse(fileContents(path("answer.json")));
+    EXPECT_EQ(answer.at("request").at("last_stamp_ns").get<std::int64_t>(), mrs_vpr::Stamp::kMaxNanoseconds);
+    const int index = answer.at("reference_index").get<int>();
+    ASSERT_GE(index, 0);
+    EXPECT_EQ(answer.at("reference_stamp_ns").get<std::int64_t>(),
+              index == 79 ? mrs_vpr::Stamp::kMaxNanoseconds : referenceStamp(index).nanoseconds());
+    EXPECT_TRUE(node->running());
+    EXPECT_EQ(node->stop(), 0);
+  }
+  EXPECT_EQ(storedFrames(path("map.db")).back().stamp, mrs_vpr::node::stampOf(latest));
+  auto node = startNode("latest", path("map.db"));
+  MapInfoWatch info(nh_, "/" + node->name());
+  waitPersisted(info, 80);
+  EXPECT_EQ(info.latest().last_stamp, latest);
+
+  // A map that an earlier release committed with that frame (REAL 4294967296.0): refused, naming
+  // the frame, by ~load_map and at start-up; the running node keeps its map.
+  mrs_vpr::testing_support::writeFormatOneMap(path("old.db"), {1000.0, 4294967296.0});
+  mrs_vpr::LoadMap load;
+  load.request.path = path("old.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
+  EXPECT_FALSE(load.response.success);
+  EXPECT_NE(load.response.message.find("frame 2 has an unusable stamp: stamp 4294967296 s is outside 0 .. "
+                                       "4294967295.999999999 s, the range of a ROS time"),
+            std::string::npos)
+      << load.response.message;
+  EXPECT_NE(load.response.message.find("the current map is kept"), std::string::npos) << load.response.message;
+  EXPECT_TRUE(node->running());
+  EXPECT_EQ(info.latest().frames, 80U);
+  EXPECT_EQ(node->stop(), 0);
+  NodeProcess old("old_map", {"database:=" + path("old.db")}, path("old_map.log"));
+  EXPECT_EQ(old.waitForExit(30.0), 1);
+  const std::string log = fileContents(path("old_map.log"));
+  EXPECT_NE(log.find("frame 2 has an unusable stamp"), std::string::npos) << log;
 }
 
 TEST_F(MapDatabaseNodeTest, AnUnusableDatabaseStopsTheNodeAtStartUpNamingIt) {

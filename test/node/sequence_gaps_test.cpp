@@ -23,6 +23,23 @@ TEST(SequenceGaps, ANewOrReplayedStreamIsNoGap) {
   EXPECT_EQ(gaps.record(1), 0U);
 }
 
+TEST(SequenceGaps, AJumpBackThatWrapsIsARestartedSender) {
+  SequenceGaps gaps;
+  gaps.record(4000);
+  EXPECT_EQ(gaps.record(4001), 0U);
+  EXPECT_EQ(gaps.record(4294967295U), 0U);  // 4002 back, below 0: not 4294963293 lost frames
+  EXPECT_EQ(gaps.record(0), 0U);            // the counter wrapping around
+  EXPECT_EQ(gaps.record(3), 2U);            // and counting gaps again after it
+  EXPECT_EQ(gaps.record(2147483651U), 0U);  // half the counter ahead is as far back
+  EXPECT_EQ(gaps.record(2147483652U), 0U);
+}
+
+TEST(SequenceGaps, AGapAcrossTheWrapIsCounted) {
+  SequenceGaps gaps;
+  gaps.record(4294967290U);
+  EXPECT_EQ(gaps.record(4U), 9U);  // 4294967291 .. 4294967295 and 0 .. 3
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

@@ -5,9 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <string>
 #include <vector>
 
 #include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/Image.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_msgs/TFMessage.h>
@@ -19,6 +22,7 @@
 #include "support/rostest_main.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
+#include "support/topic_inbox.hpp"
 #include "support/travel_drive.hpp"
 
 namespace {
@@ -91,6 +95,40 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   image_pub.publish(imageMessage(route.reference[2], stamp));
   EXPECT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 1; }, 30.0))
       << "map frames after the reset: " << map_info.latest().frames;
+}
+
+TEST(TravelKeyframes, FramesFailAtOnceNamingAnOdometryFrameThatNothingPublishes) {
+  ros::NodeHandle nh;
+  const std::string node = "/mrs_vpr_no_odometry";
+  MapInfoWatch map_info(nh, node);
+  mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
+  ros::Publisher image_pub = nh.advertise<sensor_msgs::Image>("untracked_camera/image", 100);
+  ASSERT_TRUE(waitForSubscribers(image_pub, 1, 30.0));
+  mrs_vpr::SyntheticRouteParams route_params;
+  route_params.reference_frames = 20;
+  route_params.query_frames = 2;
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+
+  // ~tf_timeout is 5 s: waiting that long for each frame, 20 frames would take 100 s.
+  const auto start = std::chrono::steady_clock::now();
+  for (std::size_t i = 0; i < route.reference.size(); ++i) {
+    image_pub.publish(imageMessage(route.reference[i], kStart + static_cast<double>(i) * kFramePeriod));
+  }
+  ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames_without_pose == 20; }, 60.0))
+      << "frames without pose: " << map_info.latest().frames_without_pose;
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(elapsed, 20.0) << "one wait of ~tf_timeout, then none";
+  const mrs_vpr::MapInfo info = map_info.latest();
+  EXPECT_EQ(info.frames_received, 20U);
+  EXPECT_EQ(info.frames_failed, 0U) << "frames were lost from the queue";
+  EXPECT_EQ(info.frames, 0U);
+  rosgraph_msgs::Log warning;
+  EXPECT_TRUE(log.waitFor(
+      [&](const rosgraph_msgs::Log& message) {
+        return message.name == node && message.msg.find("frame 'unpublished_odom' does not exist") != std::string::npos;
+      },
+      warning, 10.0))
+      << "no warning names the missing frame";
 }
 
 }  // namespace

@@ -2,12 +2,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -59,7 +62,7 @@ class MapDatabaseTest : public ::testing::Test {
       StoredFrame frame;
       frame.descriptor = cv::Mat(1, 64 * 32, CV_8UC1);
       rng.fill(frame.descriptor, cv::RNG::UNIFORM, 0, 256);
-      frame.stamp = 1000.0 + 0.1 * i;
+      frame.stamp = Stamp::fromNanoseconds(1'000'000'000'000 + 100'000'000LL * i);
       frame.frame_id = i % 2 == 0 ? "camera" : "";
       frame.sequence = i % 3 == 0 ? -1 : i;
       result.push_back(frame);
@@ -94,7 +97,7 @@ TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
   database.forEachFrame([&](const StoredFrame& frame) {
     ASSERT_LT(i, written.size());
     EXPECT_EQ(cv::norm(frame.descriptor, written[i].descriptor, cv::NORM_L1), 0.0) << i;
-    EXPECT_DOUBLE_EQ(frame.stamp, written[i].stamp);
+    EXPECT_EQ(frame.stamp, written[i].stamp);
     EXPECT_EQ(frame.frame_id, written[i].frame_id);
     EXPECT_EQ(frame.sequence, written[i].sequence);
     ++i;
@@ -118,7 +121,7 @@ TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), thumbnailParams()); }
   std::map<std::string, std::string> metadata;
   for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
-  EXPECT_EQ(metadata["format_version"], std::to_string(MapDatabase::kFormatVersion));
+  EXPECT_EQ(metadata["format_version"], "2");
   EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["image_width"], "64");
   EXPECT_EQ(metadata["image_height"], "32");
@@ -241,6 +244,93 @@ TEST_F(MapDatabaseTest, ATruncatedMapIsReportedNotReadAsEmpty) {
   EXPECT_NE(message.find("malformed"), std::string::npos) << message;
 }
 
+TEST_F(MapDatabaseTest, AHeavilyDamagedMapIsReportedInOneShortMessage) {
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(3000));
+  }
+  fs::resize_file(path("map.db"), fs::file_size(path("map.db")) / 10);
+  // As a file written by a tool that does not keep the size in the header valid: SQLite then takes the
+  // size from the file and lists every missing page, thousands of bytes.
+  {
+    std::fstream file(path("map.db"), std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(92);
+    file.write("\0\0\0\x09", 4);
+  }
+  std::string message;
+  try {
+    const MapDatabase database(path("map.db"), thumbnailParams(), MapAccess::kReadOnly);
+    database.checkIntegrity();
+    message = "(sound)";
+  } catch (const MapDatabaseError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("it is corrupt or truncated (SQLite's quick_check finds at least 10 problems; the first: "),
+            std::string::npos)
+      << message;
+  EXPECT_LT(message.size(), 300U) << message;
+}
+
+TEST_F(MapDatabaseTest, PathsThatCannotHoldAMapAreNamedForWhatTheyAre) {
+  fs::create_directory(path("folder"));
+  const std::string long_name = path(std::string(300, 'a') + ".db");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {path("folder"), "it is a folder, not a map file"},
+      {long_name, "its file name is 303 bytes long, too long for this file system: at most 247"},
+      {path("missing/map.db"), "there is no folder " + path("missing")},
+  };
+  for (const auto& [file, problem] : cases) {
+    SCOPED_TRACE(file);
+    const std::string message = openingError(file);
+    EXPECT_NE(message.find(problem), std::string::npos) << message;
+    std::string read_only;
+    try {
+      MapDatabase database(file, thumbnailParams(), MapAccess::kReadOnly);
+    } catch (const MapDatabaseError& error) {
+      read_only = error.what();
+    }
+    EXPECT_NE(read_only.find(file == path("folder") ? problem : "there is no such file"), std::string::npos)
+        << read_only;
+  }
+  // A name that fits the file system but not beside the copy a save writes first.
+  const std::vector<std::pair<std::string, std::string>> saves = {
+      {path("folder"), "it is a folder (give the path of a new file in it, such as " + path("folder/map.db") + ")"},
+      {path(std::string(245, 'b')), "its file name is 245 bytes long, too long for this file system: at most 241"},
+      {path("missing/map.db"), "there is no folder " + path("missing")},
+  };
+  for (const auto& [file, problem] : saves) {
+    SCOPED_TRACE(file);
+    std::string message;
+    try {
+      MapDatabase::checkSaveTarget(file);
+    } catch (const MapDatabaseError& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find("cannot save the map to '" + file + "': " + problem), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(MapDatabase::checkSaveTarget(path(std::string(241, 'c'))));
+}
+
+TEST_F(MapDatabaseTest, TheWriteAheadLogStaysSmallWhateverTheCommits) {
+  // 600 commits of one frame each, as a node with a short commit period makes: at 64 KiB pages
+  // SQLite's defaults let the log beside the map reach 64 MiB and stay there.
+  MapDatabase database(path("map.db"), thumbnailParams());
+  const std::vector<StoredFrame> written = frames(600);
+  std::uintmax_t largest = 0;
+  for (const StoredFrame& frame : written) {
+    database.append({frame});
+    std::error_code missing;
+    largest = std::max(largest, fs::file_size(path("map.db-wal"), missing) * (missing ? 0 : 1));
+  }
+  std::printf("[ figures  ] log beside a map of 600 frames committed one by one: at most %.1f MiB\n",
+              static_cast<double>(largest) / (1024.0 * 1024.0));
+  // A checkpoint's worth of pages and the commit that passed it.
+  EXPECT_LE(largest, static_cast<std::uintmax_t>(MapDatabase::kWalSizeLimit + 4 * (MapDatabase::kPageSize + 24)));
+  EXPECT_GT(largest, 0U);
+  EXPECT_EQ(database.size(), 600);
+}
+
 TEST_F(MapDatabaseTest, ASecondOwnerIsRefusedWhileTheFirstHoldsTheMap) {
   MapDatabase first(path("map.db"), thumbnailParams());
   first.append(frames(2));
@@ -291,7 +381,7 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
         // Batch b was written as frames(10, 10 b): recompute each batch the same way.
         const std::vector<StoredFrame> batch = frames(10, static_cast<int>(i / 10) * 10);
         EXPECT_EQ(cv::norm(frame.descriptor, batch[i % 10].descriptor, cv::NORM_L1), 0.0) << "frame " << i;
-        EXPECT_DOUBLE_EQ(frame.stamp, batch[i % 10].stamp);
+        EXPECT_EQ(frame.stamp, batch[i % 10].stamp);
         ++i;
       });
     }  // Closed: it holds the map exclusively while open.

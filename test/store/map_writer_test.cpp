@@ -23,7 +23,7 @@ class MapWriterTest : public ::testing::Test {
     StoredFrame stored;
     stored.descriptor = cv::Mat(1, 64 * 32, CV_8UC1, cv::Scalar(i % 256));
     stored.descriptor.at<std::uint8_t>(0, 0) = static_cast<std::uint8_t>(i / 256);
-    stored.stamp = i;
+    stored.stamp = Stamp::fromSecondsAndNanoseconds(i, 0);
     return stored;
   }
 
@@ -88,7 +88,7 @@ TEST_F(MapWriterTest, FramesReachTheDatabaseInTheOrderAddedWhateverCommitsThem) 
   }
   int i = 0;
   MapDatabase(path(), thumbnailParams()).forEachFrame([&](const StoredFrame& stored) {
-    EXPECT_EQ(stored.stamp, i) << "frame " << i;
+    EXPECT_EQ(stored.stamp, Stamp::fromSecondsAndNanoseconds(i, 0)) << "frame " << i;
     EXPECT_EQ(cv::norm(stored.descriptor, frame(i).descriptor, cv::NORM_L1), 0.0) << "frame " << i;
     ++i;
   });

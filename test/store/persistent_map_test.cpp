@@ -45,18 +45,21 @@ const std::vector<cv::Mat>& referenceDescriptors() {
   return described;
 }
 
+/// Frame i's stamp: i seconds.
+Stamp secondsStamp(int i) { return Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i), 0); }
+
 /// The map's frames as (descriptor, stamp), copied.
-std::vector<std::pair<cv::Mat, double>> framesOf(const PlaceRecognizer& recognizer) {
-  std::vector<std::pair<cv::Mat, double>> frames;
-  recognizer.visitFrames(0, recognizer.size(), [&](const cv::Mat& descriptor, double stamp) {
+std::vector<std::pair<cv::Mat, Stamp>> framesOf(const PlaceRecognizer& recognizer) {
+  std::vector<std::pair<cv::Mat, Stamp>> frames;
+  recognizer.visitFrames(0, recognizer.size(), [&](const cv::Mat& descriptor, Stamp stamp) {
     frames.emplace_back(descriptor.clone(), stamp);
   });
   return frames;
 }
 
 /// The database's frames as (descriptor, stamp), copied.
-std::vector<std::pair<cv::Mat, double>> framesOf(const std::string& path) {
-  std::vector<std::pair<cv::Mat, double>> frames;
+std::vector<std::pair<cv::Mat, Stamp>> framesOf(const std::string& path) {
+  std::vector<std::pair<cv::Mat, Stamp>> frames;
   MapDatabase(path, DescriptorParams{}, MapAccess::kReadOnly).forEachFrame([&](const StoredFrame& frame) {
     frames.emplace_back(frame.descriptor.clone(), frame.stamp);
   });
@@ -64,14 +67,16 @@ std::vector<std::pair<cv::Mat, double>> framesOf(const std::string& path) {
 }
 
 /// Reference frames [begin, end) as the map should hold them: descriptor and stamp i.
-std::vector<std::pair<cv::Mat, double>> expectedFrames(int begin, int end) {
-  std::vector<std::pair<cv::Mat, double>> frames;
-  for (int i = begin; i < end; ++i) frames.emplace_back(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+std::vector<std::pair<cv::Mat, Stamp>> expectedFrames(int begin, int end) {
+  std::vector<std::pair<cv::Mat, Stamp>> frames;
+  for (int i = begin; i < end; ++i) {
+    frames.emplace_back(referenceDescriptors()[static_cast<std::size_t>(i)], secondsStamp(i));
+  }
   return frames;
 }
 
-void expectSameFrames(const std::vector<std::pair<cv::Mat, double>>& actual,
-                      const std::vector<std::pair<cv::Mat, double>>& expected) {
+void expectSameFrames(const std::vector<std::pair<cv::Mat, Stamp>>& actual,
+                      const std::vector<std::pair<cv::Mat, Stamp>>& expected) {
   ASSERT_EQ(actual.size(), expected.size());
   for (std::size_t i = 0; i < actual.size(); ++i) {
     EXPECT_EQ(cv::norm(actual[i].first, expected[i].first, cv::NORM_L1), 0.0) << "frame " << i;
@@ -85,7 +90,7 @@ class PersistentMapTest : public ::testing::Test {
 
   static void addReference(PersistentMap& map, int begin, int end) {
     for (int i = begin; i < end; ++i) {
-      ASSERT_EQ(map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i, "camera", i),
+      ASSERT_EQ(map.add(referenceDescriptors()[static_cast<std::size_t>(i)], secondsStamp(i), "camera", i),
                 FrameAdmission::kAdmitted);
     }
   }
@@ -158,7 +163,9 @@ TEST_F(PersistentMapTest, SaveWritesASnapshotWhileFramesKeepArriving) {
   addReference(map, 0, 100);
   std::atomic<bool> saved{false};
   std::thread camera([&] {
-    for (int i = 100; i < 300 && !saved; ++i) map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+    for (int i = 100; i < 300 && !saved; ++i) {
+      map.add(referenceDescriptors()[static_cast<std::size_t>(i)], secondsStamp(i));
+    }
   });
   const std::int64_t frames = map.save(path("snapshot.db"));
   saved = true;
@@ -305,7 +312,7 @@ TEST_F(PersistentMapTest, AKillAtAnyMomentLosesNoFrameReportedPersisted) {
       PersistentMap map(recognizer, file, CommitPolicy{0.1, 10});
       std::uint64_t reported = 0;
       for (int i = 0;; i = (i + 1) % 300) {
-        map.add(referenceDescriptors()[static_cast<std::size_t>(i)], i);
+        map.add(referenceDescriptors()[static_cast<std::size_t>(i)], secondsStamp(i));
         const std::uint64_t persisted = map.persisted();
         if (persisted != reported) {
           reported = persisted;

@@ -2,6 +2,7 @@
 
 // A generated route described once per test run and shared by the matcher tests.
 
+#include <cstdint>
 #include <cstdlib>
 #include <vector>
 
@@ -36,15 +37,19 @@ struct DescribedRoute {
 };
 
 inline DescribedRoute describeRoute(const SyntheticRoute& route) {
+  // Frame i at i s.
+  const auto frameStamp = [](std::size_t i) {
+    return Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i), 0);
+  };
   const DescriptorExtractor extractor{routeDescriptor()};
   DescribedRoute described;
   described.reference = DescriptorSequence(extractor.size());
   described.query = DescriptorSequence(extractor.size());
   for (std::size_t i = 0; i < route.reference.size(); ++i) {
-    described.reference.append(extractor.compute(route.reference[i]), static_cast<double>(i));
+    described.reference.append(extractor.compute(route.reference[i]), frameStamp(i));
   }
   for (std::size_t i = 0; i < route.query.size(); ++i) {
-    described.query.append(extractor.compute(route.query[i]), static_cast<double>(i));
+    described.query.append(extractor.compute(route.query[i]), frameStamp(i));
   }
   described.query_to_reference = route.query_to_reference;
   return described;

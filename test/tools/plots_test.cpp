@@ -200,4 +200,57 @@ TEST_F(PlotsTest, PlotToolReportsBadInputInOneLine) {
   EXPECT_FALSE(fs::exists(root_ / "x.png"));
 }
 
+TEST_F(PlotsTest, PlotToolReportsJsonOfAnotherShapeInOneLine) {
+  // Each of these ended in a Python traceback.
+  struct Case {
+    std::string document;
+    std::string command;
+    std::string problem;
+  };
+  const std::string other_shape = "not the JSON that mrs_vpr_eval or mrs_vpr_real_benchmark writes";
+  const std::vector<Case> cases = {
+      {"[1, 2, 3]", "pr", "holds a JSON list, not the object that mrs_vpr_eval --output"},
+      {R"("text")", "matrix", "holds a JSON str, not the object"},
+      {R"({"records": 5, "summary": {"tolerance": 2}})", "error", other_shape},
+      {R"({"records": [1, 2], "summary": {"tolerance": 2}})", "error", other_shape},
+      {"[]", "benchmark", "holds a JSON list"},
+  };
+  int index = 0;
+  for (const Case& bad : cases) {
+    SCOPED_TRACE(bad.command + " " + bad.document);
+    const fs::path file = root_ / ("shape" + std::to_string(index++) + ".json");
+    std::ofstream(file) << bad.document;
+    std::string err;
+    EXPECT_EQ(run(plotTool() + " " + bad.command + " " + file.string() +
+                      (bad.command == "benchmark" ? "" : " -o " + (root_ / "x.png").string()),
+                  nullptr, &err),
+              1);
+    EXPECT_EQ(err.rfind("mrs_vpr_plot: error: " + file.string(), 0), 0U) << err;
+    EXPECT_NE(err.find(bad.problem), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  }
+  EXPECT_FALSE(fs::exists(root_ / "x.png"));
+}
+
+TEST_F(PlotsTest, PlotToolWritesAndReportsTheFileItIsGiven) {
+  const fs::path evaluation = root_ / "named" / "evaluation.json";
+  ASSERT_EQ(run(evaluate("seqslam", evaluation.parent_path())), 0);
+  // Without an extension: NAME.png, as matplotlib writes it, and reported so.
+  std::string out;
+  ASSERT_EQ(run(plotTool() + " pr " + evaluation.string() + " -o " + (root_ / "curve").string(), &out), 0);
+  EXPECT_EQ(out, "wrote " + (root_ / "curve.png").string() + "\n");
+  expectPng(root_ / "curve.png", 640, 480);
+  EXPECT_FALSE(fs::exists(root_ / "curve"));
+  // A folder: refused, rather than FOLDER.png written beside it.
+  fs::create_directories(root_ / "pictures");
+  std::string err;
+  EXPECT_EQ(run(plotTool() + " error " + evaluation.string() + " -o " + (root_ / "pictures").string(), &out, &err),
+            1);
+  EXPECT_EQ(err, "mrs_vpr_plot: error: -o " + (root_ / "pictures").string() +
+                     " is a folder: give the file to write, such as " + (root_ / "pictures" / "plot.png").string() +
+                     "\n");
+  EXPECT_FALSE(fs::exists(root_ / "pictures.png"));
+  EXPECT_TRUE(fs::is_empty(root_ / "pictures"));
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -19,8 +20,10 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <rosbag/bag.h>
 
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
 #include "support/travel_bag.hpp"
@@ -555,6 +558,116 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   EXPECT_EQ(truncated.status, 1) << truncated.err;
   EXPECT_FALSE(fs::exists(broken));
   EXPECT_FALSE(fs::exists(broken + ".part"));
+}
+
+TEST_F(ToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
+  // --force onto a folder used to describe every frame, then fail to rename and leave OUT.part.
+  fs::create_directories(path("a_folder"));
+  const Result map = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                         path("a_folder") + " --force");
+  EXPECT_EQ(map.status, 1);
+  EXPECT_NE(map.err.find("build_map: error: '" + path("a_folder") + "' is a folder; --output names the map file"),
+            std::string::npos)
+      << map.err;
+  EXPECT_EQ(map.err.find("frames"), std::string::npos) << "work was done first: " << map.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  const Result no_folder = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                               path("nowhere/map.db"));
+  EXPECT_EQ(no_folder.status, 1);
+  EXPECT_NE(no_folder.err.find("there is no folder " + path("nowhere")), std::string::npos) << no_folder.err;
+  EXPECT_EQ(no_folder.err.find("frames"), std::string::npos) << no_folder.err;
+
+  const Result bag = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                         path("a_folder") + " --topic /t --rate 5 --force");
+  EXPECT_EQ(bag.status, 1);
+  EXPECT_NE(bag.err.find("images_to_bag: error: '" + path("a_folder") + "' is a folder; --bag names the bag file"),
+            std::string::npos)
+      << bag.err;
+  EXPECT_EQ(bag.err.find("images in"), std::string::npos) << "work was done first: " << bag.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  EXPECT_TRUE(fs::is_empty(path("a_folder")));
+}
+
+TEST_F(ToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
+  // 100 frames at 10 Hz up to 9.9 s before the latest ROS time: through doubles, the stamps there
+  // are off by up to half a microsecond.
+  const std::string bag = path("late.bag");
+  const std::string images = " --images " + path("query") + " --topic /camera/image_raw";
+  const Result late = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + bag +
+                          " --rate 10 --start-time 4294967286");
+  ASSERT_EQ(late.status, 0) << late.err;
+  const auto written = mrs_vpr::bag::readImages(bag, "/camera/image_raw", 0, 100);
+  for (std::uint32_t i = 0; i < 100; ++i) {
+    EXPECT_EQ(written[i]->header.stamp, ros::Time(4294967286U + i / 10, (i % 10) * 100000000U)) << i;
+  }
+  // Stamps beyond 4294967295.999999999 s: refused before anything is written.
+  for (const std::string& timing : {std::string(" --rate 1e-300 --start-time 1000"),
+                                    std::string(" --rate 10 --start-time 4294967290")}) {
+    SCOPED_TRACE(timing);
+    const Result result = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + path("never.bag") + timing);
+    EXPECT_EQ(result.status, 1);
+    EXPECT_NE(result.err.find("images_to_bag: error: the images cannot all be stamped: frame "), std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("beyond the latest ROS time (4294967295.999999999 s); use a higher --rate or an "
+                              "earlier --start-time"),
+              std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(path("never.bag")));
+  }
+  const Result topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                           path("never.bag") + " --topic 'bad topic!' --rate 10");
+  EXPECT_EQ(topic.status, 1);
+  EXPECT_NE(topic.err.find("--topic 'bad topic!' is not a valid ROS topic name: "), std::string::npos) << topic.err;
+  EXPECT_FALSE(fs::exists(path("never.bag")));
+}
+
+TEST_F(ToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStampsExact) {
+  // A frame stamped at the latest ROS time, in a bag whose name does not end in .bag.
+  const std::string bag = path("latest.recording");
+  {
+    rosbag::Bag writer(bag, rosbag::bagmode::Write);
+    const cv::Mat image = cv::imread(path("reference/00000.png"));
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      const ros::Time stamp(4294967295U, 999999997U + i);
+      writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+    }
+  }
+  const Result built = run(std::string(BUILD_MAP_PATH) + " --bag " + bag + " --topic /camera/image_raw --output " +
+                           path("latest.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  std::vector<mrs_vpr::Stamp> stamps;
+  mrs_vpr::MapDatabase(path("latest.db"), mrs_vpr::DescriptorParams{}, mrs_vpr::MapAccess::kReadOnly)
+      .forEachFrame([&](const mrs_vpr::StoredFrame& frame) { stamps.push_back(frame.stamp); });
+  ASSERT_EQ(stamps.size(), 3U);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(stamps[i].nanoseconds(), mrs_vpr::Stamp::kMaxNanoseconds - 2 + i);
+
+  // A file that is no bag is named as such, not as a folder.
+  std::ofstream(path("garbage.db")) << "garbage";
+  const Result garbage = run(std::string(BUILD_MAP_PATH) + " --bag " + path("garbage.db") +
+                             " --topic /camera/image_raw --output " + path("garbage_map.db"));
+  EXPECT_EQ(garbage.status, 1);
+  EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
+      << garbage.err;
+  EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
+}
+
+TEST_F(ToolsTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
+  std::ofstream(path("plain_file")) << "x";
+  const std::string evaluation = "--reference " + path("reference") + " --query " + path("query") +
+                                 " --method seqslam --protocol per-frame --sequence-length 10";
+  const Result plots = run(eval(evaluation + " --plots " + path("plain_file/plots")));
+  EXPECT_EQ(plots.status, 1);
+  EXPECT_NE(plots.err.find("mrs_vpr_eval: error: --plots '" + path("plain_file/plots") + "': cannot create the folder"),
+            std::string::npos)
+      << plots.err;
+  EXPECT_EQ(plots.err.find("matching"), std::string::npos) << "the evaluation ran first: " << plots.err;
+  const Result output = run(eval(evaluation + " --output " + path("nowhere/evaluation.json")));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_NE(output.err.find("--output '" + path("nowhere/evaluation.json") + "': there is no folder " +
+                            path("nowhere")),
+            std::string::npos)
+      << output.err;
+  EXPECT_EQ(output.err.find("matching"), std::string::npos) << output.err;
 }
 
 /// A benchmark binary, and one of its comma-separated list options.

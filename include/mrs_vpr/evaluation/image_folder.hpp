@@ -17,7 +17,8 @@ namespace mrs_vpr {
  */
 std::vector<std::string> listImageFiles(const std::string& folder);
 
-/// Reads one image with cv::IMREAD_UNCHANGED. Throws std::runtime_error naming the file when unreadable.
+/// Reads one image with cv::IMREAD_UNCHANGED. Throws std::runtime_error naming the file when unreadable
+/// or a JPEG file cut short (which OpenCV would read, grey where it is cut).
 cv::Mat loadImage(const std::string& path);
 
 /**

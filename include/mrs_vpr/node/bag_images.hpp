@@ -42,6 +42,14 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
 /// True when `path` names a bag file (by its extension), so that a tool can accept folders and bags.
 bool isBagPath(const std::string& path);
 
+/**
+ * The stamp of frame `index` of a recording at `rate` Hz from `start_seconds` (Unix time): start +
+ * index / rate, to the nanosecond from the start (never accumulated, so it never drifts). Throws
+ * std::invalid_argument naming the frame and its stamp when that is beyond the latest ROS time, and
+ * when `start_seconds` is no ROS time or `rate` is not positive.
+ */
+ros::Time frameStamp(double start_seconds, long long index, double rate);
+
 /// An image message of an 8-bit image in `encoding` ("bgr8" or "mono8"), converting colour, alpha
 /// and 16-bit depth as needed. Throws std::invalid_argument for another encoding or an empty image.
 sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,

@@ -82,8 +82,11 @@ class PlaceRecognitionNode {
   template <typename Convert, typename Summary>
   void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
   /// Where ~base_frame was in ~odom_frame at `stamp` (waiting up to ~tf_timeout for tf), or nothing
-  /// with the reason in `error`.
+  /// with the reason in `error`. Fails at once, naming the frame, while ~odom_frame or ~base_frame
+  /// is unknown to tf and a first wait for it has been in vain.
   std::optional<Eigen::Vector3d> robotPosition(const ros::Time& stamp, std::string& error) const;
+  /// ~odom_frame or ~base_frame when no transform received has named it yet, else "".
+  std::string unknownTfFrame() const;
   /// Counts (received and failed) and reports the frames missing before the one numbered `seq`.
   void countMissingFrames(std::uint32_t seq);
   /// The topic the camera frames come from, for messages.
@@ -138,6 +141,8 @@ class PlaceRecognitionNode {
   // The robot's poses, for ~min_travel only (null otherwise: no /tf subscription).
   std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  // A frame unknown to tf has been waited for ~tf_timeout once already (image callbacks only).
+  mutable std::atomic<bool> waited_for_unknown_tf_frame_{false};
 
   ros::NodeHandle nh_;
   ros::NodeHandle private_nh_;

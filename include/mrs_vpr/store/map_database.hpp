@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/stamp.hpp"
 
 struct sqlite3;
 
@@ -30,21 +31,28 @@ enum class MapAccess {
 /// One frame as stored: its descriptor and what is known of the image it came from.
 struct StoredFrame {
   cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
-  double stamp = 0.0;        ///< [s]
+  Stamp stamp;               ///< Exact, as the camera gave it.
   std::string frame_id;      ///< Camera frame, empty when unknown.
   std::int64_t sequence = -1;  ///< Camera sequence number, -1 when unknown.
 };
 
 /**
  * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
- * that users can inspect with `sqlite3` or Python. Schema (format 1):
+ * that users can inspect with `sqlite3` or Python. Schema (format 2):
  *
  *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, descriptor_type (hog, thumbnail),
  *                                                that front end's parameters (hog_window_width,
  *                                                hog_window_height, hog_cell_size, hog_bins, hog_blur;
  *                                                image_width, image_height, patch_size),
  *                                                descriptor_bytes, created, package_version
- *   frames(id INTEGER PRIMARY KEY, stamp REAL, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *
+ * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. Format 1 (earlier releases) kept
+ * `stamp REAL` seconds instead: such a map is read as it is, converted to the nearest nanosecond,
+ * and converted to format 2 in place, in one transaction, when opened for writing. A stamp outside
+ * Stamp's range (no ROS time) is an error naming the frame, never a stamp that a node cannot publish.
+ * The write-ahead log is checkpointed every kWalCheckpointPages pages and cut back to
+ * kWalSizeLimit bytes, so that it stays a few MiB whatever the map's size.
  *
  * A map that records no descriptor_type was written before the front end could be chosen: it holds
  * thumbnails. Frames are kept in id order, which is the map's order. Derived data (MRS's pooled levels) is not
@@ -53,14 +61,23 @@ struct StoredFrame {
  */
 class MapDatabase {
  public:
-  static constexpr int kFormatVersion = 1;
+  static constexpr int kFormatVersion = 2;
+  /// The oldest format still read (and converted when written).
+  static constexpr int kOldestFormatVersion = 1;
   /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are 2 KiB rows.
   static constexpr int kPageSize = 65536;
+  /// The log is copied into the map once it holds this many pages (SQLite's default of 1000 pages
+  /// would let it reach 64 MiB at this page size)...
+  static constexpr int kWalCheckpointPages = 64;
+  /// ...and cut back to this size after each copy [bytes]; a larger transaction may grow it meanwhile.
+  static constexpr std::int64_t kWalSizeLimit = std::int64_t{kWalCheckpointPages} * kPageSize;
 
   /**
    * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
    * file when it is not an SQLite database, holds another schema, was written for other descriptor
-   * parameters, cannot be written, or is locked by another process. Never replaces a user's file.
+   * parameters, cannot be written, or is locked by another process, and, before SQLite is asked, when
+   * it is a folder, its folder does not exist or its name is too long for the file system (SQLite
+   * would say "unable to open database file" for each). Never replaces a user's file.
    */
   MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access = MapAccess::kReadWrite);
   /// Opens the existing map `path` with whatever front end it holds (descriptorParams() tells which);
@@ -81,7 +98,8 @@ class MapDatabase {
   void clear();
   /// Replaces every frame by `frames` in one transaction: on any failure the old frames stay.
   void replace(const std::vector<StoredFrame>& frames);
-  /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound.
+  /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
+  /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
 
   /**
@@ -91,7 +109,8 @@ class MapDatabase {
    * copy never leaves a partial map. Throws MapDatabaseError naming `path` and the problem.
    */
   void backupTo(const std::string& path) const;
-  /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists or has no folder.
+  /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists, is a folder, has no
+  /// folder, or names a file too long for the file system with the suffixes written beside it.
   static void checkSaveTarget(const std::string& path);
 
   const std::string& path() const { return path_; }
@@ -104,7 +123,11 @@ class MapDatabase {
   /// Opens path_; with `params_given`, for params_ (refusing another front end), else adopting the map's.
   void open(MapAccess access, bool params_given);
   void createSchema(const DescriptorParams& params);
+  /// Reads the format version and the front end: with `params_given` checks params_ against it, else
+  /// adopts it.
   void checkMetadata(bool params_given);
+  /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
+  void convertToCurrentFormat();
   void checkDescriptors(const std::vector<StoredFrame>& frames) const;
   /// Inserts `frames` inside a transaction the caller has begun.
   void insertFrames(const std::vector<StoredFrame>& frames);
@@ -112,6 +135,7 @@ class MapDatabase {
   std::string path_;
   DescriptorParams params_;
   int descriptor_bytes_ = 0;
+  int format_version_ = kFormatVersion;
   sqlite3* db_ = nullptr;
 };
 

@@ -41,7 +41,7 @@ class PersistentMap {
 
   /// Adds a frame to the map and, when admitted, queues it for the database. Cheap: never waits for
   /// the disk or a query.
-  FrameAdmission add(const cv::Mat& descriptor, double stamp, const std::string& frame_id = "",
+  FrameAdmission add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id = "",
                      std::int64_t sequence = -1);
 
   /// Empties the map and the database; returns the frames the map held.

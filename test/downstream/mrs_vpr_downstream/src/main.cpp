@@ -18,7 +18,9 @@ int main(int argc, char** argv) try {
   mrs_vpr::PlaceRecognizer recognizer;  // The documented defaults.
   std::vector<cv::String> files;
   cv::glob(argv[1], files);  // File-name order.
-  for (const cv::String& file : files) recognizer.addFrame(cv::imread(file), recognizer.size());
+  for (const cv::String& file : files) {
+    recognizer.addFrame(cv::imread(file), mrs_vpr::Stamp::fromSeconds(recognizer.size()));  // Frame i at i s.
+  }
   cv::glob(argv[2], files);
   const std::size_t frames = argc > 3 ? std::stoul(argv[3]) : 50;
   std::vector<cv::Mat> test;
