@@ -19,16 +19,41 @@ HogFrontEnd::HogFrontEnd(const DescriptorParams& params)
   CV_Assert(size_ == params.descriptorSize());
 }
 
+namespace {
+
+/// `image` resized to `size` by area interpolation. OpenCV's area interpolation is fast only for
+/// whole-number factors: 640 x 480 to 128 x 64 (5 and 7.5) took 0.3 ms, three times as long as the
+/// HOG itself. So the image is first shrunk by the largest whole factor that both its sides share and
+/// that keeps it at least `size`, then by the rest (128 x 96, then 128 x 64: 0.1 ms in all), which
+/// rounds once more on the way.
+void shrink(const cv::Mat& image, cv::Size size, cv::Mat& between, cv::Mat& out) {
+  const int factor = std::min(image.cols / size.width, image.rows / size.height);
+  if (factor >= 2 && image.cols % factor == 0 && image.rows % factor == 0) {
+    cv::resize(image, between, cv::Size(image.cols / factor, image.rows / factor), 0.0, 0.0, cv::INTER_AREA);
+    cv::resize(between, out, size, 0.0, 0.0, cv::INTER_AREA);
+  } else {
+    cv::resize(image, out, size, 0.0, 0.0, cv::INTER_AREA);
+  }
+}
+
+}  // namespace
+
 cv::Mat HogFrontEnd::describeGrey(const cv::Mat& grey) const {
   // Kept per thread from frame to frame: a camera sends frames of one size.
-  thread_local cv::Mat full;
+  thread_local cv::Mat between;
   thread_local cv::Mat window;
+  thread_local cv::Mat smoothed;
   thread_local cv::Mat window8;
   thread_local std::vector<float> values;
-  // In floats, so that a dark image keeps the fractions of a grey level that its few levels average to.
-  grey.convertTo(full, CV_32F);
-  cv::resize(full, window, cv::Size(params_.hog_window_width, params_.hog_window_height), 0.0, 0.0, cv::INTER_AREA);
-  if (params_.hog_blur > 0.0) cv::GaussianBlur(window, window, cv::Size(), params_.hog_blur);
+  // Resized in the image's own depth: converting a whole 640 x 480 frame to floats first cost more than
+  // describing it.
+  shrink(grey, cv::Size(params_.hog_window_width, params_.hog_window_height), between, window);
+  const cv::Mat* source = &window;
+  if (params_.hog_blur > 0.0) {
+    window.convertTo(smoothed, CV_32F);
+    cv::GaussianBlur(smoothed, smoothed, cv::Size(), params_.hog_blur);
+    source = &smoothed;
+  }
   // OpenCV's HOG takes 8-bit images: a 16-bit one is scaled so that the image's brightest pixel is 255 (a
   // 12-bit camera fills the bytes as an 8-bit one would). An
   // 8-bit one keeps its grey levels: OpenCV's block normalisation adds a constant to each block's norm,
@@ -40,8 +65,12 @@ cv::Mat HogFrontEnd::describeGrey(const cv::Mat& grey) const {
     cv::minMaxLoc(grey, nullptr, &brightest);
     gain = brightest > 0.0 ? 255.0 / brightest : 0.0;
   }
-  window.convertTo(window8, CV_8U, gain);
-  hog_.compute(window8, values);
+  if (source->type() == CV_8UC1) {
+    hog_.compute(*source, values);
+  } else {
+    source->convertTo(window8, CV_8U, gain);
+    hog_.compute(window8, values);
+  }
   cv::Mat descriptor;
   cv::Mat(1, size_, CV_32FC1, values.data()).convertTo(descriptor, CV_8U, kLevelsPerUnit);
   return descriptor;

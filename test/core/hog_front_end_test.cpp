@@ -118,7 +118,9 @@ TEST(HogFrontEnd, SixteenBitImageGivesTheDescriptorOfItsEightBitOriginal) {
   image.convertTo(wide, CV_16U, 257.0);  // Spans 0..65535.
   const cv::Mat a = extractor.compute(image);
   const cv::Mat b = extractor.compute(wide);
-  EXPECT_LE(cv::norm(a, b, cv::NORM_INF), 2.0);
+  // Equal but for rounding: the 16-bit image is shrunk in 16 bits, the 8-bit one in 8.
+  EXPECT_LE(cv::norm(a, b, cv::NORM_INF), 4.0);
+  EXPECT_LT(cv::norm(a, b, cv::NORM_L1) / static_cast<double>(a.total()), 0.5);
 }
 
 TEST(HogFrontEnd, ColourOrderAndStridedImagesAreHonoured) {
