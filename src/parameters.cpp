@@ -299,6 +299,10 @@ const std::vector<ParameterSpec<RecognizerParams>>& recognizerParameters() {
       {{"default_method", {}, {"mrs", "seqslam"}, "",
         "Method for requests with an empty method and for continuous mode."},
        &P::default_method},
+      {{"min_appearance_change", Range::closed(0, 1), {}, "",
+        "A frame becomes a keyframe once its view has changed by this fraction of the difference between "
+        "unrelated views of the map; 0 = every frame (~min_travel, when set, decides instead)."},
+       &P::min_appearance_change},
   };
   return table;
 }

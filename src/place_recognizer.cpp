@@ -31,7 +31,11 @@ std::string printable(const std::string& text) {
 }  // namespace
 
 PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParams& recognizer)
-    : params_(params), recognizer_(recognizer), extractor_(params.descriptor), map_(extractor_.size()) {
+    : params_(params),
+      recognizer_(recognizer),
+      extractor_(params.descriptor),
+      keyframes_(params.descriptor, recognizer.min_appearance_change),
+      map_(extractor_.size()) {
   params_.validate();
   recognizer_.validate();
   for (const char* method : {"mrs", "seqslam"}) matchers_[method] = makeMatcher(method, params_);
@@ -45,14 +49,50 @@ cv::Mat PlaceRecognizer::describe(const cv::Mat& image, ChannelOrder order) cons
 }
 
 FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, Stamp stamp, ChannelOrder order) {
-  return addDescriptor(describe(image, order), stamp);  // Described before any lock is taken.
+  return offerDescriptor(describe(image, order), stamp);  // Described before any lock is taken.
+}
+
+namespace {
+
+void requireDescriptor(const cv::Mat& descriptor, int size) {
+  if (descriptor.type() != CV_8UC1 || static_cast<int>(descriptor.total()) != size || !descriptor.isContinuous()) {
+    throw std::invalid_argument("a descriptor must be " + std::to_string(size) + " continuous bytes of CV_8UC1, got " +
+                                std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()));
+  }
+}
+
+}  // namespace
+
+FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptor(descriptor, extractor_.size());
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  if (!keyframes_.wants(descriptor)) {
+    keyframes_.skip(descriptor);
+    return FrameAdmission::kTooSimilar;
+  }
+  const FrameAdmission admission = append(descriptor, stamp);
+  if (admission == FrameAdmission::kAdmitted) {
+    keyframes_.keep(descriptor);
+  } else {
+    keyframes_.skip(descriptor);
+  }
+  return admission;
 }
 
 FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, Stamp stamp) {
-  if (descriptor.type() != CV_8UC1 || static_cast<int>(descriptor.total()) != extractor_.size()) {
-    throw std::invalid_argument("a descriptor must be " + std::to_string(extractor_.size()) + " bytes of CV_8UC1, got " +
-                                std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()));
-  }
+  requireDescriptor(descriptor, extractor_.size());
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  const FrameAdmission admission = append(descriptor, stamp);
+  if (admission == FrameAdmission::kAdmitted) keyframes_.keep(descriptor);
+  return admission;
+}
+
+double PlaceRecognizer::lastAppearanceChange() const {
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  return keyframes_.lastChange();
+}
+
+FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     if (recognizer_.max_frames > 0 && frames_admitted_ >= recognizer_.max_frames) return FrameAdmission::kMapFull;
@@ -118,6 +158,8 @@ int PlaceRecognizer::pending() const {
 }
 
 int PlaceRecognizer::reset() {
+  std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);  // First, as offerDescriptor takes it.
+  keyframes_.reset();
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
   std::lock_guard<std::mutex> lock(pending_mutex_);
   const int cleared = map_.size() + static_cast<int>(pending_.size());

@@ -109,6 +109,9 @@ struct RecognizerParams {
   int max_pending_frames = 600;        ///< Frames held back while a query reads the map (20 s at 30 Hz).
   int recent_exclusion = 100;          ///< matchRecent does not search this many frames before the test sequence.
   std::string default_method = "mrs";  ///< Method of a query that names none: "mrs" or "seqslam".
+  /// A camera frame becomes a keyframe once its view has changed by this fraction of the difference
+  /// between unrelated views (appearance_keyframes.hpp); 0 = every frame.
+  double min_appearance_change = 0.4;
 
   void validate() const;
 };

@@ -11,6 +11,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
@@ -35,6 +36,7 @@ enum class FrameAdmission {
   kAdmitted,     ///< In the map, or waiting for a query to release it (see addFrame).
   kMapFull,      ///< Dropped: the map holds RecognizerParams::max_frames.
   kPendingFull,  ///< Dropped: max_pending_frames are already waiting for a long query.
+  kTooSimilar,   ///< Not a keyframe: too little has changed since the last one (offerDescriptor).
 };
 
 /**
@@ -62,10 +64,19 @@ class PlaceRecognizer {
   /// The descriptor of an image (8UC1, 16UC1, 8UC3, 8UC4 in `order`), without touching the map.
   cv::Mat describe(const cv::Mat& image, ChannelOrder order = ChannelOrder::kBgr) const;
 
-  /// Appends a frame to the map (described here). Never waits for a running query.
+  /// Offers a camera frame (described here): it joins the map if it is a keyframe (offerDescriptor).
+  /// Never waits for a running query.
   FrameAdmission addFrame(const cv::Mat& image, Stamp stamp = Stamp(), ChannelOrder order = ChannelOrder::kBgr);
-  /// The same with a descriptor from describe(), for callers that describe outside their own locks.
+  /// Offers a frame's descriptor (from describe(), for callers that describe outside their own locks):
+  /// it joins the map when its view has changed enough since the last keyframe
+  /// (RecognizerParams::min_appearance_change, appearance_keyframes.hpp), else kTooSimilar.
+  FrameAdmission offerDescriptor(const cv::Mat& descriptor, Stamp stamp = Stamp());
+  /// Appends a descriptor that is a keyframe already (a saved map's, or one chosen by travel): no
+  /// keyframe decision, but the next offers are compared with it.
   FrameAdmission addDescriptor(const cv::Mat& descriptor, Stamp stamp = Stamp());
+  /// The appearance change of the frame last offered, in units of the difference between unrelated
+  /// views (0 when keyframes are not chosen by appearance).
+  double lastAppearanceChange() const;
 
   /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
   PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
@@ -138,11 +149,17 @@ class PlaceRecognizer {
                      MatchExplanation* explanation) const;
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
   void flushLocked();
+  /// addDescriptor without the keyframe bookkeeping.
+  FrameAdmission append(const cv::Mat& descriptor, Stamp stamp);
 
   Parameters params_;
   RecognizerParams recognizer_;
   DescriptorExtractor extractor_;
   std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
+
+  // Held while a frame is offered, so that frames are decided and added one at a time, in order.
+  mutable std::mutex keyframes_mutex_;
+  AppearanceKeyframes keyframes_;
 
   // Read by queries under a shared lock, written under an exclusive one.
   mutable std::shared_mutex map_mutex_;

@@ -35,10 +35,39 @@ std::uint64_t uniformBelow(std::mt19937_64& generator, std::uint64_t n) {
 
 }  // namespace
 
+namespace {
+
+/// Frames from the predicted span (predicted_index .. predicted_last) to `index`; 0 inside it.
+int distanceToPrediction(const QueryRecord& record, int index) {
+  const int last = std::max(record.predicted_index, record.predicted_last);
+  if (index < record.predicted_index) return record.predicted_index - index;
+  return index > last ? index - last : 0;
+}
+
+}  // namespace
+
+int Keyframes::lastFrameOf(int keyframe) const {
+  if (keyframe < 0 || keyframe >= static_cast<int>(frames.size())) {
+    throw std::out_of_range("keyframe " + std::to_string(keyframe) + " of " + std::to_string(frames.size()));
+  }
+  const auto next = static_cast<std::size_t>(keyframe) + 1;
+  return (next < frames.size() ? frames[next] : total) - 1;
+}
+
+QueryRecord keyframeRecordOf(int query_frame, std::vector<int> truth, const Match& match, const Keyframes& reference,
+                             double time_ms) {
+  QueryRecord record = queryRecordOf(query_frame, std::move(truth), match, time_ms);
+  if (match.reference_index >= 0) {
+    record.predicted_index = reference.frames.at(static_cast<std::size_t>(match.reference_index));
+    record.predicted_last = reference.lastFrameOf(match.reference_index);
+  }
+  return record;
+}
+
 int absoluteError(const QueryRecord& record) {
   const int nearest = nearestTrueIndex(record);
   if (record.predicted_index < 0 || nearest < 0) return -1;
-  return std::abs(record.predicted_index - nearest);
+  return distanceToPrediction(record, nearest);
 }
 
 int nearestTrueIndex(const QueryRecord& record) {
@@ -46,7 +75,7 @@ int nearestTrueIndex(const QueryRecord& record) {
   if (record.predicted_index < 0) return record.true_indices.front();
   int nearest = record.true_indices.front();
   for (int index : record.true_indices) {
-    if (std::abs(index - record.predicted_index) < std::abs(nearest - record.predicted_index)) nearest = index;
+    if (distanceToPrediction(record, index) < distanceToPrediction(record, nearest)) nearest = index;
   }
   return nearest;
 }
@@ -69,6 +98,7 @@ QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& 
   record.query_index = query_index;
   record.true_indices = std::move(truth);
   record.predicted_index = match.reference_index;
+  record.predicted_last = match.reference_index;
   record.score = match.score;
   record.confidence = match.confidence;
   record.accepted = match.accepted;

@@ -185,7 +185,16 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     return;
   }
 
-  switch (map_->add(descriptor, stamp, header.frame_id, header.seq)) {
+  // Keyframes by travel are chosen above; otherwise the recognizer keeps a frame whose view has changed.
+  const FrameAdmission admission = travel_policy_.enabled() ? map_->add(descriptor, stamp, header.frame_id, header.seq)
+                                                            : map_->offer(descriptor, stamp, header.frame_id, header.seq);
+  switch (admission) {
+    case FrameAdmission::kTooSimilar: {
+      ++frames_too_similar_;
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      keyframe_policy_.skip(seconds);
+      return;
+    }
     case FrameAdmission::kMapFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
@@ -423,6 +432,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   }
   info.frames_received = frames_received_.load();
   info.frames_skipped = frames_skipped_.load();
+  info.frames_too_similar = frames_too_similar_.load();
   info.frames_without_pose = frames_without_pose_.load();
   info.frames_dropped = frames_dropped_.load();
   info.frames_failed = frames_failed_.load();

@@ -60,8 +60,19 @@ PersistentMap::~PersistentMap() {
 
 FrameAdmission PersistentMap::add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id,
                                   std::int64_t sequence) {
+  return store(descriptor, stamp, frame_id, sequence, false);
+}
+
+FrameAdmission PersistentMap::offer(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id,
+                                    std::int64_t sequence) {
+  return store(descriptor, stamp, frame_id, sequence, true);
+}
+
+FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id,
+                                    std::int64_t sequence, bool offered) {
   std::lock_guard<std::mutex> lock(add_mutex_);
-  const FrameAdmission admission = recognizer_.addDescriptor(descriptor, stamp);
+  const FrameAdmission admission =
+      offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted && writer_) {
     writer_->add({descriptor, stamp, frame_id, sequence});  // Shares the descriptor's bytes, never changed.
   }

@@ -27,6 +27,7 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
@@ -112,6 +113,8 @@ struct Options {
   std::int64_t seed = 42;  // Signed, so that a negative seed is seen and refused, not wrapped.
   mrs_vpr::Parameters params;
   bool descriptor_given = false;  ///< A descriptor option was set; else a map database's own front end is used.
+  /// As the node's ~min_appearance_change: both traversals are keyframed as the node keyframes a camera.
+  double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
 };
 
 /// Parses the command line; returns nothing after printing the help.
@@ -127,10 +130,13 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("query", po::value(&options.query)->required(), "query traversal: image folder or .bag")
       ("topic", po::value(&options.topic), "image topic of the bags")
       ("ground-truth", po::value(&options.ground_truth), "CSV query_index,matching_ref_indices (default: identity)")
-      ("method", po::value(&options.method)->required(), "mrs | seqslam")
+      ("method", po::value(&options.method)->default_value(mrs_vpr::RecognizerParams{}.default_method),
+       "mrs | seqslam (default: the node's)")
       ("protocol", po::value(&options.protocol)->required(), "per-frame | global")
-      ("sequence-length", po::value(&params.sequence.sequence_length)->required(),
-       "N: frames per test sequence (ds of the per-frame protocol)")
+      ("sequence-length", po::value(&params.sequence.sequence_length)->default_value(params.sequence.sequence_length),
+       "N: keyframes per test sequence (ds of the per-frame protocol; default: the node's continuous mode)")
+      ("min-appearance-change", po::value(&options.min_appearance_change)->default_value(options.min_appearance_change),
+       "keyframes by appearance change, as the node's ~min_appearance_change; 0 = every frame")
       ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of the global protocol")
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
       ("seed", po::value(&options.seed)->default_value(options.seed), "seed of the global start positions and of mrs")
@@ -172,6 +178,9 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   if (options.seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(options.seed));
   params.mrs.seed = static_cast<std::uint64_t>(options.seed);
   params.validate();
+  mrs_vpr::RecognizerParams keyframing;
+  keyframing.min_appearance_change = options.min_appearance_change;
+  keyframing.validate();
   if (!options.plots.empty()) requireWritableFolder(options.plots, "--plots");
   if (!options.output.empty()) {
     if (std::filesystem::is_directory(options.output)) {
@@ -186,13 +195,19 @@ std::optional<Options> parseOptions(int argc, char** argv) {
   return options;
 }
 
+/// The keyframes of both traversals: the records name frames, the search sees keyframes.
+struct Keyframed {
+  mrs_vpr::Keyframes reference;
+  mrs_vpr::Keyframes query;
+};
+
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
 std::vector<mrs_vpr::QueryRecord> runPerFrame(mrs_vpr::PlaceRecognizer& reference, const std::string& method,
                                               const mrs_vpr::DescriptorSequence& query,
                                               const mrs_vpr::GroundTruth* truth,
-                                              const mrs_vpr::SequenceParams& sequence) {
+                                              const mrs_vpr::SequenceParams& sequence, const Keyframed& keyframes) {
   const std::vector<int> frames = mrs_vpr::perFrameQueries(query.size(), sequence);
   if (frames.empty()) {
     throw std::invalid_argument("the query has " + std::to_string(query.size()) +
@@ -204,18 +219,20 @@ std::vector<mrs_vpr::QueryRecord> runPerFrame(mrs_vpr::PlaceRecognizer& referenc
   const double per_query_ms = 1000.0 * secondsSince(start) / static_cast<double>(frames.size());
 
   std::vector<mrs_vpr::QueryRecord> records;
-  for (int frame : frames) {
-    const auto true_indices = mrs_vpr::truthFor(frame, truth, reference.size());
+  for (int keyframe : frames) {
+    const int frame = keyframes.query.frames[static_cast<std::size_t>(keyframe)];
+    const auto true_indices = mrs_vpr::truthFor(frame, truth, keyframes.reference.total);
     if (!true_indices) continue;
-    records.push_back(
-        mrs_vpr::queryRecordOf(frame, *true_indices, matches.at(static_cast<std::size_t>(frame)), per_query_ms));
+    records.push_back(mrs_vpr::keyframeRecordOf(frame, *true_indices, matches.at(static_cast<std::size_t>(keyframe)),
+                                                keyframes.reference, per_query_ms));
   }
   return records;
 }
 
 /// Global localisation protocol: each test sequence is searched on its own and timed.
 std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference, const mrs_vpr::DescriptorSequence& query,
-                                            const mrs_vpr::GroundTruth* truth, const Options& options) {
+                                            const mrs_vpr::GroundTruth* truth, const Options& options,
+                                            const Keyframed& keyframes) {
   const mrs_vpr::SequenceParams& sequence = options.params.sequence;
   if (sequence.sequence_length > query.size()) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
@@ -231,7 +248,8 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
       mrs_vpr::ProgressLine::onStderr("  " + options.method, "test sequences", static_cast<long long>(tests.size()));
   for (const mrs_vpr::TestSequence& test : tests) {
     progress.update(done++);
-    const auto true_indices = mrs_vpr::truthFor(test.query_index, truth, reference.size());
+    const int frame = keyframes.query.frames[static_cast<std::size_t>(test.query_index)];
+    const auto true_indices = mrs_vpr::truthFor(frame, truth, keyframes.reference.total);
     if (!true_indices) {
       ++skipped;
       continue;
@@ -239,7 +257,8 @@ std::vector<mrs_vpr::QueryRecord> runGlobal(mrs_vpr::PlaceRecognizer& reference,
     const Clock::time_point start = Clock::now();
     const mrs_vpr::Match match =
         reference.match(query.view(test.start, test.start + test.length), options.method).match;
-    records.push_back(mrs_vpr::queryRecordOf(test.query_index, *true_indices, match, 1000.0 * secondsSince(start)));
+    records.push_back(mrs_vpr::keyframeRecordOf(frame, *true_indices, match, keyframes.reference,
+                                                1000.0 * secondsSince(start)));
   }
   progress.update(done);
   progress.finish();
@@ -283,6 +302,7 @@ json parametersToJson(const Options& options, const mrs_vpr::Parameters& p) {
       {"topic", options.topic.empty() ? json(nullptr) : json(options.topic)},
       {"ground_truth", options.ground_truth.empty() ? json(nullptr) : json(options.ground_truth)},
       {"sequence_length", p.sequence.sequence_length},
+      {"min_appearance_change", options.min_appearance_change},
       {"queries", options.queries},
       {"tolerance", options.tolerance},
       {"seed", options.seed},
@@ -335,6 +355,7 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
                     {"true_index", nearest >= 0 ? json(nearest) : json(nullptr)},
                     {"true_indices", record.true_indices},
                     {"predicted_index", record.predicted_index},
+                    {"predicted_last", record.predicted_last},
                     {"score", record.score},
                     {"confidence", record.confidence},
                     {"accepted", record.accepted},
@@ -375,18 +396,30 @@ int run(int argc, char** argv) {
       params.descriptor = map->descriptorParams();
     }
   }
-  // The reference is the recognizer's map; unbounded, as an offline traversal may be of any length.
-  mrs_vpr::RecognizerParams unbounded;
-  unbounded.max_frames = 0;
-  mrs_vpr::PlaceRecognizer recognizer(params, unbounded);
+  // The reference is the recognizer's map, keyframed as the node keyframes a camera; unbounded, as an
+  // offline traversal may be of any length.
+  mrs_vpr::RecognizerParams map_params;
+  map_params.max_frames = 0;
+  map_params.min_appearance_change = options.min_appearance_change;
+  mrs_vpr::PlaceRecognizer recognizer(params, map_params);
   const mrs_vpr::DescriptorExtractor& extractor = recognizer.extractor();
   std::cerr << "mrs_vpr_eval: " << options.method << ", " << options.protocol << " protocol, N = "
-            << sequence.sequence_length << ", " << params.descriptor.describe() << "\n";
-  // The plots draw the difference matrix, which needs the reference's descriptors beside the map's.
+            << sequence.sequence_length << ", " << params.descriptor.describe() << ", keyframes at an appearance change of "
+            << options.min_appearance_change << "\n";
+  Keyframed keyframes;
+  // The plots draw the difference matrix of every frame (the records name frames), which needs the
+  // traversals' descriptors beside the map's keyframes.
   mrs_vpr::DescriptorSequence plotted_reference(extractor.size());
+  mrs_vpr::DescriptorSequence plotted_query(extractor.size());
   const auto add_to_map = [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+    const int frame = keyframes.reference.total++;
     if (!options.plots.empty()) plotted_reference.append(descriptor, stamp);
-    recognizer.addDescriptor(descriptor, stamp);
+    // A map database holds keyframes already; a traversal is offered frame by frame.
+    if ((map ? recognizer.addDescriptor(descriptor, stamp) : recognizer.offerDescriptor(descriptor, stamp)) !=
+        mrs_vpr::FrameAdmission::kAdmitted) {
+      return;
+    }
+    keyframes.reference.frames.push_back(frame);
   };
   mrs_vpr::tools::Traversal reference;
   if (map) {
@@ -395,17 +428,28 @@ int run(int argc, char** argv) {
     std::cerr << "  reference: " << reference.frames << " frames from the map database " << options.reference << "\n";
   } else {
     reference = mrs_vpr::tools::readTraversal(options.reference, options.topic, "reference", extractor, add_to_map);
+    std::cerr << "  reference: " << recognizer.size() << " keyframes of " << reference.frames << " frames\n";
   }
-  if (sequence.sequence_length > reference.frames) {
+  if (sequence.sequence_length > recognizer.size()) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
-                                " is larger than the reference of " + std::to_string(reference.frames) + " frames");
+                                " is larger than the reference of " + std::to_string(recognizer.size()) + " keyframes");
   }
   mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
+  mrs_vpr::AppearanceKeyframes query_keyframes(params.descriptor, options.min_appearance_change);
   const mrs_vpr::tools::Traversal query =
       mrs_vpr::tools::readTraversal(options.query, options.topic, "query", extractor,
                                     [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+                                      const int frame = keyframes.query.total++;
+                                      if (!options.plots.empty()) plotted_query.append(descriptor, stamp);
+                                      if (!query_keyframes.wants(descriptor)) {
+                                        query_keyframes.skip(descriptor);
+                                        return;
+                                      }
+                                      query_keyframes.keep(descriptor);
                                       query_descriptors.append(descriptor, stamp);
+                                      keyframes.query.frames.push_back(frame);
                                     });
+  std::cerr << "  query: " << query_descriptors.size() << " keyframes of " << query.frames << " frames\n";
   // A map database keeps descriptors, not images: there is no image size to compare.
   if (!isMapDatabase(options.reference) && query.image_size != reference.image_size) {
     throw std::invalid_argument(
@@ -423,8 +467,9 @@ int run(int argc, char** argv) {
   const mrs_vpr::GroundTruth* truth_ptr = truth ? &*truth : nullptr;
   const Clock::time_point match_start = Clock::now();
   const std::vector<mrs_vpr::QueryRecord> records =
-      options.protocol == "per-frame" ? runPerFrame(recognizer, options.method, query_descriptors, truth_ptr, sequence)
-                                      : runGlobal(recognizer, query_descriptors, truth_ptr, options);
+      options.protocol == "per-frame"
+          ? runPerFrame(recognizer, options.method, query_descriptors, truth_ptr, sequence, keyframes)
+          : runGlobal(recognizer, query_descriptors, truth_ptr, options, keyframes);
   const double match_s = secondsSince(match_start);
   if (records.empty()) throw std::invalid_argument("no query frame has ground truth: nothing to evaluate");
 
@@ -441,6 +486,8 @@ int run(int argc, char** argv) {
         {"protocol", options.protocol},
         {"reference_frames", reference.frames},
         {"query_frames", query.frames},
+        {"reference_keyframes", recognizer.size()},
+        {"query_keyframes", query_descriptors.size()},
         {"parameters", parametersToJson(options, params)},
         {"summary", summaryToJson(summary)},
         {"timing",
@@ -455,7 +502,7 @@ int run(int argc, char** argv) {
     if (!options.plots.empty()) {
       std::filesystem::create_directories(options.plots);
       document["difference_pictures"] = mrs_vpr::tools::writeDifferencePictures(
-          options.plots, query_descriptors.view(), plotted_reference.view(), records, sequence.contrast_window);
+          options.plots, plotted_query.view(), plotted_reference.view(), records, sequence.contrast_window);
     }
     if (!options.output.empty()) writeJson(document, options.output);
     if (!options.plots.empty()) {

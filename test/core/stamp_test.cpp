@@ -79,6 +79,7 @@ TEST(Stamp, TheMapAndItsAnswersCarryTheLatestStampExactly) {
   const SyntheticRoute route = generateSyntheticRoute(route_params);
   RecognizerParams limits;
   limits.recent_exclusion = 5;
+  limits.min_appearance_change = 0.0;  // Frame i is map frame i.
   PlaceRecognizer recognizer(Parameters{}, limits);
   for (std::size_t i = 0; i < route.reference.size(); ++i) {
     recognizer.addFrame(route.reference[i], Stamp::fromNanoseconds(Stamp::kMaxNanoseconds - 59 + static_cast<int>(i)));

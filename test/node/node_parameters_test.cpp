@@ -83,7 +83,8 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("min_travel"), 1U);
   EXPECT_EQ(names.count("descriptor/type"), 1U);
   EXPECT_EQ(names.count("descriptor/hog/cell_size"), 1U);
-  EXPECT_EQ(descriptions.size(), 44U);
+  EXPECT_EQ(names.count("min_appearance_change"), 1U);
+  EXPECT_EQ(descriptions.size(), 45U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and

@@ -20,6 +20,9 @@ struct QueryRecord {
   int query_index = 0;            ///< Query frame localised (where the test sequence ends when causal).
   std::vector<int> true_indices;  ///< Reference frames that are correct answers (empty: none is).
   int predicted_index = -1;       ///< Reference frame returned; -1 when the method returned none.
+  /// The last reference frame the answer stands for: a keyframe stands for the frames after it that
+  /// were too similar to become keyframes (keyframeRecordOf); equal to predicted_index otherwise.
+  int predicted_last = -1;
   float score = 1.0F;             ///< Best / runner-up, lower is better.
   float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
   bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
@@ -56,10 +59,27 @@ struct EvaluationSummary {
   double total_time_s = 0.0;  ///< Sum of the queries' times; a caller may replace it by a wall time.
 };
 
-/// Distance from the prediction to the nearest true index; -1 when there is no prediction or no truth.
+/// Which frames of a traversal became keyframes: keyframe k is frame frames[k], and it stands for the
+/// frames after it up to the next keyframe's (they were too similar to it to be kept).
+struct Keyframes {
+  std::vector<int> frames;  ///< Frame of each keyframe, increasing.
+  int total = 0;            ///< Frames of the traversal.
+
+  /// The last frame keyframe `keyframe` stands for.
+  int lastFrameOf(int keyframe) const;
+};
+
+/// The record of `match` to the query localising frame `query_frame`, whose reference_index is a
+/// keyframe of `reference`: predicted_index is that keyframe's frame and predicted_last the last frame
+/// it stands for, so that an answer is right when the true frame is among the frames it stands for.
+QueryRecord keyframeRecordOf(int query_frame, std::vector<int> truth, const Match& match, const Keyframes& reference,
+                             double time_ms);
+
+/// Distance from the predicted frames (predicted_index .. predicted_last) to the nearest true index; -1
+/// when there is no prediction or no truth.
 int absoluteError(const QueryRecord& record);
 
-/// The true index nearest to the prediction (the first listed without a prediction); -1 without truth.
+/// The true index nearest to the predicted frames (the first listed without a prediction); -1 without truth.
 int nearestTrueIndex(const QueryRecord& record);
 
 /// A prediction is correct when it lies within `tolerance` frames of any true index.

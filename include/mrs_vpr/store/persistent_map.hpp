@@ -39,10 +39,14 @@ class PersistentMap {
   PersistentMap(const PersistentMap&) = delete;
   PersistentMap& operator=(const PersistentMap&) = delete;
 
-  /// Adds a frame to the map and, when admitted, queues it for the database. Cheap: never waits for
-  /// the disk or a query.
+  /// Adds a keyframe (one chosen by travel, say) to the map and, when admitted, queues it for the
+  /// database. Cheap: never waits for the disk or a query.
   FrameAdmission add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id = "",
                      std::int64_t sequence = -1);
+  /// The same for a camera frame that joins the map only if its view has changed enough
+  /// (PlaceRecognizer::offerDescriptor): kTooSimilar otherwise.
+  FrameAdmission offer(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id = "",
+                       std::int64_t sequence = -1);
 
   /// Empties the map and the database; returns the frames the map held.
   int reset();
@@ -70,6 +74,8 @@ class PersistentMap {
   std::string writeError() const { return writer_ ? writer_->lastError() : ""; }
 
  private:
+  FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
+                       bool offered);
   /// Appends `frames` to the recognizer (empty or just reset); the caller holds add_mutex_.
   void admitAll(const std::vector<StoredFrame>& frames);
   std::int64_t saveFromMemory(const std::string& path);

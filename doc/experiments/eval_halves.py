@@ -1,0 +1,57 @@
+#!/usr/bin/python3
+"""The summary of an mrs_vpr_eval JSON (--output) over its query frames below and from a split.
+
+  doc/experiments/eval_halves.py EVALUATION.json [SPLIT]
+
+Prints top-1, PR-AUC (average precision, as mrs_vpr_eval computes it), and the precision and recall of
+accepted answers over every record, and with SPLIT also over the records whose query_index is below
+SPLIT ("tune") and from SPLIT on ("check"). For the Nordland halves the split is 891. Needs python3-numpy.
+"""
+
+import json
+import sys
+
+import numpy as np
+
+
+def average_precision(correct, confidence):
+    """Area under the precision-recall curve as mrs_vpr_eval computes it (ties form one step)."""
+    order = np.argsort(-confidence, kind="stable")
+    correct, confidence = correct[order], confidence[order]
+    area, previous_recall, true_positives, i = 0.0, 0.0, 0, 0
+    while i < len(correct):
+        j = i
+        while j < len(correct) and confidence[j] == confidence[i]:
+            j += 1
+        true_positives += correct[i:j].sum()
+        recall = true_positives / len(correct)
+        area += (recall - previous_recall) * true_positives / j
+        previous_recall, i = recall, j
+    return area
+
+
+def summary(records):
+    if not records:
+        return "no records"
+    correct = np.array([r["correct"] for r in records])
+    confidence = np.array([r["confidence"] for r in records])
+    accepted = np.array([r["accepted"] for r in records])
+    precision = (accepted & correct).sum() / accepted.sum() if accepted.any() else float("nan")
+    return (f"queries {len(records):5d}  top-1 {correct.mean():.3f}  PR-AUC {average_precision(correct, confidence):.3f}  "
+            f"accepted {accepted.sum():5d}  precision {precision:.3f}  recall {(accepted & correct).sum() / len(records):.3f}")
+
+
+def main():
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__)
+    with open(sys.argv[1], encoding="utf-8") as file:
+        records = json.load(file)["records"]
+    print(f"all    {summary(records)}")
+    if len(sys.argv) == 3:
+        split = int(sys.argv[2])
+        print(f"tune   {summary([r for r in records if r['query_index'] < split])}")
+        print(f"check  {summary([r for r in records if r['query_index'] >= split])}")
+
+
+if __name__ == "__main__":
+    main()

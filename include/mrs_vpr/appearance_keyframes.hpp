@@ -1,0 +1,79 @@
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+
+/**
+ * Keyframes chosen by how much the view has changed, for a camera without odometry: a frame becomes a
+ * keyframe once it differs from the frames seen since the last keyframe by `min_change` times the
+ * difference between unrelated views. A robot that stands still adds no keyframe, and a slow one adds
+ * fewer than a fast one, so that a sequence of keyframes covers about the same stretch of the world
+ * whatever the robot's speed.
+ *
+ * - The change is measured against the mean descriptor of the frames since the last keyframe (the
+ *   keyframe included), so that sensor noise averages out of the reference while a robot stands.
+ * - Descriptors are compared region by region (HOG's blocks, the thumbnail's patches) and the median
+ *   region's mean absolute difference is taken: a passer-by, or noise that block normalisation
+ *   amplifies in a textureless patch such as the sky, changes a few regions, not the median one.
+ * - The scale is the data's own: the median change between keyframes kUnrelatedGap keyframes apart,
+ *   over the last kScaleSamples such pairs. Until kMinScaleSamples pairs exist, the change from a view
+ *   of noise (unrelated to any place by construction) stands in for it, so that a robot standing still
+ *   from the start adds no keyframe either.
+ *
+ * No ROS inside; not thread-safe (one owner, one frame at a time).
+ */
+class AppearanceKeyframes {
+ public:
+  /// Keyframes apart whose views are taken as unrelated places.
+  static constexpr int kUnrelatedGap = 50;
+  /// Pairs the scale is the median of.
+  static constexpr int kScaleSamples = 101;
+  /// Pairs needed before the scale replaces the stand-in.
+  static constexpr int kMinScaleSamples = 9;
+  /// Seed of the noise image whose view stands in for an unrelated one.
+  static constexpr std::uint64_t kNoiseSeed = 1;
+
+  /// Keyframes of descriptors of `front_end`; `min_change` 0 (or less) makes every frame a keyframe.
+  /// Throws std::invalid_argument when the front end's parameters are invalid.
+  AppearanceKeyframes(const DescriptorParams& front_end, double min_change);
+
+  bool enabled() const { return min_change_ > 0.0; }
+  /// True when `descriptor` has changed enough since the last keyframe (always for the first frame, and
+  /// when disabled). Does not remember it: call keep() or skip().
+  bool wants(const cv::Mat& descriptor);
+  /// Records a keyframe.
+  void keep(const cv::Mat& descriptor);
+  /// Records a frame that was not kept: it joins the mean the next frames are compared with.
+  void skip(const cv::Mat& descriptor);
+  /// Forgets the last keyframe and the scale (after the map is reset).
+  void reset();
+
+  /// The change of the frame wants() last looked at, in units of the scale (0 before any).
+  double lastChange() const { return last_change_; }
+  /// The difference between unrelated views the change is measured in (bytes, mean absolute).
+  double scale() const;
+
+  /// The median over regions of the mean absolute difference of `a` and `b` (descriptorSize() bytes).
+  double regionDifference(const std::uint8_t* a, const float* b) const;
+
+ private:
+  double min_change_;
+  int size_;
+  std::vector<int> region_of_;       ///< Per descriptor byte, its region.
+  int regions_ = 0;
+  std::vector<float> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
+  std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
+  int frames_in_mean_ = 0;           ///< ... and how many there are.
+  std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
+  std::deque<double> samples_;       ///< Differences of keyframes kUnrelatedGap apart.
+  double last_change_ = 0.0;
+};
+
+}  // namespace mrs_vpr

@@ -1,0 +1,116 @@
+#include "mrs_vpr/appearance_keyframes.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "mrs_vpr/front_end/front_end.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+/// The median of `values` (reordered).
+double medianOf(std::vector<double>& values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+std::vector<float> asFloats(const cv::Mat& descriptor) {
+  return std::vector<float>(descriptor.ptr<std::uint8_t>(), descriptor.ptr<std::uint8_t>() + descriptor.total());
+}
+
+}  // namespace
+
+AppearanceKeyframes::AppearanceKeyframes(const DescriptorParams& front_end, double min_change)
+    : min_change_(min_change), size_(front_end.descriptorSize()) {
+  front_end.validate();
+  // Regions are what each front end normalises on its own: HOG's blocks, the thumbnail's patches.
+  region_of_.resize(static_cast<std::size_t>(size_));
+  if (front_end.isHog()) {
+    const int block = 4 * front_end.hog_bins;
+    for (int i = 0; i < size_; ++i) region_of_[static_cast<std::size_t>(i)] = i / block;
+    regions_ = size_ / block;
+  } else {
+    const int side = front_end.patch_size;
+    const int across = front_end.image_width / side;
+    for (int i = 0; i < size_; ++i) {
+      region_of_[static_cast<std::size_t>(i)] = (i / front_end.image_width / side) * across + (i % front_end.image_width) / side;
+    }
+    regions_ = across * (front_end.image_height / side);
+  }
+  // A view unrelated to any place: seeded noise, so that every run has the same stand-in.
+  cv::Mat noise(front_end.isHog() ? front_end.hog_window_height : front_end.image_height,
+                front_end.isHog() ? front_end.hog_window_width : front_end.image_width, CV_8UC1);
+  cv::RNG(kNoiseSeed).fill(noise, cv::RNG::UNIFORM, 0, 256);
+  unrelated_view_ = asFloats(makeFrontEnd(front_end)->describeGrey(noise));
+}
+
+double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float* b) const {
+  thread_local std::vector<double> sums;
+  thread_local std::vector<double> counts;
+  sums.assign(static_cast<std::size_t>(regions_), 0.0);
+  counts.assign(static_cast<std::size_t>(regions_), 0.0);
+  for (int i = 0; i < size_; ++i) {
+    const auto region = static_cast<std::size_t>(region_of_[static_cast<std::size_t>(i)]);
+    sums[region] += std::fabs(static_cast<double>(a[i]) - b[i]);
+    counts[region] += 1.0;
+  }
+  for (std::size_t r = 0; r < sums.size(); ++r) sums[r] /= counts[r];
+  return medianOf(sums);
+}
+
+double AppearanceKeyframes::scale() const {
+  if (static_cast<int>(samples_.size()) >= kMinScaleSamples) {
+    std::vector<double> values(samples_.begin(), samples_.end());
+    return medianOf(values);
+  }
+  if (frames_in_mean_ == 0) return 0.0;
+  std::vector<float> mean(mean_);
+  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
+  std::vector<std::uint8_t> unrelated(unrelated_view_.begin(), unrelated_view_.end());
+  return regionDifference(unrelated.data(), mean.data());
+}
+
+bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
+  CV_Assert(descriptor.type() == CV_8UC1 && static_cast<int>(descriptor.total()) == size_ && descriptor.isContinuous());
+  if (!enabled() || frames_in_mean_ == 0) {
+    last_change_ = 0.0;
+    return true;
+  }
+  std::vector<float> mean(mean_);
+  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
+  const double unrelated = scale();
+  last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
+  return last_change_ >= min_change_;
+}
+
+void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
+  std::vector<float> values = asFloats(descriptor);
+  if (static_cast<int>(recent_keyframes_.size()) == kUnrelatedGap) {
+    samples_.push_back(regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_.front().data()));
+    if (static_cast<int>(samples_.size()) > kScaleSamples) samples_.pop_front();
+    recent_keyframes_.pop_front();
+  }
+  recent_keyframes_.push_back(values);
+  mean_ = std::move(values);
+  frames_in_mean_ = 1;
+}
+
+void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
+  if (frames_in_mean_ == 0) return;  // Nothing to compare with yet: the next frame is a keyframe anyway.
+  const std::uint8_t* bytes = descriptor.ptr<std::uint8_t>();
+  for (int i = 0; i < size_; ++i) mean_[static_cast<std::size_t>(i)] += bytes[i];
+  ++frames_in_mean_;
+}
+
+void AppearanceKeyframes::reset() {
+  mean_.clear();
+  frames_in_mean_ = 0;
+  recent_keyframes_.clear();
+  samples_.clear();
+  last_change_ = 0.0;
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,152 @@
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "mrs_vpr/appearance_keyframes.hpp"
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+#include "support/front_ends.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+using testing_support::thumbnailParams;
+
+/// A wide textured strip: a camera looking at it from x sees columns [x, x + 160).
+cv::Mat panorama() {
+  static const cv::Mat strip = [] {
+    cv::Mat image(120, 6000, CV_8UC1);
+    cv::RNG(11).fill(image, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(image, image, cv::Size(0, 0), 4.0);
+    cv::normalize(image, image, 0, 255, cv::NORM_MINMAX);
+    return image;
+  }();
+  return strip;
+}
+
+/// The camera's view at x (sub-pixel), with a gain and sensor noise.
+cv::Mat viewAt(double x, double gain, double noise, cv::RNG& rng) {
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -x, 0, 1, 0);
+  cv::Mat view;
+  cv::warpAffine(panorama(), view, shift, cv::Size(160, 120), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  cv::Mat noisy(view.size(), CV_32F);
+  rng.fill(noisy, cv::RNG::NORMAL, 0.0, noise);
+  cv::Mat result;
+  cv::addWeighted(view, gain, noisy, 1.0, 0.0, result, CV_8U);
+  return result;
+}
+
+/// Keyframes chosen among `views` (each offered in turn).
+int keyframesOf(AppearanceKeyframes& keyframes, const DescriptorExtractor& extractor, const std::vector<cv::Mat>& views) {
+  int kept = 0;
+  for (const cv::Mat& view : views) {
+    const cv::Mat descriptor = extractor.compute(view);
+    if (keyframes.wants(descriptor)) {
+      keyframes.keep(descriptor);
+      ++kept;
+    } else {
+      keyframes.skip(descriptor);
+    }
+  }
+  return kept;
+}
+
+/// A drive along the strip at `speed` pixels a frame for `frames` frames, from x.
+std::vector<cv::Mat> drive(double from, double speed, int frames, cv::RNG& rng) {
+  std::vector<cv::Mat> views;
+  for (int i = 0; i < frames; ++i) views.push_back(viewAt(from + speed * i, 1.0, 1.0, rng));
+  return views;
+}
+
+class AppearanceKeyframesTest : public ::testing::TestWithParam<DescriptorParams> {};
+
+TEST_P(AppearanceKeyframesTest, AStopAddsNoKeyframeWhateverItsNoiseAndGain) {
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  cv::RNG rng(1);
+  keyframesOf(keyframes, extractor, drive(0.0, 12.0, 150, rng));  // The scale comes from the drive.
+  std::vector<cv::Mat> standing;
+  for (int i = 0; i < 200; ++i) {
+    // Sub-pixel vibration, a gain of +-2% and sensor noise, never an exact copy.
+    standing.push_back(viewAt(1800.0 + rng.uniform(-0.3, 0.3), rng.uniform(0.98, 1.02), 2.0, rng));
+  }
+  EXPECT_EQ(keyframesOf(keyframes, extractor, standing), 1);  // The first view there, no other.
+}
+
+TEST_P(AppearanceKeyframesTest, ARobotStandingFromTheStartAddsOneKeyframe) {
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  cv::RNG rng(2);
+  std::vector<cv::Mat> standing;
+  for (int i = 0; i < 100; ++i) standing.push_back(viewAt(rng.uniform(-0.3, 0.3), rng.uniform(0.98, 1.02), 2.0, rng));
+  EXPECT_EQ(keyframesOf(keyframes, extractor, standing), 1);
+}
+
+TEST_P(AppearanceKeyframesTest, AFrameOfASlowerRobotIsLessOftenAKeyframe) {
+  const DescriptorExtractor extractor(GetParam());
+  cv::RNG rng(3);
+  AppearanceKeyframes fast(GetParam(), 0.4);
+  AppearanceKeyframes slow(GetParam(), 0.4);
+  // The same 600 pixels of the strip, in 300 frames and in 600.
+  const int fast_keyframes = keyframesOf(fast, extractor, drive(0.0, 2.0, 300, rng));
+  const int slow_keyframes = keyframesOf(slow, extractor, drive(0.0, 1.0, 600, rng));
+  EXPECT_GT(fast_keyframes, 20);
+  EXPECT_LT(fast_keyframes, 300);  // Not every frame: neighbours overlap.
+  // About as many keyframes for the same ground, so half as many per frame at half the speed.
+  EXPECT_NEAR(static_cast<double>(slow_keyframes) / fast_keyframes, 1.0, 0.35);
+}
+
+TEST_P(AppearanceKeyframesTest, ZeroKeepsEveryFrameAndResetForgetsTheLastKeyframe) {
+  const DescriptorExtractor extractor(GetParam());
+  cv::RNG rng(4);
+  AppearanceKeyframes every(GetParam(), 0.0);
+  EXPECT_FALSE(every.enabled());
+  EXPECT_EQ(keyframesOf(every, extractor, std::vector<cv::Mat>(5, viewAt(0, 1, 0, rng))), 5);
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  EXPECT_EQ(keyframesOf(keyframes, extractor, std::vector<cv::Mat>(3, viewAt(0, 1, 0, rng))), 1);
+  keyframes.reset();
+  EXPECT_EQ(keyframesOf(keyframes, extractor, std::vector<cv::Mat>(3, viewAt(0, 1, 0, rng))), 1);
+}
+
+TEST_P(AppearanceKeyframesTest, TheScaleBecomesTheDataOwnOnceKeyframesAreFarEnoughApart) {
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  cv::RNG rng(5);
+  const cv::Mat first = extractor.compute(viewAt(0, 1, 1, rng));
+  keyframes.keep(first);
+  const double stand_in = keyframes.scale();
+  EXPECT_GT(stand_in, 0.0);
+  // Views 400 px apart share nothing: as keyframes, their pairs 50 apart give the scale.
+  for (int i = 1; i <= AppearanceKeyframes::kUnrelatedGap + AppearanceKeyframes::kMinScaleSamples; ++i) {
+    keyframes.keep(extractor.compute(viewAt(400.0 * i, 1, 1, rng)));
+  }
+  EXPECT_NE(keyframes.scale(), stand_in);
+  EXPECT_NEAR(keyframes.scale(), stand_in, 0.5 * stand_in);  // Both are unrelated views.
+}
+
+INSTANTIATE_TEST_SUITE_P(FrontEnds, AppearanceKeyframesTest, ::testing::Values(DescriptorParams{}, thumbnailParams()),
+                         [](const auto& info) { return info.param.type; });
+
+TEST(PlaceRecognizer, KeyframesFramesByAppearanceButTakesDescriptorsAsKeyframes) {
+  PlaceRecognizer recognizer;
+  cv::RNG rng(6);
+  const cv::Mat view = viewAt(100, 1, 1, rng);
+  EXPECT_EQ(recognizer.addFrame(view), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.addFrame(viewAt(100.2, 1.01, 1, rng)), FrameAdmission::kTooSimilar);
+  EXPECT_GT(recognizer.lastAppearanceChange(), 0.0);
+  EXPECT_EQ(recognizer.addFrame(viewAt(700, 1, 1, rng)), FrameAdmission::kAdmitted);
+  // A saved map's frames are keyframes already.
+  EXPECT_EQ(recognizer.addDescriptor(recognizer.describe(view)), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.size(), 3);
+  RecognizerParams every_frame;
+  every_frame.min_appearance_change = 0.0;
+  PlaceRecognizer all(Parameters{}, every_frame);
+  EXPECT_EQ(all.addFrame(view), FrameAdmission::kAdmitted);
+  EXPECT_EQ(all.addFrame(view), FrameAdmission::kAdmitted);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
