@@ -83,6 +83,9 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
       {{"sequence/alignment", {}, {"causal", "centred"}, "",
         "causal: the test sequence ends at the frame localised; centred: it is in the middle."},
        &P::alignment},
+      {{"sequence/alignment_slack", Range::closed(0, 1000), {}, "",
+        "Frames the path that places an answer may stray from the best straight trajectory; 0 = its end."},
+       &P::alignment_slack},
       {{"sequence/accept_threshold", Range::closed(0, 1000), {}, "",
         "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this "
         "and its trajectory is not at the slowest or fastest velocity."},

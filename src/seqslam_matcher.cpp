@@ -13,7 +13,9 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
   const cv::Mat enhanced =
       enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
-  Match match = searchTrajectories(enhanced, wholeSequenceRows(query.count, sequence_.alignment), sequence_);
+  const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
+  Match match = searchTrajectories(enhanced, rows, sequence_);
+  placeAnswer(match, reference, query, rows);
   applyAcceptance(match, sequence_);
   return match;
 }
@@ -29,6 +31,7 @@ std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, Seque
       const SequenceRows rows = sequenceRowsFor(frame, sequence_);
       if (rows.first < 0 || rows.last >= query.count) continue;
       matches[frame] = searchTrajectories(enhanced, rows, sequence_);
+      placeAnswer(matches[frame], reference, query, rows);
       matches[frame].comparisons = static_cast<long long>(reference.count);  // One new row per frame.
       applyAcceptance(matches[frame], sequence_);
     }

@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "mrs_vpr/flexible_alignment.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
@@ -27,6 +28,12 @@ void SequenceMatcher::checkInputs(SequenceView reference, SequenceView query) {
                                 " frames is longer than the reference of " + std::to_string(reference.count) +
                                 " frames");
   }
+}
+
+void SequenceMatcher::placeAnswer(Match& match, SequenceView reference, SequenceView query,
+                                  const SequenceRows& rows) const {
+  match.reference_index = realignEnd(reference, query, rows, match.reference_index, match.velocity,
+                                     sequence_.alignment_slack, sequence_.contrast_window);
 }
 
 std::vector<Match> SequenceMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {

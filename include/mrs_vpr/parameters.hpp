@@ -73,6 +73,9 @@ struct SequenceParams {
   int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 = off.
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up.
   WindowAlignment alignment = WindowAlignment::kCausal;
+  /// Frames the path that places an answer may stray from the best straight trajectory, which found the
+  /// place (flexible_alignment.hpp); 0 = the straight trajectory's end.
+  int alignment_slack = 0;
   /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
   /// deviations of the query's own end costs) reaches this and its trajectory does not run at the
   /// slowest or fastest velocity. 3 is a three-sigma rule, not a value fitted to a data set; see

@@ -7,6 +7,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 
@@ -36,6 +37,9 @@ class SequenceMatcher {
   explicit SequenceMatcher(const SequenceParams& sequence);
   /// Throws std::invalid_argument with a clear message when the inputs cannot be matched.
   static void checkInputs(SequenceView reference, SequenceView query);
+  /// Moves the answer of the straight search to the end of the best flexible path near its trajectory
+  /// (sequence/alignment_slack, flexible_alignment.hpp); its confidence stays.
+  void placeAnswer(Match& match, SequenceView reference, SequenceView query, const SequenceRows& rows) const;
 
   SequenceParams sequence_;
 };

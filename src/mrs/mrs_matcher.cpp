@@ -389,9 +389,10 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<
   checkInputs(reference, query);
   const int levels = levelsFor(query.count, reference.count);
   if (levels > 0) compact_->requireDescriptorsOf(reference);
-  return CoarseToFineSearch(reference, query, wholeSequenceRows(query.count, sequence_.alignment), levels, sequence_,
-                            mrs_, *compact_)
-      .run(trace);
+  const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
+  Match match = CoarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_).run(trace);
+  placeAnswer(match, reference, query, rows);  // As the brute force places its answer.
+  return match;
 }
 
 }  // namespace mrs_vpr

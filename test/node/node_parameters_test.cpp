@@ -84,7 +84,7 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("descriptor/type"), 1U);
   EXPECT_EQ(names.count("descriptor/hog/cell_size"), 1U);
   EXPECT_EQ(names.count("min_appearance_change"), 1U);
-  EXPECT_EQ(descriptions.size(), 45U);
+  EXPECT_EQ(descriptions.size(), 46U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and
