@@ -100,9 +100,20 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
 
 void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
   if (frames_in_mean_ == 0) return;  // Nothing to compare with yet: the next frame is a keyframe anyway.
+  // A frame already half-way to the next place is motion, not noise: averaging it in would drag the
+  // reference along with the camera (on the generated route, gaps of 130 places instead of 7).
+  if (last_change_ >= min_change_ / 2) return;
   const std::uint8_t* bytes = descriptor.ptr<std::uint8_t>();
   for (int i = 0; i < size_; ++i) mean_[static_cast<std::size_t>(i)] += bytes[i];
   ++frames_in_mean_;
+}
+
+AppearanceKeyframes AppearanceKeyframes::follower() const {
+  AppearanceKeyframes next(*this);
+  next.mean_.clear();
+  next.frames_in_mean_ = 0;
+  next.last_change_ = 0.0;
+  return next;
 }
 
 void AppearanceKeyframes::reset() {

@@ -17,8 +17,10 @@ namespace mrs_vpr {
  * fewer than a fast one, so that a sequence of keyframes covers about the same stretch of the world
  * whatever the robot's speed.
  *
- * - The change is measured against the mean descriptor of the frames since the last keyframe (the
- *   keyframe included), so that sensor noise averages out of the reference while a robot stands.
+ * - The change is measured against the mean descriptor of the keyframe and of the frames since that
+ *   stayed within half of `min_change` of it, so that sensor noise averages out of the reference while
+ *   a robot stands, but a view drifting away on slow smooth motion does not smear the reference
+ *   towards itself (which would hold the change below `min_change` for many places).
  * - Descriptors are compared region by region (HOG's blocks, the thumbnail's patches) and the median
  *   region's mean absolute difference is taken: a passer-by, or noise that block normalisation
  *   amplifies in a textureless patch such as the sky, changes a few regions, not the median one.
@@ -50,10 +52,14 @@ class AppearanceKeyframes {
   bool wants(const cv::Mat& descriptor);
   /// Records a keyframe.
   void keep(const cv::Mat& descriptor);
-  /// Records a frame that was not kept: it joins the mean the next frames are compared with.
+  /// Records a frame that was not kept: it joins the mean the next frames are compared with when its
+  /// change was under half of `min_change`.
   void skip(const cv::Mat& descriptor);
   /// Forgets the last keyframe and the scale (after the map is reset).
   void reset();
+  /// Keyframes of another traversal by the same camera (a test sequence): no last keyframe yet, but the
+  /// scale learnt here, which goes on from there.
+  AppearanceKeyframes follower() const;
 
   /// The change of the frame wants() last looked at, in units of the scale (0 before any).
   double lastChange() const { return last_change_; }

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -8,6 +9,7 @@
 #include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
 #include "support/front_ends.hpp"
 
 namespace mrs_vpr {
@@ -97,6 +99,32 @@ TEST_P(AppearanceKeyframesTest, AFrameOfASlowerRobotIsLessOftenAKeyframe) {
   EXPECT_LT(fast_keyframes, 300);  // Not every frame: neighbours overlap.
   // About as many keyframes for the same ground, so half as many per frame at half the speed.
   EXPECT_NEAR(static_cast<double>(slow_keyframes) / fast_keyframes, 1.0, 0.35);
+}
+
+TEST_P(AppearanceKeyframesTest, ASmoothRouteKeepsItsKeyframesFewPlacesApart) {
+  // The generated route drifts slowly and smoothly from place to place: frames moving away from the
+  // last keyframe must not drag the view they are compared with along (which left 130 places between
+  // two keyframes).
+  SyntheticRouteParams route_params;
+  route_params.reference_frames = 600;
+  route_params.image_width = 320;
+  route_params.image_height = 160;
+  const SyntheticRoute route = generateSyntheticRoute(route_params);
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  int last_kept = 0;
+  int largest_gap = 0;
+  for (int i = 0; i < static_cast<int>(route.reference.size()); ++i) {
+    const cv::Mat descriptor = extractor.compute(route.reference[static_cast<std::size_t>(i)]);
+    if (keyframes.wants(descriptor)) {
+      keyframes.keep(descriptor);
+      largest_gap = std::max(largest_gap, i - last_kept);
+      last_kept = i;
+    } else {
+      keyframes.skip(descriptor);
+    }
+  }
+  EXPECT_LE(largest_gap, 15);
 }
 
 TEST_P(AppearanceKeyframesTest, ZeroKeepsEveryFrameAndResetForgetsTheLastKeyframe) {
