@@ -351,7 +351,13 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
-  if (explain != nullptr) debug_image_->publish(input.header, answered, explanation);
+  if (explain != nullptr) {
+    // What keyframing left out, so that a stop shows as frames skipped rather than as missing answers.
+    const std::string map_status = std::to_string(frames_too_similar_.load()) +
+                                   " frames skipped as too similar to the last keyframe; " +
+                                   std::to_string(frames_skipped_.load()) + " skipped by the keyframe policy";
+    debug_image_->publish(input.header, answered, explanation, map_status);
+  }
   const Match& match = answered.match;
   response.reference_index = match.reference_index;
   response.score = match.score;
