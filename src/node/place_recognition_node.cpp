@@ -312,6 +312,16 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
         }
       }
       input.header = request.images.back().header;
+      // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were.
+      if (!travel_policy_.enabled()) {
+        const int given = input.images->size();
+        *input.images = recognizer_.keyframesOf(*input.images);
+        if (input.images->size() < 2) {
+          throw std::invalid_argument("the " + std::to_string(given) + " images hold " +
+                                      std::to_string(input.images->size()) +
+                                      " keyframe(s), fewer than 2: the view hardly changes across them (~min_appearance_change)");
+        }
+      }
     } else if (request.recent_frames == 0) {
       throw std::invalid_argument(
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
