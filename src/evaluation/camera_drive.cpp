@@ -1,6 +1,7 @@
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
