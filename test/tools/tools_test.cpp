@@ -23,6 +23,7 @@
 #include <rosbag/bag.h>
 
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
@@ -864,8 +865,8 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
   const std::string output = path("real_benchmark.json");
   const Result result =
       run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
-          " --part all --references 1.8k --lengths 20,30 --queries 3 --methods seqslam --skip-per-frame --tolerance 4"
-          " --seed 5 --json " +
+          " --part all --references 1.8k --lengths 20,30 --queries 3 --methods seqslam --skip-per-frame --skip-drives"
+          " --tolerance 4 --seed 5 --json " +
           output);
   ASSERT_EQ(result.status, 0) << result.err;
   const json document = json::parse(readText(output));
@@ -894,6 +895,45 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
                                            " M=150");
     }
   }
+}
+
+TEST_F(ToolsTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousModeAndTheEvaluator) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_drives.json");
+  const Result result =
+      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+          " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5 --json " + output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("Camera drives (make_drive --seed 5 and 6)"), std::string::npos) << result.out;
+  const json rows = json::parse(readText(output)).at("rows");
+  // Besides the replays' rows (none here: no global, no per-frame rows): the map drive and the revisit
+  // in continuous mode, then the evaluator's per-frame protocol on the two drives.
+  ASSERT_EQ(rows.size(), 3U) << rows.dump();
+  for (std::size_t i = 0; i < 2; ++i) {
+    const json& row = rows[i];
+    EXPECT_EQ(row.at("protocol"), "continuous");
+    EXPECT_EQ(row.at("method"), "seqslam");
+    // Continuous mode's length is the node's: auto_query_frames 0, so sequence/sequence_length.
+    EXPECT_EQ(row.at("sequence_length"), mrs_vpr::SequenceParams{}.sequence_length);
+    const json& drive = row.at("drive");
+    EXPECT_EQ(drive.at("route_begin"), 0);
+    EXPECT_EQ(drive.at("route_end"), 100);  // The route: as many summer frames as there are winter ones.
+    EXPECT_EQ(drive.at("rate_hz"), i == 0 ? 30.0 : 10.0);
+    EXPECT_GE(drive.at("stopped_frames").get<int>(), 8 * 30);
+    EXPECT_LE(drive.at("stopped_frames").get<int>(), 8 * 90);
+    // Stops add (almost) no keyframes.
+    EXPECT_LT(row.at("stopped_keyframes").get<int>(), drive.at("stopped_frames").get<int>() / 10);
+    EXPECT_EQ(row.at("accepted").get<int>(), row.at("accepted_right").get<int>() + row.at("accepted_wrong").get<int>());
+    for (const char* field : {"keyframes", "queries", "stretches", "stretches_keyframed", "stretches_with_right"}) {
+      EXPECT_TRUE(row.contains(field)) << field;
+    }
+  }
+  EXPECT_EQ(rows[0].at("setting"), "camera drive continuous map drive");
+  EXPECT_EQ(rows[0].at("accepted_right"), 0);  // No place comes back on the first traversal.
+  EXPECT_EQ(rows[1].at("setting"), "camera drive continuous revisit");
+  EXPECT_EQ(rows[2].at("setting"), "camera drives per-frame (mrs_vpr_eval)");
+  EXPECT_EQ(rows[2].at("protocol"), "per-frame");
+  EXPECT_GT(rows[2].at("summary").at("queries").get<int>(), 0);
 }
 
 TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
