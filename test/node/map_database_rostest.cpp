@@ -246,7 +246,8 @@ TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) 
                               " --output " + path("offline.db") + " > " + path("build_map.log") + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << fileContents(path("build_map.log"));
 
-  auto node = startNode("mapper", path("node.db"), {}, false);
+  // A name of its own: earlier tests' "mapper" left ~min_appearance_change 0 on the parameter server.
+  auto node = startNode("keyframer", path("node.db"), {}, false);
   MapInfoWatch info(nh_, "/" + node->name());
   publishReference(0, 150);
   ASSERT_TRUE(info.waitFor(
