@@ -7,7 +7,6 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
@@ -84,9 +83,10 @@ struct DriveCounts {
  * the map holds 2 L + recent_exclusion keyframes.
  */
 std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::string& method,
-                                        const DescriptorParams& descriptor, int* length) {
+                                        const DescriptorParams& descriptor, const SequenceParams& sequence, int* length) {
   node::NodeParameters node;
   node.core.descriptor = descriptor;
+  node.core.sequence = sequence;
   PlaceRecognizer recognizer(node.core, node.recognizer);
   const int recent = node.autoQueryFrames();
   *length = recent;
@@ -152,9 +152,10 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
 /// with a full sequence searched, an answer right when the truth is among the frames its keyframe
 /// stands for (within the evaluator's tolerance).
 EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive, const std::string& method,
-                                   const DescriptorParams& descriptor, int* reference_keyframes) {
+                                   const DescriptorParams& descriptor, const SequenceParams& sequence, int* reference_keyframes) {
   Parameters params;
   params.descriptor = descriptor;
+  params.sequence = sequence;
   RecognizerParams map_params;
   map_params.max_frames = 0;
   PlaceRecognizer reference(params, map_params);
@@ -166,20 +167,12 @@ EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& qu
     }
   }
   *reference_keyframes = reference.size();
-  AppearanceKeyframes query_keyframes(params.descriptor, map_params.min_appearance_change);
-  DescriptorSequence query(reference.extractor().size());
+  // The revisit is keyframed as the evaluator keyframes it: on the map's scale (keyframesOf).
+  DescriptorSequence revisit(reference.extractor().size());
+  for (const cv::Mat& image : query_drive.images) revisit.append(reference.describe(image));
   Keyframes query_keyframed;
-  for (const cv::Mat& image : query_drive.images) {
-    const int frame = query_keyframed.total++;
-    const cv::Mat descriptor = reference.describe(image);
-    if (!query_keyframes.wants(descriptor)) {
-      query_keyframes.skip(descriptor);
-      continue;
-    }
-    query_keyframes.keep(descriptor);
-    query.append(descriptor);
-    query_keyframed.frames.push_back(frame);
-  }
+  query_keyframed.total = static_cast<int>(query_drive.images.size());
+  const DescriptorSequence query = reference.keyframesOf(revisit, &query_keyframed.frames);
   const GroundTruth truth =
       driveGroundTruth(routeFramesOf(reference_drive.frames), routeFramesOf(query_drive.frames), kRouteTolerance);
   const std::vector<int> searched = perFrameQueries(query.size(), params.sequence);
@@ -233,7 +226,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   std::vector<nlohmann::json> rows;
   for (const std::string& method : input.methods) {
     int length = 0;
-    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, &length);
+    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, input.sequence, &length);
     for (std::size_t d = 0; d < counts.size(); ++d) {
       const Drive& drive = d == 0 ? map : revisit;
       const DriveCounts& c = counts[d];
@@ -272,9 +265,10 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   std::printf("\n");
   for (const std::string& method : input.methods) {
     int reference_keyframes = 0;
-    const EvaluationSummary summary = perFrameProtocol(map, revisit, method, input.descriptor, &reference_keyframes);
+    const EvaluationSummary summary =
+        perFrameProtocol(map, revisit, method, input.descriptor, input.sequence, &reference_keyframes);
     per_frame("camera drives per-frame (mrs_vpr_eval)", method, summary, reference_keyframes,
-              Parameters{}.sequence.sequence_length);
+              input.sequence.sequence_length);
   }
 }
 

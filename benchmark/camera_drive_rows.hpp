@@ -28,6 +28,7 @@ struct CameraDriveInput {
   std::vector<std::string> methods;
   DescriptorParams descriptor;  ///< The front end; every other parameter is at its default.
   std::uint64_t seed = 42;      ///< The map drive's seed; the revisit's is seed + 1.
+  SequenceParams sequence;      ///< The sequence search (the node's defaults unless set).
 };
 
 /// A row of the evaluator's per-frame protocol: printed and kept as the benchmark's other rows are.

@@ -20,7 +20,8 @@
 //
 //   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
 //                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
-//                          [--skip-per-frame] [--skip-global] [--skip-drives] [--diagnose] [--json FILE]
+//                          [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]
+//                          [--drive-alignment-slack S] [--diagnose] [--json FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -74,6 +75,8 @@ struct Options {
   bool per_frame = true;
   bool global = true;
   bool drives = true;
+  int drive_length = 0;
+  int drive_alignment_slack = mrs_vpr::SequenceParams{}.alignment_slack;
   bool diagnose = false;
   std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
@@ -87,7 +90,8 @@ struct Options {
 constexpr const char* kUsage =
     "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
-    "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--diagnose]\n"
+    "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
+    "                              [--drive-alignment-slack S] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs] [--json FILE]\n"
@@ -121,6 +125,10 @@ std::optional<Options> parse(int argc, char** argv) {
       ("skip-per-frame", po::bool_switch(&skip_per_frame), "no per-frame rows")
       ("skip-global", po::bool_switch(&skip_global), "no global rows")
       ("skip-drives", po::bool_switch(&skip_drives), "no camera-drive rows")
+      ("drive-length", po::value(&options.drive_length)->default_value(options.drive_length),
+       "keyframes per test sequence of the camera-drive rows; 0 = the node's default")
+      ("drive-alignment-slack", po::value(&options.drive_alignment_slack)->default_value(options.drive_alignment_slack),
+       "sequence/alignment_slack of the camera-drive rows")
       ("diagnose", po::bool_switch(&options.diagnose), "print where MRS kept the truth, level by level")
       ("hypotheses", po::value(&options.hypotheses)->default_value(options.hypotheses),
        "mrs: hypotheses carried down from the coarsest level")
@@ -724,6 +732,10 @@ int run(int argc, char** argv) {
     drives.methods = options.methods;
     drives.descriptor = options.descriptor;
     drives.seed = options.seed;
+    if (options.drive_length > 0) drives.sequence.sequence_length = options.drive_length;
+    drives.sequence.alignment_slack = options.drive_alignment_slack;
+    drives.sequence.velocity_min = options.velocity_min;
+    drives.sequence.velocity_max = options.velocity_max;
     mrs_vpr::benchmark::runCameraDrives(
         drives, [&](const std::vector<nlohmann::json>& rows) { report.add(rows); },
         [&](const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& summary,
