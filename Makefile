@@ -101,7 +101,7 @@ demo: build
 bench: build
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_benchmark
 
-# Both methods on real frames: the figures of the README's "Measured results".
+# Both methods on real frames: the figures of doc/results.md.
 bench-real: build
 	@test -d "$(DATA)/nordland" || { echo "No real data at $(DATA): run make bench-real DATA=/path/to/data"; exit 1; }
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_real_benchmark --data "$(DATA)" --part check --diagnose

@@ -1,6 +1,6 @@
 // What ~debug_image costs an answered query: the same queries on real frames without and with the
 // explanation and the drawing, side by side. Prints figures; it is not a test. With --output it also
-// writes the picture of one query (the README's doc/debug_image.png is made this way).
+// writes the picture of one query (doc/debug_image.png is made this way).
 //
 //   mrs_vpr_debug_image_benchmark --reference DIR --query DIR [--lengths 100,300] [--queries 20]
 //                                 [--runs 3] [--methods mrs,seqslam] [--threads 1] [--output FILE.png]

@@ -83,7 +83,7 @@ struct SequenceParams {
   /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
   /// deviations of the query's own end costs) reaches this and its trajectory does not run at the
   /// slowest or fastest velocity. 3 is a three-sigma rule, not a value fitted to a data set; see
-  /// acceptance.hpp for its derivation and the README for checks.
+  /// acceptance.hpp for its derivation and doc/acceptance.md and doc/results.md for checks.
   double accept_threshold = 3.0;
 
   void validate() const;
@@ -93,7 +93,7 @@ struct SequenceParams {
 struct MrsParams {
   int levels = 3;               ///< l_max: the coarsest stride is 2^levels.
   /// Fewer levels are used when N / 2^levels would drop below this. Below about 64 coarse
-  /// rows the true place is too often not the coarse level's first minimum (README).
+  /// rows the true place is too often not the coarse level's first minimum (doc/paper_gaps.md, Levels).
   int min_coarse_frames = 64;
   double tau = 2.0;             ///< Particle overlap factor, P_init = (M / N) * tau.
   int index_shift = 2;          ///< Id_shift: end-index search radius of a particle, in level frames.

@@ -61,7 +61,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
 
   // The transport ("raw", "compressed", ...) comes from ~image_transport. Debian 12 ships no
   // `compressed` plugin, so the node decodes that transport itself, on the topic and with the format
-  // strings of image_transport's plugin (README, "Compressed images"); others go through image_transport.
+  // strings of image_transport's plugin (doc/compressed_images.md); others go through image_transport.
   const image_transport::TransportHints hints("raw", ros::TransportHints(), private_nh_);
   const auto queue_size = static_cast<std::uint32_t>(params_.image_queue_size);
   if (hints.getTransport() == "compressed") {

@@ -214,9 +214,9 @@ std::map<std::string, std::string> readGroupedYaml(std::istream& in, std::map<st
   return values;
 }
 
-TEST(NodeParameters, ReadmeTableListsEveryParameterWithItsDefaultAndRange) {
-  // Rows "| `name` | default | range | meaning |" of the README's parameter table.
-  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/README.md");
+TEST(NodeParameters, ParameterReferenceListsEveryParameterWithItsDefaultAndRange) {
+  // Rows "| `name` | default | range | meaning |" of the parameter reference's table.
+  std::ifstream file(std::string(MRS_VPR_SOURCE_DIR) + "/doc/parameters.md");
   ASSERT_TRUE(file.good());
   std::map<std::string, std::pair<std::string, std::string>> rows;
   for (std::string line; std::getline(file, line);) {
@@ -229,7 +229,7 @@ TEST(NodeParameters, ReadmeTableListsEveryParameterWithItsDefaultAndRange) {
     rows[name] = {cells[1], cells[2]};
   }
   for (const auto& [name, description] : descriptionsByName()) {
-    ASSERT_EQ(rows.count(name), 1U) << "README.md's parameter table does not list " << name;
+    ASSERT_EQ(rows.count(name), 1U) << "doc/parameters.md's table does not list " << name;
     EXPECT_EQ(rows.at(name).first, description.default_value) << name;
     EXPECT_EQ(rows.at(name).second, description.range) << name;
   }

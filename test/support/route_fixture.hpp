@@ -16,7 +16,7 @@ namespace testing_support {
 
 /// The front end the generated route is described with. Its frames are textures made for OpenSeqSLAM's
 /// thumbnail, whose search and acceptance tests they serve; which front end suits real frames is
-/// measured on real frames (README), and the HOG front end has tests of its own.
+/// measured on real frames (doc/results.md), and the HOG front end has tests of its own.
 inline DescriptorParams routeDescriptor() {
   DescriptorParams params;
   params.type = kThumbnailFrontEnd;

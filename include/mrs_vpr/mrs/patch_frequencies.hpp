@@ -17,7 +17,7 @@ namespace mrs_vpr {
  * the same in every map. On the tune half of the real benchmark (M = 9137, N = 300, stride 4; N =
  * 200, stride 2) the coarse table of these cells put the true place first in every query, as
  * 512-byte pixel-pooled cells did; 2 frequencies (64 bytes) 95%, runs of 16 or 32 pixels (128 or
- * 64 bytes) 88% and 84%, the map's first 64 principal components 82-88% (README).
+ * 64 bytes) 88% and 84%, the map's first 64 principal components 82-88% (doc/paper_gaps.md).
  *
  * A cell of stride s is the transform of the mean of the s frames ending at its frame (clipped to
  * the frames that exist), as temporal_pooling.hpp pools; the transform is linear, so this is also
