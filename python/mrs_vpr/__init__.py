@@ -21,6 +21,8 @@ _LAZY_NAMES = {
     "Match": "mrs_vpr._bindings",
     "MapDatabaseError": "mrs_vpr._bindings",
     "synthetic_route": "mrs_vpr._bindings",
+    "evaluate": "mrs_vpr.evaluation",
+    "Evaluation": "mrs_vpr.evaluation",
 }
 
 __all__ = sorted(_LAZY_NAMES)

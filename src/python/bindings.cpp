@@ -1,6 +1,6 @@
-// The Python module mrs_vpr._bindings: PlaceRecognizer, its answers and the map database, for NumPy
-// images. The package python/mrs_vpr wraps it (keyword names of the parameters); everything that
-// validates input is the core's.
+// The Python module mrs_vpr._bindings: PlaceRecognizer, its answers, the map database and the
+// evaluation library, for NumPy images. The package python/mrs_vpr wraps it (keyword names of the
+// parameters, offline evaluation); everything that validates input is the core's.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -20,6 +20,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
@@ -346,6 +347,65 @@ class Recognizer {
   PersistentMap map_;
 };
 
+/// GroundTruth from a dict {query frame: [reference frames]}.
+GroundTruth groundTruthFrom(const py::dict& truth) {
+  GroundTruth ground_truth;
+  for (const auto& [query, references] : truth) {
+    ground_truth[query.cast<int>()] = references.cast<std::vector<int>>();
+  }
+  return ground_truth;
+}
+
+py::dict recordDict(const QueryRecord& record) {
+  py::dict row;
+  row["query_index"] = record.query_index;
+  row["true_indices"] = record.true_indices;
+  row["predicted_index"] = record.predicted_index;
+  row["score"] = record.score;
+  row["confidence"] = record.confidence;
+  row["accepted"] = record.accepted;
+  row["at_velocity_bound"] = record.at_velocity_bound;
+  row["time_ms"] = record.time_ms;
+  return row;
+}
+
+/// A record from a dict with recordDict's keys (as Python code may have built or filtered it).
+QueryRecord recordFrom(const py::handle& row) {
+  QueryRecord record;
+  record.query_index = row["query_index"].cast<int>();
+  record.true_indices = row["true_indices"].cast<std::vector<int>>();
+  record.predicted_index = row["predicted_index"].cast<int>();
+  record.score = row["score"].cast<float>();
+  record.confidence = row["confidence"].cast<float>();
+  record.accepted = row["accepted"].cast<bool>();
+  record.at_velocity_bound = row["at_velocity_bound"].cast<bool>();
+  record.time_ms = row["time_ms"].cast<double>();
+  return record;
+}
+
+std::vector<QueryRecord> recordsFrom(const py::iterable& rows) {
+  std::vector<QueryRecord> records;
+  for (const py::handle row : rows) records.push_back(recordFrom(row));
+  return records;
+}
+
+py::dict summaryDict(const EvaluationSummary& summary) {
+  py::dict row;
+  row["tolerance"] = summary.tolerance;
+  row["queries"] = summary.queries;
+  row["top1"] = summary.top1;
+  row["pr_auc"] = summary.pr_auc;
+  row["recall_at_100_precision"] = summary.recall_at_100_precision;
+  row["accepted"] = summary.accepted;
+  row["accepted_rate"] = summary.accepted_rate;
+  row["accepted_precision"] = summary.accepted_precision;
+  row["accepted_recall"] = summary.accepted_recall;
+  row["median_abs_error"] = summary.median_abs_error;
+  row["median_time_ms"] = summary.median_time_ms;
+  row["total_time_s"] = summary.total_time_s;
+  return row;
+}
+
 /// A float as it prints with float's precision ("6.92", not 6.920000076293945).
 std::string floatText(float value) {
   std::ostringstream out;
@@ -465,6 +525,26 @@ void bindRecognizer(py::module_& m) {
           "Where the map's newest `frames` frames lie among its older ones, recent_exclusion frames back "
           "and more: a loop closure.")
       .def(
+          "match_every_frame",
+          [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the traversal");
+            py::gil_scoped_release released;
+            DescriptorSequence traversal(self.core().extractor().size());
+            traversal.reserve(static_cast<int>(views.size()));
+            for (std::size_t i = 0; i < views.size(); ++i) {
+              try {
+                traversal.append(self.core().describe(views[i].mat, order));
+              } catch (const std::invalid_argument& error) {
+                throw std::invalid_argument("image " + std::to_string(i) + " of the traversal: " + error.what());
+              }
+            }
+            return self.core().matchEveryFrame(traversal.view(), method);
+          },
+          py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
+          "The per-frame protocol over a traversal: for every frame, the Match of the sequence of "
+          "sequence_length frames that localises it (reference_index -1 where that sequence is incomplete).")
+      .def(
           "describe",
           [](Recognizer& self, const py::handle& image, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);
@@ -515,6 +595,80 @@ void bindRecognizer(py::module_& m) {
           "Every parameter in effect, by its exact name.");
 }
 
+void bindEvaluation(py::module_& m) {
+  m.def(
+      "per_frame_queries",
+      [](int query_frames, int sequence_length, const std::string& alignment) {
+        SequenceParams params;
+        params.sequence_length = sequence_length;
+        params.alignment = parseWindowAlignment(alignment);
+        return perFrameQueries(query_frames, params);
+      },
+      py::arg("query_frames"), py::arg("sequence_length"), py::arg("alignment"),
+      "Query frames with a full test sequence in the per-frame protocol.");
+  m.def(
+      "global_queries",
+      [](int query_frames, int length, int count, std::uint64_t seed, const std::string& alignment) {
+        py::list tests;
+        for (const TestSequence& test :
+             globalQueries(query_frames, length, count, seed, parseWindowAlignment(alignment))) {
+          tests.append(py::make_tuple(test.start, test.length, test.query_index));
+        }
+        return tests;
+      },
+      py::arg("query_frames"), py::arg("length"), py::arg("count"), py::arg("seed"), py::arg("alignment"),
+      "Test sequences (start, length, query_index) of the global localisation protocol.");
+  m.def(
+      "truths",
+      [](const std::optional<py::dict>& truth, int query_frames, int reference_frames) {
+        std::optional<GroundTruth> ground_truth;
+        if (truth) {
+          ground_truth = groundTruthFrom(*truth);
+          checkGroundTruth(*ground_truth, query_frames, reference_frames);
+        }
+        py::list table;
+        for (int query = 0; query < query_frames; ++query) {
+          const auto true_indices = truthFor(query, ground_truth ? &*ground_truth : nullptr, reference_frames);
+          table.append(true_indices ? py::cast(*true_indices) : py::none());
+        }
+        return table;
+      },
+      py::arg("ground_truth"), py::arg("query_frames"), py::arg("reference_frames"),
+      "For every query frame its true map frames, or None where it is not evaluated; without ground truth, "
+      "query frame i shows map frame i.");
+  m.def(
+      "query_record",
+      [](int query_index, std::vector<int> truth, const Match& match, double time_ms) {
+        return recordDict(queryRecordOf(query_index, std::move(truth), match, time_ms));
+      },
+      py::arg("query_index"), py::arg("true_indices"), py::arg("match"), py::arg("time_ms"));
+  m.def(
+      "summarise",
+      [](const py::iterable& records, int tolerance) { return summaryDict(summarise(recordsFrom(records), tolerance)); },
+      py::arg("records"), py::arg("tolerance"),
+      "top1, pr_auc, recall_at_100_precision, accepted figures, median error and time of query records.");
+  m.def(
+      "precision_recall_curve",
+      [](const py::iterable& records, int tolerance) {
+        const std::vector<PrPoint> curve = precisionRecallCurve(recordsFrom(records), tolerance);
+        py::array_t<double> threshold(static_cast<py::ssize_t>(curve.size()));
+        py::array_t<double> precision(static_cast<py::ssize_t>(curve.size()));
+        py::array_t<double> recall(static_cast<py::ssize_t>(curve.size()));
+        for (std::size_t i = 0; i < curve.size(); ++i) {
+          threshold.mutable_at(i) = curve[i].threshold;
+          precision.mutable_at(i) = curve[i].precision;
+          recall.mutable_at(i) = curve[i].recall;
+        }
+        py::dict result;
+        result["threshold"] = threshold;
+        result["precision"] = precision;
+        result["recall"] = recall;
+        return result;
+      },
+      py::arg("records"), py::arg("tolerance"),
+      "The precision-recall curve over a threshold on confidence, from the highest threshold down.");
+}
+
 }  // namespace
 }  // namespace python
 }  // namespace mrs_vpr
@@ -528,6 +682,7 @@ PYBIND11_MODULE(_bindings, m) {
 
   bindAnswers(m);
   bindRecognizer(m);
+  bindEvaluation(m);
 
   m.def("parameter_reference", &parameterReference,
         "Every parameter: name, type, default, allowed values and meaning (the core's tables).");
