@@ -351,7 +351,13 @@ class Recognizer {
 GroundTruth groundTruthFrom(const py::dict& truth) {
   GroundTruth ground_truth;
   for (const auto& [query, references] : truth) {
-    ground_truth[query.cast<int>()] = references.cast<std::vector<int>>();
+    try {
+      ground_truth[query.cast<int>()] = references.cast<std::vector<int>>();
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument("ground truth maps a query frame to a list of map frames, all integers; got " +
+                                  py::repr(query).cast<std::string>() + ": " +
+                                  py::repr(references).cast<std::string>());
+    }
   }
   return ground_truth;
 }
@@ -385,7 +391,14 @@ QueryRecord recordFrom(const py::handle& row) {
 
 std::vector<QueryRecord> recordsFrom(const py::iterable& rows) {
   std::vector<QueryRecord> records;
-  for (const py::handle row : rows) records.push_back(recordFrom(row));
+  for (const py::handle row : rows) {
+    try {
+      records.push_back(recordFrom(row));
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument("a query record holds a value of the wrong type: " +
+                                  py::repr(row).cast<std::string>());
+    }
+  }
   return records;
 }
 

@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 import mrs_vpr
+import mrs_vpr.evaluation
 from conftest import ROUTE_PARAMETERS
 
 
@@ -69,3 +70,10 @@ def test_bad_evaluation_input_raises_value_error(route, short_sequences):
     with pytest.raises(ValueError) as error:
         mrs_vpr.evaluate(short_sequences, route["query"], ground_truth={5000: [1]})
     assert "5000" in str(error.value)
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(short_sequences, route["query"], ground_truth={5: ["one"]})
+    assert str(error.value) == (
+        "ground truth maps a query frame to a list of map frames, all integers; got 5: ['one']")
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluation.summarise([{"query_index": "one"}], 2)
+    assert str(error.value) == "a query record holds a value of the wrong type: {'query_index': 'one'}"
