@@ -92,6 +92,24 @@ double PlaceRecognizer::lastAppearanceChange() const {
   return keyframes_.lastChange();
 }
 
+std::vector<int> PlaceRecognizer::keyframesOf(const DescriptorSequence& test_sequence) const {
+  AppearanceKeyframes keyframes = [&] {
+    std::lock_guard<std::mutex> lock(keyframes_mutex_);
+    return keyframes_.follower();
+  }();
+  std::vector<int> kept;
+  for (int i = 0; i < test_sequence.size(); ++i) {
+    const cv::Mat descriptor = test_sequence.descriptorRow(i);
+    if (keyframes.wants(descriptor)) {
+      keyframes.keep(descriptor);
+      kept.push_back(i);
+    } else {
+      keyframes.skip(descriptor);
+    }
+  }
+  return kept;
+}
+
 FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);

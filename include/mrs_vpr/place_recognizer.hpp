@@ -77,6 +77,13 @@ class PlaceRecognizer {
   /// The appearance change of the frame last offered, in units of the difference between unrelated
   /// views (0 when keyframes are not chosen by appearance).
   double lastAppearanceChange() const;
+  /**
+   * Which frames of a test sequence (descriptors, oldest first) are keyframes, chosen as the map's
+   * frames are (min_appearance_change, in the scale learnt from the map), so that a test sequence of a
+   * camera's every frame covers the world as densely as the map: their indices, increasing (all of
+   * them when min_appearance_change is 0). The map is not touched.
+   */
+  std::vector<int> keyframesOf(const DescriptorSequence& test_sequence) const;
 
   /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
   PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
