@@ -3,7 +3,7 @@
     import mrs_vpr
 
     recognizer = mrs_vpr.PlaceRecognizer(descriptor_type="thumbnail", sequence_length=10)
-    recognizer.add_frames(map_images)            # N x H x W grey or N x H x W x 3 BGR, uint8
+    recognizer.add_frames(map_images)  # N x H x W grey or N x H x W x 3 BGR, uint8; keeps keyframes
     answer = recognizer.match(query_images[-50:])  # where do the newest 50 frames lie in the map?
     if answer.accepted:
         print(answer.reference_index, answer.confidence)

@@ -32,8 +32,10 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     protocol "per-frame": every query frame with a full sequence of sequence_length frames (OpenSeqSLAM's
     protocol); "global": `queries` test sequences of sequence_length frames at random positions drawn
     with `seed`. ground_truth: None (query frame i shows map frame i), a dict {query frame: [map
-    frames]} or a sequence of one map frame per query frame. An answer is correct within `tolerance`
-    frames of a true one. Returns an Evaluation (records, summary, pr_curve).
+    frames]} or a sequence of one map frame per query frame. Map frames are those the recognizer holds
+    (its keyframes; build the map with min_appearance_change=0 to keep every frame). The per-frame
+    protocol matches every query frame; a global test sequence is keyframed by match(). An answer is
+    correct within `tolerance` frames of a true one. Returns an Evaluation (records, summary, pr_curve).
     """
     parameters = recognizer.parameters
     length = parameters["sequence/sequence_length"]

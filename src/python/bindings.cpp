@@ -300,13 +300,6 @@ std::vector<Image> imagesFrom(const py::handle& images, const std::string& what)
   return result;
 }
 
-std::vector<cv::Mat> matsOf(const std::vector<Image>& images) {
-  std::vector<cv::Mat> mats;
-  mats.reserve(images.size());
-  for (const Image& image : images) mats.push_back(image.mat);
-  return mats;
-}
-
 ChannelOrder channelOrder(const std::string& name) {
   if (name == "bgr") return ChannelOrder::kBgr;
   if (name == "rgb") return ChannelOrder::kRgb;
@@ -328,6 +321,28 @@ py::array_t<std::uint8_t> stackOf(const std::vector<cv::Mat>& frames, const Synt
     frames[i].copyTo(view);
   }
   return stack;
+}
+
+/// Every image's descriptor, in order; a bad image is named by its position in `what`.
+DescriptorSequence describeAll(const PlaceRecognizer& recognizer, const std::vector<Image>& images, ChannelOrder order,
+                               const std::string& what) {
+  DescriptorSequence descriptors(recognizer.extractor().size());
+  descriptors.reserve(static_cast<int>(images.size()));
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    try {
+      descriptors.append(recognizer.describe(images[i].mat, order));
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("image " + std::to_string(i) + " of " + what + ": " + error.what());
+    }
+  }
+  return descriptors;
+}
+
+/// The keyframes of a test sequence, chosen as the map's frames are (PlaceRecognizer::keyframesOf).
+DescriptorSequence keyframesIn(const PlaceRecognizer& recognizer, const DescriptorSequence& test_sequence) {
+  DescriptorSequence keyframes(recognizer.extractor().size());
+  for (const int frame : recognizer.keyframesOf(test_sequence)) keyframes.append(test_sequence.descriptorRow(frame));
+  return keyframes;
 }
 
 // --- The recognizer ----------------------------------------------------------------------------------
@@ -482,11 +497,15 @@ void bindRecognizer(py::module_& m) {
           [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);
             const Image view = imageFrom(image);
+            const Stamp exact = coreStamp(stamp);
             py::gil_scoped_release released;
-            return self.map().add(self.core().describe(view.mat, order), coreStamp(stamp)) == FrameAdmission::kAdmitted;
+            // The node's path: the map keeps the frame only if it is a keyframe.
+            return self.map().offer(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
           },
           py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
-          "Appends a frame to the map; False when the map is full (max_frames) and the frame was dropped.")
+          "Offers a camera frame to the map; True when it became a keyframe. A frame too similar to the last "
+          "keyframe (its view changed by less than min_appearance_change) is not kept, nor is one that finds "
+          "the map full (max_frames).")
       .def(
           "add_frames",
           [](Recognizer& self, const py::handle& images, std::optional<std::vector<double>> stamps,
@@ -497,38 +516,59 @@ void bindRecognizer(py::module_& m) {
               throw std::invalid_argument("stamps has " + std::to_string(stamps->size()) + " entries for " +
                                           std::to_string(views.size()) + " images");
             }
-            py::gil_scoped_release released;
-            // Every image is described before the first is added: a bad one leaves the map as it was.
-            std::vector<cv::Mat> descriptors;
-            descriptors.reserve(views.size());
-            for (std::size_t i = 0; i < views.size(); ++i) {
+            // Every stamp is converted and every image described before the first is offered: bad input
+            // leaves the map as it was.
+            std::vector<Stamp> exact(views.size());
+            for (std::size_t i = 0; i < views.size() && stamps; ++i) {
               try {
-                descriptors.push_back(self.core().describe(views[i].mat, order));
+                exact[i] = coreStamp((*stamps)[i]);
               } catch (const std::invalid_argument& error) {
-                throw std::invalid_argument("image " + std::to_string(i) + " of images: " + error.what());
+                throw std::invalid_argument("stamp " + std::to_string(i) + " of stamps: " + error.what());
               }
             }
+            py::gil_scoped_release released;
+            const DescriptorSequence descriptors = describeAll(self.core(), views, order, "images");
             int admitted = 0;
-            for (std::size_t i = 0; i < descriptors.size(); ++i) {
-              const double stamp = stamps ? (*stamps)[i] : 0.0;
-              admitted += self.map().add(descriptors[i], coreStamp(stamp)) == FrameAdmission::kAdmitted ? 1 : 0;
+            for (int i = 0; i < descriptors.size(); ++i) {
+              admitted += self.map().offer(descriptors.descriptorRow(i).clone(), exact[static_cast<std::size_t>(i)]) ==
+                                  FrameAdmission::kAdmitted
+                              ? 1
+                              : 0;
             }
             return admitted;
           },
           py::arg("images"), py::arg("stamps") = py::none(), py::arg("channel_order") = "bgr",
-          "Appends frames (oldest first) to the map; returns how many it took (the rest: the map is full).")
+          "Offers frames (oldest first) to the map as add_frame does; returns how many became keyframes.")
+      .def(
+          "keyframes_of",
+          [](Recognizer& self, const py::handle& images, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the test sequence");
+            py::gil_scoped_release released;
+            return self.core().keyframesOf(describeAll(self.core(), views, order, "the test sequence"));
+          },
+          py::arg("images"), py::arg("channel_order") = "bgr",
+          "Which of the images (oldest first) match() keeps as the test sequence: their indices, chosen as the "
+          "map's keyframes are (all of them when min_appearance_change is 0).")
       .def(
           "match",
           [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);
             const std::vector<Image> views = imagesFrom(images, "the test sequence");
-            const std::vector<cv::Mat> mats = matsOf(views);
             py::gil_scoped_release released;
-            return self.core().match(mats, method, order);
+            const DescriptorSequence test = describeAll(self.core(), views, order, "the test sequence");
+            const DescriptorSequence keyframes = keyframesIn(self.core(), test);
+            if (keyframes.size() < 2 && test.size() >= 2) {
+              throw std::invalid_argument("the test sequence needs at least 2 keyframes, got " +
+                                          std::to_string(keyframes.size()) + " of " + std::to_string(test.size()) +
+                                          " images (too little changes between them: see min_appearance_change)");
+            }
+            return self.core().match(keyframes, method);
           },
           py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
-          "Where the test sequence (images, oldest first) ends in the map. method: 'mrs', 'seqslam' or '' "
-          "(default_method).")
+          "Where the test sequence (images, oldest first) ends in the map. Its images are keyframed as the map's "
+          "frames are (keyframes_of) and the answer localises the last keyframe; at least 2 are needed. method: "
+          "'mrs', 'seqslam' or '' (default_method).")
       .def(
           "match_recent",
           [](Recognizer& self, long long frames, const std::string& method) {
@@ -544,15 +584,7 @@ void bindRecognizer(py::module_& m) {
             const ChannelOrder order = channelOrder(channel_order);
             const std::vector<Image> views = imagesFrom(images, "the traversal");
             py::gil_scoped_release released;
-            DescriptorSequence traversal(self.core().extractor().size());
-            traversal.reserve(static_cast<int>(views.size()));
-            for (std::size_t i = 0; i < views.size(); ++i) {
-              try {
-                traversal.append(self.core().describe(views[i].mat, order));
-              } catch (const std::invalid_argument& error) {
-                throw std::invalid_argument("image " + std::to_string(i) + " of the traversal: " + error.what());
-              }
-            }
+            const DescriptorSequence traversal = describeAll(self.core(), views, order, "the traversal");
             return self.core().matchEveryFrame(traversal.view(), method);
           },
           py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",

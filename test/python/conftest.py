@@ -26,7 +26,8 @@ def recognizer():
 
 @pytest.fixture
 def mapped(route):
-    """A recognizer whose map is the route's first traversal, stamped 100 + frame / 10 seconds."""
+    """A recognizer whose map is the route's first traversal, stamped 100 + frame / 10 seconds. Its
+    neighbouring frames do not look alike: at the default min_appearance_change each is a keyframe."""
     recognizer = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
     stamps = [100.0 + i / 10.0 for i in range(len(route["reference"]))]
     assert recognizer.add_frames(route["reference"], stamps) == len(route["reference"])
