@@ -2,7 +2,10 @@
 """Maps a folder of frames and localises a stretch of another traversal with mrs_vpr's Python API.
 
     source .ws/devel/setup.bash
-    python3 doc/examples/map_and_localise.py ../shared/data/nordland/summer ../shared/data/nordland/winter
+    rosrun mrs_vpr map_and_localise.py ../shared/data/nordland/summer ../shared/data/nordland/winter
+
+or doc/examples/map_and_localise.py with the same arguments: either runs Debian's /usr/bin/python3, which
+has NumPy and the package (a python3 of one's own, such as pyenv's, may have neither).
 
 Frames are read in file-name order with Pillow (python3-pil, which matplotlib brings) into NumPy arrays.
 The map keeps a frame only once its view has changed by min_appearance_change (as the node does), and
@@ -68,8 +71,8 @@ def parameter(text):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("map_folder")
-    parser.add_argument("query_folder")
+    parser.add_argument("map_folder", help="images of the traversal to map, in file-name order")
+    parser.add_argument("query_folder", help="images of the traversal to localise; frame i shows map frame i's place")
     parser.add_argument("--length", type=int, default=50, help="frames of the stretch (default 50)")
     parser.add_argument("--first", type=int, help="its first query frame (default: the query's last frames)")
     parser.add_argument("--method", default="", help="mrs or seqslam (default: default_method)")

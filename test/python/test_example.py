@@ -59,6 +59,15 @@ def test_the_example_keyframes_a_camera_that_stops_and_scores_the_frames_a_keyfr
     assert lines[3].startswith("10 stretches of 50 frames at random positions: top-1 1.000 (within 0 frames)")
 
 
+def test_the_example_run_as_documented_prints_its_help_without_a_prompt_or_a_warning():
+    result = subprocess.run([str(SCRIPT), "--help"], stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0
+    assert result.stdout.startswith("usage: map_and_localise.py [-h]")
+    assert "map_folder" in result.stdout and "--parameter NAME=VALUE" in result.stdout
+    assert result.stderr == ""
+
+
 def test_the_example_reports_a_bad_parameter(tmp_path):
     result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path), "--parameter", "tau=0"],
                             capture_output=True, text=True)
