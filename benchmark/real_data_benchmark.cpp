@@ -11,13 +11,16 @@
 //   - small maps (20 to 300 frames, as a robot's map is when it starts), known ground and out of the map;
 //   - the reported part's winter frames played backwards (places in the map that no trajectory follows);
 //   - the node's continuous mode on one traversal (summer, then the part again in winter), its map
-//     growing from empty.
+//     growing from empty;
+//   - camera drives (camera_drive_rows.hpp): the summer frames and the part's winter frames replayed as
+//     a camera-only vehicle records them, with noisy stops and slow and fast stretches, through the
+//     node's continuous mode at its defaults and through the evaluator's per-frame protocol.
 // The route is split in two parts, "tune" (first half) and "check" (second half): design choices are
 // made on one and reported on the other (--part). Both methods answer the same queries in one run.
 //
 //   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
 //                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
-//                          [--skip-per-frame] [--skip-global] [--diagnose] [--json FILE]
+//                          [--skip-per-frame] [--skip-global] [--skip-drives] [--diagnose] [--json FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -49,6 +52,7 @@
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
+#include "camera_drive_rows.hpp"
 #include "list_option.hpp"
 
 namespace po = boost::program_options;
@@ -69,6 +73,7 @@ struct Options {
   std::uint64_t seed = 42;
   bool per_frame = true;
   bool global = true;
+  bool drives = true;
   bool diagnose = false;
   std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
@@ -82,7 +87,7 @@ struct Options {
 constexpr const char* kUsage =
     "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
-    "                              [--skip-per-frame] [--skip-global] [--diagnose]\n"
+    "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs] [--json FILE]\n"
@@ -98,6 +103,7 @@ std::optional<Options> parse(int argc, char** argv) {
   std::int64_t seed = static_cast<std::int64_t>(options.seed);  // Signed, so that a negative seed is refused.
   bool skip_per_frame = false;
   bool skip_global = false;
+  bool skip_drives = false;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
@@ -114,6 +120,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("seed", po::value(&seed)->default_value(seed), "seed of the global query positions")
       ("skip-per-frame", po::bool_switch(&skip_per_frame), "no per-frame rows")
       ("skip-global", po::bool_switch(&skip_global), "no global rows")
+      ("skip-drives", po::bool_switch(&skip_drives), "no camera-drive rows")
       ("diagnose", po::bool_switch(&options.diagnose), "print where MRS kept the truth, level by level")
       ("hypotheses", po::value(&options.hypotheses)->default_value(options.hypotheses),
        "mrs: hypotheses carried down from the coarsest level")
@@ -131,6 +138,7 @@ std::optional<Options> parse(int argc, char** argv) {
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   options.per_frame = !skip_per_frame;
   options.global = !skip_global;
+  options.drives = !skip_drives;
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
   options.seed = static_cast<std::uint64_t>(seed);
   if (options.part != "tune" && options.part != "check" && options.part != "all") {
@@ -263,6 +271,9 @@ class Report {
                        {"accepted_recall", s.accepted_recall},
                        {"median_time_ms", number(s.median_time_ms)}}}});
   }
+
+  /// Rows of another shape (printed by their maker), for the JSON output only.
+  void add(const std::vector<nlohmann::json>& rows) { rows_.insert(rows_.end(), rows.begin(), rows.end()); }
 
   void write(const Options& options) const {
     if (options.json.empty()) return;
@@ -703,6 +714,23 @@ int run(int argc, char** argv) {
   }
   runReplays(summer, winter, params, options, part_begin, part_end, report);
   if (options.per_frame) runContinuous(summer, winter, params, options, part_begin, part_end, report);
+  if (options.drives) {
+    mrs_vpr::benchmark::CameraDriveInput drives;
+    drives.summer = &frames.summer;
+    drives.winter = &frames.winter;
+    drives.route_frames = route;
+    drives.part_begin = part_begin;
+    drives.part_end = part_end;
+    drives.methods = options.methods;
+    drives.descriptor = options.descriptor;
+    drives.seed = options.seed;
+    mrs_vpr::benchmark::runCameraDrives(
+        drives, [&](const std::vector<nlohmann::json>& rows) { report.add(rows); },
+        [&](const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& summary,
+            int reference_frames, int sequence_length) {
+          report.row(setting, method, summary, {"per-frame", false, reference_frames, sequence_length});
+        });
+  }
   report.write(options);
   return 0;
 }

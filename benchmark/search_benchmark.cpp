@@ -166,7 +166,7 @@ int run(int argc, char** argv) {
   unbounded.max_frames = 0;
   mrs_vpr::PlaceRecognizer reference(params, unbounded);
   mrs_vpr::DescriptorSequence query(reference.extractor().size());
-  for (const cv::Mat& image : route.reference) reference.addFrame(image);
+  for (const cv::Mat& image : route.reference) reference.addDescriptor(reference.describe(image));  // Every frame.
   for (const cv::Mat& image : route.query) query.append(reference.describe(image));
 
   std::mt19937_64 rng(options.seed);

@@ -164,7 +164,9 @@ with open(results) as f:
     for line in f:
         answer = json.loads(line)
         request = answer["request"]
-        last = request["start"] + request["count"] - 1
+        # query_bag sends keyframes (frames whose view changed), not always consecutive frames: the
+        # stamp of the newest one names its bag frame.
+        last = round((request["last_stamp"] - start_time) * rate)
         true_index = truth[last][0]
         frames = "%d-%d" % (request["start"], last)
         if not answer["success"]:

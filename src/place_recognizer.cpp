@@ -92,24 +92,6 @@ double PlaceRecognizer::lastAppearanceChange() const {
   return keyframes_.lastChange();
 }
 
-std::vector<int> PlaceRecognizer::keyframesOf(const DescriptorSequence& test_sequence) const {
-  AppearanceKeyframes keyframes = [&] {
-    std::lock_guard<std::mutex> lock(keyframes_mutex_);
-    return keyframes_.follower();
-  }();
-  std::vector<int> kept;
-  for (int i = 0; i < test_sequence.size(); ++i) {
-    const cv::Mat descriptor = test_sequence.descriptorRow(i);
-    if (keyframes.wants(descriptor)) {
-      keyframes.keep(descriptor);
-      kept.push_back(i);
-    } else {
-      keyframes.skip(descriptor);
-    }
-  }
-  return kept;
-}
-
 FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
@@ -249,7 +231,33 @@ PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, co
       throw std::invalid_argument("image " + std::to_string(i) + " of the test sequence: " + error.what());
     }
   }
-  return match(descriptors, method);
+  const DescriptorSequence keyframes = keyframesOf(descriptors);
+  if (descriptors.size() >= 2 && keyframes.size() < 2) {
+    throw std::invalid_argument("the test sequence's " + std::to_string(descriptors.size()) +
+                                " images hold fewer than 2 keyframes: the view hardly changes across them "
+                                "(min_appearance_change " + std::to_string(recognizer_.min_appearance_change) + ")");
+  }
+  return match(keyframes, method);
+}
+
+DescriptorSequence PlaceRecognizer::keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen) const {
+  AppearanceKeyframes keyframes = [&] {
+    std::lock_guard<std::mutex> lock(keyframes_mutex_);
+    return keyframes_.follower();
+  }();
+  DescriptorSequence kept(extractor_.size());
+  if (chosen != nullptr) chosen->clear();
+  for (int i = 0; i < frames.size(); ++i) {
+    const cv::Mat descriptor = frames.descriptorRow(i);
+    if (!keyframes.wants(descriptor)) {
+      keyframes.skip(descriptor);
+      continue;
+    }
+    keyframes.keep(descriptor);
+    kept.append(descriptor, frames.stamp(i));
+    if (chosen != nullptr) chosen->push_back(i);
+  }
+  return kept;
 }
 
 PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, const std::string& method,

@@ -77,17 +77,19 @@ class PlaceRecognizer {
   /// The appearance change of the frame last offered, in units of the difference between unrelated
   /// views (0 when keyframes are not chosen by appearance).
   double lastAppearanceChange() const;
-  /**
-   * Which frames of a test sequence (descriptors, oldest first) are keyframes, chosen as the map's
-   * frames are (min_appearance_change, in the scale learnt from the map), so that a test sequence of a
-   * camera's every frame covers the world as densely as the map: their indices, increasing (all of
-   * them when min_appearance_change is 0). The map is not touched.
-   */
-  std::vector<int> keyframesOf(const DescriptorSequence& test_sequence) const;
 
-  /// Where the test sequence (images, oldest first) ends in the map. `method` "" is the default one.
+  /// Where the test sequence (images, oldest first, at the camera's rate or spaced already) ends in the
+  /// map. Its keyframes are matched, chosen as the map's (keyframesOf). `method` "" is the default one.
+  /// Throws std::invalid_argument when fewer than 2 of them are keyframes.
   PlaceAnswer match(const std::vector<cv::Mat>& test_sequence, const std::string& method = "",
                     ChannelOrder order = ChannelOrder::kBgr);
+  /**
+   * The keyframes of a test sequence of descriptors, chosen as the map's frames are (appearance change,
+   * RecognizerParams::min_appearance_change, measured on the map's scale), so that a sequence at the
+   * camera's rate is spaced as the map is; every frame when that is 0. Stamps are kept; `chosen`
+   * receives the index of each keyframe in `frames`.
+   */
+  DescriptorSequence keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen = nullptr) const;
   /**
    * The same with a test sequence of descriptors. When `explanation` is not null it receives what a
    * picture of the answer needs (see match_explanation.hpp), computed while the map is still held;

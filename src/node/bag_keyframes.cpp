@@ -63,6 +63,16 @@ std::string BagKeyframes::summary() const {
 
 std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_path, const std::string& topic, int start,
                                                       int count, BagKeyframes& keyframes) {
+  return readChosen(
+      bag_path, topic, start, count,
+      [&](const sensor_msgs::ImageConstPtr& image) { return keyframes.keep(image->header.stamp); },
+      [&] { return keyframes.summary(); });
+}
+
+std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, const std::string& topic, int start,
+                                                   int count,
+                                                   const std::function<bool(const sensor_msgs::ImageConstPtr&)>& choose,
+                                                   const std::function<std::string()>& summary) {
   if (start < 0 || count < 0) {
     throw std::runtime_error("invalid keyframe range: start " + std::to_string(start) + ", count " +
                              std::to_string(count));
@@ -76,14 +86,14 @@ std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_pat
     forEachImage(
         bag_path, topic,
         [&](int, const sensor_msgs::ImageConstPtr& image) {
-          if (static_cast<int>(chosen.size()) < count && keyframes.keep(image->header.stamp)) chosen.push_back(image);
+          if (static_cast<int>(chosen.size()) < count && choose(image)) chosen.push_back(image);
         },
         next, std::min(chunk, available - next));
   }
   if (static_cast<int>(chosen.size()) < count) {
     throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(chosen.size()) +
                              " keyframes from message " + std::to_string(start) + " on, fewer than " +
-                             std::to_string(count) + ": " + keyframes.summary());
+                             std::to_string(count) + ": " + summary());
   }
   return chosen;
 }

@@ -312,6 +312,16 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
         }
       }
       input.header = request.images.back().header;
+      // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were.
+      if (!travel_policy_.enabled()) {
+        const int given = input.images->size();
+        *input.images = recognizer_.keyframesOf(*input.images);
+        if (input.images->size() < 2) {
+          throw std::invalid_argument("the " + std::to_string(given) + " images hold " +
+                                      std::to_string(input.images->size()) +
+                                      " keyframe(s), fewer than 2: the view hardly changes across them (~min_appearance_change)");
+        }
+      }
     } else if (request.recent_frames == 0) {
       throw std::invalid_argument(
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
@@ -351,7 +361,13 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
-  if (explain != nullptr) debug_image_->publish(input.header, answered, explanation);
+  if (explain != nullptr) {
+    // What keyframing left out, so that a stop shows as frames skipped rather than as missing answers.
+    const std::string map_status = std::to_string(frames_too_similar_.load()) +
+                                   " frames skipped as too similar to the last keyframe; " +
+                                   std::to_string(frames_skipped_.load()) + " skipped by the keyframe policy";
+    debug_image_->publish(input.header, answered, explanation, map_status);
+  }
   const Match& match = answered.match;
   response.reference_index = match.reference_index;
   response.score = match.score;

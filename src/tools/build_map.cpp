@@ -10,6 +10,7 @@
 
 #include <boost/program_options.hpp>
 
+#include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
@@ -46,6 +47,7 @@ int run(int argc, char** argv) {
   bool force = false;
   mrs_vpr::bag::TravelSettings travel;
   mrs_vpr::DescriptorParams params;
+  double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
@@ -59,7 +61,10 @@ int run(int argc, char** argv) {
       ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
        "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
-      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame");
+      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
+      ("min-appearance-change", po::value(&min_appearance_change)->default_value(min_appearance_change),
+       "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
+       "0 = every frame");
   // clang-format on
   mrs_vpr::tools::addDescriptorOptions(description, params);
   po::variables_map variables;
@@ -67,6 +72,9 @@ int run(int argc, char** argv) {
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  mrs_vpr::RecognizerParams keyframing;
+  keyframing.min_appearance_change = min_appearance_change;
+  keyframing.validate();
   if (travel.min_travel != 0.0 && bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
@@ -104,6 +112,11 @@ int run(int argc, char** argv) {
   try {
     mrs_vpr::MapDatabase map(target, params);
     const std::int64_t before = map.size();
+    // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
+    // on from an appended map's last keyframes.
+    mrs_vpr::AppearanceKeyframes appearance(params, keyframes ? 0.0 : min_appearance_change);
+    if (appearance.enabled()) map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { appearance.keep(frame.descriptor); });
+    int too_similar = 0;
     std::vector<mrs_vpr::StoredFrame> batch;
     const auto flush = [&] {
       map.append(batch);
@@ -114,12 +127,22 @@ int run(int argc, char** argv) {
         images.empty() ? bag_path : images, topic, "map", extractor,
         [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
           if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
+          if (!appearance.wants(descriptor)) {
+            appearance.skip(descriptor);
+            ++too_similar;
+            return;
+          }
+          appearance.keep(descriptor);
           batch.push_back({descriptor.clone(), stamp, "", -1});
           if (batch.size() >= kBatch) flush();
         },
         images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
+    if (appearance.enabled()) {
+      std::cerr << "build_map: " << too_similar << " frames too similar to the last keyframe to be kept "
+                << "(--min-appearance-change " << min_appearance_change << ")\n";
+    }
     if (keyframes) {
       std::cerr << "build_map: " << keyframes->summary() << "\n";
       if (keyframes->withoutPose() > 0) {

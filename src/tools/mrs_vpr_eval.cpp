@@ -27,7 +27,6 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
-#include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
@@ -147,8 +146,14 @@ std::optional<Options> parseOptions(int argc, char** argv) {
       ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
       ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods; 0 = OpenCV's default")
       ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
+      ("velocity-min", po::value(&params.sequence.velocity_min)->default_value(params.sequence.velocity_min),
+       "slowest reference keyframes per test keyframe")
+      ("velocity-max", po::value(&params.sequence.velocity_max)->default_value(params.sequence.velocity_max),
+       "fastest reference keyframes per test keyframe")
       ("velocity-step", po::value(&params.sequence.velocity_step)->default_value(params.sequence.velocity_step),
        "step between the velocities tried (0.02 for sequences in the hundreds)")
+      ("alignment-slack", po::value(&params.sequence.alignment_slack)->default_value(params.sequence.alignment_slack),
+       "frames the path that places an answer may stray from the best straight trajectory; 0 = its end")
       ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
       ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau");
   // clang-format on
@@ -317,6 +322,7 @@ json parametersToJson(const Options& options, const mrs_vpr::Parameters& p) {
         {"contrast_window", p.sequence.contrast_window},
         {"match_exclusion", p.sequence.match_exclusion},
         {"alignment", mrs_vpr::toString(p.sequence.alignment)},
+        {"alignment_slack", p.sequence.alignment_slack},
         {"accept_threshold", p.sequence.accept_threshold}}},
       {"mrs",
        {{"levels", p.mrs.levels},
@@ -434,21 +440,14 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
                                 " is larger than the reference of " + std::to_string(recognizer.size()) + " keyframes");
   }
-  mrs_vpr::DescriptorSequence query_descriptors(extractor.size());
-  mrs_vpr::AppearanceKeyframes query_keyframes(params.descriptor, options.min_appearance_change);
+  // The query is keyframed as the node keyframes the camera after the map: on the map's scale.
+  mrs_vpr::DescriptorSequence query_frames(extractor.size());
   const mrs_vpr::tools::Traversal query =
       mrs_vpr::tools::readTraversal(options.query, options.topic, "query", extractor,
-                                    [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
-                                      const int frame = keyframes.query.total++;
-                                      if (!options.plots.empty()) plotted_query.append(descriptor, stamp);
-                                      if (!query_keyframes.wants(descriptor)) {
-                                        query_keyframes.skip(descriptor);
-                                        return;
-                                      }
-                                      query_keyframes.keep(descriptor);
-                                      query_descriptors.append(descriptor, stamp);
-                                      keyframes.query.frames.push_back(frame);
-                                    });
+                                    [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) { query_frames.append(descriptor, stamp); });
+  keyframes.query.total = query_frames.size();
+  const mrs_vpr::DescriptorSequence query_descriptors = recognizer.keyframesOf(query_frames, &keyframes.query.frames);
+  if (!options.plots.empty()) plotted_query = std::move(query_frames);
   std::cerr << "  query: " << query_descriptors.size() << " keyframes of " << query.frames << " frames\n";
   // A map database keeps descriptors, not images: there is no image size to compare.
   if (!isMapDatabase(options.reference) && query.image_size != reference.image_size) {

@@ -14,8 +14,12 @@
 #include <ros/ros.h>
 
 #include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/appearance_keyframes.hpp"
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
+#include "descriptor_options.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -32,6 +36,8 @@ constexpr const char* kUsage =
     "(oldest first), or with the node's own K most recent frames, and prints the response as JSON.\n"
     "With --min-travel, the test sequence is the N frames from I on that are M metres apart by the\n"
     "bag's own /tf (B in F), as the node's ~min_travel keeps them: a map spaced so is queried alike.\n"
+    "Without it, the N frames are keyframes by appearance change, as the node keeps a camera's frames\n"
+    "(--min-appearance-change, the front end's options as the node's; 0: N consecutive frames).\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
 /// A ROS time in integer nanoseconds, exact where seconds in a double are not (4294967295.999999999 s).
@@ -55,6 +61,8 @@ int run(int argc, char** argv) {
   int recent_frames = 0;
   double timeout = 10.0;
   mrs_vpr::bag::TravelSettings travel;
+  double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
+  mrs_vpr::DescriptorParams front_end;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
@@ -67,13 +75,20 @@ int run(int argc, char** argv) {
        "metres between the sequence's frames, by the bag's /tf (0: consecutive frames)")
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
       ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
+      ("min-appearance-change", po::value(&min_appearance_change)->default_value(min_appearance_change),
+       "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
+       "~min_appearance_change keeps them (with the node's front end); 0 = consecutive frames")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method)->default_value(method), "mrs | seqslam")
       ("service", po::value(&service)->default_value(service), "the node's query service")
       ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service, (0, 3600]");
   // clang-format on
+  mrs_vpr::tools::addDescriptorOptions(description, front_end);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::RecognizerParams keyframing;
+  keyframing.min_appearance_change = min_appearance_change;
+  keyframing.validate();
   // A negative duration would make roscpp wait for the service for ever.
   if (!(timeout > 0.0 && timeout <= 3600.0)) {
     throw std::invalid_argument("--timeout must be in (0, 3600] s, got " + std::to_string(timeout));
@@ -99,7 +114,28 @@ int run(int argc, char** argv) {
     request["start"] = start;
     request["count"] = count;
     std::vector<sensor_msgs::ImageConstPtr> images;
-    if (travel.min_travel == 0.0) {
+    if (travel.min_travel == 0.0 && min_appearance_change > 0.0) {
+      // As the node keeps a camera's frames without odometry: those whose view has changed.
+      const mrs_vpr::DescriptorExtractor extractor(front_end);
+      mrs_vpr::AppearanceKeyframes keyframes(front_end, min_appearance_change);
+      int offered = 0;
+      images = mrs_vpr::bag::readChosen(
+          bag_path, topic, start, count,
+          [&](const sensor_msgs::ImageConstPtr& image) {
+            ++offered;
+            const cv::Mat descriptor = mrs_vpr::node::describeImage(extractor, *image);
+            if (!keyframes.wants(descriptor)) {
+              keyframes.skip(descriptor);
+              return false;
+            }
+            keyframes.keep(descriptor);
+            return true;
+          },
+          [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
+                       std::to_string(min_appearance_change); });
+      request["min_appearance_change"] = min_appearance_change;
+      request["frames_read"] = offered;
+    } else if (travel.min_travel == 0.0) {
       images = mrs_vpr::bag::readImages(bag_path, topic, start, count);
     } else {
       mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);

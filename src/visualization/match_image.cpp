@@ -16,6 +16,7 @@ constexpr int kCaptionHeight = 16;
 constexpr int kLevelHeight = 16;
 constexpr int kLevelLabelWidth = 96;
 constexpr int kVerdictHeight = 40;
+constexpr int kMapStatusHeight = 18;
 constexpr int kFont = cv::FONT_HERSHEY_PLAIN;
 constexpr int kTrajectoryDashes = 8;
 const cv::Scalar kText(230, 230, 230);
@@ -142,7 +143,8 @@ MatchImageLayout matchImageLayout(int levels) {
     layout.levels.emplace_back(0, y, width, kLevelHeight);
   }
   layout.verdict = cv::Rect(0, y, width, kVerdictHeight);
-  layout.size = cv::Size(width, layout.verdict.br().y);
+  layout.map_status = cv::Rect(0, layout.verdict.br().y, width, kMapStatusHeight);
+  layout.size = cv::Size(width, layout.map_status.br().y);
   return layout;
 }
 
@@ -162,13 +164,15 @@ cv::Point trajectoryPixel(const MatchExplanation& explanation, int test_frame) {
   return {band.x + std::clamp(x, 0, band.width - 1), band.y + std::clamp(y, 0, band.height - 1)};
 }
 
-cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer) {
+cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer,
+                         const std::string& map_status) {
   cv::Mat image;
-  renderMatchImage(explanation, answer, image);
+  renderMatchImage(explanation, answer, image, map_status);
   return image;
 }
 
-void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image) {
+void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image,
+                      const std::string& map_status) {
   const MatchImageLayout layout = matchImageLayout(static_cast<int>(explanation.levels.size()));
   image.create(layout.size, CV_8UC3);  // Keeps the buffer when the size is the same.
   image.setTo(kBackground);
@@ -191,6 +195,7 @@ void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& an
     drawLevel(image, layout.levels[level], explanation.levels[level], explanation, reference);
   }
   drawVerdict(image, layout.verdict, explanation, answer);
+  if (!map_status.empty()) label(image, map_status, {layout.map_status.x + 4, layout.map_status.y + 12}, kDimText);
 }
 
 }  // namespace visualization

@@ -176,25 +176,5 @@ TEST(PlaceRecognizer, KeyframesFramesByAppearanceButTakesDescriptorsAsKeyframes)
   EXPECT_EQ(all.addFrame(view), FrameAdmission::kAdmitted);
 }
 
-TEST(PlaceRecognizer, KeyframesATestSequenceAsItsMapWithoutTouchingTheMap) {
-  PlaceRecognizer recognizer;
-  cv::RNG rng(7);
-  for (const cv::Mat& view : drive(0.0, 12.0, 60, rng)) recognizer.addFrame(view);
-  const int map_frames = recognizer.size();
-  // A test drive that stops twice: each stop adds its first view and no other.
-  DescriptorSequence test(recognizer.extractor().size());
-  for (const double x : {100.0, 100.2, 100.1, 700.0, 700.3, 1300.0}) test.append(recognizer.describe(viewAt(x, 1, 1, rng)));
-  EXPECT_EQ(recognizer.keyframesOf(test), (std::vector<int>{0, 3, 5}));
-  EXPECT_EQ(recognizer.size(), map_frames);
-  // The map's own keyframing goes on from its last keyframe, as if no test sequence had been looked at.
-  const cv::Mat last = viewAt(12.0 * 59, 1, 1, rng);
-  EXPECT_EQ(recognizer.addFrame(last), FrameAdmission::kTooSimilar);
-
-  RecognizerParams every_frame;
-  every_frame.min_appearance_change = 0.0;
-  const PlaceRecognizer all(Parameters{}, every_frame);
-  EXPECT_EQ(all.keyframesOf(test), (std::vector<int>{0, 1, 2, 3, 4, 5}));
-}
-
 }  // namespace
 }  // namespace mrs_vpr

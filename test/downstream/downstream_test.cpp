@@ -79,8 +79,14 @@ TEST_F(DownstreamPackage, BuildsAgainstTheDevelSpace) {}
 TEST_F(DownstreamPackage, FindsTheRightPlaceInFoldersOfImages) {
   // The README's example on two traversals of a generated route written as image folders.
   mrs_vpr::SyntheticRouteParams params;
-  params.reference_frames = 300;
+  // The revisit starts past the map's first 60 or so keyframes, which are chosen before the map has
+  // learnt its own scale of appearance change (appearance_keyframes.hpp).
+  params.reference_frames = 600;
   params.query_frames = 200;
+  params.start_place = 300.0;
+  // Frames the size of a small camera's, so that shrinking them to the descriptor averages their noise.
+  params.image_width = 320;
+  params.image_height = 160;
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
   for (const auto& [folder, images] : {std::pair{"reference", &route.reference}, std::pair{"query", &route.query}}) {
     fs::create_directories(workspace_ / folder);

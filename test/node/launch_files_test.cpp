@@ -75,13 +75,14 @@ class LaunchFilesTest : public ::testing::TestWithParam<std::string> {
   mrs_vpr::testing_support::TemporaryFolder folder_;
 };
 
-TEST_P(LaunchFilesTest, WithoutArgumentsTheDefaultParameterFileDecides) {
+TEST_P(LaunchFilesTest, WithoutArgumentsTheDefaultParameterFileDecidesButContinuousModeIsOnEverySecond) {
   const auto parameters = nodeParameters(launch(), "");
   ASSERT_FALSE(parameters.empty()) << "roslaunch --dump-params failed for " << GetParam();
   EXPECT_EQ(parameters.at("min_travel"), "0.0");
   EXPECT_EQ(parameters.at("odom_frame"), "odom");
   EXPECT_EQ(parameters.at("base_frame"), "base_link");
-  EXPECT_EQ(parameters.at("auto_query_period"), "0.0");
+  // image:= alone gives loop closures: continuous mode every second, not the node's 0 (off).
+  EXPECT_EQ(parameters.at("auto_query_period"), "1.0");
   EXPECT_EQ(parameters.at("database"), "''");
   EXPECT_EQ(parameters.count("image_transport"), 0U);  // The node's default, raw.
 }
@@ -95,6 +96,22 @@ TEST_P(LaunchFilesTest, AParameterFilesValuesAreKept) {
   EXPECT_EQ(parameters.at("auto_query_period"), "2.5");
   EXPECT_EQ(parameters.at("image_transport"), "compressed");
   EXPECT_EQ(parameters.at("database"), "/maps/robot.db");
+}
+
+TEST_P(LaunchFilesTest, AParameterFileWithoutContinuousModeLeavesItToTheNode) {
+  std::ofstream(folder_.path("quiet.yaml")) << "min_travel: 0.7\n";
+  const auto parameters = nodeParameters(launch(), "params:=" + folder_.path("quiet.yaml"));
+  ASSERT_FALSE(parameters.empty()) << "roslaunch --dump-params failed for " << GetParam();
+  EXPECT_EQ(parameters.at("min_travel"), "0.7");
+  EXPECT_EQ(parameters.count("auto_query_period"), 0U);  // The node's default: off.
+  // Continuous mode is still one argument away.
+  EXPECT_EQ(nodeParameters(launch(), "params:=" + folder_.path("quiet.yaml") + " auto_query_period:=1").at(
+                "auto_query_period"),
+            "1.0");
+}
+
+TEST_P(LaunchFilesTest, ContinuousModeIsSwitchedOffByItsArgument) {
+  EXPECT_EQ(nodeParameters(launch(), "auto_query_period:=0").at("auto_query_period"), "0.0");
 }
 
 TEST_P(LaunchFilesTest, ArgumentsGivenOverrideTheParameterFile) {

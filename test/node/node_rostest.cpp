@@ -79,10 +79,10 @@ class NodeTest : public ::testing::Test {
         },
         20.0))
         << "the map did not reach " << expected << " frames";
-    EXPECT_EQ(info.descriptor_size, 756U);  // HOG's 7 x 3 blocks of 4 cells of 9 bins, the default front end.
+    EXPECT_EQ(info.descriptor_size, 2048U);  // The 64 x 32 thumbnail the .test file chooses for the route.
     EXPECT_EQ(info.frames_failed, 0U);
     EXPECT_EQ(info.frames_dropped, 0U);
-    EXPECT_GT(info.memory_bytes, static_cast<std::uint64_t>(expected) * 756U - 1U);
+    EXPECT_GT(info.memory_bytes, static_cast<std::uint64_t>(expected) * 2048U - 1U);
     ASSERT_TRUE(auto_map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == expected; }, 20.0));
   }
 

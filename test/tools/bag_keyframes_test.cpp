@@ -133,6 +133,24 @@ TEST_F(BagKeyframesTest, ReadKeyframesTakesCountKeyframesFromStart) {
   EXPECT_NE(message.find("has 4 keyframes from message 10 on, fewer than 5"), std::string::npos) << message;
 }
 
+TEST_F(BagKeyframesTest, ReadChosenOffersEachMessageOnceInOrderAndNamesTheChoiceWhenTooFewFollow) {
+  std::vector<ros::Time> offered;
+  const auto every_fifth = [&](const sensor_msgs::ImageConstPtr& image) {
+    offered.push_back(image->header.stamp);
+    return offered.size() % 5 == 1;
+  };
+  const std::vector<sensor_msgs::ImageConstPtr> images =
+      readChosen(bag(), kTopic, 3, 4, every_fifth, [] { return std::string("every fifth"); });
+  ASSERT_EQ(images.size(), 4U);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(images[static_cast<std::size_t>(i)]->header.stamp, frameStamp(3 + 5 * i));
+  ASSERT_GE(offered.size(), 16U);
+  for (std::size_t i = 0; i < 16; ++i) EXPECT_EQ(offered[i], frameStamp(3 + static_cast<int>(i)));
+  offered.clear();
+  const std::string message = testing_support::runtimeErrorMessage(
+      [&] { readChosen(bag(), kTopic, 3, 100, every_fifth, [] { return std::string("every fifth"); }); });
+  EXPECT_NE(message.find("fewer than 100: every fifth"), std::string::npos) << message;
+}
+
 }  // namespace
 }  // namespace bag
 }  // namespace mrs_vpr

@@ -87,7 +87,9 @@ class PlotsTest : public ::testing::Test {
   static std::string evaluate(const std::string& method, const fs::path& plots) {
     return std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
            (root_ / "query").string() + " --ground-truth " + (root_ / "truth.csv").string() + " --method " + method +
-           " --protocol per-frame --sequence-length 10 --tolerance 2 --plots " + plots.string();
+           // Every frame a keyframe, so that the pictures' sizes are the traversals' own.
+           " --protocol per-frame --sequence-length 10 --tolerance 2 --min-appearance-change 0 --plots " +
+           plots.string();
   }
 
   /// The plotting tool, installed beside the evaluator.

@@ -28,12 +28,20 @@ inline void writeImageFolder(const std::filesystem::path& folder, const std::vec
 /// A route of 150 reference and 100 query frames in `root`/reference and
 /// `root`/query, and its ground truth in `root`/truth.csv (mrs_vpr_eval's
 /// --ground-truth format).
+/// The route writeRouteFolders writes.
+inline const SyntheticRoute& routeOfFolders() {
+  static const SyntheticRoute route = [] {
+    SyntheticRouteParams params;
+    params.reference_frames = 150;
+    params.query_frames = 100;
+    params.start_place = 20.0;
+    return generateSyntheticRoute(params);
+  }();
+  return route;
+}
+
 inline void writeRouteFolders(const std::filesystem::path& root) {
-  SyntheticRouteParams params;
-  params.reference_frames = 150;
-  params.query_frames = 100;
-  params.start_place = 20.0;
-  const SyntheticRoute route = generateSyntheticRoute(params);
+  const SyntheticRoute& route = routeOfFolders();
   writeImageFolder(root / "reference", route.reference);
   writeImageFolder(root / "query", route.query);
   std::ofstream truth(root / "truth.csv");

@@ -23,6 +23,7 @@
 #include <rosbag/bag.h>
 
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
@@ -71,7 +72,15 @@ class ToolsTest : public ::testing::Test {
     return result;
   }
 
-  static std::string eval(const std::string& arguments) { return std::string(MRS_VPR_EVAL_PATH) + " " + arguments; }
+  /// mrs_vpr_eval and build_map as these tests use them on the generated route: every frame a keyframe,
+  /// as they count its frames, and the thumbnail front end its textures were made for
+  /// (support/route_fixture.hpp). Both defaults have tests of their own.
+  static std::string eval(const std::string& arguments) {
+    return std::string(MRS_VPR_EVAL_PATH) + " --min-appearance-change 0 --descriptor thumbnail " + arguments;
+  }
+  static std::string buildMap() {
+    return std::string(BUILD_MAP_PATH) + " --min-appearance-change 0 --descriptor thumbnail";
+  }
   static std::string path(const std::string& child) { return (root_ / child).string(); }
 
   /// Expects exit code 1 and exactly one line on stderr that contains `text`.
@@ -141,8 +150,8 @@ TEST_F(ToolsTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders + " --method fastest --protocol per-frame --sequence-length 10", "unknown method 'fastest'");
   expectError(folders + " --method mrs --protocol sideways --sequence-length 10", "unknown protocol 'sideways'");
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
-              "sequence length 151 is larger than the reference of 150 frames");
-  expectError(folders + " --method seqslam --protocol per-frame", "sequence-length");  // Missing flag.
+              "sequence length 151 is larger than the reference of 150 keyframes");
+  expectError(folders + " --method seqslam --sequence-length 10", "protocol");  // Missing flag.
   // A word of no option (e.g. a second value) is refused, not silently dropped.
   expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 20", "unexpected argument '20'");
 
@@ -418,9 +427,51 @@ TEST_F(ToolsTest, ImagesToBagRejectsBadArguments) {
   EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
 }
 
+TEST_F(ToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChanged) {
+  // The reference route with a stop: frame 60 shown 40 times more, each time with sensor noise.
+  const mrs_vpr::SyntheticRoute& route = mrs_vpr::testing_support::routeOfFolders();
+  std::vector<cv::Mat> stopped;
+  cv::RNG rng(9);
+  for (int i = 0; i < static_cast<int>(route.reference.size()); ++i) {
+    stopped.push_back(route.reference[static_cast<std::size_t>(i)]);
+    for (int repeat = 0; i == 60 && repeat < 40; ++repeat) {
+      cv::Mat noise(route.reference[60].size(), CV_16SC3);
+      rng.fill(noise, cv::RNG::NORMAL, 0, 2);
+      cv::Mat noisy;
+      cv::add(route.reference[60], noise, noisy, cv::noArray(), CV_8UC3);
+      stopped.push_back(noisy);
+    }
+  }
+  mrs_vpr::testing_support::writeImageFolder(path("stopped"), stopped);
+  const Result built = run(std::string(BUILD_MAP_PATH) + " --images " + path("stopped") + " --output " + path("stopped.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  // Every stopped frame is too similar to the frame the robot stopped at; of the moving ones, a few.
+  const std::size_t too_similar = built.err.find(" frames too similar");
+  ASSERT_NE(too_similar, std::string::npos) << built.err;
+  const int skipped = std::stoi(built.err.substr(built.err.rfind(' ', too_similar - 1) + 1));
+  EXPECT_GE(skipped, 40) << built.err;
+  EXPECT_LT(skipped, 40 + 20) << built.err;
+
+  // The evaluator keeps the same keyframes of the reference, and names frames in its records.
+  const std::string output = path("stopped.json");
+  const Result evaluated = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped") + " --query " +
+                               path("query") + " --protocol per-frame --sequence-length 10 --output " + output);
+  ASSERT_EQ(evaluated.status, 0) << evaluated.err;
+  const json document = json::parse(readText(output));
+  EXPECT_EQ(document.at("reference_frames"), 190);
+  EXPECT_EQ(document.at("reference_keyframes"), 190 - skipped);
+  EXPECT_EQ(document.at("parameters").at("min_appearance_change"), mrs_vpr::RecognizerParams{}.min_appearance_change);
+  EXPECT_EQ(document.at("parameters").at("method"), mrs_vpr::RecognizerParams{}.default_method);
+  for (const json& record : document.at("records")) {
+    // The keyframe of the stop stands for all 41 frames of it.
+    if (record.at("predicted_index") == 60) EXPECT_EQ(record.at("predicted_last"), 100);
+    EXPECT_GE(record.at("predicted_last").get<int>(), record.at("predicted_index").get<int>());
+  }
+}
+
 TEST_F(ToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   const std::string map = path("reference.db");
-  const std::string build = std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " + map;
+  const std::string build = buildMap() + " --images " + path("reference") + " --output " + map;
   const Result built = run(build);
   ASSERT_EQ(built.status, 0) << built.err;
   EXPECT_NE(built.err.find("150 frames added to 0"), std::string::npos) << built.err;
@@ -448,25 +499,34 @@ TEST_F(ToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   EXPECT_EQ(appended.status, 0) << appended.err;
   EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
 
-  // A map of another front end is read with its own front end, unless another one is asked for:
-  // then it is refused, naming the file and both front ends.
-  const Result other = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
-                           path("small.db") + " --descriptor thumbnail --image-width 32 --image-height 16");
+}
+
+TEST_F(ToolsTest, AMapIsReadAndExtendedWithTheFrontEndItRecords) {
+  // Without a front-end option the evaluator and build_map --append take the map's own front end;
+  // another one named is refused, naming the file and both front ends.
+  const std::string build_map = std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                                path("small.db");
+  const Result other = run(build_map + " --descriptor thumbnail --image-width 32 --image-height 16");
   ASSERT_EQ(other.status, 0) << other.err;
-  const Result adopted = run(eval("--reference " + path("small.db") + rest + " --output " + path("small.json")));
+  const std::string evaluate = std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("small.db") + " --query " +
+                               path("query") + " --ground-truth " + path("truth.csv") +
+                               " --protocol per-frame --sequence-length 10";
+  const Result adopted = run(evaluate + " --output " + path("small.json"));
   ASSERT_EQ(adopted.status, 0) << adopted.err;
   EXPECT_NE(adopted.err.find("thumbnail (32 x 16, patches of 8 px)"), std::string::npos) << adopted.err;
   const json parameters = json::parse(readText(path("small.json"))).at("parameters").at("descriptor");
   EXPECT_EQ(parameters.at("type"), "thumbnail");
   EXPECT_EQ(parameters.at("image_width"), 32);
-  expectError("--reference " + path("small.db") + rest + " --descriptor hog",
-              "holds descriptors of the thumbnail (32 x 16, patches of 8 px) front end, not of the hog (128 x 64 window");
-  // Appending extends a map with the front end it records; another one named is refused.
-  const Result appended_other = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
-                                    path("small.db") + " --append");
-  EXPECT_EQ(appended_other.status, 0) << appended_other.err;
-  const Result mixed = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
-                           path("small.db") + " --append --descriptor hog");
+  const Result refused = run(evaluate + " --descriptor hog");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find(path("small.db")), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("holds descriptors of the thumbnail (32 x 16, patches of 8 px) front end, not of the "
+                             "hog (128 x 64 window"),
+            std::string::npos)
+      << refused.err;
+  const Result appended = run(build_map + " --append");
+  EXPECT_EQ(appended.status, 0) << appended.err;
+  const Result mixed = run(build_map + " --append --descriptor hog");
   EXPECT_EQ(mixed.status, 1);
   EXPECT_NE(mixed.err.find("not of the hog"), std::string::npos) << mixed.err;
 }
@@ -475,7 +535,7 @@ TEST_F(ToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
   // The robot drives 4 m, stands still for 30 frames and drives 2 m on (support/travel_bag.hpp).
   const std::string bag = path("drive.bag");
   mrs_vpr::testing_support::writeTravelBag(bag, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive());
-  const std::string build = std::string(BUILD_MAP_PATH) + " --bag " + bag + " --topic /camera/image_raw --output ";
+  const std::string build = buildMap() + " --bag " + bag + " --topic /camera/image_raw --output ";
   const Result every_frame = run(build + path("every_frame.db"));
   ASSERT_EQ(every_frame.status, 0) << every_frame.err;
   EXPECT_NE(every_frame.err.find("51 frames added to 0"), std::string::npos) << every_frame.err;
@@ -499,18 +559,18 @@ TEST_F(ToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   const std::string no_poses = path("no_poses.bag");
   mrs_vpr::testing_support::writeTravelBag(no_poses, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive(),
                                            false);
-  const Result without_tf = run(std::string(BUILD_MAP_PATH) + " --bag " + no_poses +
+  const Result without_tf = run(buildMap() + " --bag " + no_poses +
                                 " --topic /camera/image_raw --min-travel 1 --output " + path("no_poses.db"));
   EXPECT_EQ(without_tf.status, 1);
   EXPECT_NE(without_tf.err.find("has no /tf or /tf_static messages"), std::string::npos) << without_tf.err;
   EXPECT_FALSE(fs::exists(path("no_poses.db")));
   EXPECT_FALSE(fs::exists(path("no_poses.db.part")));
 
-  const Result folder = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --min-travel 1" +
+  const Result folder = run(buildMap() + " --images " + path("reference") + " --min-travel 1" +
                             " --output " + path("folder.db"));
   EXPECT_EQ(folder.status, 1);
   EXPECT_NE(folder.err.find("--min-travel needs --bag"), std::string::npos) << folder.err;
-  const Result negative = run(std::string(BUILD_MAP_PATH) + " --bag " + no_poses +
+  const Result negative = run(buildMap() + " --bag " + no_poses +
                               " --topic /camera/image_raw --min-travel=-1 --output " + path("negative.db"));
   EXPECT_EQ(negative.status, 1);
   EXPECT_NE(negative.err.find("min_travel must be a finite number of metres >= 0"), std::string::npos)
@@ -563,7 +623,7 @@ TEST_F(ToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
 TEST_F(ToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
   // --force onto a folder used to describe every frame, then fail to rename and leave OUT.part.
   fs::create_directories(path("a_folder"));
-  const Result map = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+  const Result map = run(buildMap() + " --images " + path("reference") + " --output " +
                          path("a_folder") + " --force");
   EXPECT_EQ(map.status, 1);
   EXPECT_NE(map.err.find("build_map: error: '" + path("a_folder") + "' is a folder; --output names the map file"),
@@ -571,7 +631,7 @@ TEST_F(ToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
       << map.err;
   EXPECT_EQ(map.err.find("frames"), std::string::npos) << "work was done first: " << map.err;
   EXPECT_FALSE(fs::exists(path("a_folder.part")));
-  const Result no_folder = run(std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+  const Result no_folder = run(buildMap() + " --images " + path("reference") + " --output " +
                                path("nowhere/map.db"));
   EXPECT_EQ(no_folder.status, 1);
   EXPECT_NE(no_folder.err.find("there is no folder " + path("nowhere")), std::string::npos) << no_folder.err;
@@ -632,18 +692,18 @@ TEST_F(ToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStampsEx
       writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
     }
   }
-  const Result built = run(std::string(BUILD_MAP_PATH) + " --bag " + bag + " --topic /camera/image_raw --output " +
+  const Result built = run(buildMap() + " --bag " + bag + " --topic /camera/image_raw --output " +
                            path("latest.db"));
   ASSERT_EQ(built.status, 0) << built.err;
   std::vector<mrs_vpr::Stamp> stamps;
-  mrs_vpr::MapDatabase(path("latest.db"), mrs_vpr::DescriptorParams{}, mrs_vpr::MapAccess::kReadOnly)
+  mrs_vpr::MapDatabase(path("latest.db"), mrs_vpr::MapAccess::kReadOnly)
       .forEachFrame([&](const mrs_vpr::StoredFrame& frame) { stamps.push_back(frame.stamp); });
   ASSERT_EQ(stamps.size(), 3U);
   for (int i = 0; i < 3; ++i) EXPECT_EQ(stamps[i].nanoseconds(), mrs_vpr::Stamp::kMaxNanoseconds - 2 + i);
 
   // A file that is no bag is named as such, not as a folder.
   std::ofstream(path("garbage.db")) << "garbage";
-  const Result garbage = run(std::string(BUILD_MAP_PATH) + " --bag " + path("garbage.db") +
+  const Result garbage = run(buildMap() + " --bag " + path("garbage.db") +
                              " --topic /camera/image_raw --output " + path("garbage_map.db"));
   EXPECT_EQ(garbage.status, 1);
   EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
@@ -805,8 +865,8 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
   const std::string output = path("real_benchmark.json");
   const Result result =
       run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
-          " --part all --references 1.8k --lengths 20,30 --queries 3 --methods seqslam --skip-per-frame --tolerance 4"
-          " --seed 5 --json " +
+          " --part all --references 1.8k --lengths 20,30 --queries 3 --methods seqslam --skip-per-frame --skip-drives"
+          " --tolerance 4 --seed 5 --json " +
           output);
   ASSERT_EQ(result.status, 0) << result.err;
   const json document = json::parse(readText(output));
@@ -835,6 +895,45 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
                                            " M=150");
     }
   }
+}
+
+TEST_F(ToolsTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousModeAndTheEvaluator) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_drives.json");
+  const Result result =
+      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+          " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5 --json " + output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("Camera drives (make_drive --seed 5 and 6)"), std::string::npos) << result.out;
+  const json rows = json::parse(readText(output)).at("rows");
+  // Besides the replays' rows (none here: no global, no per-frame rows): the map drive and the revisit
+  // in continuous mode, then the evaluator's per-frame protocol on the two drives.
+  ASSERT_EQ(rows.size(), 3U) << rows.dump();
+  for (std::size_t i = 0; i < 2; ++i) {
+    const json& row = rows[i];
+    EXPECT_EQ(row.at("protocol"), "continuous");
+    EXPECT_EQ(row.at("method"), "seqslam");
+    // Continuous mode's length is the node's: auto_query_frames 0, so sequence/sequence_length.
+    EXPECT_EQ(row.at("sequence_length"), mrs_vpr::SequenceParams{}.sequence_length);
+    const json& drive = row.at("drive");
+    EXPECT_EQ(drive.at("route_begin"), 0);
+    EXPECT_EQ(drive.at("route_end"), 100);  // The route: as many summer frames as there are winter ones.
+    EXPECT_EQ(drive.at("rate_hz"), i == 0 ? 30.0 : 10.0);
+    EXPECT_GE(drive.at("stopped_frames").get<int>(), 8 * 30);
+    EXPECT_LE(drive.at("stopped_frames").get<int>(), 8 * 90);
+    // Stops add (almost) no keyframes.
+    EXPECT_LT(row.at("stopped_keyframes").get<int>(), drive.at("stopped_frames").get<int>() / 10);
+    EXPECT_EQ(row.at("accepted").get<int>(), row.at("accepted_right").get<int>() + row.at("accepted_wrong").get<int>());
+    for (const char* field : {"keyframes", "queries", "stretches", "stretches_keyframed", "stretches_with_right"}) {
+      EXPECT_TRUE(row.contains(field)) << field;
+    }
+  }
+  EXPECT_EQ(rows[0].at("setting"), "camera drive continuous map drive");
+  EXPECT_EQ(rows[0].at("accepted_right"), 0);  // No place comes back on the first traversal.
+  EXPECT_EQ(rows[1].at("setting"), "camera drive continuous revisit");
+  EXPECT_EQ(rows[2].at("setting"), "camera drives per-frame (mrs_vpr_eval)");
+  EXPECT_EQ(rows[2].at("protocol"), "per-frame");
+  EXPECT_GT(rows[2].at("summary").at("queries").get<int>(), 0);
 }
 
 TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,8 +58,15 @@ class BagKeyframes {
   std::string first_missing_pose_;
 };
 
-/// The first `count` keyframes of `topic` from message `start` on, chosen by `keyframes`. Throws
-/// std::runtime_error as forEachImage does, and when fewer keyframes follow `start`.
+/// The first `count` messages of `topic` from message `start` on that `choose` takes, each offered
+/// once, in order. Throws std::runtime_error as forEachImage does, and when fewer follow `start`
+/// (naming what `summary` says of the choice).
+std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, const std::string& topic, int start,
+                                                   int count,
+                                                   const std::function<bool(const sensor_msgs::ImageConstPtr&)>& choose,
+                                                   const std::function<std::string()>& summary);
+
+/// The first `count` keyframes of `topic` from message `start` on, chosen by `keyframes` (readChosen).
 std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_path, const std::string& topic, int start,
                                                       int count, BagKeyframes& keyframes);
 

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 
 #include <opencv2/core.hpp>
 #include <ros/ros.h>
@@ -26,8 +27,10 @@ class DebugImagePublisher {
   /// Whether someone subscribes, so that the next answer should be explained and drawn.
   bool wanted() const { return publisher_.getNumSubscribers() > 0; }
 
-  /// Draws the answer and publishes it with `header` (the newest test frame's).
-  void publish(const std_msgs::Header& header, const PlaceAnswer& answer, const MatchExplanation& explanation);
+  /// Draws the answer, with `map_status` on its last line, and publishes it with `header` (the newest
+  /// test frame's).
+  void publish(const std_msgs::Header& header, const PlaceAnswer& answer, const MatchExplanation& explanation,
+               const std::string& map_status);
 
   /// Images drawn since start-up (reported in ~map_info).
   std::uint64_t rendered() const { return rendered_.load(); }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -20,6 +21,7 @@ struct MatchImageLayout {
   cv::Rect band_caption;         ///< Which frames the band shows.
   std::vector<cv::Rect> levels;  ///< One strip per MRS level (the whole map across), coarsest first.
   cv::Rect verdict;              ///< Method, answer, confidence, accepted or not.
+  cv::Rect map_status;           ///< A line about the map the caller gives (keyframes, frames skipped).
 };
 
 /// The layout of an image of an answer with `levels` MRS levels (0 for seqslam).
@@ -33,10 +35,13 @@ MatchImageLayout matchImageLayout(int levels);
  * whole map, and the confidence with the verdict (green accepted, red not). No ROS: the node
  * publishes it, a tool may write it to a file.
  */
-cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer);
+/// `map_status` is written on the last line (the node says how many frames it skipped as too similar).
+cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer,
+                         const std::string& map_status = {});
 /// The same into `image`, whose buffer is reused when it has the size already: a caller that draws
 /// often (the node) avoids fresh pages, which after a large query cost more than the drawing itself.
-void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image);
+void renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer, cv::Mat& image,
+                      const std::string& map_status = {});
 
 /// The pixel where renderMatchImage draws the trajectory's point for test frame `test_frame`.
 cv::Point trajectoryPixel(const MatchExplanation& explanation, int test_frame);

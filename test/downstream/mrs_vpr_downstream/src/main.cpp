@@ -1,6 +1,7 @@
 // The README's example: map one traversal (a folder of images), then find where the last frames of
 // another traversal lie in it. Links mrs_vpr's core alone.
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -18,8 +19,9 @@ int main(int argc, char** argv) try {
   mrs_vpr::PlaceRecognizer recognizer;  // The documented defaults.
   std::vector<cv::String> files;
   cv::glob(argv[1], files);  // File-name order.
-  for (const cv::String& file : files) {
-    recognizer.addFrame(cv::imread(file), mrs_vpr::Stamp::fromSeconds(recognizer.size()));  // Frame i at i s.
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    // Frame i at i s. A frame whose view has not changed since the last one kept is not kept.
+    recognizer.addFrame(cv::imread(files[i]), mrs_vpr::Stamp::fromSeconds(static_cast<double>(i)));
   }
   cv::glob(argv[2], files);
   const std::size_t frames = argc > 3 ? std::stoul(argv[3]) : 50;
@@ -28,8 +30,10 @@ int main(int argc, char** argv) try {
     test.push_back(cv::imread(files[i]));
   }
   const mrs_vpr::PlaceAnswer answer = recognizer.match(test);
-  std::cout << "query frame " << files.size() - 1 << " is reference frame " << answer.match.reference_index
-            << ", confidence " << answer.match.confidence << (answer.match.accepted ? ", accepted\n" : ", not accepted\n");
+  // The answer's stamp names the reference image (its map index counts only the frames kept).
+  const long reference = answer.match.reference_index < 0 ? -1 : std::lround(answer.reference_stamp.seconds());
+  std::cout << "query frame " << files.size() - 1 << " is reference frame " << reference << ", confidence "
+            << answer.match.confidence << (answer.match.accepted ? ", accepted\n" : ", not accepted\n");
   return 0;
 } catch (const std::exception& error) {
   std::cerr << "mrs_vpr_downstream: " << error.what() << "\n";

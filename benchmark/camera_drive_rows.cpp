@@ -1,0 +1,282 @@
+#include "camera_drive_rows.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include "mrs_vpr/appearance_keyframes.hpp"
+#include "mrs_vpr/evaluation/camera_drive.hpp"
+#include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+
+namespace mrs_vpr {
+namespace benchmark {
+namespace {
+
+constexpr double kMapRate = 30.0;      // [Hz] the map drive's camera
+constexpr double kRevisitRate = 10.0;  // [Hz] the revisit's camera
+constexpr double kQueryPeriod = 1.0;   // [s] launch/mrs_vpr.launch's auto_query_period
+/// An answer is right when the revisit frame's route frame is within this of a route frame the
+/// answer's keyframe stands for.
+constexpr int kRouteTolerance = 2;
+/// The share of stretches is counted after the revisit's first frames (the map must reach back).
+constexpr int kWarmUpFrames = 100;
+constexpr int kStretchFrames = 20;
+/// mrs_vpr_eval's --tolerance default [frames].
+constexpr int kEvaluatorTolerance = 2;
+
+/// A drive of real frames: its images and the route frame and kind of each.
+struct Drive {
+  std::string name;
+  double rate = 0.0;
+  std::vector<cv::Mat> images;
+  std::vector<DriveFrame> frames;  ///< route_frame numbered as the season's frames.
+  int slow_frames = 0;
+  int slow_begin = -1;
+  int fast_frames = 0;
+  int fast_begin = -1;
+};
+
+Drive makeDrive(const std::string& name, double rate, const std::vector<cv::Mat>& season, int begin, int end,
+                std::uint64_t seed) {
+  CameraDriveSettings settings;
+  settings.seed = seed;
+  // A short route (a test's) keeps room for the stops beside the stretches.
+  settings.slow_frames = std::min(settings.slow_frames, (end - begin) / 4);
+  settings.fast_frames = std::min(settings.fast_frames, (end - begin) / 4);
+  const CameraDrive plan(end - begin, settings);
+  const std::vector<cv::Mat> route(season.begin() + begin, season.begin() + end);
+  Drive drive{name,
+              rate,
+              renderDrive(plan, route),
+              plan.frames(),
+              settings.slow_frames,
+              plan.slowBegin() < 0 ? -1 : begin + plan.slowBegin(),
+              settings.fast_frames,
+              plan.fastBegin() < 0 ? -1 : begin + plan.fastBegin()};
+  for (DriveFrame& frame : drive.frames) frame.route_frame += begin;
+  return drive;
+}
+
+int stoppedFrames(const Drive& drive) {
+  return static_cast<int>(std::count_if(drive.frames.begin(), drive.frames.end(),
+                                        [](const DriveFrame& f) { return f.kind == DriveFrameKind::kStopped; }));
+}
+
+/// What one method did on one drive in continuous mode.
+struct DriveCounts {
+  int keyframes = 0;
+  int stopped_keyframes = 0;  ///< Keyframes among the stopped frames.
+  int queries = 0;
+  int accepted = 0;
+  int right = 0;
+  int wrong = 0;
+  std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
+  std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
+};
+
+/**
+ * Both drives, one after the other, into one recognizer at the node's defaults, asked every period
+ * as the node's continuous mode asks: only when a keyframe came since the last question, and only once
+ * the map holds 2 L + recent_exclusion keyframes.
+ */
+std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::string& method,
+                                        const DescriptorParams& descriptor, int* length) {
+  node::NodeParameters node;
+  node.core.descriptor = descriptor;
+  PlaceRecognizer recognizer(node.core, node.recognizer);
+  const int recent = node.autoQueryFrames();
+  *length = recent;
+  std::vector<int> keyframe_frame;  // the frame of the whole replay each keyframe was
+  std::vector<int> route_of_frame;  // the route frame of each frame of the whole replay
+  std::vector<DriveCounts> counts(drives.size());
+  int asked_at_size = 0;
+  for (std::size_t d = 0; d < drives.size(); ++d) {
+    const Drive& drive = *drives[d];
+    DriveCounts& count = counts[d];
+    const int period = static_cast<int>(std::lround(kQueryPeriod * drive.rate));
+    const int stretches = std::max(0, (static_cast<int>(drive.frames.size()) - kWarmUpFrames) / kStretchFrames);
+    count.stretch_right.assign(static_cast<std::size_t>(stretches), false);
+    count.stretch_keyframed.assign(static_cast<std::size_t>(stretches), false);
+    const auto stretchOf = [&](int i) { return i < kWarmUpFrames ? -1 : (i - kWarmUpFrames) / kStretchFrames; };
+    for (int i = 0; i < static_cast<int>(drive.frames.size()); ++i) {
+      const DriveFrame& frame = drive.frames[static_cast<std::size_t>(i)];
+      const int t = static_cast<int>(route_of_frame.size());
+      route_of_frame.push_back(frame.route_frame);
+      const int stretch = stretchOf(i);
+      if (recognizer.addFrame(drive.images[static_cast<std::size_t>(i)]) == FrameAdmission::kAdmitted) {
+        keyframe_frame.push_back(t);
+        ++count.keyframes;
+        count.stopped_keyframes += frame.kind == DriveFrameKind::kStopped ? 1 : 0;
+        if (stretch >= 0 && stretch < stretches) count.stretch_keyframed[static_cast<std::size_t>(stretch)] = true;
+      }
+      if ((i + 1) % period != 0) continue;
+      const int size = recognizer.size();
+      if (size == asked_at_size || size < 2 * recent + node.recognizer.recent_exclusion) continue;
+      asked_at_size = size;
+      const Match match = recognizer.matchRecent(recent, method).match;
+      ++count.queries;
+      if (!match.accepted) continue;
+      ++count.accepted;
+      // The newest keyframe's place against the places the answer's keyframe stands for.
+      const int place = route_of_frame[static_cast<std::size_t>(keyframe_frame.back())];
+      const auto k = static_cast<std::size_t>(match.reference_index);
+      const int first = keyframe_frame.at(k);
+      const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
+      bool right = false;
+      for (int f = first; f <= last && !right; ++f) {
+        right = std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance;
+      }
+      // No place comes back during the first traversal: whatever it accepts there is wrong.
+      right = right && d > 0;
+      ++(right ? count.right : count.wrong);
+      if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+        std::fprintf(stderr,
+                     "false closure: %s %s frame %d, newest keyframe at route frame %d -> keyframe %d, route frames "
+                     "%d..%d, confidence %.2f\n",
+                     method.c_str(), drive.name.c_str(), i, place, match.reference_index,
+                     route_of_frame[static_cast<std::size_t>(first)], route_of_frame[static_cast<std::size_t>(last)],
+                     match.confidence);
+      }
+      if (right && stretch >= 0 && stretch < stretches) count.stretch_right[static_cast<std::size_t>(stretch)] = true;
+    }
+  }
+  return counts;
+}
+
+/// The evaluator's per-frame protocol on two drives, as mrs_vpr_eval runs it on make_drive's folders
+/// with make_drive's ground truth: both keyframed as the node keyframes a camera, every query keyframe
+/// with a full sequence searched, an answer right when the truth is among the frames its keyframe
+/// stands for (within the evaluator's tolerance).
+EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive, const std::string& method,
+                                   const DescriptorParams& descriptor, int* reference_keyframes) {
+  Parameters params;
+  params.descriptor = descriptor;
+  RecognizerParams map_params;
+  map_params.max_frames = 0;
+  PlaceRecognizer reference(params, map_params);
+  Keyframes reference_keyframed;
+  for (const cv::Mat& image : reference_drive.images) {
+    const int frame = reference_keyframed.total++;
+    if (reference.offerDescriptor(reference.describe(image)) == FrameAdmission::kAdmitted) {
+      reference_keyframed.frames.push_back(frame);
+    }
+  }
+  *reference_keyframes = reference.size();
+  AppearanceKeyframes query_keyframes(params.descriptor, map_params.min_appearance_change);
+  DescriptorSequence query(reference.extractor().size());
+  Keyframes query_keyframed;
+  for (const cv::Mat& image : query_drive.images) {
+    const int frame = query_keyframed.total++;
+    const cv::Mat descriptor = reference.describe(image);
+    if (!query_keyframes.wants(descriptor)) {
+      query_keyframes.skip(descriptor);
+      continue;
+    }
+    query_keyframes.keep(descriptor);
+    query.append(descriptor);
+    query_keyframed.frames.push_back(frame);
+  }
+  const GroundTruth truth =
+      driveGroundTruth(routeFramesOf(reference_drive.frames), routeFramesOf(query_drive.frames), kRouteTolerance);
+  const std::vector<int> searched = perFrameQueries(query.size(), params.sequence);
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Match> matches = reference.matchEveryFrame(query.view(), method);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+                    std::max<std::size_t>(searched.size(), 1);
+  std::vector<QueryRecord> records;
+  for (const int keyframe : searched) {
+    const int frame = query_keyframed.frames[static_cast<std::size_t>(keyframe)];
+    records.push_back(keyframeRecordOf(frame, truth.at(frame), matches.at(static_cast<std::size_t>(keyframe)),
+                                       reference_keyframed, ms));
+  }
+  return summarise(records, kEvaluatorTolerance);
+}
+
+double shareOf(const std::vector<bool>& flags) {
+  if (flags.empty()) return std::nan("");
+  return static_cast<double>(std::count(flags.begin(), flags.end(), true)) / static_cast<double>(flags.size());
+}
+
+}  // namespace
+
+void runCameraDrives(const CameraDriveInput& input, const std::function<void(const std::vector<nlohmann::json>&)>& add,
+                     const PerFrameRow& per_frame) {
+  if (input.summer == nullptr || input.winter == nullptr) throw std::invalid_argument("camera drives need both seasons");
+  const int route = input.route_frames;
+  const Drive map = makeDrive("map drive, summer 0.." + std::to_string(route - 1), kMapRate, *input.summer, 0, route,
+                              input.seed);
+  const Drive revisit = makeDrive("revisit, winter " + std::to_string(input.part_begin) + ".." +
+                                      std::to_string(input.part_end - 1),
+                                  kRevisitRate, *input.winter, input.part_begin, input.part_end, input.seed + 1);
+
+  std::printf("\nCamera drives (make_drive --seed %llu and %llu): the map drive at %.0f Hz, the revisit at %.0f Hz, "
+              "each with 8 stops of 30-90 frames (noise, vibration, gain, a passer-by) and a stretch at half and one "
+              "at double speed; one recognizer at the node's defaults (keyframes by appearance change %.2f), "
+              "continuous mode every %.0f s. right = the newest keyframe's route frame within %d of those the "
+              "answer's keyframe stands for; stretches = %d-frame stretches of a drive after its first %d frames "
+              "with an accepted right answer (in brackets: those in which a keyframe came, the others lie within a "
+              "stop, where continuous mode asks nothing)\n",
+              static_cast<unsigned long long>(input.seed), static_cast<unsigned long long>(input.seed + 1), kMapRate,
+              kRevisitRate, RecognizerParams{}.min_appearance_change, kQueryPeriod, kRouteTolerance, kStretchFrames,
+              kWarmUpFrames);
+  for (const Drive* drive : {&map, &revisit}) {
+    std::printf("  %-26s %5zu frames, %4d stopped; %d route frames at half speed from %d, %d at double speed from %d\n",
+                drive->name.c_str(), drive->frames.size(), stoppedFrames(*drive), drive->slow_frames, drive->slow_begin,
+                drive->fast_frames, drive->fast_begin);
+  }
+  std::printf("%-28s %-8s %4s %9s %10s %7s %8s %5s %5s %17s\n", "drive", "method", "L", "keyframes", "kf stopped",
+              "queries", "accepted", "right", "wrong", "stretches");
+  std::vector<nlohmann::json> rows;
+  for (const std::string& method : input.methods) {
+    int length = 0;
+    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, &length);
+    for (std::size_t d = 0; d < counts.size(); ++d) {
+      const Drive& drive = d == 0 ? map : revisit;
+      const DriveCounts& c = counts[d];
+      const int stretches = static_cast<int>(c.stretch_right.size());
+      const int with_right = static_cast<int>(std::count(c.stretch_right.begin(), c.stretch_right.end(), true));
+      const int keyframed = static_cast<int>(std::count(c.stretch_keyframed.begin(), c.stretch_keyframed.end(), true));
+      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %5d %4d/%-4d (%d) %.3f\n", drive.name.c_str(), method.c_str(),
+                  length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, c.wrong, with_right,
+                  stretches, keyframed, shareOf(c.stretch_right));
+      const double share = shareOf(c.stretch_right);
+      rows.push_back({{"setting", "camera drive continuous " + std::string(d == 0 ? "map drive" : "revisit")},
+                      {"method", method},
+                      {"protocol", "continuous"},
+                      {"out_of_map", d == 0},
+                      {"drive",
+                       {{"frames", drive.frames.size()},
+                        {"stopped_frames", stoppedFrames(drive)},
+                        {"rate_hz", drive.rate},
+                        {"route_begin", drive.frames.front().route_frame},
+                        {"route_end", drive.frames.back().route_frame + 1}}},
+                      {"sequence_length", length},
+                      {"query_period_s", kQueryPeriod},
+                      {"keyframes", c.keyframes},
+                      {"stopped_keyframes", c.stopped_keyframes},
+                      {"queries", c.queries},
+                      {"accepted", c.accepted},
+                      {"accepted_right", c.right},
+                      {"accepted_wrong", c.wrong},
+                      {"stretches", stretches},
+                      {"stretches_keyframed", keyframed},
+                      {"stretches_with_right", with_right},
+                      {"stretch_share", std::isfinite(share) ? nlohmann::json(share) : nlohmann::json()}});
+    }
+  }
+  add(rows);
+  std::printf("\n");
+  for (const std::string& method : input.methods) {
+    int reference_keyframes = 0;
+    const EvaluationSummary summary = perFrameProtocol(map, revisit, method, input.descriptor, &reference_keyframes);
+    per_frame("camera drives per-frame (mrs_vpr_eval)", method, summary, reference_keyframes,
+              Parameters{}.sequence.sequence_length);
+  }
+}
+
+}  // namespace benchmark
+}  // namespace mrs_vpr

@@ -1,0 +1,187 @@
+// make_drive as a user runs it: a drive of a generated route's folder, its drive.csv, the ground truth
+// of two drives, and mrs_vpr_eval on the drives with that truth; one-line errors on bad input.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "mrs_vpr/evaluation/drive_file.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+#include "route_folders.hpp"
+#include "support/temporary_folder.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using mrs_vpr::testing_support::fileContents;
+using mrs_vpr::testing_support::TemporaryFolder;
+
+struct Result {
+  int status = -1;
+  std::string err;
+  std::string out;
+};
+
+class MakeDriveTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    folder_ = new TemporaryFolder("mrs_vpr_make_drive_test");
+    // Two traversals of one route frame for frame (speed 1, from the same place): summer and winter.
+    mrs_vpr::SyntheticRouteParams params;
+    params.reference_frames = 400;
+    params.query_frames = 400;
+    params.speed_min = params.speed_max = 1.0;
+    const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(params);
+    mrs_vpr::testing_support::writeImageFolder(path("summer"), route.reference);
+    mrs_vpr::testing_support::writeImageFolder(path("winter"), route.query);
+  }
+  static void TearDownTestSuite() {
+    delete folder_;
+    folder_ = nullptr;
+  }
+
+  static std::string path(const std::string& name) { return folder_->path(name); }
+
+  static Result run(const std::string& program, const std::string& arguments) {
+    const std::string out = path("stdout.txt");
+    const std::string err = path("stderr.txt");
+    const int raw = std::system((program + " " + arguments + " >'" + out + "' 2>'" + err + "'").c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, fileContents(err), fileContents(out)};
+  }
+  static Result makeDrive(const std::string& arguments) { return run(MAKE_DRIVE_PATH, arguments); }
+
+  /// Expects exit code 1 and one line "make_drive: error: ..." that contains `text`.
+  static void expectError(const std::string& arguments, const std::string& text) {
+    const Result result = makeDrive(arguments);
+    EXPECT_EQ(result.status, 1) << arguments << "\n" << result.err;
+    EXPECT_EQ(result.err.rfind("make_drive: error: ", 0), 0U) << result.err;
+    EXPECT_NE(result.err.find(text), std::string::npos) << result.err;
+    EXPECT_EQ(result.err.find('\n'), result.err.size() - 1) << result.err;
+  }
+
+  static std::vector<std::string> imagesIn(const std::string& folder) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+      if (entry.path().extension() == ".png") names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+
+  static TemporaryFolder* folder_;
+};
+
+TemporaryFolder* MakeDriveTest::folder_ = nullptr;
+
+constexpr const char* kSmallDrive = " --stops 3 --stop-frames-min 20 --stop-frames-max 30 --slow-frames 30 --fast-frames 30";
+
+TEST_F(MakeDriveTest, WritesTheDriveAsImagesWithTheRouteFrameOfEach) {
+  const Result result = makeDrive("--images " + path("summer") + " --begin 100 --end 300 --seed 4 --output " +
+                                  path("part") + kSmallDrive);
+  ASSERT_EQ(result.status, 0) << result.err;
+  const std::vector<mrs_vpr::DriveFrame> frames = mrs_vpr::readDriveFile(path("part") + "/drive.csv");
+  const std::vector<std::string> images = imagesIn(path("part"));
+  ASSERT_EQ(images.size(), frames.size());
+  EXPECT_EQ(images.front(), "000000.png");
+  int stopped = 0;
+  for (const mrs_vpr::DriveFrame& frame : frames) {
+    EXPECT_GE(frame.route_frame, 100);  // Numbered as the folder's images.
+    EXPECT_LT(frame.route_frame, 300);
+    stopped += frame.kind == mrs_vpr::DriveFrameKind::kStopped ? 1 : 0;
+  }
+  EXPECT_GE(stopped, 3 * 20);
+  EXPECT_LE(stopped, 3 * 30);
+  EXPECT_EQ(static_cast<int>(frames.size()), 200 - 15 + 30 + stopped);
+  // A moving frame is the route's image itself.
+  ASSERT_EQ(frames.front().kind, mrs_vpr::DriveFrameKind::kMoving);
+  EXPECT_EQ(fileContents(path("part/000000.png")), fileContents(path("summer/00100.png")));
+
+  // The same seed, the same drive; an existing drive is replaced only with --force.
+  expectError("--images " + path("summer") + " --begin 100 --end 300 --seed 4 --output " + path("part") + kSmallDrive,
+              "exists and is not empty; use --force");
+  ASSERT_EQ(makeDrive("--images " + path("summer") + " --begin 100 --end 300 --seed 4 --force --output " +
+                      path("again") + kSmallDrive)
+                .status,
+            0);
+  EXPECT_EQ(fileContents(path("again/drive.csv")), fileContents(path("part/drive.csv")));
+  EXPECT_EQ(fileContents(path("again/") + images.back()), fileContents(path("part/") + images.back()));
+  EXPECT_FALSE(fs::exists(path("part.part")));
+}
+
+TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
+  ASSERT_EQ(makeDrive("--images " + path("summer") + " --seed 1 --output " + path("map") + kSmallDrive).status, 0);
+  ASSERT_EQ(makeDrive("--images " + path("winter") + " --begin 0 --end 250 --seed 2 --output " + path("revisit") +
+                      kSmallDrive)
+                .status,
+            0);
+  const Result truth = makeDrive("--ground-truth " + path("truth.csv") + " --reference " + path("map") + " --query " +
+                                 path("revisit"));
+  ASSERT_EQ(truth.status, 0) << truth.err;
+
+  // Query frame i: the map's frames within 2 route frames of its own.
+  const std::vector<int> map = mrs_vpr::routeFramesOf(mrs_vpr::readDriveFile(path("map/drive.csv")));
+  const std::vector<int> revisit = mrs_vpr::routeFramesOf(mrs_vpr::readDriveFile(path("revisit/drive.csv")));
+  std::ifstream file(path("truth.csv"));
+  std::string line;
+  std::getline(file, line);
+  EXPECT_EQ(line, "query_index,matching_ref_indices");
+  int rows = 0;
+  while (std::getline(file, line)) {
+    std::istringstream row(line);
+    int query = -1;
+    char comma = 0;
+    row >> query >> comma;
+    ASSERT_EQ(query, rows++);
+    int reference = -1;
+    int matches = 0;
+    while (row >> reference) {
+      EXPECT_LE(std::abs(map[static_cast<std::size_t>(reference)] - revisit[static_cast<std::size_t>(query)]), 2);
+      ++matches;
+    }
+    EXPECT_GT(matches, 0) << line;
+  }
+  EXPECT_EQ(rows, static_cast<int>(revisit.size()));
+
+  // The generated route's places stand out from one another over 20 keyframes, not over 10.
+  const Result evaluated =
+      run(MRS_VPR_EVAL_PATH, "--reference " + path("map") + " --query " + path("revisit") + " --ground-truth " +
+                                 path("truth.csv") + " --protocol per-frame --sequence-length 20");
+  ASSERT_EQ(evaluated.status, 0) << evaluated.err;
+  const nlohmann::json summary = nlohmann::json::parse(evaluated.out).at("summary");
+  EXPECT_GT(summary.at("queries").get<int>(), 0);
+  EXPECT_GT(summary.at("accepted").get<int>(), 0);
+  EXPECT_EQ(summary.at("accepted_precision").get<double>(), 1.0) << evaluated.out;
+}
+
+TEST_F(MakeDriveTest, BadInputGivesOneLineAndExitCodeOne) {
+  expectError("--images " + path("summer"), "a drive needs --images and --output");
+  expectError("--images " + path("summer") + " --output " + path("x") + " --query " + path("x"),
+              "give either --images and --output (a drive) or --ground-truth");
+  expectError("--images " + path("summer") + " --output " + path("x") + " --begin 300 --end 200",
+              "--begin 300 and --end 200 must satisfy 0 <= begin < end <= 400");
+  expectError("--images " + path("summer") + " --output " + path("x") + " --seed -1", "--seed must be >= 0, got -1");
+  expectError("--images " + path("summer") + " --output " + path("x") + " --end 150",
+              "a route of 150 frames cannot hold a half-speed stretch of 100");
+  expectError("--images " + path("summer") + " --output " + path("x") + " --stop-frames-min 40 --stop-frames-max 10",
+              "stop_frames_max must be >= stop_frames_min (40), got 10");
+  expectError("--images " + path("nowhere") + " --output " + path("x"), "does not exist");
+  // --force replaces a drive, never another folder.
+  expectError("--images " + path("summer") + " --output " + path("winter") + " --force", "holds no drive.csv");
+  EXPECT_EQ(imagesIn(path("winter")).size(), 400U);
+  expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer") + " --query " + path("summer"),
+              "cannot open drive file '" + path("summer") + "/drive.csv'");
+  expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer"),
+              "the ground truth needs --ground-truth, --reference and --query");
+  EXPECT_FALSE(fs::exists(path("x")));
+}
+
+}  // namespace
