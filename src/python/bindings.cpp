@@ -300,6 +300,13 @@ std::vector<Image> imagesFrom(const py::handle& images, const std::string& what)
   return result;
 }
 
+std::vector<cv::Mat> matsOf(const std::vector<Image>& images) {
+  std::vector<cv::Mat> mats;
+  mats.reserve(images.size());
+  for (const Image& image : images) mats.push_back(image.mat);
+  return mats;
+}
+
 ChannelOrder channelOrder(const std::string& name) {
   if (name == "bgr") return ChannelOrder::kBgr;
   if (name == "rgb") return ChannelOrder::kRgb;
@@ -336,13 +343,6 @@ DescriptorSequence describeAll(const PlaceRecognizer& recognizer, const std::vec
     }
   }
   return descriptors;
-}
-
-/// The keyframes of a test sequence, chosen as the map's frames are (PlaceRecognizer::keyframesOf).
-DescriptorSequence keyframesIn(const PlaceRecognizer& recognizer, const DescriptorSequence& test_sequence) {
-  DescriptorSequence keyframes(recognizer.extractor().size());
-  for (const int frame : recognizer.keyframesOf(test_sequence)) keyframes.append(test_sequence.descriptorRow(frame));
-  return keyframes;
 }
 
 // --- The recognizer ----------------------------------------------------------------------------------
@@ -545,7 +545,9 @@ void bindRecognizer(py::module_& m) {
             const ChannelOrder order = channelOrder(channel_order);
             const std::vector<Image> views = imagesFrom(images, "the test sequence");
             py::gil_scoped_release released;
-            return self.core().keyframesOf(describeAll(self.core(), views, order, "the test sequence"));
+            std::vector<int> chosen;
+            self.core().keyframesOf(describeAll(self.core(), views, order, "the test sequence"), &chosen);
+            return chosen;
           },
           py::arg("images"), py::arg("channel_order") = "bgr",
           "Which of the images (oldest first) match() keeps as the test sequence: their indices, chosen as the "
@@ -555,15 +557,10 @@ void bindRecognizer(py::module_& m) {
           [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);
             const std::vector<Image> views = imagesFrom(images, "the test sequence");
+            const std::vector<cv::Mat> mats = matsOf(views);
             py::gil_scoped_release released;
-            const DescriptorSequence test = describeAll(self.core(), views, order, "the test sequence");
-            const DescriptorSequence keyframes = keyframesIn(self.core(), test);
-            if (keyframes.size() < 2 && test.size() >= 2) {
-              throw std::invalid_argument("the test sequence needs at least 2 keyframes, got " +
-                                          std::to_string(keyframes.size()) + " of " + std::to_string(test.size()) +
-                                          " images (too little changes between them: see min_appearance_change)");
-            }
-            return self.core().match(keyframes, method);
+            // The core keyframes the images as the map's frames (keyframesOf) before it searches.
+            return self.core().match(mats, method, order);
           },
           py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
           "Where the test sequence (images, oldest first) ends in the map. Its images are keyframed as the map's "
