@@ -1,0 +1,150 @@
+#!/usr/bin/python3
+"""Maps a folder of frames and localises a stretch of another traversal with mrs_vpr's Python API.
+
+    source .ws/devel/setup.bash
+    rosrun mrs_vpr map_and_localise.py ../shared/data/nordland/summer ../shared/data/nordland/winter
+
+or doc/examples/map_and_localise.py with the same arguments: either runs Debian's /usr/bin/python3, which
+has NumPy and the package (a python3 of one's own, such as pyenv's, may have neither).
+
+Frames are read in file-name order with Pillow (python3-pil, which matplotlib brings) into NumPy arrays.
+The map keeps a frame only once its view has changed by min_appearance_change (as the node does), and
+a stretch is keyframed the same way: a map keyframe stands for the frames after it up to the next one.
+Query frame i is taken to show the place of map frame i (as in the Nordland set): an answer is right
+when the frame its stretch localises is among those its map keyframe stands for, give or take
+--tolerance frames. --parameter NAME=VALUE sets any parameter of the core
+(mrs_vpr.parameter_reference() lists them), e.g. min_appearance_change=0 to keep every frame.
+"""
+
+import argparse
+import ast
+import glob
+import os
+import sys
+import time
+
+import numpy as np
+from PIL import Image
+
+import mrs_vpr
+
+IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pnm")
+
+
+def read_folder(folder):
+    """The folder's images, in file-name order, as one N x H x W x 3 RGB uint8 array."""
+    files = sorted(path for path in glob.glob(os.path.join(folder, "*")) if path.lower().endswith(IMAGE_EXTENSIONS))
+    if not files:
+        sys.exit("no images in '%s'" % folder)
+    return np.stack([np.asarray(Image.open(path).convert("RGB")) for path in files])
+
+
+def frames_off(frame, first, last):
+    """Frames from `frame` to the nearest of frames first..last (0 when among them)."""
+    return max(first - frame, frame - last, 0)
+
+
+def localise(recognizer, map_keyframes, query_images, first, length, method):
+    """Localises query frames [first, first + length): (answer, the query frame localised (the stretch's
+    last keyframe), the map frames (first, last) the answer's keyframe stands for, the stretch's
+    keyframes, time in ms). map_keyframes: the map frames each keyframe stands for."""
+    stretch = query_images[first:first + length]
+    start = time.perf_counter()
+    answer = recognizer.match(stretch, method=method, channel_order="rgb")
+    elapsed_ms = 1000.0 * (time.perf_counter() - start)
+    # match() keyframed the stretch as keyframes_of() does; its answer localises the last keyframe.
+    keyframes = recognizer.keyframes_of(stretch, channel_order="rgb")
+    localised = first + keyframes[-1]
+    return answer, localised, map_keyframes[answer.reference_index], len(keyframes), elapsed_ms
+
+
+def parameter(text):
+    """NAME=VALUE, the value as a Python literal when it is one (30, 2.5), else as text (thumbnail)."""
+    name, separator, value = text.partition("=")
+    if not separator:
+        raise argparse.ArgumentTypeError("expected NAME=VALUE, got '%s'" % text)
+    try:
+        return name, ast.literal_eval(value)
+    except (ValueError, SyntaxError):
+        return name, value
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("map_folder", help="images of the traversal to map, in file-name order")
+    parser.add_argument("query_folder", help="images of the traversal to localise; frame i shows map frame i's place")
+    parser.add_argument("--length", type=int, default=50, help="frames of the stretch (default 50)")
+    parser.add_argument("--first", type=int, help="its first query frame (default: the query's last frames)")
+    parser.add_argument("--method", default="", help="mrs or seqslam (default: default_method)")
+    parser.add_argument("--tolerance", type=int, default=3, help="frames of error still correct (default 3)")
+    parser.add_argument("--evaluate", type=int, default=0, metavar="N",
+                        help="also localise N stretches at random positions and print the figures")
+    parser.add_argument("--seed", type=int, default=0, help="of the random positions (default 0)")
+    parser.add_argument("--save", metavar="PATH", help="also save the map as a new map database")
+    parser.add_argument("--parameter", type=parameter, action="append", default=[], metavar="NAME=VALUE")
+    args = parser.parse_args()
+
+    try:
+        recognizer = mrs_vpr.PlaceRecognizer(sequence_length=args.length, **dict(args.parameter))
+    except ValueError as error:
+        sys.exit("bad parameter: %s" % error)
+
+    start = time.perf_counter()
+    map_images = read_folder(args.map_folder)
+    query_images = read_folder(args.query_folder)
+    read_s = time.perf_counter() - start
+    start = time.perf_counter()
+    # Frame by frame, as a camera offers them, to know which became keyframes (stamps: frame numbers).
+    kept = [i for i, image in enumerate(map_images) if recognizer.add_frame(image, stamp=float(i), channel_order="rgb")]
+    # A keyframe stands for itself and the frames after it that were too similar to be kept.
+    map_keyframes = [(frame, end - 1) for frame, end in zip(kept, kept[1:] + [len(map_images)])]
+    print("map: %d frames of %d x %d px, %d keyframes, mapped in %.2f s (read in %.2f s); front end %s"
+          % (len(map_images), map_images.shape[2], map_images.shape[1], len(recognizer),
+             time.perf_counter() - start, read_s, recognizer.front_end))
+
+    first = len(query_images) - args.length if args.first is None else args.first
+    try:
+        answer, localised, stands_for, keyframes, elapsed_ms = localise(recognizer, map_keyframes, query_images,
+                                                                        first, args.length, args.method)
+    except ValueError as error:
+        sys.exit("cannot localise: %s" % error)
+    error_frames = frames_off(localised, *stands_for)
+    print("stretch: query frames %d..%d (%d keyframes) -> map keyframe %d (frames %d..%d), query frame %d "
+          "localised: error %d frames (%s)"
+          % (first, first + args.length - 1, keyframes, answer.reference_index, stands_for[0], stands_for[1],
+             localised, error_frames, "correct" if error_frames <= args.tolerance else "wrong"))
+    print("answer: confidence %.2f, score %.3f, %s, method %s, %.1f ms"
+          % (answer.confidence, answer.score, "accepted" if answer.accepted else "not accepted", answer.method,
+             elapsed_ms))
+
+    if args.evaluate > 0:
+        # Stretches at distinct random positions, the same for the same --seed.
+        starts = np.random.default_rng(args.seed).choice(len(query_images) - args.length + 1,
+                                                         size=min(args.evaluate, len(query_images) - args.length + 1),
+                                                         replace=False)
+        correct = accepted = accepted_correct = largest = 0
+        times = []
+        for start_frame in sorted(int(s) for s in starts):
+            result, frame, frames, _, ms = localise(recognizer, map_keyframes, query_images, start_frame,
+                                                    args.length, args.method)
+            off = frames_off(frame, *frames)
+            largest = max(largest, off)
+            correct += off <= args.tolerance
+            accepted += result.accepted
+            accepted_correct += result.accepted and off <= args.tolerance
+            times.append(ms)
+        print("%d stretches of %d frames at random positions: top-1 %.3f (within %d frames), largest error %d, "
+              "accepted %d (precision %.3f), median %.1f ms"
+              % (len(times), args.length, correct / len(times), args.tolerance, largest, accepted,
+                 accepted_correct / accepted if accepted else float("nan"), float(np.median(times))))
+
+    if args.save:
+        try:
+            print("saved %d frames to %s" % (recognizer.save(args.save), args.save))
+        except ValueError as error:
+            sys.exit("cannot save: %s" % error)
+    return 0 if error_frames <= args.tolerance else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,775 @@
+// The Python module mrs_vpr._bindings: PlaceRecognizer, its answers, the map database and the
+// evaluation library, for NumPy images. The package python/mrs_vpr wraps it (keyword names of the
+// parameters, offline evaluation); everything that validates input is the core's.
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <climits>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/persistent_map.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+
+namespace py = pybind11;
+
+namespace mrs_vpr {
+namespace python {
+namespace {
+
+// --- Stamps ----------------------------------------------------------------------------------------
+// Python hands stamps over as float seconds; the core holds whole nanoseconds. These two functions are
+// the only place that converts: to the nearest nanosecond (as ros::Time::fromSec rounds), and back to
+// the nearest float.
+
+Stamp coreStamp(double seconds) { return Stamp::fromSeconds(seconds); }
+double secondsOf(Stamp stamp) { return stamp.seconds(); }
+
+// --- Parameters: every entry of the core's tables, by its exact name ---------------------------------
+
+/// What a PlaceRecognizer is constructed from.
+struct Settings {
+  Parameters core;
+  RecognizerParams recognizer;
+};
+
+using Field = std::variant<int*, double*, std::uint64_t*, WindowAlignment*, std::string*>;
+
+/// One parameter: its description in the core's tables and where its value goes.
+struct Entry {
+  const ParameterInfo* info;
+  std::function<Field(Settings&)> field;
+};
+
+template <typename Group, typename Select>
+void appendEntries(std::vector<Entry>& entries, const std::vector<ParameterSpec<Group>>& specs, Select select) {
+  for (const auto& spec : specs) {
+    entries.push_back({&spec.info, [member = spec.member, select](Settings& settings) {
+                         return std::visit([&](auto m) -> Field { return &(select(settings).*m); }, member);
+                       }});
+  }
+}
+
+/// The core's tables in the order of the parameter reference; a parameter added there is accepted here.
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> table = [] {
+    std::vector<Entry> all;
+    appendEntries(all, descriptorParameters(), [](Settings& s) -> DescriptorParams& { return s.core.descriptor; });
+    appendEntries(all, sequenceParameters(), [](Settings& s) -> SequenceParams& { return s.core.sequence; });
+    appendEntries(all, mrsParameters(), [](Settings& s) -> MrsParams& { return s.core.mrs; });
+    appendEntries(all, recognizerParameters(), [](Settings& s) -> RecognizerParams& { return s.recognizer; });
+    return all;
+  }();
+  return table;
+}
+
+const Entry& entryNamed(const std::string& name) {
+  for (const Entry& entry : entries()) {
+    if (entry.info->name == name) return entry;
+  }
+  throw std::invalid_argument("unknown parameter '" + name + "'");
+}
+
+/// The core's message for a rejected value, quoting it as Python writes it.
+[[noreturn]] void reject(const ParameterInfo& info, const py::handle& value, const std::string& detail = "") {
+  throw std::invalid_argument(info.rejection(py::repr(value).cast<std::string>(), detail));
+}
+
+bool isInteger(const py::handle& value) { return !PyBool_Check(value.ptr()) && PyIndex_Check(value.ptr()); }
+
+/// A whole number of any size, checked against the parameter's range before it is narrowed.
+py::int_ wholeNumber(const ParameterInfo& info, const py::handle& value) {
+  if (!isInteger(value)) reject(info, value, "not an integer");
+  py::int_ number = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (!number) throw py::error_already_set();
+  double approximate = PyLong_AsDouble(number.ptr());
+  if (approximate == -1.0 && PyErr_Occurred()) {  // beyond a double: compare as an infinity
+    PyErr_Clear();
+    const py::int_ zero(0);
+    approximate = PyObject_RichCompareBool(number.ptr(), zero.ptr(), Py_LT) == 1 ? -Range::kNone : Range::kNone;
+  }
+  if (!info.range.contains(approximate)) reject(info, value);
+  return number;
+}
+
+void assign(const ParameterInfo& info, const py::handle& value, int& field) {
+  const py::int_ number = wholeNumber(info, value);
+  int overflow = 0;
+  const long long whole = PyLong_AsLongLongAndOverflow(number.ptr(), &overflow);
+  if (overflow != 0 || whole < INT_MIN || whole > INT_MAX) {
+    reject(info, value, "beyond " + std::to_string(INT_MAX));
+  }
+  field = static_cast<int>(whole);
+}
+
+void assign(const ParameterInfo& info, const py::handle& value, std::uint64_t& field) {
+  const py::int_ number = wholeNumber(info, value);
+  const unsigned long long whole = PyLong_AsUnsignedLongLong(number.ptr());
+  if (PyErr_Occurred()) {
+    PyErr_Clear();
+    reject(info, value, "beyond " + std::to_string(std::numeric_limits<std::uint64_t>::max()));
+  }
+  field = whole;
+}
+
+void assign(const ParameterInfo& info, const py::handle& value, double& field) {
+  if (PyBool_Check(value.ptr()) || PyUnicode_Check(value.ptr()) || PyBytes_Check(value.ptr()) ||
+      !PyNumber_Check(value.ptr())) {
+    reject(info, value, "not a number");
+  }
+  const double number = PyFloat_AsDouble(value.ptr());
+  if (number == -1.0 && PyErr_Occurred()) {  // a complex number, an array of several values
+    PyErr_Clear();
+    reject(info, value, "not a number");
+  }
+  field = number;  // The range is the constructor's to check, with every other parameter's.
+}
+
+void assign(const ParameterInfo& info, const py::handle& value, std::string& field) {
+  if (!PyUnicode_Check(value.ptr())) reject(info, value, "not a string");
+  field = value.cast<std::string>();
+}
+
+void assign(const ParameterInfo& info, const py::handle& value, WindowAlignment& field) {
+  if (!PyUnicode_Check(value.ptr())) reject(info, value, "not a string");
+  field = parseWindowAlignment(value.cast<std::string>());
+}
+
+py::object toPython(int value) { return py::int_(value); }
+py::object toPython(std::uint64_t value) { return py::int_(value); }
+py::object toPython(double value) { return py::float_(value); }
+py::object toPython(const std::string& value) { return py::str(value); }
+py::object toPython(WindowAlignment value) { return py::str(toString(value)); }
+
+const char* typeName(int) { return "int"; }
+const char* typeName(std::uint64_t) { return "int"; }
+const char* typeName(double) { return "float"; }
+const char* typeName(const std::string&) { return "str"; }
+const char* typeName(WindowAlignment) { return "str"; }
+
+/// The defaults with `parameters` (exact names) set over them. Their ranges and rules are checked by
+/// the PlaceRecognizer constructed from them.
+Settings settingsFrom(const py::dict& parameters) {
+  Settings settings;
+  for (const auto& [key, value] : parameters) {
+    if (!PyUnicode_Check(key.ptr())) {
+      throw std::invalid_argument("parameter names are strings, got " + py::repr(key).cast<std::string>());
+    }
+    const Entry& entry = entryNamed(key.cast<std::string>());
+    std::visit([&](auto* field) { assign(*entry.info, value, *field); }, entry.field(settings));
+  }
+  return settings;
+}
+
+/// Exact name -> value of every parameter of `settings`.
+py::dict parameterValues(Settings settings, const std::string& prefix = "") {
+  py::dict values;
+  for (const Entry& entry : entries()) {
+    if (entry.info->name.compare(0, prefix.size(), prefix) != 0) continue;
+    std::visit([&](auto* field) { values[py::str(entry.info->name)] = toPython(*field); }, entry.field(settings));
+  }
+  return values;
+}
+
+/// Every parameter: name, type, default, allowed values and meaning, as the node's --help gives them.
+py::list parameterReference() {
+  py::list reference;
+  Settings defaults;
+  for (const Entry& entry : entries()) {
+    std::visit(
+        [&](auto* field) {
+          py::dict row;
+          row["name"] = entry.info->name;
+          row["type"] = typeName(*field);
+          row["default"] = toPython(*field);
+          row["allowed"] = entry.info->allowed();
+          row["meaning"] = entry.info->meaning;
+          reference.append(row);
+        },
+        entry.field(defaults));
+  }
+  return reference;
+}
+
+// --- Images: NumPy arrays as cv::Mat headers over their memory ---------------------------------------
+
+/// The OpenCV depth of a NumPy dtype, or -1 when OpenCV has none (int64, bool, complex, object...).
+int depthOf(const py::dtype& dtype) {
+  const char kind = dtype.kind();
+  const auto size = dtype.itemsize();
+  if (kind == 'u') return size == 1 ? CV_8U : size == 2 ? CV_16U : -1;
+  if (kind == 'i') return size == 1 ? CV_8S : size == 2 ? CV_16S : size == 4 ? CV_32S : -1;
+  if (kind == 'f') return size == 2 ? CV_16F : size == 4 ? CV_32F : size == 8 ? CV_64F : -1;
+  return -1;
+}
+
+std::string shapeText(const py::array& array) { return py::repr(py::tuple(array.attr("shape"))).cast<std::string>(); }
+
+/// Whether OpenCV can address the array's pixels as they lie: pixels and channels packed, rows any
+/// whole number of elements apart, elements aligned.
+bool opencvLayout(const py::array& array) {
+  const auto item = array.itemsize();
+  const auto channels = array.ndim() == 3 ? array.shape(2) : 1;
+  if (array.strides(1) != channels * item || (array.ndim() == 3 && array.strides(2) != item)) return false;
+  if (array.strides(0) < array.shape(1) * channels * item || array.strides(0) % item != 0) return false;
+  return reinterpret_cast<std::uintptr_t>(array.data()) % static_cast<std::uintptr_t>(item) == 0;
+}
+
+/// A NumPy image and the cv::Mat over its memory; `array` keeps that memory alive.
+struct Image {
+  py::array array;
+  cv::Mat mat;
+};
+
+/// An H x W or H x W x C NumPy array as a cv::Mat, without a copy unless OpenCV cannot address it as
+/// it lies (negative or odd strides). Which types and channel counts are supported is the core's to
+/// say: only what OpenCV cannot represent at all is refused here.
+Image imageFrom(const py::handle& object) {
+  if (!py::isinstance<py::array>(object)) {
+    throw std::invalid_argument("an image must be a NumPy array, got " +
+                                py::str(py::type::handle_of(object).attr("__name__")).cast<std::string>());
+  }
+  py::array array = py::reinterpret_borrow<py::array>(object);
+  if (array.ndim() != 2 && array.ndim() != 3) {
+    throw std::invalid_argument("an image must be H x W (grey) or H x W x C (BGR, BGRA), got an array of " +
+                                std::to_string(array.ndim()) + " dimensions, shape " + shapeText(array));
+  }
+  const int depth = depthOf(array.dtype());
+  if (depth < 0) {
+    throw std::invalid_argument("unsupported image dtype " + py::str(array.dtype()).cast<std::string>() +
+                                " (supported: uint8 grey, BGR or BGRA; uint16 grey)");
+  }
+  const auto channels = array.ndim() == 3 ? array.shape(2) : 1;
+  if (channels < 1 || channels > CV_CN_MAX || array.shape(0) > INT_MAX || array.shape(1) > INT_MAX) {
+    throw std::invalid_argument("unsupported image shape " + shapeText(array));
+  }
+  if (!array.dtype().attr("isnative").cast<bool>()) {
+    array = array.attr("astype")(array.dtype().attr("newbyteorder")("="));
+  }
+  if (array.size() > 0 && !opencvLayout(array)) array = array.attr("copy")();
+  Image image{array, {}};
+  if (array.size() == 0) return image;  // The core says what is wrong with an empty image.
+  image.mat = cv::Mat(static_cast<int>(array.shape(0)), static_cast<int>(array.shape(1)),
+                      CV_MAKETYPE(depth, static_cast<int>(channels)), const_cast<void*>(array.data()),
+                      static_cast<std::size_t>(array.strides(0)));
+  return image;
+}
+
+/// The images of a sequence (a list, or an array stacked along its first axis), oldest first.
+std::vector<Image> imagesFrom(const py::handle& images, const std::string& what) {
+  if (py::isinstance<py::array>(images)) {
+    // One image is not a sequence of them. An H x W x 3 array would otherwise pass as H grey images
+    // of W x 3 pixels: a stack of such narrow grey images is a list's job.
+    const auto array = py::reinterpret_borrow<py::array>(images);
+    const bool colour_image = array.ndim() == 3 && (array.shape(2) == 3 || array.shape(2) == 4);
+    if (array.ndim() < 3 || colour_image) {
+      throw std::invalid_argument(what + " must be a sequence of images (a list, or an N x H x W or N x H x W x C "
+                                  "array), got one array of shape " + shapeText(array));
+    }
+  }
+  if (PyUnicode_Check(images.ptr()) || !PySequence_Check(images.ptr())) {
+    throw std::invalid_argument(what + " must be a sequence of images, got " +
+                                py::str(py::type::handle_of(images).attr("__name__")).cast<std::string>());
+  }
+  std::vector<Image> result;
+  const py::sequence sequence = py::reinterpret_borrow<py::sequence>(images);
+  result.reserve(sequence.size());
+  for (std::size_t i = 0; i < sequence.size(); ++i) {
+    try {
+      result.push_back(imageFrom(sequence[i]));
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("image " + std::to_string(i) + " of " + what + ": " + error.what());
+    }
+  }
+  return result;
+}
+
+std::vector<cv::Mat> matsOf(const std::vector<Image>& images) {
+  std::vector<cv::Mat> mats;
+  mats.reserve(images.size());
+  for (const Image& image : images) mats.push_back(image.mat);
+  return mats;
+}
+
+ChannelOrder channelOrder(const std::string& name) {
+  if (name == "bgr") return ChannelOrder::kBgr;
+  if (name == "rgb") return ChannelOrder::kRgb;
+  throw std::invalid_argument("channel_order must be 'bgr' or 'rgb', got '" + name + "'");
+}
+
+py::array_t<std::uint8_t> arrayOf(const cv::Mat& descriptor) {
+  const cv::Mat row = descriptor.isContinuous() ? descriptor : descriptor.clone();
+  py::array_t<std::uint8_t> array(static_cast<py::ssize_t>(row.total()));
+  std::copy(row.data, row.data + row.total(), array.mutable_data());
+  return array;
+}
+
+py::array_t<std::uint8_t> stackOf(const std::vector<cv::Mat>& frames, const SyntheticRouteParams& params) {
+  py::array_t<std::uint8_t> stack({static_cast<int>(frames.size()), params.image_height, params.image_width, 3});
+  const std::size_t frame_bytes = static_cast<std::size_t>(params.image_height) * params.image_width * 3;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    cv::Mat view(frames[i].rows, frames[i].cols, frames[i].type(), stack.mutable_data() + i * frame_bytes);
+    frames[i].copyTo(view);
+  }
+  return stack;
+}
+
+/// Every image's descriptor, in order; a bad image is named by its position in `what`.
+DescriptorSequence describeAll(const PlaceRecognizer& recognizer, const std::vector<Image>& images, ChannelOrder order,
+                               const std::string& what) {
+  DescriptorSequence descriptors(recognizer.extractor().size());
+  descriptors.reserve(static_cast<int>(images.size()));
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    try {
+      descriptors.append(recognizer.describe(images[i].mat, order));
+    } catch (const std::invalid_argument& error) {
+      throw std::invalid_argument("image " + std::to_string(i) + " of " + what + ": " + error.what());
+    }
+  }
+  return descriptors;
+}
+
+// --- The recognizer ----------------------------------------------------------------------------------
+
+/// A PlaceRecognizer and the map store through which its map is saved and loaded: frames are added
+/// through the store, so that loading a map while frames arrive keeps both consistent.
+class Recognizer {
+ public:
+  explicit Recognizer(const Settings& settings) : recognizer_(settings.core, settings.recognizer), map_(recognizer_) {}
+
+  PlaceRecognizer& core() { return recognizer_; }
+  PersistentMap& map() { return map_; }
+
+  Settings settings() const { return {recognizer_.parameters(), recognizer_.recognizerParameters()}; }
+
+ private:
+  PlaceRecognizer recognizer_;
+  PersistentMap map_;
+};
+
+/// GroundTruth from a dict {query frame: [reference frames]}.
+GroundTruth groundTruthFrom(const py::dict& truth) {
+  GroundTruth ground_truth;
+  for (const auto& [query, references] : truth) {
+    try {
+      ground_truth[query.cast<int>()] = references.cast<std::vector<int>>();
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument("ground truth maps a query frame to a list of map frames, all integers; got " +
+                                  py::repr(query).cast<std::string>() + ": " +
+                                  py::repr(references).cast<std::string>());
+    }
+  }
+  return ground_truth;
+}
+
+py::dict recordDict(const QueryRecord& record) {
+  py::dict row;
+  row["query_index"] = record.query_index;
+  row["true_indices"] = record.true_indices;
+  row["predicted_index"] = record.predicted_index;
+  row["score"] = record.score;
+  row["confidence"] = record.confidence;
+  row["accepted"] = record.accepted;
+  row["at_velocity_bound"] = record.at_velocity_bound;
+  row["time_ms"] = record.time_ms;
+  return row;
+}
+
+/// A record from a dict with recordDict's keys (as Python code may have built or filtered it).
+QueryRecord recordFrom(const py::handle& row) {
+  QueryRecord record;
+  record.query_index = row["query_index"].cast<int>();
+  record.true_indices = row["true_indices"].cast<std::vector<int>>();
+  record.predicted_index = row["predicted_index"].cast<int>();
+  record.score = row["score"].cast<float>();
+  record.confidence = row["confidence"].cast<float>();
+  record.accepted = row["accepted"].cast<bool>();
+  record.at_velocity_bound = row["at_velocity_bound"].cast<bool>();
+  record.time_ms = row["time_ms"].cast<double>();
+  return record;
+}
+
+std::vector<QueryRecord> recordsFrom(const py::iterable& rows) {
+  std::vector<QueryRecord> records;
+  for (const py::handle row : rows) {
+    try {
+      records.push_back(recordFrom(row));
+    } catch (const py::cast_error&) {
+      throw std::invalid_argument("a query record holds a value of the wrong type: " +
+                                  py::repr(row).cast<std::string>());
+    }
+  }
+  return records;
+}
+
+py::dict summaryDict(const EvaluationSummary& summary) {
+  py::dict row;
+  row["tolerance"] = summary.tolerance;
+  row["queries"] = summary.queries;
+  row["top1"] = summary.top1;
+  row["pr_auc"] = summary.pr_auc;
+  row["recall_at_100_precision"] = summary.recall_at_100_precision;
+  row["accepted"] = summary.accepted;
+  row["accepted_rate"] = summary.accepted_rate;
+  row["accepted_precision"] = summary.accepted_precision;
+  row["accepted_recall"] = summary.accepted_recall;
+  row["median_abs_error"] = summary.median_abs_error;
+  row["median_time_ms"] = summary.median_time_ms;
+  row["total_time_s"] = summary.total_time_s;
+  return row;
+}
+
+/// A float as it prints with float's precision ("6.92", not 6.920000076293945).
+std::string floatText(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
+void bindAnswers(py::module_& m) {
+  py::class_<Match>(m, "Match", "The answer of a sequence search (mrs_vpr/match.hpp).")
+      .def_readonly("reference_index", &Match::reference_index, "Matched map frame; -1 when none.")
+      .def_readonly("score", &Match::score, "Best / runner-up sequence difference, in [0, 1]; lower is better.")
+      .def_readonly("confidence", &Match::confidence,
+                    "Distinctiveness in standard deviations of the query's own end costs; higher is surer.")
+      .def_readonly("rivals", &Match::rivals, "Ends the confidence was judged against.")
+      .def_readonly("accepted", &Match::accepted, "Whether the answer passes the acceptance rule (a loop closure).")
+      .def_readonly("velocity", &Match::velocity, "Map frames per test frame along the answer's trajectory.")
+      .def_readonly("at_velocity_bound", &Match::at_velocity_bound,
+                    "The trajectory runs at the slowest or fastest velocity searched (never accepted).")
+      .def_readonly("sequence_difference", &Match::sequence_difference,
+                    "Mean difference along the best trajectory; compare within one method and length only.")
+      .def_readonly("comparisons", &Match::comparisons, "Image comparisons the search made.")
+      .def("__repr__", [](const Match& match) {
+        return "Match(reference_index=" + std::to_string(match.reference_index) +
+               ", confidence=" + floatText(match.confidence) + ", accepted=" + (match.accepted ? "True" : "False") +
+               ", score=" + floatText(match.score) + ")";
+      });
+
+  py::class_<PlaceAnswer>(m, "Answer", "The answer to a query: the match and the stamps of its frames.")
+      .def_readonly("match", &PlaceAnswer::match)
+      .def_property_readonly("reference_index", [](const PlaceAnswer& a) { return a.match.reference_index; },
+                             "Matched map frame (the newest test frame's place); -1 when none.")
+      .def_property_readonly("confidence", [](const PlaceAnswer& a) { return a.match.confidence; },
+                             "Distinctiveness in standard deviations; higher is surer.")
+      .def_property_readonly("accepted", [](const PlaceAnswer& a) { return a.match.accepted; },
+                             "Whether the answer passes the acceptance rule (a loop closure).")
+      .def_property_readonly("score", [](const PlaceAnswer& a) { return a.match.score; },
+                             "Best / runner-up sequence difference, in [0, 1]; lower is better.")
+      .def_property_readonly("reference_stamp", [](const PlaceAnswer& a) { return secondsOf(a.reference_stamp); },
+                             "Stamp of the matched map frame [s]; 0 when none.")
+      .def_property_readonly("newest_stamp", [](const PlaceAnswer& a) { return secondsOf(a.newest_stamp); },
+                             "Stamp of the test sequence's newest frame [s] (match_recent; else 0).")
+      .def_readonly("query_length", &PlaceAnswer::query_length, "Frames of the test sequence.")
+      .def_readonly("method", &PlaceAnswer::method, "The method that answered.")
+      .def("__repr__", [](const PlaceAnswer& a) {
+        return "Answer(reference_index=" + std::to_string(a.match.reference_index) +
+               ", confidence=" + floatText(a.match.confidence) + ", accepted=" + (a.match.accepted ? "True" : "False") +
+               ", score=" + floatText(a.match.score) +
+               ", reference_stamp=" + py::repr(py::float_(secondsOf(a.reference_stamp))).cast<std::string>() +
+               ", method='" + a.method + "')";
+      });
+}
+
+void bindRecognizer(py::module_& m) {
+  py::class_<Recognizer>(m, "PlaceRecognizer",
+                         "Sequence-based place recognition over a map of frames (mrs_vpr/place_recognizer.hpp).")
+      .def(py::init([](const py::dict& parameters) { return std::make_unique<Recognizer>(settingsFrom(parameters)); }),
+           py::arg("parameters") = py::dict())
+      .def(
+          "add_frame",
+          [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const Image view = imageFrom(image);
+            const Stamp exact = coreStamp(stamp);
+            py::gil_scoped_release released;
+            // The node's path: the map keeps the frame only if it is a keyframe.
+            return self.map().offer(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+          },
+          py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
+          "Offers a camera frame to the map; True when it became a keyframe. A frame too similar to the last "
+          "keyframe (its view changed by less than min_appearance_change) is not kept, nor is one that finds "
+          "the map full (max_frames).")
+      .def(
+          "add_frames",
+          [](Recognizer& self, const py::handle& images, std::optional<std::vector<double>> stamps,
+             const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "images");
+            if (stamps && stamps->size() != views.size()) {
+              throw std::invalid_argument("stamps has " + std::to_string(stamps->size()) + " entries for " +
+                                          std::to_string(views.size()) + " images");
+            }
+            // Every stamp is converted and every image described before the first is offered: bad input
+            // leaves the map as it was.
+            std::vector<Stamp> exact(views.size());
+            for (std::size_t i = 0; i < views.size() && stamps; ++i) {
+              try {
+                exact[i] = coreStamp((*stamps)[i]);
+              } catch (const std::invalid_argument& error) {
+                throw std::invalid_argument("stamp " + std::to_string(i) + " of stamps: " + error.what());
+              }
+            }
+            py::gil_scoped_release released;
+            const DescriptorSequence descriptors = describeAll(self.core(), views, order, "images");
+            int admitted = 0;
+            for (int i = 0; i < descriptors.size(); ++i) {
+              admitted += self.map().offer(descriptors.descriptorRow(i).clone(), exact[static_cast<std::size_t>(i)]) ==
+                                  FrameAdmission::kAdmitted
+                              ? 1
+                              : 0;
+            }
+            return admitted;
+          },
+          py::arg("images"), py::arg("stamps") = py::none(), py::arg("channel_order") = "bgr",
+          "Offers frames (oldest first) to the map as add_frame does; returns how many became keyframes.")
+      .def(
+          "keyframes_of",
+          [](Recognizer& self, const py::handle& images, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the test sequence");
+            py::gil_scoped_release released;
+            std::vector<int> chosen;
+            self.core().keyframesOf(describeAll(self.core(), views, order, "the test sequence"), &chosen);
+            return chosen;
+          },
+          py::arg("images"), py::arg("channel_order") = "bgr",
+          "Which of the images (oldest first) match() keeps as the test sequence: their indices, chosen as the "
+          "map's keyframes are (all of them when min_appearance_change is 0).")
+      .def(
+          "match",
+          [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the test sequence");
+            const std::vector<cv::Mat> mats = matsOf(views);
+            py::gil_scoped_release released;
+            // The core keyframes the images as the map's frames (keyframesOf) before it searches.
+            return self.core().match(mats, method, order);
+          },
+          py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
+          "Where the test sequence (images, oldest first) ends in the map. Its images are keyframed as the map's "
+          "frames are (keyframes_of) and the answer localises the last keyframe; at least 2 are needed. method: "
+          "'mrs', 'seqslam' or '' (default_method).")
+      .def(
+          "match_recent",
+          [](Recognizer& self, long long frames, const std::string& method) {
+            py::gil_scoped_release released;
+            return self.core().matchRecent(frames, method);
+          },
+          py::arg("frames"), py::arg("method") = "",
+          "Where the map's newest `frames` frames lie among its older ones, recent_exclusion frames back "
+          "and more: a loop closure.")
+      .def(
+          "match_every_frame",
+          [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the traversal");
+            py::gil_scoped_release released;
+            const DescriptorSequence traversal = describeAll(self.core(), views, order, "the traversal");
+            return self.core().matchEveryFrame(traversal.view(), method);
+          },
+          py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
+          "The per-frame protocol over a traversal: for every frame, the Match of the sequence of "
+          "sequence_length frames that localises it (reference_index -1 where that sequence is incomplete).")
+      .def(
+          "describe",
+          [](Recognizer& self, const py::handle& image, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const Image view = imageFrom(image);
+            cv::Mat descriptor;
+            {
+              py::gil_scoped_release released;
+              descriptor = self.core().describe(view.mat, order);
+            }
+            return arrayOf(descriptor);
+          },
+          py::arg("image"), py::arg("channel_order") = "bgr",
+          "The image's descriptor (uint8, descriptor_size bytes), without touching the map.")
+      .def(
+          "save",
+          [](Recognizer& self, const std::string& path) {
+            py::gil_scoped_release released;
+            return self.map().save(path);
+          },
+          py::arg("path"),
+          "Writes the map to the new SQLite map database `path` (never overwritten); returns the frames written.")
+      .def(
+          "load",
+          [](Recognizer& self, const std::string& path) {
+            py::gil_scoped_release released;
+            return self.map().load(path);
+          },
+          py::arg("path"),
+          "Replaces the map by the map database `path` (of this recognizer's front end); returns its frames.")
+      .def(
+          "reset",
+          [](Recognizer& self) {
+            py::gil_scoped_release released;
+            return self.map().reset();
+          },
+          "Removes every frame; returns how many there were.")
+      .def("__len__", [](Recognizer& self) { return self.core().size(); })
+      .def_property_readonly(
+          "pending_frames", [](Recognizer& self) { return self.core().pending(); },
+          "Frames added while a query held the map, waiting to enter it.")
+      .def_property_readonly(
+          "descriptor_size", [](Recognizer& self) { return self.core().extractor().size(); }, "Bytes per descriptor.")
+      .def_property_readonly(
+          "front_end", [](Recognizer& self) { return self.core().parameters().descriptor.describe(); },
+          "The descriptor's front end in words.")
+      .def_property_readonly(
+          "parameters", [](Recognizer& self) { return parameterValues(self.settings()); },
+          "Every parameter in effect, by its exact name.");
+}
+
+void bindEvaluation(py::module_& m) {
+  m.def(
+      "per_frame_queries",
+      [](int query_frames, int sequence_length, const std::string& alignment) {
+        SequenceParams params;
+        params.sequence_length = sequence_length;
+        params.alignment = parseWindowAlignment(alignment);
+        return perFrameQueries(query_frames, params);
+      },
+      py::arg("query_frames"), py::arg("sequence_length"), py::arg("alignment"),
+      "Query frames with a full test sequence in the per-frame protocol.");
+  m.def(
+      "global_queries",
+      [](int query_frames, int length, int count, std::uint64_t seed, const std::string& alignment) {
+        py::list tests;
+        for (const TestSequence& test :
+             globalQueries(query_frames, length, count, seed, parseWindowAlignment(alignment))) {
+          tests.append(py::make_tuple(test.start, test.length, test.query_index));
+        }
+        return tests;
+      },
+      py::arg("query_frames"), py::arg("length"), py::arg("count"), py::arg("seed"), py::arg("alignment"),
+      "Test sequences (start, length, query_index) of the global localisation protocol.");
+  m.def(
+      "truths",
+      [](const std::optional<py::dict>& truth, int query_frames, int reference_frames) {
+        std::optional<GroundTruth> ground_truth;
+        if (truth) {
+          ground_truth = groundTruthFrom(*truth);
+          checkGroundTruth(*ground_truth, query_frames, reference_frames);
+        }
+        py::list table;
+        for (int query = 0; query < query_frames; ++query) {
+          const auto true_indices = truthFor(query, ground_truth ? &*ground_truth : nullptr, reference_frames);
+          table.append(true_indices ? py::cast(*true_indices) : py::none());
+        }
+        return table;
+      },
+      py::arg("ground_truth"), py::arg("query_frames"), py::arg("reference_frames"),
+      "For every query frame its true map frames, or None where it is not evaluated; without ground truth, "
+      "query frame i shows map frame i.");
+  m.def(
+      "query_record",
+      [](int query_index, std::vector<int> truth, const Match& match, double time_ms) {
+        return recordDict(queryRecordOf(query_index, std::move(truth), match, time_ms));
+      },
+      py::arg("query_index"), py::arg("true_indices"), py::arg("match"), py::arg("time_ms"));
+  m.def(
+      "summarise",
+      [](const py::iterable& records, int tolerance) { return summaryDict(summarise(recordsFrom(records), tolerance)); },
+      py::arg("records"), py::arg("tolerance"),
+      "top1, pr_auc, recall_at_100_precision, accepted figures, median error and time of query records.");
+  m.def(
+      "precision_recall_curve",
+      [](const py::iterable& records, int tolerance) {
+        const std::vector<PrPoint> curve = precisionRecallCurve(recordsFrom(records), tolerance);
+        py::array_t<double> threshold(static_cast<py::ssize_t>(curve.size()));
+        py::array_t<double> precision(static_cast<py::ssize_t>(curve.size()));
+        py::array_t<double> recall(static_cast<py::ssize_t>(curve.size()));
+        for (std::size_t i = 0; i < curve.size(); ++i) {
+          threshold.mutable_at(i) = curve[i].threshold;
+          precision.mutable_at(i) = curve[i].precision;
+          recall.mutable_at(i) = curve[i].recall;
+        }
+        py::dict result;
+        result["threshold"] = threshold;
+        result["precision"] = precision;
+        result["recall"] = recall;
+        return result;
+      },
+      py::arg("records"), py::arg("tolerance"),
+      "The precision-recall curve over a threshold on confidence, from the highest threshold down.");
+}
+
+}  // namespace
+}  // namespace python
+}  // namespace mrs_vpr
+
+PYBIND11_MODULE(_bindings, m) {
+  using namespace mrs_vpr;
+  using namespace mrs_vpr::python;
+  m.doc() = "mrs_vpr's core for Python; use the package mrs_vpr, which wraps it.";
+  // A map database that cannot be used is bad input, like every other: a ValueError.
+  py::register_exception<MapDatabaseError>(m, "MapDatabaseError", PyExc_ValueError);
+
+  bindAnswers(m);
+  bindRecognizer(m);
+  bindEvaluation(m);
+
+  m.def("parameter_reference", &parameterReference,
+        "Every parameter: name, type, default, allowed values and meaning (the core's tables).");
+  m.def(
+      "map_front_end",
+      [](const std::string& path) {
+        Settings settings;
+        settings.core.descriptor = MapDatabase(path, MapAccess::kReadOnly).descriptorParams();
+        return parameterValues(settings, "descriptor/");
+      },
+      py::arg("path"), "The descriptor parameters (exact names) a map database was written with.");
+
+  const SyntheticRouteParams defaults;
+  m.def(
+      "synthetic_route",
+      [](int reference_frames, int query_frames, int image_width, int image_height, double speed_min,
+         double speed_max, double start_place, double noise_std, std::uint64_t seed) {
+        SyntheticRouteParams params;
+        params.reference_frames = reference_frames;
+        params.query_frames = query_frames;
+        params.image_width = image_width;
+        params.image_height = image_height;
+        params.speed_min = speed_min;
+        params.speed_max = speed_max;
+        params.start_place = start_place;
+        params.noise_std = noise_std;
+        params.seed = seed;
+        SyntheticRoute route;
+        {
+          py::gil_scoped_release released;
+          route = generateSyntheticRoute(params);
+        }
+        py::dict result;
+        result["reference"] = stackOf(route.reference, params);
+        result["query"] = stackOf(route.query, params);
+        result["query_to_reference"] = py::array_t<int>(static_cast<py::ssize_t>(route.query_to_reference.size()),
+                                                        route.query_to_reference.data());
+        return result;
+      },
+      py::arg("reference_frames") = defaults.reference_frames, py::arg("query_frames") = defaults.query_frames,
+      py::arg("image_width") = defaults.image_width, py::arg("image_height") = defaults.image_height,
+      py::arg("speed_min") = defaults.speed_min, py::arg("speed_max") = defaults.speed_max,
+      py::arg("start_place") = defaults.start_place, py::arg("noise_std") = defaults.noise_std,
+      py::arg("seed") = defaults.seed,
+      "Two generated traversals of one route with known alignment (mrs_vpr/synthetic_route.hpp): "
+      "reference and query as N x H x W x 3 BGR uint8 arrays, and query_to_reference.");
+}

@@ -1,0 +1,75 @@
+"""The README's example script, on two folders of generated frames."""
+
+import pathlib
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import mrs_vpr
+
+Image = pytest.importorskip("PIL.Image")
+
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "doc" / "examples" / "map_and_localise.py"
+
+
+def write_folder(folder, frames):
+    folder.mkdir()
+    for i, frame in enumerate(frames):
+        Image.fromarray(np.ascontiguousarray(frame[..., ::-1])).save(folder / ("%05d.png" % i))  # BGR -> RGB
+
+
+def test_the_example_maps_a_folder_and_localises_the_last_stretch(tmp_path):
+    # At a constant speed of one place per frame, query frame i shows map frame i, as in the Nordland set.
+    route = mrs_vpr.synthetic_route(reference_frames=300, query_frames=300, speed_min=1.0, speed_max=1.0)
+    assert list(route["query_to_reference"]) == list(range(300))
+    write_folder(tmp_path / "map", route["reference"])
+    write_folder(tmp_path / "query", route["query"])
+    result = subprocess.run(
+        [sys.executable, str(SCRIPT), str(tmp_path / "map"), str(tmp_path / "query"), "--evaluate", "10",
+         "--save", str(tmp_path / "map.db"), "--parameter", "descriptor_type=thumbnail",
+         "--parameter", "velocity_step=0.02"],
+        capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].startswith("map: 300 frames of 128 x 64 px, 300 keyframes, mapped in ")
+    assert lines[1].startswith("stretch: query frames 250..299 (50 keyframes) -> map keyframe ")
+    assert lines[1].endswith("query frame 299 localised: error 0 frames (correct)")
+    assert lines[3].startswith("10 stretches of 50 frames at random positions: top-1 1.000 (within 3 frames)")
+    assert lines[4] == "saved 300 frames to %s" % (tmp_path / "map.db")
+    assert len(mrs_vpr.PlaceRecognizer.from_map(tmp_path / "map.db")) == 300
+
+
+def test_the_example_keyframes_a_camera_that_stops_and_scores_the_frames_a_keyframe_stands_for(tmp_path):
+    # Both traversals stop for a second frame at every place: frame i of either shows place i // 2.
+    route = mrs_vpr.synthetic_route(reference_frames=150, query_frames=150, speed_min=1.0, speed_max=1.0)
+    write_folder(tmp_path / "map", np.repeat(route["reference"], 2, axis=0))
+    write_folder(tmp_path / "query", np.repeat(route["query"], 2, axis=0))
+    result = subprocess.run(
+        [sys.executable, str(SCRIPT), str(tmp_path / "map"), str(tmp_path / "query"), "--evaluate", "10",
+         "--tolerance", "0", "--parameter", "descriptor_type=thumbnail", "--parameter", "velocity_step=0.02"],
+        capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[0].startswith("map: 300 frames of 128 x 64 px, 150 keyframes, mapped in ")
+    # The stretch's last keyframe is frame 298 (299 repeats it); map keyframe 149 stands for frames 298..299.
+    assert lines[1].startswith("stretch: query frames 250..299 (25 keyframes) -> map keyframe 149 (frames 298..299), "
+                               "query frame 298 localised: error 0 frames (correct)")
+    assert lines[3].startswith("10 stretches of 50 frames at random positions: top-1 1.000 (within 0 frames)")
+
+
+def test_the_example_run_as_documented_prints_its_help_without_a_prompt_or_a_warning():
+    result = subprocess.run([str(SCRIPT), "--help"], stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0
+    assert result.stdout.startswith("usage: map_and_localise.py [-h]")
+    assert "map_folder" in result.stdout and "--parameter NAME=VALUE" in result.stdout
+    assert result.stderr == ""
+
+
+def test_the_example_reports_a_bad_parameter(tmp_path):
+    result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path), "--parameter", "tau=0"],
+                            capture_output=True, text=True)
+    assert result.returncode != 0
+    assert "bad parameter: mrs/tau must be in 1..16, got 0" in result.stderr

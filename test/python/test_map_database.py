@@ -1,0 +1,63 @@
+"""Saving and loading the SQLite map database."""
+
+import pytest
+
+import mrs_vpr
+from conftest import ROUTE_PARAMETERS
+
+STRETCH = slice(100, 250)
+
+
+def test_a_saved_map_loads_with_the_same_frames_stamps_and_answers(route, mapped, tmp_path):
+    path = tmp_path / "map.db"
+    assert mapped.save(path) == 600
+    loaded = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
+    assert loaded.load(str(path)) == 600
+    assert len(loaded) == 600
+    assert repr(loaded.match(route["query"][STRETCH])) == repr(mapped.match(route["query"][STRETCH]))
+
+
+def test_from_map_takes_the_front_end_the_map_was_written_with(route, mapped, tmp_path):
+    path = tmp_path / "map.db"
+    mapped.save(path)
+    loaded = mrs_vpr.PlaceRecognizer.from_map(path, velocity_step=0.02)
+    assert loaded.parameters["descriptor/type"] == "thumbnail"  # not the default front end, hog
+    assert len(loaded) == 600
+    assert repr(loaded.match(route["query"][STRETCH])) == repr(mapped.match(route["query"][STRETCH]))
+
+
+def test_a_map_of_another_front_end_is_refused_and_the_map_kept(mapped, tmp_path):
+    path = tmp_path / "map.db"
+    mapped.save(path)
+    hog = mrs_vpr.PlaceRecognizer()
+    with pytest.raises(mrs_vpr.MapDatabaseError) as error:
+        hog.load(path)
+    assert "thumbnail" in str(error.value) and "hog" in str(error.value)
+    assert len(hog) == 0
+
+
+def test_a_map_is_never_overwritten(mapped, tmp_path):
+    path = tmp_path / "map.db"
+    path.write_text("a user's file")
+    with pytest.raises(ValueError) as error:
+        mapped.save(path)
+    assert str(path) in str(error.value)
+    assert path.read_text() == "a user's file"
+
+
+@pytest.mark.parametrize("name", ["missing/folder/map.db", ""])
+def test_a_bad_save_path_raises_value_error(mapped, tmp_path, name):
+    with pytest.raises(ValueError):
+        mapped.save(tmp_path / name if name else name)
+
+
+def test_a_bad_map_raises_value_error_and_keeps_the_map(route, mapped, tmp_path):
+    not_a_map = tmp_path / "notes.db"
+    not_a_map.write_text("not SQLite")
+    for path in [tmp_path / "missing.db", not_a_map]:
+        with pytest.raises(ValueError) as error:
+            mapped.load(path)
+        assert str(path) in str(error.value)
+        assert len(mapped) == 600
+    with pytest.raises(mrs_vpr.MapDatabaseError):
+        mrs_vpr.PlaceRecognizer.from_map(tmp_path / "missing.db")
