@@ -139,12 +139,24 @@ for start in $QUERY_STARTS; do
 done
 sleep 0.5  # Let the listener write the last loop closure.
 
-python3 - "$results" "$work/ground_truth.csv" "$START_TIME" "$RATE" "$work/loop_closure.csv" <<'EOF'
+echo "== Playing query.bag into the node: a revisit, on which continuous mode (every second, the newest"
+echo "   $(rosparam get /mrs_vpr/sequence/sequence_length 2>/dev/null || echo 20) keyframes) publishes loop closures"
+rostopic echo -p /mrs_vpr/loop_closure >"$work/revisit.csv" 2>/dev/null &
+revisit_echo=$!
+background_pids+=("$revisit_echo:rostopic echo")
+sleep 1
+rosbag play --quiet "$work/query.bag" >>"$work/play.log" 2>&1
+sleep 2  # The last continuous-mode answer.
+stop_process "$revisit_echo" "rostopic echo"
+
+python3 - "$results" "$work/ground_truth.csv" "$START_TIME" "$RATE" "$work/loop_closure.csv" "$work/revisit.csv" <<'EOF'
 import csv
 import json
 import sys
 
-results, truth_file, start_time, rate, closures = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+results, truth_file, start_time, rate, closures, revisit = (
+    sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5], sys.argv[6])
+query_start = start_time + 3600.0  # make_demo_route stamps the query traversal an hour later.
 truth = {}
 with open(truth_file) as f:
     for row in csv.DictReader(f):
@@ -166,7 +178,7 @@ with open(results) as f:
         request = answer["request"]
         # query_bag sends keyframes (frames whose view changed), not always consecutive frames: the
         # stamp of the newest one names its bag frame.
-        last = round((request["last_stamp"] - start_time) * rate)
+        last = round((request["last_stamp"] - query_start) * rate)
         true_index = truth[last][0]
         frames = "%d-%d" % (request["start"], last)
         if not answer["success"]:
@@ -196,7 +208,28 @@ if unaccepted_misses:
     print("query's own costs, so the node gave it as a guess only; a robot uses only accepted answers.")
 with open(closures) as f:
     published = max(0, sum(1 for _ in f) - 1)  # Minus the CSV header.
-print("loop closures published on /mrs_vpr/loop_closure: %d" % published)
+print("loop closures published on /mrs_vpr/loop_closure for these queries: %d" % published)
+
+# Continuous mode during the revisit: each answer names its newest keyframe (header.stamp).
+print()
+print("continuous mode on the revisit (one answer a second):")
+print("%-11s %6s %10s %6s %6s %5s" % ("query frame", "true", "predicted", "error", "conf", "acc"))
+counts = {"accepted": 0, "right": 0, "wrong": 0, "answers": 0}
+with open(revisit) as f:
+    for row in csv.DictReader(f):
+        counts["answers"] += 1
+        frame = round((int(row["field.header.stamp"]) / 1e9 - query_start) * rate)
+        predicted = round((int(row["field.reference_stamp"]) / 1e9 - start_time) * rate)
+        true_index = truth.get(frame, [-1])[0]
+        error = abs(predicted - true_index)
+        accepted = row["field.accepted"] == "True"
+        print("%-11d %6d %10d %6d %6.2f %5s" % (frame, true_index, predicted, error, float(row["field.confidence"]),
+                                               "yes" if accepted else "no"))
+        if accepted:
+            counts["accepted"] += 1
+            counts["right" if error <= 5 else "wrong"] += 1
+print("continuous mode: %d answers, %d accepted as loop closures (%d within 5 frames, %d further off)"
+      % (counts["answers"], counts["accepted"], counts["right"], counts["wrong"]))
 EOF
 echo
 echo "== Shutting down"

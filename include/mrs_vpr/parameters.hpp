@@ -24,7 +24,7 @@ inline constexpr const char* kHogFrontEnd = "hog";
 /**
  * How an image becomes a descriptor: the front end, and the parameters of each. Only the fields of the
  * chosen type are used. The thumbnail's defaults are OpenSeqSLAM's; HOG's are those of the comparison
- * in the README (128 x 64 window, cells of 16 px, 9 orientation bins, blocks of 2 x 2 cells).
+ * in doc/front_ends.md (128 x 64 window, cells of 16 px, 9 orientation bins, blocks of 2 x 2 cells).
  */
 struct DescriptorParams {
   std::string type = kHogFrontEnd;  ///< kHogFrontEnd or kThumbnailFrontEnd.
@@ -39,7 +39,7 @@ struct DescriptorParams {
   int hog_bins = 9;            ///< Orientation bins over 0..180 degrees.
   /// Standard deviation of the Gaussian that smooths the window before its gradients are taken [px],
   /// 0 = none. For a camera whose noise shows at the window's scale: on real daytime frames it cost
-  /// accepted answers of long global queries, so it is off by default (README, "Front ends").
+  /// accepted answers of long global queries, so it is off by default (doc/front_ends.md).
   double hog_blur = 0.0;
 
   bool isHog() const { return type == kHogFrontEnd; }
@@ -65,7 +65,7 @@ enum class WindowAlignment {
 constexpr int kMaxVelocities = 1000;
 
 /// Sequence matching shared by brute-force SeqSLAM and MRS-VPR. Defaults are OpenSeqSLAM's but for the
-/// sequence length and the alignment slack, which were chosen on keyframed real frames (doc/results.md).
+/// sequence length, chosen on keyframed real frames (doc/keyframes.md).
 struct SequenceParams {
   /// ds: keyframes per test sequence in the per-frame protocol and continuous mode. 20: on the tune half
   /// of Nordland (keyframed at the defaults) precision 0.998 and recall 0.905, where 10 recalls 0.750.
@@ -77,9 +77,10 @@ struct SequenceParams {
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up.
   WindowAlignment alignment = WindowAlignment::kCausal;
   /// Frames the path that places an answer may stray from the best straight trajectory, which found the
-  /// place (flexible_alignment.hpp); 0 = the straight trajectory's end. 4: a camera drive's speed
-  /// changes within a sequence moved straight ends off by a few keyframes.
-  int alignment_slack = 4;
+  /// place (flexible_alignment.hpp); 0 = the straight trajectory's end. Off by default: on camera
+  /// drives 4 turned 2 of 7 near misses right, but in a stretch of identical frames (a camera blacked
+  /// out) the path may wander and move a right answer off.
+  int alignment_slack = 0;
   /// An answer is accepted as a loop closure when its confidence (distinctiveness, in standard
   /// deviations of the query's own end costs) reaches this and its trajectory does not run at the
   /// slowest or fastest velocity. 3 is a three-sigma rule, not a value fitted to a data set; see

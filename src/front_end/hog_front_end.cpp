@@ -58,7 +58,7 @@ cv::Mat HogFrontEnd::describeGrey(const cv::Mat& grey) const {
   // 12-bit camera fills the bytes as an 8-bit one would). An
   // 8-bit one keeps its grey levels: OpenCV's block normalisation adds a constant to each block's norm,
   // which keeps faint gradients (sky, a wall) faint, and stretching the window's contrast would undo
-  // that (on the real frames of the README it cost up to 11 points of top-1).
+  // that (on the real frames of doc/front_ends.md it cost up to 11 points of top-1).
   double gain = 1.0;
   if (grey.depth() == CV_16U) {
     double brightest = 0.0;

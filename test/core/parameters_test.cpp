@@ -49,7 +49,9 @@ TEST(Parameters, DefaultsAreOpenSeqSlamsAndThePapers) {
   EXPECT_EQ(params.descriptor.image_width, 64);
   EXPECT_EQ(params.descriptor.image_height, 32);
   EXPECT_EQ(params.descriptor.patch_size, 8);
-  EXPECT_EQ(params.sequence.sequence_length, 10);
+  // 20 keyframes, not OpenSeqSLAM's 10 frames: chosen on keyframed real frames (doc/keyframes.md).
+  EXPECT_EQ(params.sequence.sequence_length, 20);
+  EXPECT_EQ(params.sequence.alignment_slack, 0);
   EXPECT_EQ(params.sequence.contrast_window, 10);
   EXPECT_EQ(params.sequence.match_exclusion, 10);
   EXPECT_EQ(params.sequence.alignment, WindowAlignment::kCausal);

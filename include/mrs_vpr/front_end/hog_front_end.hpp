@@ -14,7 +14,7 @@ namespace mrs_vpr {
  * 36 values: 756 bytes.
  *
  * Gradients, and blocks normalised on their own, keep the structure of a scene where its brightness
- * changes, which is what day against night asks of a descriptor (README, "Front ends").
+ * changes, which is what day against night asks of a descriptor (doc/front_ends.md).
  *
  * Values are quantised to one byte with a fixed scale, kLevelsPerUnit: L2-Hys leaves a block's values
  * in [0, 1] and on real frames all but 0.02% of them below 0.5, which maps to 255. The scale needs no

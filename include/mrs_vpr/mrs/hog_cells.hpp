@@ -17,7 +17,7 @@ namespace mrs_vpr {
  * Chosen on the tune half of the real benchmark (M = 9137, N = 300 at stride 4 and N = 200 at
  * stride 2): the coarse table of these cells put the true place first among its distinct minima in
  * every query, as did 2 x 2 cells with all 9 bins (72 bytes), 2 x 1 cells in 3 groups (48 bytes) and
- * each cell's whole gradient energy (32 bytes); these cells accepted as many answers as any (README).
+ * each cell's whole gradient energy (32 bytes); these cells accepted as many answers as any (doc/front_ends.md).
  */
 class HogCells : public CompactCells {
  public:
