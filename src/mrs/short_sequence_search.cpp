@@ -21,14 +21,14 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
+/// Every kSpreadThinning-th of the ends costSpread reads in a table of `columns` ends.
+int spreadStep(int columns) { return std::max<int>(1, columns / kSpreadSamples) * kSpreadThinning; }
+
 /// A stretch of ends whose full costs are wanted.
 struct EndRange {
   int begin;
   int end;
 };
-
-/// Ends costSpread reads in a table of `columns` ends, thinned by kSpreadThinning.
-int spreadStep(int columns) { return std::max<int>(1, columns / kSpreadSamples) * kSpreadThinning; }
 
 /// Map-sized tables of one query, kept by the thread that queries (the node's service or timer
 /// thread) so that the next query reuses them instead of faulting in fresh pages.
@@ -85,10 +85,11 @@ bool shortSearchPays(int query_length, int reference_count, const SequenceParams
   if (query_length < 2 || reference_count < query_length) return false;
   const SequenceRows rows = wholeSequenceRows(query_length, sequence.alignment);
   const ChosenEndCosts chosen(SequenceView{}, SequenceView{}, rows, velocities(sequence), sequence.contrast_window);
-  const long long windows = static_cast<long long>(hypotheses) * (2 * sequence.match_exclusion + 1);
+  // A band of 2 * match_exclusion + 1 neighbouring ends costs that many more cells a row than one end.
+  const long long band = 2LL * sequence.match_exclusion * query_length + chosen.comparisonsPerEnd();
   const long long samples = reference_count / spreadStep(reference_count) + 1;
-  const long long full = (windows + samples) * chosen.comparisonsPerEnd();
-  return 4 * full <= static_cast<long long>(query_length) * reference_count;
+  const long long full = hypotheses * band + samples * chosen.comparisonsPerEnd();
+  return kShortSearchGain * full <= static_cast<long long>(query_length) * reference_count;
 }
 
 Match searchShortSequence(SequenceView reference, SequenceView query, const SequenceParams& sequence,
@@ -162,6 +163,9 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
     if (!known[static_cast<std::size_t>(end)]) missing.push_back({end, end + 1});
   }
   computeRanges(missing);
+  std::vector<float> samples;
+  samples.reserve(sampled.size());
+  for (int end : sampled) samples.push_back(cost[static_cast<std::size_t>(end)]);
 
   const int half = sequence.match_exclusion / 2;
   float runner_up = kInfinity;
@@ -172,9 +176,6 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   for (int end = 0; end < columns; ++end) {
     if (std::abs(end - winner) > half && std::isfinite(first.cost[static_cast<std::size_t>(end)])) ++rivals;
   }
-  std::vector<float> samples;
-  samples.reserve(sampled.size());
-  for (int end : sampled) samples.push_back(cost[static_cast<std::size_t>(end)]);
 
   const float best = cost[static_cast<std::size_t>(winner)];
   match.reference_index = winner;
@@ -182,7 +183,9 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   match.velocity = velocity[static_cast<std::size_t>(winner)];
   match.score = (std::isfinite(runner_up) && runner_up > 0.0F) ? std::clamp(best / runner_up, 0.0F, 1.0F) : 1.0F;
   match.rivals = rivals;
-  match.confidence = distinctiveness(best, runner_up, costSpread(samples), rivals);
+  // The larger of the two estimates of the spread: a confidence never above what either supports.
+  const float spread = std::max(costSpread(first.cost), costSpread(samples));
+  match.confidence = distinctiveness(best, runner_up, spread, rivals);
   match.comparisons += full_comparisons;
   return match;
 }

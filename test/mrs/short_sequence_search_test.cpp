@@ -80,7 +80,7 @@ void compareWithBruteForce(int hypotheses, const Check& check) {
 
 // With the default hypotheses the first pass keeps the brute force's answer and its rival among
 // them: the same end, velocity, cost and rival, so the same score; the rivals are counted on the
-// same ends; the confidence's spread is read on a thinned sample of the brute force's.
+// same ends; the confidence's spread is read on the first pass's table.
 TEST(ShortSequenceSearch, GivesTheBruteForceAnswerOnTheGeneratedRoute) {
   int compared = 0;
   compareWithBruteForce(kShortSearchHypotheses, [&](const Match& found, const Match& expected,
@@ -90,7 +90,10 @@ TEST(ShortSequenceSearch, GivesTheBruteForceAnswerOnTheGeneratedRoute) {
     EXPECT_NEAR(found.sequence_difference, expected.sequence_difference, 1e-5F) << where;
     EXPECT_NEAR(found.score, expected.score, 1e-5F) << where;
     EXPECT_EQ(found.rivals, expected.rivals) << where;
-    EXPECT_NEAR(found.confidence, expected.confidence, 0.25F * expected.confidence + 0.1F) << where;
+    // Its spread is the larger of two estimates of the brute force's (the sample of the second holds
+    // ~40 ends of this small map): near, never far above.
+    EXPECT_NEAR(found.confidence, expected.confidence, 0.35F * expected.confidence + 0.1F) << where;
+    EXPECT_LE(found.confidence, 1.1F * expected.confidence + 0.1F) << where;
     EXPECT_EQ(trace.stride, 1) << where;
     EXPECT_EQ(static_cast<int>(trace.candidates.size()), kShortSearchHypotheses) << where;
     ++compared;
@@ -129,10 +132,9 @@ TEST(ShortSequenceSearch, MapWithoutKeptCellsGivesTheSameAnswer) {
 TEST(ShortSequenceSearch, PaysOnlyOnLargeMaps) {
   const Parameters params;
   for (int length : {10, 50, 100}) {
-    EXPECT_FALSE(shortSearchPays(length, 9000, params.sequence, kShortSearchHypotheses)) << length;
-    EXPECT_TRUE(shortSearchPays(length, 1000000, params.sequence, kShortSearchHypotheses)) << length;
+    EXPECT_FALSE(shortSearchPays(length, 5000, params.sequence, kShortSearchHypotheses)) << length;
+    EXPECT_TRUE(shortSearchPays(length, 100000, params.sequence, kShortSearchHypotheses)) << length;
   }
-  EXPECT_TRUE(shortSearchPays(50, 100000, params.sequence, kShortSearchHypotheses));
   EXPECT_FALSE(shortSearchPays(1, 100000, params.sequence, kShortSearchHypotheses));
 }
 

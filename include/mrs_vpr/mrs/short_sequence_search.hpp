@@ -21,24 +21,31 @@ struct MrsLevelTrace;
  *
  * The first pass only chooses which ends the full descriptors examine. When the brute force's
  * answer and rival lie within match_exclusion of those minima, both are the brute force's own. The
- * confidence's spread is costSpread of the full costs of every kSpreadThinning-th end that
- * costSpread reads in the brute force's table: a subset of its sample, so it differs from the brute
- * force's by the sampling error of the smaller sample (about 3% with 512 ends). Rivals are counted
- * exactly (the first pass's table has a trajectory at the same ends).
+ * confidence's spread is the larger of two estimates of the brute force's costSpread: the first
+ * pass's table (every end; its costs are means of the same contrast-enhanced z-scores along the same
+ * trajectories), and the full costs of every kSpreadThinning-th end of the brute force's own sample.
+ * On real frames (100k-frame map, N = 10 to 100) either lay within about 10% of the brute force's,
+ * the first pass's mostly below it (a higher confidence): the larger keeps the confidence from
+ * exceeding what either supports. Rivals are counted exactly (the first pass's table has a trajectory
+ * at the same ends).
  */
 Match searchShortSequence(SequenceView reference, SequenceView query, const SequenceParams& sequence,
                           const CompactCells& compact, int hypotheses, MrsLevelTrace* trace = nullptr);
 
-/// Whether the full-descriptor work of searchShortSequence (the hypotheses' windows and the spread's
-/// sample) is at most a quarter of the brute force's comparisons for this query and map.
+/// Whether the full-descriptor work of searchShortSequence (the hypotheses' bands of ends) is at most
+/// 1 / kShortSearchGain of the brute force's comparisons for this query and map.
 bool shortSearchPays(int query_length, int reference_count, const SequenceParams& sequence, int hypotheses);
+
+/// The first pass costs about as much as the brute force's contrast enhancement and sums, which it
+/// repeats; the full-descriptor work must stay well below the comparisons it saves.
+constexpr int kShortSearchGain = 8;
+
+/// The spread's full-descriptor sample: every this-many-th end of costSpread's (about 128 ends).
+constexpr int kSpreadThinning = 32;
 
 /// Distinct minima of the first pass scored on the full descriptors. On real frames the brute force's
 /// answer and rival lie among them (mrs_vpr_map_scale_benchmark's `same` column); each costs a band
 /// of 2 * match_exclusion + 1 ends.
 constexpr int kShortSearchHypotheses = 32;
-
-/// The brute force's spread sample (kSpreadSamples ends) thinned by this factor.
-constexpr int kSpreadThinning = 8;
 
 }  // namespace mrs_vpr
