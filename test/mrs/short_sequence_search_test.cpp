@@ -153,3 +153,62 @@ TEST(DescriptorSequence, KeepsEachFramesOwnCompactCell) {
 
 }  // namespace
 }  // namespace mrs_vpr
+
+namespace mrs_vpr {
+namespace {
+
+/// A thumbnail front end of 16 x 8 pixels: 128-byte descriptors, so that a map of tens of thousands
+/// of frames, large enough for the first pass to pay, stays small.
+DescriptorParams tinyThumbnail() {
+  DescriptorParams params = routeDescriptor();
+  params.image_width = 16;
+  params.image_height = 8;
+  return params;
+}
+
+// MrsMatcher takes the first pass on a large map: one traced level at stride 1, the brute force's
+// answer, and far fewer full-descriptor comparisons.
+TEST(MrsMatcher, ShortSequencesOnALargeMapTakeTheFirstPass) {
+  const DescriptorParams front_end = tinyThumbnail();
+  const int size = front_end.descriptorSize();
+  constexpr int kFrames = 40000;
+  DescriptorSequence map(size);
+  map.keepCoarseCells(MrsParams{}.levels, front_end);
+  map.reserve(kFrames);
+  cv::RNG rng(7);
+  cv::Mat frame(1, size, CV_8U);
+  for (int i = 0; i < kFrames; ++i) {
+    rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+    map.append(frame);
+  }
+  // The query: frames 30000 .. 30009 of the map with noise.
+  DescriptorSequence query(size);
+  for (int i = 30000; i < 30010; ++i) {
+    cv::Mat noisy;
+    cv::Mat noise(1, size, CV_16S);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 20);
+    map.descriptorRow(i).convertTo(noisy, CV_16S);
+    noisy += noise;
+    noisy.convertTo(noisy, CV_8U);
+    query.append(noisy);
+  }
+  Parameters params = routeParameters();
+  params.descriptor = front_end;
+  ASSERT_TRUE(shortSearchPays(10, kFrames, params.sequence, kShortSearchHypotheses));
+  const MrsMatcher mrs(params.sequence, params.mrs, front_end);
+  std::vector<MrsLevelTrace> trace;
+  const Match found = mrs.match(map.view(), query.view(), &trace);
+  const Match expected = SeqSlamMatcher(params.sequence).match(map.view(), query.view());
+  EXPECT_EQ(expected.reference_index, 30009);
+  EXPECT_EQ(found.reference_index, expected.reference_index);
+  EXPECT_TRUE(found.accepted);
+  EXPECT_EQ(found.accepted, expected.accepted);
+  ASSERT_EQ(trace.size(), 1U);
+  EXPECT_EQ(trace[0].stride, 1);
+  EXPECT_EQ(trace[0].table_minima.front(), 30009);  // The first pass's lowest minimum is the truth.
+  // Compact cells count as their share of a descriptor comparison.
+  EXPECT_LT(found.comparisons, expected.comparisons / 2);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
