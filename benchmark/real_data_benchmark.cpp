@@ -189,7 +189,7 @@ class FirstPassMatcher : public mrs_vpr::SequenceMatcher {
 
 std::unique_ptr<mrs_vpr::SequenceMatcher> makeBenchMatcher(const std::string& method, const mrs_vpr::Parameters& params) {
   if (method == "mrs-first-pass") return std::make_unique<FirstPassMatcher>(params);
-  return makeBenchMatcher(method, params);
+  return mrs_vpr::makeMatcher(method, params);
 }
 
 /// The images of a folder, as loaded (BGR or grayscale).
