@@ -613,6 +613,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
   const mrs_vpr::Parameters continuous = perFrameParams(params, kLength);
   const int route = summer.size();
   for (const std::string& method : options.methods) {
+    if (method == "mrs-first-pass") continue;  // Not a method of PlaceRecognizer, whose mrs takes it where it pays.
     mrs_vpr::PlaceRecognizer recognizer(continuous);
     const int first_query = 2 * kLength + recognizer.recognizerParameters().recent_exclusion;
     std::vector<QueryRecord> first_traversal;
