@@ -9,9 +9,12 @@
 // nothing of the writing is resident) loads the map into a PlaceRecognizer and answers winter
 // queries of N frames with both methods, side by side.
 //
+// Last, continuous mode: frames of the route in winter join the map as keyframes, a few per period,
+// and matchRecent answers once a period; the row gives the CPU time of those queries per period.
+//
 //   mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]
-//                               [--length 300] [--queries 5] [--brute-queries 2] [--threads 1]
-//                               [--seed 42]
+//                               [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2] [--threads 1]
+//                               [--periods 20] [--keyframes-per-period 3] [--seed 42]
 
 #include <unistd.h>
 
@@ -27,6 +30,8 @@
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <vector>
+
+#include <time.h>
 
 #include <boost/program_options.hpp>
 #include <opencv2/core.hpp>
@@ -54,10 +59,12 @@ struct Options {
   std::string data;
   std::vector<long long> sizes = {10000, 100000, 1000000};
   std::string dir = "/tmp/mrs_vpr_map_scale";
-  int length = 300;
+  std::vector<int> lengths = {10, 50, 100, 300};
   int queries = 5;
   int brute_queries = 2;
   int threads = 1;
+  int periods = 20;
+  int keyframes_per_period = 3;
   std::uint64_t seed = 42;
   // Internal: measure one map in this process (the parent runs one child per size).
   std::string measure;
@@ -89,8 +96,8 @@ std::string sizeName(long long frames) {
 
 constexpr const char* kUsage =
     "Usage: mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]\n"
-    "                                   [--length 300] [--queries 5] [--brute-queries 2] [--threads 1]\n"
-    "                                   [--seed 42]\n"
+    "                                   [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2]\n"
+    "                                   [--threads 1] [--periods 20] [--keyframes-per-period 3] [--seed 42]\n"
     "Writes map databases of real frames (DIR: the shared data folder) once, then loads each in a fresh\n"
     "process and prints load time, resident bytes a frame and both methods' query times.\n";
 
@@ -107,11 +114,15 @@ std::optional<Options> parse(int argc, char** argv) {
       ("data", po::value(&options.data)->required(), "the shared data folder (nordland/, corridor/)")
       ("sizes", mrs_vpr::benchmark::listValue(&sizes), "map sizes in frames, comma-separated (e.g. 10k, 1M; >= 2k)")
       ("dir", po::value(&options.dir)->default_value(options.dir), "folder of the map databases, kept between runs")
-      ("length", po::value(&options.length)->default_value(options.length), "N: frames per test sequence")
+      ("lengths", mrs_vpr::benchmark::listValue(&options.lengths), "N: frames per test sequence, comma-separated")
       ("queries", po::value(&options.queries)->default_value(options.queries), "queries per map and kind (mrs)")
       ("brute-queries", po::value(&options.brute_queries)->default_value(options.brute_queries),
        "how many of them brute force answers too")
       ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
+      ("periods", po::value(&options.periods)->default_value(options.periods),
+       "continuous mode: query periods timed (0 = no continuous-mode row)")
+      ("keyframes-per-period", po::value(&options.keyframes_per_period)->default_value(options.keyframes_per_period),
+       "continuous mode: keyframes joining the map between two queries")
       ("seed", po::value(&seed)->default_value(seed), "seed of the maps and of the queries")
       // The parent runs one child per map, with these two: the map to measure and where its true places are.
       ("measure", po::value(&options.measure), "internal: measure this map database in this process")
@@ -125,8 +136,12 @@ std::optional<Options> parse(int argc, char** argv) {
   for (const std::string& size : sizes) options.sizes.push_back(parseSize(size));
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
   options.seed = static_cast<std::uint64_t>(seed);
-  if (options.length < 10 || options.queries < 1 || options.brute_queries < 0 || options.threads < 1) {
-    throw std::invalid_argument("--length >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1");
+  const bool short_length = std::any_of(options.lengths.begin(), options.lengths.end(), [](int n) { return n < 10; });
+  if (short_length || options.queries < 1 || options.brute_queries < 0 || options.threads < 1 || options.periods < 0 ||
+      options.keyframes_per_period < 1) {
+    throw std::invalid_argument(
+        "--lengths each >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1, --periods >= 0, "
+        "--keyframes-per-period >= 1");
   }
   return options;
 }
@@ -249,48 +264,49 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
-/// The child: loads one map and answers the queries; prints one row.
-int measure(const Options& options) {
-  cv::setNumThreads(options.threads);
-  mrs_vpr::Parameters params;
-  // As in mrs_vpr_real_benchmark: 0.1 leaves up to 15 frames of drift at N = 300.
-  params.sequence.velocity_step = 0.02;
-  params.validate();
-  params.descriptor = mrs_vpr::MapDatabase(options.measure, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
-  const auto before = residentBytes();
-  const auto load_start = Clock::now();
-  mrs_vpr::RecognizerParams limits;
-  limits.max_frames = 0;  // Unbounded: the default capacity (500k frames) is below the largest map.
-  mrs_vpr::PlaceRecognizer recognizer(params, limits);
-  {
-    const mrs_vpr::MapDatabase map(options.measure, params.descriptor);
-    recognizer.reserve(static_cast<int>(map.size()));
-    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
-    recognizer.flush();
-  }
-  const double load_s = secondsSince(load_start);
-  const auto after = residentBytes();
-  const int frames = recognizer.size();
+/// CPU time of this process (every thread) [s].
+double processCpuSeconds() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
 
+/// The parameters of a query of `length` frames: the core's defaults (the node's), with the velocity
+/// step of mrs_vpr_real_benchmark for sequences long enough to drift (0.1 leaves up to 15 frames of
+/// drift at N = 300).
+mrs_vpr::Parameters paramsFor(int length, const mrs_vpr::DescriptorParams& descriptor) {
+  mrs_vpr::Parameters params;
+  if (length >= 128) params.sequence.velocity_step = 0.02;
+  params.descriptor = descriptor;
+  params.validate();
+  return params;
+}
+
+/// One map's rows for test sequences of `length` frames.
+void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
+                   double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
+                   const std::vector<cv::Mat>& summer) {
+  const int frames = recognizer.size();
   // Two kinds of test sequence: winter (across seasons, the benchmark's hard case) and summer seen
   // again with a new shift, gain and noise (unambiguous, so that speed is timed on right answers).
-  const std::vector<cv::Mat> winter = mrs_vpr::loadImageFolder(options.data + "/nordland/winter");
-  const std::vector<cv::Mat> summer = mrs_vpr::loadImageFolder(options.data + "/nordland/summer");
   Augmenter augmenter(options.seed + 1);
   for (const bool across_seasons : {true, false}) {
     std::mt19937_64 rng(options.seed);
-    std::uniform_int_distribution<int> end_of(options.length - 1, static_cast<int>(winter.size()) - 1);
+    std::uniform_int_distribution<int> end_of(length - 1, static_cast<int>(winter.size()) - 1);
     std::vector<double> mrs_ms;
     std::vector<double> brute_ms;
     int mrs_right = 0;
     int mrs_accepted = 0;
     int mrs_accepted_wrong = 0;
     int brute_right = 0;
+    int same_frame = 0;
+    int same_accepted = 0;
+    double confidence_gap = 0.0;
     for (int q = 0; q < options.queries; ++q) {
       const int end = end_of(rng);
       const Augmenter::Look look = augmenter.nextLook(2);
       mrs_vpr::DescriptorSequence query(recognizer.extractor().size());
-      for (int i = end - options.length + 1; i <= end; ++i) {
+      for (int i = end - length + 1; i <= end; ++i) {
         const auto frame = static_cast<std::size_t>(i);
         query.append(recognizer.describe(across_seasons ? winter[frame] : augmenter.apply(summer[frame], look)));
       }
@@ -301,27 +317,120 @@ int measure(const Options& options) {
       mrs_ms.push_back(secondsSince(start) * 1e3);
       mrs_right += right(mrs.match) ? 1 : 0;
       mrs_accepted += mrs.match.accepted ? 1 : 0;
-      if (std::getenv("MRS_VPR_SHOW_ANSWERS") != nullptr) {
-        std::fprintf(stderr, "%s query %d: truth %lld, mrs %d (confidence %.2f%s)\n", across_seasons ? "winter" : "summer*", q,
-                     truth, mrs.match.reference_index, mrs.match.confidence, mrs.match.accepted ? ", accepted" : "");
-      }
       mrs_accepted_wrong += mrs.match.accepted && !right(mrs.match) ? 1 : 0;
       if (q < options.brute_queries) {
         start = Clock::now();
         const mrs_vpr::PlaceAnswer brute = recognizer.match(query, "seqslam");
         brute_ms.push_back(secondsSince(start) * 1e3);
         brute_right += right(brute.match) ? 1 : 0;
+        same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
+        same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
+        confidence_gap = std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
+        if (std::getenv("MRS_VPR_SHOW_ANSWERS") != nullptr) {
+          std::fprintf(stderr, "N=%d %s query %d: truth %lld, mrs %d (confidence %.2f%s), brute %d (%.2f%s)\n", length,
+                       across_seasons ? "winter" : "summer*", q, truth, mrs.match.reference_index, mrs.match.confidence,
+                       mrs.match.accepted ? ", accepted" : "", brute.match.reference_index, brute.match.confidence,
+                       brute.match.accepted ? ", accepted" : "");
+        }
       }
     }
     const double brute = median(brute_ms);
     const double fast = median(mrs_ms);
-    const std::string speed_up = brute_ms.empty() ? "-" : std::to_string(static_cast<int>(brute / fast)) + "x";
-    std::printf("%9s %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d\n", sizeName(frames).c_str(),
-                across_seasons ? "winter" : "summer*", load_s, static_cast<double>(after.first - before.first) / frames,
-                static_cast<double>(after.second) / frames, fast, brute, mrs_right, options.queries,
-                speed_up.c_str(), brute_right, static_cast<int>(brute_ms.size()), mrs_accepted_wrong, mrs_accepted);
+    char speed_up[32] = "-";
+    char same[32] = "-";
+    char gap[32] = "-";
+    if (!brute_ms.empty()) {
+      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
+      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
+      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
+    }
+    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n",
+                sizeName(frames).c_str(), length, across_seasons ? "winter" : "summer*", load_s, rss_per_frame,
+                peak_per_frame, fast, brute, mrs_right, options.queries, speed_up, brute_right,
+                static_cast<int>(brute_ms.size()), mrs_accepted_wrong, mrs_accepted, same, gap);
     std::fflush(stdout);
   }
+}
+
+/// Continuous mode: keyframes of the route in winter join the map, keyframes_per_period between two
+/// matchRecent queries of the default length (sequence/sequence_length, as the node's timer asks);
+/// prints the queries' CPU time per 1 s period for both methods.
+void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
+                       const std::vector<cv::Mat>& winter) {
+  const int length = recognizer.parameters().sequence.sequence_length;
+  const int needed = options.periods * options.keyframes_per_period + length;
+  if (needed > static_cast<int>(winter.size())) throw std::invalid_argument("--periods: too many for the route");
+  std::vector<cv::Mat> keyframes;
+  for (int i = 0; i < needed; ++i) keyframes.push_back(recognizer.describe(winter[static_cast<std::size_t>(i)]));
+  for (const std::string method : {"mrs", "seqslam"}) {
+    // The same keyframes for both methods: the first `length` before the first query.
+    const int base = recognizer.size();
+    for (int i = 0; i < length; ++i) recognizer.addDescriptor(keyframes[static_cast<std::size_t>(i)]);
+    recognizer.flush();
+    double cpu = 0.0;
+    std::vector<double> wall_ms;
+    int accepted = 0;
+    for (int period = 0; period < options.periods; ++period) {
+      for (int k = 0; k < options.keyframes_per_period; ++k) {
+        recognizer.addDescriptor(keyframes[static_cast<std::size_t>(length + period * options.keyframes_per_period + k)]);
+      }
+      recognizer.flush();
+      const double cpu_start = processCpuSeconds();
+      const auto start = Clock::now();
+      const mrs_vpr::PlaceAnswer answer = recognizer.matchRecent(length, method);
+      wall_ms.push_back(secondsSince(start) * 1e3);
+      cpu += processCpuSeconds() - cpu_start;
+      accepted += answer.match.accepted ? 1 : 0;
+    }
+    std::printf("%9s %5d %8s continuous mode: %d keyframes a period, %s: %.1f%% of a core at a 1 s period "
+                "(median query %.1f ms), %d/%d accepted\n",
+                sizeName(base).c_str(), length, method.c_str(), options.keyframes_per_period, method.c_str(),
+                100.0 * cpu / options.periods, median(wall_ms), accepted, options.periods);
+    std::fflush(stdout);
+    // The next method starts from the same map: drop what was added by reloading is too slow, so the
+    // second method's map is longer by these keyframes (a few dozen frames of a large map).
+  }
+}
+
+/// The child: loads one map and answers the queries; prints its rows.
+int measure(const Options& options) {
+  cv::setNumThreads(options.threads);
+  const mrs_vpr::DescriptorParams descriptor =
+      mrs_vpr::MapDatabase(options.measure, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
+  const auto before = residentBytes();
+  const auto load_start = Clock::now();
+  mrs_vpr::RecognizerParams limits;
+  limits.max_frames = 0;  // Unbounded: the default capacity (500k frames) is below the largest map.
+  limits.min_appearance_change = 0.0;  // The map's frames are keyframes already.
+  mrs_vpr::PlaceRecognizer recognizer(paramsFor(10, descriptor), limits);
+  {
+    const mrs_vpr::MapDatabase map(options.measure, descriptor);
+    recognizer.reserve(static_cast<int>(map.size()));
+    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
+    recognizer.flush();
+  }
+  const double load_s = secondsSince(load_start);
+  const auto after = residentBytes();
+  const int frames = recognizer.size();
+  const double rss_per_frame = static_cast<double>(after.first - before.first) / frames;
+  const double peak_per_frame = static_cast<double>(after.second) / frames;
+
+  const std::vector<cv::Mat> winter = mrs_vpr::loadImageFolder(options.data + "/nordland/winter");
+  const std::vector<cv::Mat> summer = mrs_vpr::loadImageFolder(options.data + "/nordland/summer");
+  for (int length : options.lengths) {
+    if (length >= 128) {
+      // A recognizer with the long sequences' velocity step over the same frames (a view, not a copy,
+      // is not offered by PlaceRecognizer: the map is loaded again into a second one).
+      mrs_vpr::PlaceRecognizer fine(paramsFor(length, descriptor), limits);
+      fine.reserve(frames);
+      recognizer.visitFrames(0, frames, [&](const cv::Mat& d, mrs_vpr::Stamp stamp) { fine.addDescriptor(d, stamp); });
+      fine.flush();
+      measureLength(options, fine, length, load_s, rss_per_frame, peak_per_frame, winter, summer);
+    } else {
+      measureLength(options, recognizer, length, load_s, rss_per_frame, peak_per_frame, winter, summer);
+    }
+  }
+  if (options.periods > 0) measureContinuous(options, recognizer, winter);
   return 0;
 }
 
@@ -332,15 +441,21 @@ int run(int argc, char** argv) {
   if (!options.measure.empty()) return measure(options);
 
   ::mkdir(options.dir.c_str(), 0755);
+  std::string lengths;
+  for (int length : options.lengths) lengths += (lengths.empty() ? "" : ",") + std::to_string(length);
   std::printf("Map-scale benchmark: real frames (Nordland summer as the true places among augmented real "
-              "distractors), queries of N = %d, %d per map (%d for brute force), threads %d, seed %llu\n",
-              options.length, options.queries, options.brute_queries, options.threads,
+              "distractors), queries of N = %s, %d per map (%d for brute force), threads %d, seed %llu;\n"
+              "the core's default parameters, velocity step 0.02 from N = 128 on\n",
+              lengths.c_str(), options.queries, options.brute_queries, options.threads,
               static_cast<unsigned long long>(options.seed));
   std::printf("queries: winter = the route in winter; summer* = summer with a new shift, gain and noise. "
               "load = database to a queryable map;\nRSS/frame = resident growth of the load; peak = the process's "
-              "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted\n\n");
-  std::printf("%9s %8s %8s %9s %9s %8s %10s %10s %8s %10s %10s\n", "map", "queries", "load[s]", "RSS/frame",
-              "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "wrong/acc");
+              "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted;\n"
+              "same = queries where mrs and brute force gave the same frame / the same acceptance / of those both "
+              "answered; dconf = largest confidence difference\n\n");
+  std::printf("%9s %5s %8s %8s %9s %9s %8s %10s %10s %8s %10s %10s %10s %6s\n", "map", "N", "queries", "load[s]",
+              "RSS/frame", "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "wrong/acc",
+              "same", "dconf");
   std::fflush(stdout);
   for (const long long frames : options.sizes) {
     const std::string path = options.dir + "/map-" + sizeName(frames) + "-" + options.descriptor.type + "-seed" +
@@ -360,9 +475,10 @@ int run(int argc, char** argv) {
       const std::string exe = "/proc/self/exe";
       const std::vector<std::string> args = {
           "mrs_vpr_map_scale_benchmark", "--data", options.data, "--measure", path, "--truth-offset",
-          std::to_string(truth_offset), "--length", std::to_string(options.length), "--queries",
+          std::to_string(truth_offset), "--lengths", lengths, "--queries",
           std::to_string(options.queries), "--brute-queries", std::to_string(options.brute_queries), "--threads",
-          std::to_string(options.threads), "--seed", std::to_string(options.seed)};  // The map records its front end.
+          std::to_string(options.threads), "--periods", std::to_string(options.periods), "--keyframes-per-period",
+          std::to_string(options.keyframes_per_period), "--seed", std::to_string(options.seed)};  // The map records its front end.
       std::vector<char*> argv_child;
       for (const std::string& arg : args) argv_child.push_back(const_cast<char*>(arg.c_str()));
       argv_child.push_back(nullptr);

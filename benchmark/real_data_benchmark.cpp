@@ -48,6 +48,9 @@
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/memory_reuse.hpp"
+#include "mrs_vpr/acceptance.hpp"
+#include "mrs_vpr/mrs/compact_cells.hpp"
+#include "mrs_vpr/mrs/short_sequence_search.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
@@ -94,12 +97,13 @@ constexpr const char* kUsage =
     "                              [--drive-alignment-slack S] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
-    "                              [--methods seqslam,mrs] [--json FILE]\n"
+    "                              [--methods seqslam,mrs,mrs-first-pass] [--json FILE]\n"
     "                              [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Both methods on the same queries of real frames: Nordland winter against summer references of\n"
     "about 1.8k frames and 9k (with real distractors), known ground and out of the map, global and\n"
-    "per-frame. DIR holds nordland/{summer,winter} and corridor/{ref,query}.\n";
+    "per-frame. DIR holds nordland/{summer,winter} and corridor/{ref,query}. mrs-first-pass is MRS's search\n"
+    "for short sequences on large maps (mrs/short_sequence_search.hpp) on every map, whatever its size.\n";
 
 /// Parses the command line; returns nothing after printing the help.
 std::optional<Options> parse(int argc, char** argv) {
@@ -162,11 +166,46 @@ std::optional<Options> parse(int argc, char** argv) {
     if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");
   }
   for (const std::string& method : options.methods) {
-    if (method != "mrs" && method != "seqslam") {
-      throw std::invalid_argument("--methods: unknown method '" + method + "' (expected seqslam or mrs)");
+    if (method != "mrs" && method != "seqslam" && method != "mrs-first-pass") {
+      throw std::invalid_argument("--methods: unknown method '" + method +
+                                  "' (expected seqslam, mrs or mrs-first-pass)");
     }
   }
   return options;
+}
+
+/// MRS's search for short sequences (a first pass on compact cells at every end, the full descriptors
+/// at its distinct minima) on any map, where MrsMatcher takes it only on maps large enough for it to
+/// pay: its answers, confidences and acceptance can be compared with the brute force's on real frames.
+class FirstPassMatcher : public mrs_vpr::SequenceMatcher {
+ public:
+  explicit FirstPassMatcher(const mrs_vpr::Parameters& params)
+      : SequenceMatcher(params.sequence), compact_(mrs_vpr::makeCompactCells(params.descriptor)) {}
+
+  mrs_vpr::Match match(mrs_vpr::SequenceView reference, mrs_vpr::SequenceView query) const override {
+    return match(reference, query, nullptr);
+  }
+  /// The same, with the first pass traced into `trace` (one level, stride 1) when not null.
+  mrs_vpr::Match match(mrs_vpr::SequenceView reference, mrs_vpr::SequenceView query,
+                       std::vector<mrs_vpr::MrsLevelTrace>* trace) const {
+    checkInputs(reference, query);
+    mrs_vpr::MrsLevelTrace level;
+    mrs_vpr::Match match = mrs_vpr::searchShortSequence(reference, query, sequence_, *compact_,
+                                                        mrs_vpr::kShortSearchHypotheses, &level);
+    if (trace != nullptr) trace->push_back(level);
+    placeAnswer(match, reference, query, mrs_vpr::wholeSequenceRows(query.count, sequence_.alignment));
+    mrs_vpr::applyAcceptance(match, sequence_);
+    return match;
+  }
+  std::string name() const override { return "mrs-first-pass"; }
+
+ private:
+  std::shared_ptr<const mrs_vpr::CompactCells> compact_;
+};
+
+std::unique_ptr<mrs_vpr::SequenceMatcher> makeBenchMatcher(const std::string& method, const mrs_vpr::Parameters& params) {
+  if (method == "mrs-first-pass") return std::make_unique<FirstPassMatcher>(params);
+  return mrs_vpr::makeMatcher(method, params);
 }
 
 /// The images of a folder, as loaded (BGR or grayscale).
@@ -377,12 +416,15 @@ std::vector<QueryRecord> globalRecords(const mrs_vpr::SequenceMatcher& matcher, 
                                        int tolerance, double accept_threshold) {
   std::vector<QueryRecord> records;
   const auto* mrs = dynamic_cast<const mrs_vpr::MrsMatcher*>(&matcher);
+  const auto* first_pass = dynamic_cast<const FirstPassMatcher*>(&matcher);
   for (int end : ends) {
     const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
     std::vector<mrs_vpr::MrsLevelTrace> trace;
     const auto start = std::chrono::steady_clock::now();
-    const mrs_vpr::Match match =
-        (mrs != nullptr && diagnosis != nullptr) ? mrs->match(map, test, &trace) : matcher.match(map, test);
+    const mrs_vpr::Match match = diagnosis == nullptr ? matcher.match(map, test)
+                                 : mrs != nullptr     ? mrs->match(map, test, &trace)
+                                 : first_pass != nullptr ? first_pass->match(map, test, &trace)
+                                                         : matcher.match(map, test);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     const QueryRecord& record = records.emplace_back(mrs_vpr::queryRecordOf(end, truth_of(end), match, ms));
     if (diagnosis != nullptr) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
@@ -465,7 +507,7 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& summer, c
   for (int length : {10, 50}) {
     const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (const std::string& method : options.methods) {
-      const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+      const auto matcher = makeBenchMatcher(method, per_frame);
       const int corridor_frames = corridor.descriptors.size();
       report.row("corridor in Nordland map ds=" + std::to_string(length), method,
                  mrs_vpr::summarise(runPerFrame(*matcher, nordland, corridor.descriptors, 0, corridor_frames, true), 2),
@@ -493,7 +535,7 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
       if (size <= length) continue;
       const std::string setting = " M=" + std::to_string(size) + " ds=" + std::to_string(length);
       for (const std::string& method : options.methods) {
-        const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+        const auto matcher = makeBenchMatcher(method, per_frame);
         std::vector<QueryRecord> known;
         std::vector<QueryRecord> unknown;
         for (int i = 0; i < kStretches; ++i) {
@@ -558,7 +600,7 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
     for (int length : options.global ? options.lengths : std::vector<int>{}) {
       const std::vector<int> ends = queryEnds(0, query.size() - 1, length, options.queries, options.seed);
       for (const std::string& method : options.methods) {
-        const auto matcher = mrs_vpr::makeMatcher(method, params);
+        const auto matcher = makeBenchMatcher(method, params);
         const auto records = globalRecords(*matcher, summer.view(), query, ends, length, truth_of, nullptr,
                                            options.tolerance, params.sequence.accept_threshold);
         report.row("global winter " + replay.name + " N=" + std::to_string(length) + " M=" +
@@ -569,7 +611,7 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
     for (int length : options.per_frame ? std::vector<int>{10, 50} : std::vector<int>{}) {
       const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
       for (const std::string& method : options.methods) {
-        const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+        const auto matcher = makeBenchMatcher(method, per_frame);
         const auto records = perFrameRecords(*matcher, summer.view(), query.view(), truth_of);
         report.row("winter " + replay.name + " M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length),
                    method, mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
@@ -590,6 +632,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
   const mrs_vpr::Parameters continuous = perFrameParams(params, kLength);
   const int route = summer.size();
   for (const std::string& method : options.methods) {
+    if (method == "mrs-first-pass") continue;  // Not a method of PlaceRecognizer, whose mrs takes it where it pays.
     mrs_vpr::PlaceRecognizer recognizer(continuous);
     const int first_query = 2 * kLength + recognizer.recognizerParameters().recent_exclusion;
     std::vector<QueryRecord> first_traversal;
@@ -663,7 +706,7 @@ int run(int argc, char** argv) {
   Report report;
 
   std::vector<std::unique_ptr<mrs_vpr::SequenceMatcher>> matchers;
-  for (const std::string& method : options.methods) matchers.push_back(mrs_vpr::makeMatcher(method, params));
+  for (const std::string& method : options.methods) matchers.push_back(makeBenchMatcher(method, params));
   for (const std::string& size : options.references) {
     const bool distractors = size == "9k";
     Reference known = buildReference(frames, extractor, 0, route, distractors, size);
@@ -678,17 +721,19 @@ int run(int argc, char** argv) {
     if (options.global) {
       for (int length : options.lengths) {
         const std::vector<int> ends = queryEnds(part_begin, part_end - 1, length, options.queries, options.seed);
-        Diagnosis diagnosis;
+        std::map<std::string, Diagnosis> diagnoses;  // One per traced method.
         for (const auto& matcher : matchers) {
-          const bool diagnose = options.diagnose && matcher->name() == "mrs";
+          const bool diagnose = options.diagnose && matcher->name() != "seqslam";
           const auto records = runGlobal(*matcher, known, winter, ends, length, false,
-                                         diagnose ? &diagnosis : nullptr, options.tolerance,
+                                         diagnose ? &diagnoses[matcher->name()] : nullptr, options.tolerance,
                                          params.sequence.accept_threshold);
           report.row("global N=" + std::to_string(length) + m, matcher->name(),
                      mrs_vpr::summarise(records, options.tolerance),
                      {"global", false, known.descriptors.size(), length});
         }
-        if (options.diagnose) diagnosis.print("N=" + std::to_string(length) + m);
+        for (const auto& [name, diagnosis] : diagnoses) {
+          diagnosis.print("N=" + std::to_string(length) + m + (name == "mrs" ? "" : " " + name));
+        }
         for (const auto& matcher : matchers) {
           if (!out_of_map) break;
           const auto records = runGlobal(*matcher, unknown, winter, ends, length, true, nullptr, options.tolerance,
@@ -703,7 +748,7 @@ int run(int argc, char** argv) {
       for (int length : {10, 50}) {
         const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
         for (const std::string& method : options.methods) {
-          const auto matcher = mrs_vpr::makeMatcher(method, per_frame);
+          const auto matcher = makeBenchMatcher(method, per_frame);
           const auto known_records = runPerFrame(*matcher, known, winter, part_begin, part_end, false);
           report.row("per-frame ds=" + std::to_string(length) + m + " tol 2", method,
                      mrs_vpr::summarise(known_records, 2), {"per-frame", false, known.descriptors.size(), length});

@@ -23,6 +23,7 @@ SequenceView SequenceView::slice(int begin, int end) const {
 SequenceView SequenceView::coarseCells(int stride, const DescriptorParams& geometry) const {
   if (coarse == nullptr || step != 1 || count == 0) return {};
   if (!coarse->kind->geometry().sameFrontEnd(geometry)) return {};
+  if (stride == 1) return {coarse->frames.data(), count, coarse->kind->cellSize(), 1};
   for (std::size_t level = 0; level < coarse->levels.size(); ++level) {
     if (stride == (2 << level)) {
       return {coarse->levels[level].data(), (count - 1) / stride + 1, coarse->kind->cellSize(), 1};
@@ -61,6 +62,8 @@ void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
 void DescriptorSequence::appendCoarseCells(int last) {
   if (coarse_.levels.empty()) return;
   const auto cell_size = static_cast<std::size_t>(coarse_.kind->cellSize());
+  coarse_.frames.resize(coarse_.frames.size() + cell_size);
+  coarse_.kind->cell(view(), last, 1, coarse_.frames.data() + coarse_.frames.size() - cell_size);
   for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const int stride = 2 << level;
     if (last % stride != 0) continue;
@@ -78,6 +81,7 @@ void DescriptorSequence::keepCoarseCells(int levels, const DescriptorParams& geo
   }
   coarse_.kind = std::move(kind);
   coarse_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});
+  coarse_.frames.clear();
   for (int frame = 0; frame < size(); ++frame) appendCoarseCells(frame);
 }
 
@@ -90,6 +94,9 @@ SequenceView DescriptorSequence::view() const {
 void DescriptorSequence::reserve(int frames) {
   data_.reserve(static_cast<std::size_t>(frames) * static_cast<std::size_t>(descriptor_size_));
   stamps_.reserve(static_cast<std::size_t>(frames));
+  if (!coarse_.levels.empty()) {
+    coarse_.frames.reserve(static_cast<std::size_t>(frames) * static_cast<std::size_t>(coarse_.kind->cellSize()));
+  }
   for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
     const std::size_t cells = static_cast<std::size_t>(frames) / (std::size_t{2} << level) + 1;
     coarse_.levels[level].reserve(cells * static_cast<std::size_t>(coarse_.kind->cellSize()));
@@ -100,6 +107,7 @@ void DescriptorSequence::clear() {
   data_.clear();
   stamps_.clear();
   for (std::vector<std::uint8_t>& cells : coarse_.levels) cells.clear();
+  coarse_.frames.clear();
 }
 
 cv::Mat DescriptorSequence::descriptorRow(int index) const {
@@ -117,6 +125,7 @@ const std::uint8_t* DescriptorSequence::descriptor(int index) const {
 std::size_t DescriptorSequence::memoryBytes() const {
   std::size_t bytes = data_.capacity() + stamps_.capacity() * sizeof(Stamp);
   for (const std::vector<std::uint8_t>& cells : coarse_.levels) bytes += cells.capacity();
+  bytes += coarse_.frames.capacity();
   return bytes;
 }
 

@@ -15,9 +15,12 @@ namespace mrs_vpr {
 class CompactCells;
 
 /// The compact cells of MRS's coarse levels (see mrs/compact_cells.hpp) that a store keeps for
-/// strides 2, 4, ..., so that a coarse-to-fine search need not transform the whole map per query.
+/// strides 1, 2, 4, ..., so that a coarse-to-fine search need not transform the whole map per query.
 struct CoarseCells {
   std::shared_ptr<const CompactCells> kind;
+  /// Each frame's own cell (stride 1): the first pass of a short test sequence
+  /// (mrs/short_sequence_search.hpp).
+  std::vector<std::uint8_t> frames;
   /// levels[i]: the cells of stride 2^(i+1), cell J ending at frame J * stride.
   std::vector<std::vector<std::uint8_t>> levels;
 };
@@ -60,9 +63,9 @@ class DescriptorSequence {
   /// Forgets every frame (the pooling stride stays).
   void clear();
 
-  /// Also keeps MRS's coarse cells of strides 2, 4, ..., 2^levels for descriptors of `geometry`
-  /// (see mrs/compact_cells.hpp), updated on every append: 84 bytes a frame for 64 x 32 thumbnails
-  /// with 8 x 8 patches and 3 levels. levels == 0 stops keeping them. Throws std::invalid_argument
+  /// Also keeps MRS's compact cells of strides 1, 2, 4, ..., 2^levels for descriptors of `geometry`
+  /// (see mrs/compact_cells.hpp), updated on every append: 180 bytes a frame for 96-byte cells and
+  /// 3 levels (96 + 48 + 24 + 12). levels == 0 stops keeping them. Throws std::invalid_argument
   /// when the geometry is invalid or does not give this sequence's descriptor size.
   void keepCoarseCells(int levels, const DescriptorParams& geometry);
 

@@ -17,6 +17,7 @@
 #include "mrs_vpr/mrs/particle_filter.hpp"
 #include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/mrs/sampling_level.hpp"
+#include "mrs_vpr/mrs/short_sequence_search.hpp"
 #include "mrs_vpr/seqslam_matcher.hpp"
 #include "mrs_vpr/mrs/temporal_pooling.hpp"
 #include "mrs_vpr/mrs/tiled_end_costs.hpp"
@@ -390,6 +391,16 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<
   const int levels = levelsFor(query.count, reference.count);
   if (levels > 0) compact_->requireDescriptorsOf(reference);
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
+  if (levels == 0 && shortSearchPays(query.count, reference.count, sequence_, kShortSearchHypotheses) &&
+      reference.descriptor_size == compact_->descriptorSize()) {
+    MrsLevelTrace level;
+    Match match = searchShortSequence(reference, query, sequence_, *compact_, kShortSearchHypotheses,
+                                      trace != nullptr ? &level : nullptr);
+    if (trace != nullptr) trace->push_back(std::move(level));
+    placeAnswer(match, reference, query, rows);
+    applyAcceptance(match, sequence_);
+    return match;
+  }
   Match match = CoarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_).run(trace);
   placeAnswer(match, reference, query, rows);  // As the brute force places its answer.
   return match;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <opencv2/core/utility.hpp>
 
@@ -34,14 +35,22 @@ Reach trajectoryReach(const SequenceRows& rows, const std::vector<double>& veloc
 AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
                                int contrast_window, const DifferenceTile& tile) {
   AnchorCosts costs;
+  tiledCostsByAnchor(columns, rows, velocities, contrast_window, tile, costs);
+  return costs;
+}
+
+void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
+                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs) {
   costs.cost.assign(static_cast<std::size_t>(std::max(0, columns)), std::numeric_limits<float>::infinity());
   costs.velocity.assign(costs.cost.size(), 0.0F);
   const Reach reach = trajectoryReach(rows, velocities);
   const int half = contrast_window / 2;
   const int tiles = (columns + kTileAnchors - 1) / kTileAnchors;
   cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
-    cv::Mat raw;
-    cv::Mat enhanced;
+    // Kept by each thread between tiles and queries (a Mat would reallocate whenever a tile's width
+    // changes, as it does at the map's edges).
+    thread_local std::vector<float> raw_storage;
+    thread_local std::vector<float> enhanced_storage;
     for (int t = range.start; t < range.end; ++t) {
       const int anchor_begin = t * kTileAnchors;
       const int anchor_end = std::min(columns, anchor_begin + kTileAnchors);
@@ -50,9 +59,12 @@ AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std:
       const int visited_end = std::min(columns, anchor_end + reach.ahead);
       const int raw_begin = std::max(0, visited_begin - half);
       const int raw_end = std::min(columns, visited_end + half);
-      raw.create(rows.last + 1, raw_end - raw_begin, CV_32F);
+      raw_storage.resize(static_cast<std::size_t>(rows.last + 1) * static_cast<std::size_t>(raw_end - raw_begin));
+      cv::Mat raw(rows.last + 1, raw_end - raw_begin, CV_32F, raw_storage.data());
       tile(raw_begin, raw_end, raw);
-      enhanced.create(raw.rows, visited_end - visited_begin, CV_32F);
+      enhanced_storage.resize(static_cast<std::size_t>(raw.rows) *
+                              static_cast<std::size_t>(visited_end - visited_begin));
+      cv::Mat enhanced(raw.rows, visited_end - visited_begin, CV_32F, enhanced_storage.data());
       for (int row = 0; row < raw.rows; ++row) {
         enhanceRowSpan(raw.ptr<float>(row), columns, visited_begin, visited_end, contrast_window,
                        enhanced.ptr<float>(row));
@@ -67,7 +79,6 @@ AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std:
       }
     }
   });
-  return costs;
 }
 
 }  // namespace mrs_vpr

@@ -170,8 +170,8 @@ TEST(DescriptorSequence, KeptCoarseCellsEqualCellsComputedOnDemand) {
 }
 
 TEST(DescriptorSequence, CoarseCellsCostAFractionOfTheDescriptors) {
-  // The default 64 x 32 descriptors with 8 x 8 patches: 96-byte cells at strides 2, 4 and 8 are
-  // 48 + 24 + 12 = 84 bytes a frame beside the 2048-byte descriptor and its 8-byte stamp.
+  // The default 64 x 32 descriptors with 8 x 8 patches: 96-byte cells at strides 1, 2, 4 and 8 are
+  // 96 + 48 + 24 + 12 = 180 bytes a frame beside the 2048-byte descriptor and its 8-byte stamp.
   const DescriptorParams geometry = thumbnailParams();
   DescriptorSequence sequence(2048);
   sequence.keepCoarseCells(3, geometry);
@@ -180,8 +180,8 @@ TEST(DescriptorSequence, CoarseCellsCostAFractionOfTheDescriptors) {
   const cv::Mat frame(1, 2048, CV_8U, cv::Scalar(128));
   for (int f = 0; f < frames; ++f) sequence.append(frame);
   const double per_frame = static_cast<double>(sequence.memoryBytes()) / frames;
-  EXPECT_LE(per_frame, 2048 + 8 + 84 + 1);
-  EXPECT_GE(per_frame, 2048 + 8 + 84);
+  EXPECT_LE(per_frame, 2048 + 8 + 180 + 1);
+  EXPECT_GE(per_frame, 2048 + 8 + 180);
   EXPECT_LE(per_frame, 2.2 * 1024);
 }
 

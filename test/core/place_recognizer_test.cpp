@@ -137,7 +137,7 @@ TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
   recognizer.reserve(200);
   const std::size_t reserved = recognizer.state().memory_bytes;
   const auto frame_bytes = static_cast<std::size_t>(recognizer.extractor().size()) + sizeof(double);
-  const std::size_t coarse_bytes = 128;  // at most, a frame, of MRS's kept coarse cells
+  const std::size_t coarse_bytes = 256;  // at most, a frame, of MRS's kept compact cells (strides 1 to 8)
   EXPECT_GE(reserved - empty, 200 * frame_bytes);
   EXPECT_LT(reserved - empty, 200 * (frame_bytes + coarse_bytes));
   // Filling what was reserved allocates nothing more.

@@ -941,7 +941,8 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   const fs::path maps = path("maps");
   const Result result = run(std::string(MRS_VPR_MAP_SCALE_BENCHMARK_PATH) + " --data " + data.string() +
                             " --sizes 2k,2.5k --dir " + maps.string() +
-                            " --length 10 --queries 2 --brute-queries 1 --threads 1 --seed 4");
+                            " --lengths 10 --queries 2 --brute-queries 1 --threads 1 --periods 2"
+                            " --keyframes-per-period 1 --seed 4");
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_NE(result.out.find("queries of N = 10, 2 per map (1 for brute force), threads 1, seed 4"), std::string::npos)
       << result.out;
@@ -955,13 +956,17 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
       for (std::string line; std::getline(lines, line);) {
         std::istringstream words(line);
         std::vector<std::string> tokens{std::istream_iterator<std::string>(words), {}};
-        if (tokens.size() == 11 && tokens[0] == size && tokens[1] == kind) row = tokens;
+        if (tokens.size() == 14 && tokens[0] == size && tokens[1] == "10" && tokens[2] == kind) row = tokens;
       }
-      ASSERT_EQ(row.size(), 11U) << size << " " << kind << "\n" << result.out;
-      EXPECT_EQ(row[7].substr(row[7].find('/')), "/2") << row[7];  // mrs right
-      EXPECT_EQ(row[9].substr(row[9].find('/')), "/1") << row[9];  // brute force right
+      ASSERT_EQ(row.size(), 14U) << size << " " << kind << "\n" << result.out;
+      EXPECT_EQ(row[8].substr(row[8].find('/')), "/2") << row[8];   // mrs right
+      EXPECT_EQ(row[10].substr(row[10].find('/')), "/1") << row[10];  // brute force right
+      EXPECT_EQ(row[12].substr(row[12].rfind('/')), "/1") << row[12];  // same frame / acceptance, of 1
     }
   }
+  // Continuous mode: one row a method, its queries' CPU share at a 1 s period.
+  EXPECT_NE(result.out.find("mrs continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("seqslam continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
 }
 
 }  // namespace

@@ -25,4 +25,9 @@ using DifferenceTile = std::function<void(int begin, int end, cv::Mat& raw)>;
 AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
                                int contrast_window, const DifferenceTile& tile);
 
+/// The same into `costs`, whose storage is reused: a search that keeps it between queries does not
+/// fault in a map-sized table (8 MB at a million frames) per query. Each thread keeps its tile buffers.
+void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
+                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs);
+
 }  // namespace mrs_vpr
