@@ -96,14 +96,23 @@ rosrun mrs_vpr make_demo_route --output "$work" --reference-frames "$REFERENCE_F
 
 port=$(python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI=http://localhost:$port
-echo "== Starting roscore on port $port and the node (roslaunch mrs_vpr mrs_vpr.launch)"
+echo "== Starting roscore on port $port and the node (roslaunch mrs_vpr mrs_vpr.launch, thumbnail front end)"
 roscore -p "$port" >"$work/roscore.log" 2>&1 &
 background_pids+=("$!:roscore")
 wait_until 30 "the ROS master" rosparam get /rosversion
 
 database=$work/map.db
+# The package's parameter file with two changes for the generated route: its smooth synthetic texture
+# suits the thumbnail front end (HOG, the default, is for real frames: doc/front_ends.md), and its
+# every frame is a keyframe at 20 Hz, so continuous mode asks with 40 (2 s of travel) instead of 20.
+params=$work/demo.yaml
+sed -e 's/^\(  *type: \)hog/\1thumbnail/' -e 's/^auto_query_frames: 0/auto_query_frames: 40/' \
+  "$(rospack find mrs_vpr)/config/default.yaml" >"$params"
+grep -q 'type: thumbnail' "$params" && grep -q '^auto_query_frames: 40' "$params" ||
+  { echo "demo: could not write the demo's parameter file $params" >&2; exit 1; }
 start_node() {  # The node on the map database; waits for its query service.
-  roslaunch mrs_vpr mrs_vpr.launch image:="$TOPIC" database:="$database" >>"$work/node.log" 2>&1 &
+  roslaunch mrs_vpr mrs_vpr.launch image:="$TOPIC" database:="$database" params:="$params" auto_query_period:=1 \
+    >>"$work/node.log" 2>&1 &
   launch_pid=$!
   background_pids+=("$launch_pid:roslaunch")
   wait_until 30 "the service $SERVICE" service_ready
@@ -140,7 +149,7 @@ done
 sleep 0.5  # Let the listener write the last loop closure.
 
 echo "== Playing query.bag into the node: a revisit, on which continuous mode (every second, the newest"
-echo "   $(rosparam get /mrs_vpr/sequence/sequence_length 2>/dev/null || echo 20) keyframes) publishes loop closures"
+echo "   $(rosparam get /mrs_vpr/auto_query_frames 2>/dev/null || echo 40) keyframes) publishes loop closures"
 rostopic echo -p /mrs_vpr/loop_closure >"$work/revisit.csv" 2>/dev/null &
 revisit_echo=$!
 background_pids+=("$revisit_echo:rostopic echo")
@@ -222,7 +231,7 @@ with open(revisit) as f:
         predicted = round((int(row["field.reference_stamp"]) / 1e9 - start_time) * rate)
         true_index = truth.get(frame, [-1])[0]
         error = abs(predicted - true_index)
-        accepted = row["field.accepted"] == "True"
+        accepted = row["field.accepted"] in ("True", "true", "1")  # rostopic echo -p prints a bool as 1 or True
         print("%-11d %6d %10d %6d %6.2f %5s" % (frame, true_index, predicted, error, float(row["field.confidence"]),
                                                "yes" if accepted else "no"))
         if accepted:
