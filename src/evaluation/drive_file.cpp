@@ -4,19 +4,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "index_field.hpp"
+
 namespace mrs_vpr {
 namespace {
 
 constexpr const char* kHeader = "drive_frame,route_frame,kind";
 
-/// A non-negative decimal integer of at most 9 digits, or -1.
-long long parseIndex(const std::string& text) {
-  if (text.empty() || text.size() > 9) return -1;
-  for (char c : text) {
-    if (c < '0' || c > '9') return -1;
-  }
-  return std::stoll(text);
-}
+using evaluation_detail::parseIndex;
 
 }  // namespace
 

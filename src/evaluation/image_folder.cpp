@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "index_field.hpp"
 #include "mrs_vpr/image_codecs.hpp"
 
 namespace mrs_vpr {
@@ -45,14 +46,7 @@ std::string trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
-/// A non-negative decimal integer, or -1 when `text` is anything else.
-long long parseIndex(const std::string& text) {
-  if (text.empty() || text.size() > 9) return -1;
-  for (char c : text) {
-    if (c < '0' || c > '9') return -1;
-  }
-  return std::stoll(text);
-}
+using evaluation_detail::parseIndex;
 
 }  // namespace
 
