@@ -8,8 +8,10 @@
 #include <stdexcept>
 
 #include "mrs_vpr/evaluation/camera_drive.hpp"
+#include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
@@ -83,7 +85,8 @@ struct DriveCounts {
  * the map holds 2 L + recent_exclusion keyframes.
  */
 std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::string& method,
-                                        const DescriptorParams& descriptor, const SequenceParams& sequence, int* length) {
+                                        const DescriptorParams& descriptor, const SequenceParams& sequence,
+                                        bool each_keyframe, int* length) {
   node::NodeParameters node;
   node.core.descriptor = descriptor;
   node.core.sequence = sequence;
@@ -102,6 +105,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
     count.stretch_right.assign(static_cast<std::size_t>(stretches), false);
     count.stretch_keyframed.assign(static_cast<std::size_t>(stretches), false);
     const auto stretchOf = [&](int i) { return i < kWarmUpFrames ? -1 : (i - kWarmUpFrames) / kStretchFrames; };
+    const int drive_start = static_cast<int>(route_of_frame.size());  // the drive's first frame in the replay
     for (int i = 0; i < static_cast<int>(drive.frames.size()); ++i) {
       const DriveFrame& frame = drive.frames[static_cast<std::size_t>(i)];
       const int t = static_cast<int>(route_of_frame.size());
@@ -115,33 +119,46 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
       }
       if ((i + 1) % period != 0) continue;
       const int size = recognizer.size();
-      if (size == asked_at_size || size < 2 * recent + node.recognizer.recent_exclusion) continue;
+      const int first_size = 2 * recent + node.recognizer.recent_exclusion;
+      if (size == asked_at_size || size < first_size) continue;
+      // As the node asks (node/continuous_queries.hpp), with no time budget; or about the newest only.
+      const std::vector<int> ends = each_keyframe
+                                        ? node::continuousQueryEnds(asked_at_size, size, first_size, size)
+                                        : std::vector<int>{size};
       asked_at_size = size;
-      const Match match = recognizer.matchRecent(recent, method).match;
-      ++count.queries;
-      if (!match.accepted) continue;
-      ++count.accepted;
-      // The newest keyframe's place against the places the answer's keyframe stands for.
-      const int place = route_of_frame[static_cast<std::size_t>(keyframe_frame.back())];
-      const auto k = static_cast<std::size_t>(match.reference_index);
-      const int first = keyframe_frame.at(k);
-      const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
-      bool right = false;
-      for (int f = first; f <= last && !right; ++f) {
-        right = std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance;
+      for (const int end : ends) {
+        const Match match = recognizer.matchRecent(recent, method, nullptr, end).match;
+        ++count.queries;
+        if (!match.accepted) continue;
+        ++count.accepted;
+        // The localised keyframe's place (the newest, or the middle one when centred) against the places
+        // the answer's keyframe stands for.
+        const int anchor = end - recent + wholeSequenceRows(recent, sequence.alignment).anchor;
+        const int place = route_of_frame[static_cast<std::size_t>(keyframe_frame.at(static_cast<std::size_t>(anchor)))];
+        const auto k = static_cast<std::size_t>(match.reference_index);
+        const int first = keyframe_frame.at(k);
+        const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
+        bool right = false;
+        for (int f = first; f <= last && !right; ++f) {
+          right = std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance;
+        }
+        // No place comes back during the first traversal: whatever it accepts there is wrong.
+        right = right && d > 0;
+        ++(right ? count.right : count.wrong);
+        if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+          std::fprintf(stderr,
+                       "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
+                       "frames %d..%d, confidence %.2f\n",
+                       method.c_str(), drive.name.c_str(), i, place, match.reference_index,
+                       route_of_frame[static_cast<std::size_t>(first)], route_of_frame[static_cast<std::size_t>(last)],
+                       match.confidence);
+        }
+        // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
+        const int localised = stretchOf(keyframe_frame[static_cast<std::size_t>(anchor)] - drive_start);
+        if (right && localised >= 0 && localised < stretches) {
+          count.stretch_right[static_cast<std::size_t>(localised)] = true;
+        }
       }
-      // No place comes back during the first traversal: whatever it accepts there is wrong.
-      right = right && d > 0;
-      ++(right ? count.right : count.wrong);
-      if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
-        std::fprintf(stderr,
-                     "false closure: %s %s frame %d, newest keyframe at route frame %d -> keyframe %d, route frames "
-                     "%d..%d, confidence %.2f\n",
-                     method.c_str(), drive.name.c_str(), i, place, match.reference_index,
-                     route_of_frame[static_cast<std::size_t>(first)], route_of_frame[static_cast<std::size_t>(last)],
-                     match.confidence);
-      }
-      if (right && stretch >= 0 && stretch < stretches) count.stretch_right[static_cast<std::size_t>(stretch)] = true;
     }
   }
   return counts;
@@ -226,7 +243,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   std::vector<nlohmann::json> rows;
   for (const std::string& method : input.methods) {
     int length = 0;
-    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, input.sequence, &length);
+    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, input.sequence, input.each_keyframe, &length);
     for (std::size_t d = 0; d < counts.size(); ++d) {
       const Drive& drive = d == 0 ? map : revisit;
       const DriveCounts& c = counts[d];

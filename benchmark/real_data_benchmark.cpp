@@ -80,6 +80,8 @@ struct Options {
   bool drives = true;
   int drive_length = 0;
   int drive_alignment_slack = mrs_vpr::SequenceParams{}.alignment_slack;
+  std::string drive_alignment = mrs_vpr::toString(mrs_vpr::SequenceParams{}.alignment);
+  std::string drive_queries = "each";  // as the node asks
   bool diagnose = false;
   std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
@@ -94,7 +96,8 @@ constexpr const char* kUsage =
     "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
-    "                              [--drive-alignment-slack S] [--diagnose]\n"
+    "                              [--drive-alignment-slack S] [--drive-alignment causal|centred]\n"
+    "                              [--drive-queries newest|each] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs,mrs-first-pass] [--json FILE]\n"
@@ -133,6 +136,11 @@ std::optional<Options> parse(int argc, char** argv) {
        "keyframes per test sequence of the camera-drive rows; 0 = the node's default")
       ("drive-alignment-slack", po::value(&options.drive_alignment_slack)->default_value(options.drive_alignment_slack),
        "sequence/alignment_slack of the camera-drive rows")
+      ("drive-alignment", po::value(&options.drive_alignment)->default_value(options.drive_alignment),
+       "sequence/alignment of the camera-drive rows: the keyframe an answer localises")
+      ("drive-queries", po::value(&options.drive_queries)->default_value(options.drive_queries),
+       "each | newest: continuous mode localises each keyframe since its last question (the node), or only the "
+       "newest")
       ("diagnose", po::bool_switch(&options.diagnose), "print where MRS kept the truth, level by level")
       ("hypotheses", po::value(&options.hypotheses)->default_value(options.hypotheses),
        "mrs: hypotheses carried down from the coarsest level")
@@ -667,6 +675,9 @@ int run(int argc, char** argv) {
   // Velocity step 0.02 for both methods: 0.1 leaves up to 15 frames of drift at N = 300, so neither
   // could align long sequences whose speed lies between two steps.
   params.sequence.velocity_step = 0.02;
+  // The global and per-frame rows judge where a test sequence ends, as the paper does; the drive rows
+  // localise what the node localises (--drive-alignment).
+  params.sequence.alignment = mrs_vpr::WindowAlignment::kCausal;
   params.mrs.hypotheses = options.hypotheses;
   params.mrs.min_coarse_frames = options.min_coarse_frames;
   params.sequence.velocity_min = options.velocity_min;
@@ -779,6 +790,11 @@ int run(int argc, char** argv) {
     drives.seed = options.seed;
     if (options.drive_length > 0) drives.sequence.sequence_length = options.drive_length;
     drives.sequence.alignment_slack = options.drive_alignment_slack;
+    drives.sequence.alignment = mrs_vpr::parseWindowAlignment(options.drive_alignment);
+    if (options.drive_queries != "newest" && options.drive_queries != "each") {
+      throw std::invalid_argument("--drive-queries must be newest or each, got '" + options.drive_queries + "'");
+    }
+    drives.each_keyframe = options.drive_queries == "each";
     drives.sequence.velocity_min = options.velocity_min;
     drives.sequence.velocity_max = options.velocity_max;
     mrs_vpr::benchmark::runCameraDrives(

@@ -81,7 +81,8 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
         "Frames around the best match excluded when looking for the runner-up."},
        &P::match_exclusion},
       {{"sequence/alignment", {}, {"causal", "centred"}, "",
-        "causal: the test sequence ends at the frame localised; centred: it is in the middle."},
+        "centred: the frame localised is the middle of the test sequence (surest); causal: it is the newest "
+        "(sooner, more often a few frames off)."},
        &P::alignment},
       {{"sequence/alignment_slack", Range::closed(0, 1000), {}, "",
         "Frames the path that places an answer may stray from the best straight trajectory; 0 = its end."},

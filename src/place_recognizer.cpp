@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mrs_vpr/mrs_matcher.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -207,6 +208,7 @@ PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, 
   PlaceAnswer answer;
   answer.method = matcher.name();
   answer.query_length = query.count;
+  answer.localised_row = wholeSequenceRows(query.count, params_.sequence.alignment).anchor;
   std::vector<MrsLevelTrace> levels;
   const auto* mrs = dynamic_cast<const MrsMatcher*>(&matcher);
   // Only an explained MRS answer records its levels: the same search, plus a copy of the particles.
@@ -231,13 +233,16 @@ PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, co
       throw std::invalid_argument("image " + std::to_string(i) + " of the test sequence: " + error.what());
     }
   }
-  const DescriptorSequence keyframes = keyframesOf(descriptors);
+  std::vector<int> kept;
+  const DescriptorSequence keyframes = keyframesOf(descriptors, &kept);
   if (descriptors.size() >= 2 && keyframes.size() < 2) {
     throw std::invalid_argument("the test sequence's " + std::to_string(descriptors.size()) +
                                 " images hold fewer than 2 keyframes: the view hardly changes across them "
                                 "(min_appearance_change " + std::to_string(recognizer_.min_appearance_change) + ")");
   }
-  return match(keyframes, method);
+  PlaceAnswer answer = match(keyframes, method);
+  if (answer.localised_row >= 0) answer.localised_row = kept.at(static_cast<std::size_t>(answer.localised_row));
+  return answer;
 }
 
 DescriptorSequence PlaceRecognizer::keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen) const {
@@ -299,17 +304,23 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
 }
 
 PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method,
-                                         MatchExplanation* explanation) {
+                                         MatchExplanation* explanation, int end) {
   matcherFor(method);
   if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
   flush();  // The newest frames must be in the map before they can be the test sequence.
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
-    const int size = framesToSearchLocked();
+    const int frames_in_map = framesToSearchLocked();
+    if (end > frames_in_map) {
+      throw std::invalid_argument("a test sequence cannot end at frame " + std::to_string(end) + ": the map holds " +
+                                  std::to_string(frames_in_map) + " frames");
+    }
+    const int size = end < 0 ? frames_in_map : end;
     if (frames > size) {
       throw std::invalid_argument("recent_frames " + std::to_string(frames) + " is more than the " +
-                                  std::to_string(size) + " frames in the reference map");
+                                  std::to_string(size) + " frames in the reference map" +
+                                  (end >= 0 ? " before frame " + std::to_string(end) : ""));
     }
     const int recent = static_cast<int>(frames);
     const int searchable = size - recent - recognizer_.recent_exclusion;
@@ -322,6 +333,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     }
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation);
     result.newest_stamp = map_.stamp(size - 1);
+    result.localised_stamp = map_.stamp(size - recent + result.localised_row);
   }
   flush();
   return result;

@@ -46,15 +46,15 @@ def frames_off(frame, first, last):
 
 def localise(recognizer, map_keyframes, query_images, first, length, method):
     """Localises query frames [first, first + length): (answer, the query frame localised (the stretch's
-    last keyframe), the map frames (first, last) the answer's keyframe stands for, the stretch's
+    middle keyframe by default), the map frames (first, last) the answer's keyframe stands for, the stretch's
     keyframes, time in ms). map_keyframes: the map frames each keyframe stands for."""
     stretch = query_images[first:first + length]
     start = time.perf_counter()
     answer = recognizer.match(stretch, method=method, channel_order="rgb")
     elapsed_ms = 1000.0 * (time.perf_counter() - start)
-    # match() keyframed the stretch as keyframes_of() does; its answer localises the last keyframe.
+    # match() keyframed the stretch as keyframes_of() does; localised_row is the image it localises.
     keyframes = recognizer.keyframes_of(stretch, channel_order="rgb")
-    localised = first + keyframes[-1]
+    localised = first + answer.localised_row
     return answer, localised, map_keyframes[answer.reference_index], len(keyframes), elapsed_ms
 
 

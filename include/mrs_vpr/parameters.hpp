@@ -75,7 +75,12 @@ struct SequenceParams {
   double velocity_step = 0.1;  ///< Step between tried velocities; at most kMaxVelocities of them.
   int contrast_window = 10;    ///< R: reference frames in the local contrast window, 0 = off.
   int match_exclusion = 10;    ///< Rwindow: frames around the best match excluded from the runner-up.
-  WindowAlignment alignment = WindowAlignment::kCausal;
+  /// Centred: the answer localises the middle keyframe of the test sequence, where the sequence's
+  /// evidence lies on both sides. At the causal end a trajectory a few keyframes too fast or slow (a
+  /// stop's stray keyframes, a change of speed) lands off the place: on camera drives (tune half) 7 of
+  /// 78 accepted closures were 3-24 route frames off, against 0 of 80 centred. A closure therefore
+  /// names a keyframe sequence_length / 2 keyframes back (its stamp says which).
+  WindowAlignment alignment = WindowAlignment::kCentred;
   /// Frames the path that places an answer may stray from the best straight trajectory, which found the
   /// place (flexible_alignment.hpp); 0 = the straight trajectory's end. Off by default: on camera
   /// drives 4 turned 2 of 7 near misses right, but in a stretch of identical frames (a camera blacked

@@ -27,6 +27,11 @@ struct PlaceAnswer {
   Match match;                 ///< Reference frame, confidence, acceptance (see Match).
   Stamp reference_stamp;       ///< Stamp of the matched reference frame (0 when none).
   Stamp newest_stamp;          ///< Stamp of the test sequence's newest frame (matchRecent; else 0).
+  /// The test-sequence frame the answer localises: the newest keyframe (sequence/alignment causal) or
+  /// the middle one (centred), counted among the frames given (match of images: among the images).
+  /// The reference frame is that frame's place.
+  int localised_row = -1;
+  Stamp localised_stamp;       ///< Stamp of the localised frame (matchRecent; else 0).
   int query_length = 0;        ///< Frames of the test sequence.
   std::string method;          ///< The method that answered.
 };
@@ -107,9 +112,12 @@ class PlaceRecognizer {
   /**
    * Where the map's own `frames` newest frames lie among its older ones: only frames
    * [0, size - frames - recent_exclusion) are searched, so that the answer is a loop closure and not
-   * the place just passed. `explanation` as for match().
+   * the place just passed. `explanation` as for match(). With `end` >= 0 the test sequence is the
+   * `frames` frames before map frame `end` instead of the newest ones (and the searched frames end as
+   * much earlier): continuous mode localises each keyframe that came since its last question.
    */
-  PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr);
+  PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
+                          int end = -1);
 
   /// Frames in the map (not counting pending ones).
   int size() const { return map_frames_.load(); }

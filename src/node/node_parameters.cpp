@@ -36,7 +36,8 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
       {{"auto_query_period", Range::atLeast(0), {}, "",
-        "Continuous mode: query with the newest frames every this many seconds; 0 = off."},
+        "Continuous mode: every this many seconds, localise each keyframe that came since the last time "
+        "(within a fifth of the period); 0 = off."},
        &P::auto_query_period},
       {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},

@@ -3,13 +3,16 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
+#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/compressed_image.hpp"
+#include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/loop_closure_stamps.hpp"
 #include "mrs_vpr/node/robot_position.hpp"
@@ -20,6 +23,9 @@ namespace node {
 namespace {
 
 constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
+/// Continuous mode's questions of one period take at most this share of it (by the last one's time);
+/// beyond, it localises fewer of the keyframes that came, evenly spread.
+constexpr double kContinuousShare = 0.2;
 
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
 
@@ -311,17 +317,19 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
                                       inQuotes(image.encoding) + "): " + error.what());
         }
       }
-      input.header = request.images.back().header;
       // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were.
+      std::vector<int> kept(request.images.size());
+      std::iota(kept.begin(), kept.end(), 0);
       if (!travel_policy_.enabled()) {
         const int given = input.images->size();
-        *input.images = recognizer_.keyframesOf(*input.images);
+        *input.images = recognizer_.keyframesOf(*input.images, &kept);
         if (input.images->size() < 2) {
           throw std::invalid_argument("the " + std::to_string(given) + " images hold " +
                                       std::to_string(input.images->size()) +
                                       " keyframe(s), fewer than 2: the view hardly changes across them (~min_appearance_change)");
         }
       }
+      for (const int i : kept) input.image_headers.push_back(request.images[static_cast<std::size_t>(i)].header);
     } else if (request.recent_frames == 0) {
       throw std::invalid_argument(
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
@@ -355,9 +363,12 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   MatchExplanation explanation;
   MatchExplanation* const explain = debug_image_->wanted() ? &explanation : nullptr;
   PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method, explain)
-                                      : recognizer_.matchRecent(input.recent_frames, input.method, explain);
-  if (!input.images) {
-    input.header.stamp = rosTimeOf(answered.newest_stamp);
+                                      : recognizer_.matchRecent(input.recent_frames, input.method, explain,
+                                                                input.end);
+  if (input.images) {
+    input.header = input.image_headers.at(static_cast<std::size_t>(answered.localised_row));
+  } else {
+    input.header.stamp = rosTimeOf(answered.localised_stamp);
     std::lock_guard<std::mutex> lock(state_mutex_);
     input.header.frame_id = camera_frame_id_;
   }
@@ -409,18 +420,32 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
     return;  // nothing new since the last answer
   }
   const int recent = params_.autoQueryFrames();
-  if (recognizer_.size() < 2 * recent + params_.recognizer.recent_exclusion) {
+  const int first_size = 2 * recent + params_.recognizer.recent_exclusion;
+  const int size = recognizer_.size();
+  if (size < first_size) {
     return;  // too early: not enough older frames to search yet
   }
   auto_query_version_ = version;
-  QueryInput input;
-  input.recent_frames = recent;
-  QuerySequence::Response response;
-  try {
-    const PlaceAnswer answered = answer(input, response);
-    publishLoopClosure(input.header, answered, response);  // warns itself when stamps cannot go out
-  } catch (const std::exception& error) {
-    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
+  // Each keyframe since the last question is localised once (continuous_queries.hpp), within
+  // kContinuousShare of the period by the last question's time.
+  const double budget_ms = kContinuousShare * params_.auto_query_period * 1000.0;
+  const int affordable = auto_query_ms_ > 0.0 ? static_cast<int>(budget_ms / auto_query_ms_) : 1;
+  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, first_size, affordable);
+  auto_query_size_ = size;
+  for (const int end : ends) {
+    QueryInput input;
+    input.recent_frames = recent;
+    input.end = end;
+    QuerySequence::Response response;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const PlaceAnswer answered = answer(input, response);
+      publishLoopClosure(input.header, answered, response);  // warns itself when stamps cannot go out
+    } catch (const std::exception& error) {
+      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
+      return;
+    }
+    auto_query_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 }
 

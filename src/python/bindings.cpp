@@ -465,7 +465,7 @@ void bindAnswers(py::module_& m) {
   py::class_<PlaceAnswer>(m, "Answer", "The answer to a query: the match and the stamps of its frames.")
       .def_readonly("match", &PlaceAnswer::match)
       .def_property_readonly("reference_index", [](const PlaceAnswer& a) { return a.match.reference_index; },
-                             "Matched map frame (the newest test frame's place); -1 when none.")
+                             "Matched map frame (the localised test frame's place); -1 when none.")
       .def_property_readonly("confidence", [](const PlaceAnswer& a) { return a.match.confidence; },
                              "Distinctiveness in standard deviations; higher is surer.")
       .def_property_readonly("accepted", [](const PlaceAnswer& a) { return a.match.accepted; },
@@ -476,6 +476,11 @@ void bindAnswers(py::module_& m) {
                              "Stamp of the matched map frame [s]; 0 when none.")
       .def_property_readonly("newest_stamp", [](const PlaceAnswer& a) { return secondsOf(a.newest_stamp); },
                              "Stamp of the test sequence's newest frame [s] (match_recent; else 0).")
+      .def_readonly("localised_row", &PlaceAnswer::localised_row,
+                    "The test-sequence frame the answer localises: the middle one (sequence/alignment centred, "
+                    "the default) or the newest (causal).")
+      .def_property_readonly("localised_stamp", [](const PlaceAnswer& a) { return secondsOf(a.localised_stamp); },
+                             "Stamp of the localised frame [s] (match_recent; else 0).")
       .def_readonly("query_length", &PlaceAnswer::query_length, "Frames of the test sequence.")
       .def_readonly("method", &PlaceAnswer::method, "The method that answered.")
       .def("__repr__", [](const PlaceAnswer& a) {

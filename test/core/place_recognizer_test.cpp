@@ -82,6 +82,55 @@ TEST(PlaceRecognizer, MatchRecentSearchesOnlyOlderFramesBeyondTheExclusion) {
   EXPECT_EQ(answer.newest_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
 }
 
+TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStill) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(globalSearchParams(), limits);
+  mapReference(recognizer);
+  for (int i = 100; i < 250; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+  }
+  // Map frames 600..699 are the second traversal's 100..199; the 50 frames after them are not used.
+  const PlaceAnswer answer = recognizer.matchRecent(100, "seqslam", nullptr, 700);
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[199], 3)) << answer.match.reference_index;
+  EXPECT_LT(answer.match.reference_index, 700 - 100 - 50);
+  EXPECT_EQ(answer.localised_stamp, Stamp::fromSecondsAndNanoseconds(1199, 0));
+  EXPECT_EQ(answer.newest_stamp, Stamp::fromSecondsAndNanoseconds(1199, 0));
+  EXPECT_NE(errorOf([&] { recognizer.matchRecent(100, "seqslam", nullptr, 751); }).find("the map holds 750 frames"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.matchRecent(100, "seqslam", nullptr, 60); }).find("before frame 60"),
+            std::string::npos);
+}
+
+TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
+  Parameters centred = globalSearchParams();
+  centred.sequence.alignment = WindowAlignment::kCentred;  // the default
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(centred, limits);
+  mapReference(recognizer);
+  for (int i = 100; i < 250; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+  }
+  // The newest 150 frames are 100..249; the localised one is the middle, 100 + 75.
+  const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
+  EXPECT_EQ(answer.localised_row, 75);
+  EXPECT_EQ(answer.localised_stamp, Stamp::fromSecondsAndNanoseconds(1175, 0));
+  EXPECT_EQ(answer.newest_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[175], 3)) << answer.match.reference_index;
+  // A causal answer localises the newest frame.
+  Parameters causal = centred;
+  causal.sequence.alignment = WindowAlignment::kCausal;
+  PlaceRecognizer newest(causal, limits);
+  mapReference(newest);
+  for (int i = 100; i < 250; ++i) {
+    newest.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+  }
+  const PlaceAnswer causal_answer = newest.matchRecent(150, "seqslam");
+  EXPECT_EQ(causal_answer.localised_row, 149);
+  EXPECT_EQ(causal_answer.localised_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
+}
+
 TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {
   PlaceRecognizer recognizer(routeParameters());
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10)); }).find("reference map is empty"), std::string::npos);

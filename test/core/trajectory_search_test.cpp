@@ -52,6 +52,7 @@ TEST(Velocities, SingleVelocityAndStepsThatDoNotReachTheMaximum) {
 TEST(SequenceRowsFor, CausalEndsAtTheFrameCentredSurroundsIt) {
   SequenceParams params;
   params.sequence_length = 10;
+  params.alignment = WindowAlignment::kCausal;
   const SequenceRows causal = sequenceRowsFor(20, params);
   EXPECT_EQ(causal.first, 11);
   EXPECT_EQ(causal.last, 20);

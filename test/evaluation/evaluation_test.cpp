@@ -213,6 +213,7 @@ TEST(Evaluation, AcceptedPrecisionRecallAndRate) {
 TEST(Evaluation, PerFrameQueriesHaveAFullSequence) {
   SequenceParams params;
   params.sequence_length = 3;
+  params.alignment = WindowAlignment::kCausal;
   EXPECT_EQ(perFrameQueries(6, params), (std::vector<int>{2, 3, 4, 5}));
   params.alignment = WindowAlignment::kCentred;
   EXPECT_EQ(perFrameQueries(6, params), (std::vector<int>{1, 2, 3, 4}));

@@ -67,7 +67,9 @@ TEST(MrsMatcher, LevelsForKeepsEnoughRivalEndsOnTheCoarsestLevel) {
   // The confidence is read on the coarsest level's ends, so a small map gets a finer one. At N = 300
   // and stride 4 the trajectories of the slowest velocity end at cells 59 (frame 236) and beyond,
   // and the answer's window takes 11 cells: 100 rivals need cells 59..169, a map of 674 frames.
-  const MrsMatcher search(SequenceParams{}, MrsParams{});
+  SequenceParams causal;  // Centred trajectories reach past the answer and need other ends.
+  causal.alignment = WindowAlignment::kCausal;
+  const MrsMatcher search(causal, MrsParams{});
   EXPECT_EQ(search.levelsFor(300, 674), 2);
   EXPECT_EQ(search.levelsFor(300, 673), 1);  // 99 rivals at stride 4; stride 2 has enough.
   EXPECT_EQ(search.levelsFor(300, 300), 0);  // Not enough at any stride: the brute force's search.

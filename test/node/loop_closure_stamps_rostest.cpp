@@ -1,5 +1,7 @@
 // LIO-SAM's external loop closures from two running nodes (see loop_closure_stamps.test): exactly the
-// accepted answers of ~loop_closure arrive on the stamps topic, as [newest test frame, reference frame].
+// accepted answers of ~loop_closure arrive on the stamps topic, as [localised test frame, reference frame].
+// The nodes run at the default sequence/alignment (centred): the localised frame is the middle of the
+// test sequence, and ~loop_closure's header carries its stamp.
 
 #include <gtest/gtest.h>
 
@@ -144,7 +146,7 @@ class LoopClosureStampsTest : public ::testing::Test {
   /// exactly the expected pairs, equal to the last bit.
   void expectStampsOfAcceptedClosuresOnly(NodeTopics& node) {
     auto sentinel = explicitQuery(route_->query, 100, 40, 60000.0 + sentinels_++ * 100.0);
-    const LoopClosure last = ask(node, sentinel, sentinel.request.images.back().header.stamp);
+    const LoopClosure last = ask(node, sentinel, sentinel.request.images.at(20).header.stamp);  // the middle
     ASSERT_TRUE(last.accepted) << sentinel.response.message;
     Stamps newest;
     ASSERT_TRUE(waitForStamps(node, last.header.stamp, newest));
@@ -189,7 +191,8 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
       SCOPED_TRACE(method + (mapped ? ", mapped" : ", unmapped"));
       auto srv = explicitQuery(mapped ? route_->query : unmapped_->query, 100, 40, start, method);
       start += 100.0;
-      const ros::Time newest = srv.request.images.back().header.stamp;
+      // The middle of the 40 images (every one a keyframe here) is the one localised.
+      const ros::Time newest = srv.request.images.at(20).header.stamp;
       const LoopClosure closure = ask(queried_, srv, newest);
       EXPECT_EQ(closure.accepted, mapped) << srv.response.message;
       if (!closure.accepted) {
@@ -199,7 +202,7 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
       ++accepted;
       Stamps stamps;
       ASSERT_TRUE(waitForStamps(queried_, newest, stamps));
-      // [stamp of the newest image sent, stamp of the reference frame answered].
+      // [stamp of the image localised, stamp of the reference frame answered].
       EXPECT_EQ(stamps.data.at(0), newest.toSec());
       EXPECT_EQ(stamps.data.at(1), closure.reference_stamp.toSec());
       EXPECT_NEAR(stamps.data.at(1), kReferenceStart + closure.reference_index * kFramePeriod, 1e-3);
@@ -216,15 +219,16 @@ TEST_F(LoopClosureStampsTest, AnAcceptedAnswerToUnstampedImagesSaysWhyItsStampsA
   const LoopClosure closure = ask(queried_, srv, ros::Time());
   EXPECT_TRUE(closure.accepted);
   EXPECT_EQ(srv.response.message,
-            "accepted; not published on /queried/lio_loop/loop_closure_detection: the newest test frame has no stamp");
+            "accepted; not published on /queried/lio_loop/loop_closure_detection: the localised test frame has no stamp");
   expectStampsOfAcceptedClosuresOnly(queried_);  // none for it
 }
 
 TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
-  // The second traversal passes the camera: accepted answers, the newest map frame's stamp first.
+  // The second traversal passes the camera: accepted answers, the localised map frame's stamp first.
+  // Of the newest 50 frames (10..59 of those played) the middle one, 35, is localised.
   constexpr double kQueryStart = 5000.0;
   playIntoNodes(route_->query, 200, 260, kQueryStart);
-  const ros::Time newest_query_frame(kQueryStart + 59 * kFramePeriod);
+  const ros::Time newest_query_frame(kQueryStart + 35 * kFramePeriod);
 
   mrs_vpr::QuerySequence recent;
   recent.request.recent_frames = 50;
@@ -234,19 +238,20 @@ TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
   ASSERT_TRUE(waitForStamps(queried_, newest_query_frame, stamps));
   EXPECT_NEAR(stamps.data.at(1), kReferenceStart + answer.reference_index * kFramePeriod, 1e-3);
 
-  // The continuous-mode node answers on its own once the newest frame is in its map.
+  // The continuous-mode node answers on its own once the newest frame is in its map, with the same 50
+  // frames (auto_query_frames).
+  const ros::Time continuous_frame = newest_query_frame;
   LoopClosure automatic;
-  ASSERT_TRUE(continuous_.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, newest_query_frame); },
+  ASSERT_TRUE(continuous_.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, continuous_frame); },
                                            automatic, 10.0));
   EXPECT_TRUE(automatic.accepted);
-  ASSERT_TRUE(waitForStamps(continuous_, newest_query_frame, stamps));
+  ASSERT_TRUE(waitForStamps(continuous_, continuous_frame, stamps));
   EXPECT_EQ(stamps.data.at(1), automatic.reference_stamp.toSec());
 
   // Then places not in the map: answers, but none accepted.
   constexpr double kUnmappedStart = 7000.0;
   playIntoNodes(unmapped_->query, 100, 160, kUnmappedStart);
-  const ros::Time newest_unmapped_frame(kUnmappedStart + 59 * kFramePeriod);
-  recent.request.recent_frames = 40;
+  const ros::Time newest_unmapped_frame(kUnmappedStart + 35 * kFramePeriod);  // the middle of 10..59
   EXPECT_FALSE(ask(queried_, recent, newest_unmapped_frame).accepted) << recent.response.message;
   ASSERT_TRUE(continuous_.closures.waitFor(
       [&](const LoopClosure& m) { return at(m.header.stamp, newest_unmapped_frame); }, automatic, 10.0));

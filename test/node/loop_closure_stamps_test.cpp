@@ -50,7 +50,7 @@ TEST(LoopClosureStamps, AnswersThatAreNotAcceptedGiveNothing) {
 TEST(LoopClosureStamps, AnAcceptedClosureWithoutAStampIsRefusedAndSaysWhich) {
   std::string why;
   EXPECT_FALSE(loopClosureStamps(acceptedClosure(ros::Time(), ros::Time(1000.0)), why).has_value());
-  EXPECT_EQ(why, "the newest test frame has no stamp");
+  EXPECT_EQ(why, "the localised test frame has no stamp");
 
   why.clear();
   EXPECT_FALSE(loopClosureStamps(acceptedClosure(ros::Time(2000.0), ros::Time()), why).has_value());

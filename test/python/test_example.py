@@ -35,7 +35,8 @@ def test_the_example_maps_a_folder_and_localises_the_last_stretch(tmp_path):
     lines = result.stdout.splitlines()
     assert lines[0].startswith("map: 300 frames of 128 x 64 px, 300 keyframes, mapped in ")
     assert lines[1].startswith("stretch: query frames 250..299 (50 keyframes) -> map keyframe ")
-    assert lines[1].endswith("query frame 299 localised: error 0 frames (correct)")
+    # The middle keyframe of the stretch is the one localised (alignment centred, the default).
+    assert lines[1].endswith("query frame 275 localised: error 0 frames (correct)")
     assert lines[3].startswith("10 stretches of 50 frames at random positions: top-1 1.000 (within 3 frames)")
     assert lines[4] == "saved 300 frames to %s" % (tmp_path / "map.db")
     assert len(mrs_vpr.PlaceRecognizer.from_map(tmp_path / "map.db")) == 300
@@ -54,8 +55,8 @@ def test_the_example_keyframes_a_camera_that_stops_and_scores_the_frames_a_keyfr
     lines = result.stdout.splitlines()
     assert lines[0].startswith("map: 300 frames of 128 x 64 px, 150 keyframes, mapped in ")
     # The stretch's last keyframe is frame 298 (299 repeats it); map keyframe 149 stands for frames 298..299.
-    assert lines[1].startswith("stretch: query frames 250..299 (25 keyframes) -> map keyframe 149 (frames 298..299), "
-                               "query frame 298 localised: error 0 frames (correct)")
+    assert lines[1].startswith("stretch: query frames 250..299 (25 keyframes) -> map keyframe 137 (frames 274..275), "
+                               "query frame 274 localised: error 0 frames (correct)")
     assert lines[3].startswith("10 stretches of 50 frames at random positions: top-1 1.000 (within 0 frames)")
 
 

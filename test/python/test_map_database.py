@@ -20,7 +20,7 @@ def test_a_saved_map_loads_with_the_same_frames_stamps_and_answers(route, mapped
 def test_from_map_takes_the_front_end_the_map_was_written_with(route, mapped, tmp_path):
     path = tmp_path / "map.db"
     mapped.save(path)
-    loaded = mrs_vpr.PlaceRecognizer.from_map(path, velocity_step=0.02)
+    loaded = mrs_vpr.PlaceRecognizer.from_map(path, velocity_step=0.02, alignment="causal")
     assert loaded.parameters["descriptor/type"] == "thumbnail"  # not the default front end, hog
     assert len(loaded) == 600
     assert repr(loaded.match(route["query"][STRETCH])) == repr(mapped.match(route["query"][STRETCH]))

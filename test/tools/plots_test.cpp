@@ -88,7 +88,7 @@ class PlotsTest : public ::testing::Test {
     return std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
            (root_ / "query").string() + " --ground-truth " + (root_ / "truth.csv").string() + " --method " + method +
            // Every frame a keyframe, so that the pictures' sizes are the traversals' own.
-           " --protocol per-frame --sequence-length 10 --tolerance 2 --min-appearance-change 0 --plots " +
+           " --protocol per-frame --sequence-length 10 --alignment causal --tolerance 2 --min-appearance-change 0 --plots " +
            plots.string();
   }
 

@@ -102,7 +102,7 @@ TEST_F(ToolsTest, PerFrameSeqSlamFindsThePlantedAlignment) {
   const std::string output = path("per_frame.json");
   const Result result =
       run(eval("--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
-               path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 --tolerance 2 --output " +
+               path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 --alignment causal --tolerance 2 --output " +
                output));
   ASSERT_EQ(result.status, 0) << result.err;
   const json document = json::parse(readText(output));
@@ -128,7 +128,7 @@ TEST_F(ToolsTest, PerFrameSeqSlamFindsThePlantedAlignment) {
 
 TEST_F(ToolsTest, GlobalProtocolIsSeededAndUsesKSequences) {
   const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
-                                path("truth.csv") + " --method seqslam --protocol global --sequence-length 40 " +
+                                path("truth.csv") + " --method seqslam --protocol global --sequence-length 40 --alignment causal " +
                                 "--queries 12 --tolerance 5 --seed 3 --output ";
   ASSERT_EQ(run(eval(arguments + path("global_a.json"))).status, 0);
   ASSERT_EQ(run(eval(arguments + path("global_b.json"))).status, 0);

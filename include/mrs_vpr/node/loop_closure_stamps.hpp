@@ -27,7 +27,7 @@ inline std::optional<std_msgs::Float64MultiArray> loopClosureStamps(const LoopCl
     return std::nullopt;
   }
   if (closure.header.stamp.isZero()) {
-    why = "the newest test frame has no stamp";
+    why = "the localised test frame has no stamp";
   } else if (closure.reference_stamp.isZero()) {
     why = "reference frame " + std::to_string(closure.reference_index) + " has no stamp";
   }

@@ -69,9 +69,11 @@ class PlaceRecognitionNode {
   /// What a query needs besides the map: the test sequence, when given explicitly.
   struct QueryInput {
     std::unique_ptr<DescriptorSequence> images;  ///< Explicit test sequence, or null.
-    long long recent_frames = 0;                 ///< Otherwise the map's newest frames.
+    long long recent_frames = 0;                 ///< Otherwise the map's newest frames ...
+    int end = -1;                                ///< ... before map frame `end` (-1: the newest).
     std::string method;
-    std_msgs::Header header;  ///< Stamp and frame of the newest test frame (filled for images).
+    std::vector<std_msgs::Header> image_headers;  ///< The header of each frame of `images`.
+    std_msgs::Header header;  ///< Stamp and frame of the test frame the answer localises (set by answer()).
   };
 
   void imageCallback(const sensor_msgs::ImageConstPtr& message);
@@ -136,6 +138,8 @@ class PlaceRecognitionNode {
   std::atomic<std::uint64_t> frames_failed_{0};
   std::atomic<std::uint64_t> map_version_{0};  // bumped whenever frames are added or the map is reset
   std::uint64_t auto_query_version_ = 0;      // map_version_ at the last continuous-mode query
+  int auto_query_size_ = 0;                   // map frames at the last continuous-mode query
+  double auto_query_ms_ = 0.0;                // what its last query took
   MapInfo last_map_info_;
   bool map_info_published_ = false;
 

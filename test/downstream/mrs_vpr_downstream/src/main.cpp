@@ -32,7 +32,9 @@ int main(int argc, char** argv) try {
   const mrs_vpr::PlaceAnswer answer = recognizer.match(test);
   // The answer's stamp names the reference image (its map index counts only the frames kept).
   const long reference = answer.match.reference_index < 0 ? -1 : std::lround(answer.reference_stamp.seconds());
-  std::cout << "query frame " << files.size() - 1 << " is reference frame " << reference << ", confidence "
+  // The answer localises one of the test images: the middle keyframe by default.
+  const std::size_t localised = files.size() - test.size() + static_cast<std::size_t>(answer.localised_row);
+  std::cout << "query frame " << localised << " is reference frame " << reference << ", confidence "
             << answer.match.confidence << (answer.match.accepted ? ", accepted\n" : ", not accepted\n");
   return 0;
 } catch (const std::exception& error) {
