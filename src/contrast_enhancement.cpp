@@ -186,16 +186,23 @@ void enhanceRowSpan(const float* raw, int columns, int begin, int end, int windo
 }
 
 cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
-  CV_Assert(differences.type() == CV_32FC1);
-  if (window == 0) return differences.clone();
   cv::Mat enhanced(differences.size(), CV_32F);
+  enhanceContrast(differences, window, enhanced);
+  return enhanced;
+}
+
+void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) {
+  CV_Assert(differences.type() == CV_32FC1 && enhanced.type() == CV_32FC1 && enhanced.size() == differences.size());
+  if (window == 0) {
+    differences.copyTo(enhanced);
+    return;
+  }
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
     for (int row = rows.start; row < rows.end; ++row) {
       enhanceRowSpan(differences.ptr<float>(row), differences.cols, 0, differences.cols, window,
                      enhanced.ptr<float>(row));
     }
   });
-  return enhanced;
 }
 
 }  // namespace mrs_vpr

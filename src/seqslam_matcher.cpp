@@ -3,6 +3,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/query_buffer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -11,10 +12,17 @@ SeqSlamMatcher::SeqSlamMatcher(const SequenceParams& params) : SequenceMatcher(p
 
 Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
-  const cv::Mat enhanced =
-      enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
+  // Kept by the querying thread (the node's service or timer thread) for its next query.
+  thread_local QueryBuffer difference_buffer;
+  thread_local QueryBuffer enhanced_buffer;
+  cv::Mat differences = difference_buffer.matrix(query.count, reference.count);
+  computeDifferenceMatrix(query, reference, differences);
+  cv::Mat enhanced = enhanced_buffer.matrix(query.count, reference.count);
+  enhanceContrast(differences, sequence_.contrast_window, enhanced);
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
   Match match = searchTrajectories(enhanced, rows, sequence_);
+  difference_buffer.release();
+  enhanced_buffer.release();
   placeAnswer(match, reference, query, rows);
   applyAcceptance(match, sequence_);
   return match;

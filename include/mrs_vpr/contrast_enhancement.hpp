@@ -14,6 +14,9 @@ namespace mrs_vpr {
  */
 cv::Mat enhanceContrast(const cv::Mat& differences, int window);
 
+/// The same into `enhanced`, a CV_32FC1 matrix of the differences' size (e.g. kept between queries).
+void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced);
+
 /// Enhances columns [begin, end) of one row of `columns` raw differences into `out`, exactly as
 /// enhanceContrast does, from the raw differences their windows see: `raw` holds columns
 /// [max(0, begin - window / 2), min(columns, end + window / 2)). A search that needs a few cells of
