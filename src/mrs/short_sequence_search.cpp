@@ -12,7 +12,6 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/chosen_end_costs.hpp"
-#include "mrs_vpr/mrs/sampling_level.hpp"
 #include "mrs_vpr/mrs/tiled_end_costs.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
@@ -22,12 +21,8 @@ namespace {
 
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-/// Every few of the ends costSpread reads in a table of `columns` ends, about kSpreadEnds of them.
-int spreadStep(int columns) {
-  const int brute_step = std::max<int>(1, columns / kSpreadSamples);
-  const int brute_samples = (columns + brute_step - 1) / brute_step;
-  return brute_step * std::max(1, brute_samples / kSpreadEnds);
-}
+/// Every kSpreadThinning-th of the ends costSpread reads in a table of `columns` ends.
+int spreadStep(int columns) { return std::max<int>(1, columns / kSpreadSamples) * kSpreadThinning; }
 
 /// A stretch of ends whose full costs are wanted.
 struct EndRange {
@@ -44,29 +39,27 @@ struct QueryTables {
   std::vector<char> known;
 };
 
-/// The first pass into `costs`: costsByAnchor of the enhanced differences between the query's cells
-/// and the map's cells of `level` (its grid of cells ending at every stride-th frame), a tile at a
-/// time. The map's kept cells are used where it has them (complete cells only).
-void firstPass(SequenceView reference, SequenceView query_cells, const SamplingLevel& level,
+/// The first pass into `costs`: costsByAnchor of the enhanced differences between compact cells of
+/// every frame, a tile at a time. The map's kept cells are used where it has them.
+void firstPass(SequenceView reference, SequenceView query_cells, const SequenceRows& rows,
                const std::vector<double>& speeds, int contrast_window, const CompactCells& compact,
                long long& comparisons, AnchorCosts& costs) {
-  const SequenceView kept = reference.coarseCells(level.stride, compact.geometry());
+  const SequenceView kept = reference.coarseCells(1, compact.geometry());
   std::atomic<long long> counted{0};
   const auto tile = [&](int begin, int end, cv::Mat& raw) {
-    const int known_end = std::clamp(std::min(kept.count, level.grid_size), begin, end);
+    const int known_end = std::clamp(kept.count, begin, end);
     if (known_end > begin) {
       cv::Mat columns = raw.colRange(0, known_end - begin);
       computeDifferenceMatrix(query_cells, kept.slice(begin, known_end), columns);
     }
     if (known_end < end) {
-      const DescriptorSequence cells =
-          compact.cells(reference, known_end * level.stride, level.stride, end - known_end);
+      const DescriptorSequence cells = compact.cells(reference, known_end, 1, end - known_end);
       cv::Mat columns = raw.colRange(known_end - begin, end - begin);
       computeDifferenceMatrix(query_cells, cells.view(), columns);
     }
     counted.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
   };
-  tiledCostsByAnchor(level.grid_size, level.sequenceRows(), speeds, contrast_window, tile, costs);
+  tiledCostsByAnchor(reference.count, rows, speeds, contrast_window, tile, costs);
   comparisons = counted.load();
 }
 
@@ -86,55 +79,17 @@ std::vector<EndRange> windowsAround(const std::vector<int>& centres, int radius,
   return merged;
 }
 
-/// Ends [begin, end) where a trajectory of some velocity fits in a map of `columns` frames, as
-/// costsByAnchor fits them.
-EndRange fittingEnds(const SequenceRows& rows, const std::vector<double>& speeds, int columns) {
-  EndRange range{columns, 0};
-  for (double speed : speeds) {
-    const int back = static_cast<int>(std::lround(speed * (rows.first - rows.anchor)));
-    const int ahead = static_cast<int>(std::lround(speed * (rows.last - rows.anchor)));
-    if (columns - ahead <= -back) continue;
-    range.begin = std::min(range.begin, -back);
-    range.end = std::max(range.end, columns - ahead);
-  }
-  if (range.begin >= range.end) return {0, 0};
-  return range;
-}
-
-/**
- * costSpread of a sample of the brute force's ends, raised by kSpreadStandardErrors standard errors
- * of a MAD of that many values (1.166 / sqrt(n) of it, for a Gaussian): with a pooled first pass the
- * sample is the only estimate of the brute force's spread, and one too small would lift a query
- * just below the acceptance threshold above it (measured on real frames: winter played backwards,
- * 6 of 843 accepted with the bare sample, none by the brute force).
- */
-float sampleSpreadBound(const std::vector<float>& samples) {
-  const auto finite = std::count_if(samples.begin(), samples.end(), [](float value) { return std::isfinite(value); });
-  if (finite < 3) return 0.0F;
-  const double error = 1.166 / std::sqrt(static_cast<double>(finite));
-  return static_cast<float>(costSpread(samples) * (1.0 + kSpreadStandardErrors * error));
-}
-
 }  // namespace
 
 bool shortSearchPays(int query_length, int reference_count, const SequenceParams& sequence, int hypotheses) {
   if (query_length < 2 || reference_count < query_length) return false;
   const SequenceRows rows = wholeSequenceRows(query_length, sequence.alignment);
   const ChosenEndCosts chosen(SequenceView{}, SequenceView{}, rows, velocities(sequence), sequence.contrast_window);
-  // A band of 2 * radius + 1 neighbouring ends costs that many more cells a row than one end.
-  const int radius = sequence.match_exclusion + firstPassStride(query_length) - 1;
-  const long long band = 2LL * radius * query_length + chosen.comparisonsPerEnd();
+  // A band of 2 * match_exclusion + 1 neighbouring ends costs that many more cells a row than one end.
+  const long long band = 2LL * sequence.match_exclusion * query_length + chosen.comparisonsPerEnd();
   const long long samples = reference_count / spreadStep(reference_count) + 1;
   const long long full = hypotheses * band + samples * chosen.comparisonsPerEnd();
   return kShortSearchGain * full <= static_cast<long long>(query_length) * reference_count;
-}
-
-int firstPassStride(int query_length) {
-  int stride = 1;
-  while (stride < kMaxFirstPassStride && (query_length - 1) / (2 * stride) + 1 >= kMinFirstPassRows) {
-    stride *= 2;
-  }
-  return stride;
 }
 
 Match searchShortSequence(SequenceView reference, SequenceView query, const SequenceParams& sequence,
@@ -145,28 +100,20 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   const std::vector<double> speeds = velocities(sequence);
   Match match;
 
-  // The first pass's level: pooled cells of `stride` frames, its ends J * stride.
-  const int stride = firstPassStride(query.count);
-  const SamplingLevel level = SamplingLevel::make(stride, rows, columns, speeds.front());
-  if (level.empty()) return match;  // No trajectory fits in the reference.
-  const DescriptorSequence query_cells =
-      compact.cells(query, rows.anchor + level.k_min * stride, stride, level.rows());
+  const DescriptorSequence query_cells = compact.cells(query, 0, 1, query.count);
   thread_local QueryTables tables;
   long long cell_comparisons = 0;
   const AnchorCosts& first = tables.first;
-  firstPass(reference, query_cells.view(), level, speeds, sequence.contrast_window, compact, cell_comparisons,
+  firstPass(reference, query_cells.view(), rows, speeds, sequence.contrast_window, compact, cell_comparisons,
             tables.first);
-  // Minima closer than match_exclusion would settle on the same end.
-  const int separation = std::max(1, sequence.match_exclusion / stride);
-  std::vector<int> minima = distinctMinima(first.cost, separation, hypotheses);
-  for (int& minimum : minima) minimum = std::min(columns - 1, minimum * stride);
+  const std::vector<int> minima = distinctMinima(first.cost, sequence.match_exclusion, hypotheses);
   if (trace != nullptr) {
-    trace->stride = stride;
+    trace->stride = 1;
     trace->candidates = minima;
-    const std::vector<int> table_minima = distinctMinima(first.cost, separation, MrsLevelTrace::kTracedMinima);
-    for (int minimum : table_minima) trace->table_minima.push_back(std::min(columns - 1, minimum * stride));
-    if (!table_minima.empty()) {
-      trace->table_confidence = scoreAround(first.cost, table_minima.front(), separation).confidence;
+    trace->table_minima = distinctMinima(first.cost, sequence.match_exclusion, MrsLevelTrace::kTracedMinima);
+    if (!trace->table_minima.empty()) {
+      trace->table_confidence =
+          scoreAround(first.cost, trace->table_minima.front(), sequence.match_exclusion).confidence;
     }
   }
   match.comparisons = std::llround(static_cast<double>(cell_comparisons) * compact.cellSize() /
@@ -196,7 +143,7 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
       std::fill(known.begin() + ranges[i].begin, known.begin() + ranges[i].end, 1);
     }
   };
-  computeRanges(windowsAround(minima, sequence.match_exclusion + stride - 1, columns));
+  computeRanges(windowsAround(minima, sequence.match_exclusion, columns));
   const auto lowest = std::min_element(cost.begin(), cost.end());  // The first of equals, as the brute force.
   if (!std::isfinite(*lowest)) return match;
   const int winner = static_cast<int>(lowest - cost.begin());
@@ -209,10 +156,9 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
       if (!known[static_cast<std::size_t>(end)]) missing.push_back({end, end + 1});
     }
   }
-  const EndRange fitting = fittingEnds(rows, speeds, columns);
   std::vector<int> sampled;
   for (int end = 0; end < columns; end += spreadStep(columns)) {
-    if (end < fitting.begin || end >= fitting.end) continue;  // No trajectory: costSpread skips it.
+    if (!std::isfinite(first.cost[static_cast<std::size_t>(end)])) continue;  // No trajectory: costSpread skips it.
     sampled.push_back(end);
     if (!known[static_cast<std::size_t>(end)]) missing.push_back({end, end + 1});
   }
@@ -226,9 +172,10 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   for (int end = 0; end < columns; ++end) {
     if (std::abs(end - winner) > half) runner_up = std::min(runner_up, cost[static_cast<std::size_t>(end)]);
   }
-  // The brute force's rivals: ends where a trajectory fits, outside the answer's window.
-  const int rivals = (fitting.end - fitting.begin) -
-                     (std::min(fitting.end, winner + half + 1) - std::max(fitting.begin, winner - half));
+  int rivals = 0;
+  for (int end = 0; end < columns; ++end) {
+    if (std::abs(end - winner) > half && std::isfinite(first.cost[static_cast<std::size_t>(end)])) ++rivals;
+  }
 
   const float best = cost[static_cast<std::size_t>(winner)];
   match.reference_index = winner;
@@ -236,11 +183,8 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   match.velocity = velocity[static_cast<std::size_t>(winner)];
   match.score = (std::isfinite(runner_up) && runner_up > 0.0F) ? std::clamp(best / runner_up, 0.0F, 1.0F) : 1.0F;
   match.rivals = rivals;
-  // At full resolution the first pass's table is a second estimate of the spread: the larger keeps
-  // the confidence from exceeding what either supports. Pooled cells are smoother than frames, so
-  // a coarser table's spread is not the brute force's: there the sample alone gives it.
-  const float spread =
-      stride == 1 ? std::max(costSpread(first.cost), costSpread(samples)) : sampleSpreadBound(samples);
+  // The larger of the two estimates of the spread: a confidence never above what either supports.
+  const float spread = std::max(costSpread(first.cost), costSpread(samples));
   match.confidence = distinctiveness(best, runner_up, spread, rivals);
   match.comparisons += full_comparisons;
   return match;

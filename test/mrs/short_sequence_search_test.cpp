@@ -72,7 +72,6 @@ void compareWithBruteForce(int hypotheses, const Check& check) {
       const SequenceView query = standardRoute().query.view(start, start + length);
       MrsLevelTrace trace;
       const Match found = searchShortSequence(keptMap().view(), query, params.sequence, *compact, hypotheses, &trace);
-      EXPECT_EQ(trace.stride, firstPassStride(length));
       check(found, brute.match(keptMap().view(), query), trace,
             "length " + std::to_string(length) + ", start " + std::to_string(start));
     }
@@ -95,6 +94,7 @@ TEST(ShortSequenceSearch, GivesTheBruteForceAnswerOnTheGeneratedRoute) {
     // ~40 ends of this small map): near, never far above.
     EXPECT_NEAR(found.confidence, expected.confidence, 0.35F * expected.confidence + 0.1F) << where;
     EXPECT_LE(found.confidence, 1.1F * expected.confidence + 0.1F) << where;
+    EXPECT_EQ(trace.stride, 1) << where;
     EXPECT_EQ(static_cast<int>(trace.candidates.size()), kShortSearchHypotheses) << where;
     ++compared;
   });
@@ -126,35 +126,6 @@ TEST(ShortSequenceSearch, MapWithoutKeptCellsGivesTheSameAnswer) {
   EXPECT_EQ(kept.reference_index, computed.reference_index);
   EXPECT_EQ(kept.confidence, computed.confidence);
   EXPECT_EQ(kept.comparisons, computed.comparisons);
-}
-
-// The first pass pools the query into cells of 2, 4 or 8 frames while at least kMinFirstPassRows
-// cells remain: continuous mode's 20 keyframes stay at full resolution.
-TEST(ShortSequenceSearch, PoolsLongerQueriesInTheFirstPass) {
-  EXPECT_EQ(firstPassStride(10), 1);
-  EXPECT_EQ(firstPassStride(20), 1);
-  EXPECT_EQ(firstPassStride(23), 2);
-  EXPECT_EQ(firstPassStride(50), 4);
-  EXPECT_EQ(firstPassStride(100), 8);
-  EXPECT_EQ(firstPassStride(127), 8);
-}
-
-// At N = 50 the first pass scores the map's cells of 4 frames, ends 4 frames apart, and the full
-// descriptors still find the brute force's answer near one of its minima.
-TEST(ShortSequenceSearch, PooledFirstPassScoresEveryFourthEnd) {
-  const Parameters params = routeParameters();
-  const auto compact = makeCompactCells(params.descriptor);
-  const SequenceView query = standardRoute().query.view(200, 250);
-  const Match brute = SeqSlamMatcher(params.sequence).match(keptMap().view(), query);
-  MrsLevelTrace trace;
-  const Match found = searchShortSequence(keptMap().view(), query, params.sequence, *compact, 8, &trace);
-  EXPECT_EQ(trace.stride, 4);
-  ASSERT_FALSE(trace.table_minima.empty());
-  for (int end : trace.table_minima) {
-    if (end != keptMap().size() - 1) EXPECT_EQ(end % 4, 0) << end;  // The last cell ends at the map's end.
-  }
-  EXPECT_EQ(found.reference_index, brute.reference_index);
-  EXPECT_EQ(found.rivals, brute.rivals);
 }
 
 // Only a large map pays for the first pass: on small ones MRS stays the brute force.
