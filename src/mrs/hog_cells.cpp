@@ -52,8 +52,17 @@ void HogCells::project(const std::uint16_t* sums, int frames, std::uint8_t* cell
     heap_totals.assign(scale_.size(), 0);
     totals = heap_totals.data();
   }
+  // A group's bins are neighbours: sum each run of bytes with one target in a register, so that
+  // consecutive adds do not wait on each other's store to the same total.
   const std::size_t size = target_.size();
-  for (std::size_t i = 0; i < size; ++i) totals[target_[i]] += sums[i];
+  std::uint32_t run = 0;
+  for (std::size_t i = 0; i < size; ++i) {
+    run += sums[i];
+    if (i + 1 == size || target_[i + 1] != target_[i]) {
+      totals[target_[i]] += run;
+      run = 0;
+    }
+  }
   const float per_frame = 1.0F / static_cast<float>(frames);
   for (std::size_t k = 0; k < scale_.size(); ++k) {
     const float mean = static_cast<float>(totals[k]) * scale_[k] * per_frame;
