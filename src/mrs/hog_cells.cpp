@@ -1,6 +1,7 @@
 #include "mrs_vpr/mrs/hog_cells.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -10,25 +11,29 @@
 namespace mrs_vpr {
 
 HogCells::HogCells(const DescriptorParams& geometry)
-    : CompactCells(geometry), bins_(geometry.hog_bins) {
+    : CompactCells(geometry) {
   if (!geometry.isHog()) {
     throw std::invalid_argument("pooled orientation histograms are the compact cells of HOG, not of " +
                                 geometry.describe());
   }
   const HogFrontEnd hog(geometry);
-  const int group_width = (bins_ + kOrientationGroups - 1) / kOrientationGroups;
-  const int groups = (bins_ + group_width - 1) / group_width;
-  for (int end = group_width; end < bins_ + group_width; end += group_width) group_ends_.push_back(std::min(end, bins_));
+  const int bins = geometry.hog_bins;
+  const int group_width = (bins + kOrientationGroups - 1) / kOrientationGroups;
+  const int groups = (bins + group_width - 1) / group_width;
   std::vector<int> members(static_cast<std::size_t>(hog.cellsX() * hog.cellsY() * groups), 0);
-  histogram_base_.assign(static_cast<std::size_t>(hog.size() / bins_), 0);
+  target_.assign(static_cast<std::size_t>(hog.size()), 0);
   // Histograms lie in the descriptor in OpenCV's order (HogFrontEnd::offset).
   for (int bx = 0; bx < hog.blocksX(); ++bx) {
     for (int by = 0; by < hog.blocksY(); ++by) {
       for (int cx = 0; cx < 2; ++cx) {
         for (int cy = 0; cy < 2; ++cy) {
           const int base = ((bx + cx) * hog.cellsY() + by + cy) * groups;
-          histogram_base_[static_cast<std::size_t>(hog.offset(bx, by, cx, cy) / bins_)] = base;
-          for (int bin = 0; bin < bins_; ++bin) ++members[static_cast<std::size_t>(base + bin / group_width)];
+          const int first_byte = hog.offset(bx, by, cx, cy);
+          for (int bin = 0; bin < bins; ++bin) {
+            const int cell_byte = base + bin / group_width;
+            target_[static_cast<std::size_t>(first_byte + bin)] = cell_byte;
+            ++members[static_cast<std::size_t>(cell_byte)];
+          }
         }
       }
     }
@@ -37,22 +42,29 @@ HogCells::HogCells(const DescriptorParams& geometry)
 }
 
 void HogCells::project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const {
-  // Integer totals: a byte summed over frames and pooled histograms stays far below 2^31.
-  thread_local std::vector<std::uint32_t> totals;
-  totals.assign(scale_.size(), 0);
-  const std::uint16_t* histogram = sums;
-  // A histogram's bins are contiguous and so are its groups: each group is a short contiguous sum.
-  for (const int base : histogram_base_) {
-    std::uint32_t* group = totals.data() + base;
-    for (std::size_t g = 0; g < group_ends_.size(); ++g) {
-      std::uint32_t total = 0;
-      for (int bin = g == 0 ? 0 : group_ends_[g - 1]; bin < group_ends_[g]; ++bin) total += histogram[bin];
-      group[g] += total;
+  // Integer totals (so their order does not matter): a byte summed over frames and pooled histograms
+  // stays far below 2^31. On the stack for the usual geometries, which keeps a cell free of allocations.
+  constexpr std::size_t kStackBytes = 256;
+  std::array<std::uint32_t, kStackBytes> stack_totals{};
+  std::vector<std::uint32_t> heap_totals;
+  std::uint32_t* totals = stack_totals.data();
+  if (scale_.size() > kStackBytes) {
+    heap_totals.assign(scale_.size(), 0);
+    totals = heap_totals.data();
+  }
+  // A group's bins are neighbours: sum each run of bytes with one target in a register, so that
+  // consecutive adds do not wait on each other's store to the same total.
+  const std::size_t size = target_.size();
+  std::uint32_t run = 0;
+  for (std::size_t i = 0; i < size; ++i) {
+    run += sums[i];
+    if (i + 1 == size || target_[i + 1] != target_[i]) {
+      totals[target_[i]] += run;
+      run = 0;
     }
-    histogram += bins_;
   }
   const float per_frame = 1.0F / static_cast<float>(frames);
-  for (std::size_t k = 0; k < totals.size(); ++k) {
+  for (std::size_t k = 0; k < scale_.size(); ++k) {
     const float mean = static_cast<float>(totals[k]) * scale_[k] * per_frame;
     cell[k] = static_cast<std::uint8_t>(std::min(255.0F, mean + 0.5F));
   }

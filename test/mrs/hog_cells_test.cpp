@@ -19,8 +19,8 @@ namespace {
 using testing_support::thumbnailParams;
 
 /// HOG descriptors of deterministic textures.
-DescriptorSequence describedTextures(int count) {
-  const HogFrontEnd hog{DescriptorParams{}};
+DescriptorSequence describedTextures(int count, const DescriptorParams& params = DescriptorParams{}) {
+  const HogFrontEnd hog{params};
   DescriptorSequence sequence(hog.size());
   cv::RNG rng(3);
   for (int i = 0; i < count; ++i) {
@@ -42,11 +42,12 @@ TEST(HogCells, ThreeOrientationGroupsPerHogCell) {
   EXPECT_EQ(HogCells(two_bins).cellSize(), 8 * 4 * 2);
 }
 
-TEST(HogCells, AByteIsTheMeanOfItsCellsBinsOverTheBlocksThatHoldIt) {
-  const DescriptorParams params;
+/// Each byte of a cell of one frame of `params` is the mean of its HOG cell's bins over the blocks
+/// that hold it.
+void expectMeansOfBins(const DescriptorParams& params) {
   const HogFrontEnd hog(params);
   const HogCells cells(params);
-  const DescriptorSequence frames = describedTextures(1);
+  const DescriptorSequence frames = describedTextures(1, params);
   std::vector<std::uint8_t> cell(static_cast<std::size_t>(cells.cellSize()));
   cells.cell(frames.view(), 0, 1, cell.data());
   const std::uint8_t* descriptor = frames.descriptor(0);
@@ -68,6 +69,16 @@ TEST(HogCells, AByteIsTheMeanOfItsCellsBinsOverTheBlocksThatHoldIt) {
       }
     }
   }
+}
+
+TEST(HogCells, AByteIsTheMeanOfItsCellsBinsOverTheBlocksThatHoldIt) { expectMeansOfBins(DescriptorParams{}); }
+
+TEST(HogCells, CellsOfMoreThan256BytesAreTheMeansToo) {
+  DescriptorParams large;
+  large.hog_window_width = 256;
+  large.hog_window_height = 128;  // 16 x 8 HOG cells: 384 cell bytes.
+  ASSERT_EQ(HogCells(large).cellSize(), 16 * 8 * 3);
+  expectMeansOfBins(large);
 }
 
 TEST(HogCells, ACellOfSeveralFramesIsTheMeanOfTheirCells) {
