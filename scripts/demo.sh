@@ -219,9 +219,9 @@ with open(closures) as f:
     published = max(0, sum(1 for _ in f) - 1)  # Minus the CSV header.
 print("loop closures published on /mrs_vpr/loop_closure for these queries: %d" % published)
 
-# Continuous mode during the revisit: each answer names its newest keyframe (header.stamp).
+# Continuous mode during the revisit: each answer names the keyframe it localises (header.stamp).
 print()
-print("continuous mode on the revisit (one answer a second):")
+print("continuous mode on the revisit (each second, every keyframe since the last):")
 print("%-11s %6s %10s %6s %6s %5s" % ("query frame", "true", "predicted", "error", "conf", "acc"))
 counts = {"accepted": 0, "right": 0, "wrong": 0, "answers": 0}
 with open(revisit) as f:
