@@ -67,15 +67,19 @@ TEST(PlaceRecognizer, FindsAndAcceptsAStretchOfTheMappedRouteWithBothMethods) {
   }
 }
 
+/// Then the second traversal's frames 100..249 (map frames 600..749), frame i stamped 1000 + i s.
+void mapRevisit(PlaceRecognizer& recognizer) {
+  for (int i = 100; i < 250; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+  }
+}
+
 TEST(PlaceRecognizer, MatchRecentSearchesOnlyOlderFramesBeyondTheExclusion) {
   RecognizerParams limits;
   limits.recent_exclusion = 50;
   PlaceRecognizer recognizer(globalSearchParams(), limits);
   mapReference(recognizer);
-  // The second traversal's frames 100..249 follow the first one: they are the newest 150 frames.
-  for (int i = 100; i < 250; ++i) {
-    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
-  }
+  mapRevisit(recognizer);
   const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
   EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[249], 3)) << answer.match.reference_index;
   EXPECT_LT(answer.match.reference_index, 750 - 150 - 50);  // Only [0, 550) is searched.
@@ -87,9 +91,7 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
   limits.recent_exclusion = 50;
   PlaceRecognizer recognizer(globalSearchParams(), limits);
   mapReference(recognizer);
-  for (int i = 100; i < 250; ++i) {
-    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
-  }
+  mapRevisit(recognizer);
   // Map frames 600..699 are the second traversal's 100..199; the 50 frames after them are not used.
   const PlaceAnswer answer = recognizer.matchRecent(100, "seqslam", nullptr, 700);
   EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[199], 3)) << answer.match.reference_index;
@@ -109,9 +111,7 @@ TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
   limits.recent_exclusion = 50;
   PlaceRecognizer recognizer(centred, limits);
   mapReference(recognizer);
-  for (int i = 100; i < 250; ++i) {
-    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
-  }
+  mapRevisit(recognizer);
   // The newest 150 frames are 100..249; the localised one is the middle, 100 + 75.
   const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
   EXPECT_EQ(answer.localised_row, 75);
@@ -123,9 +123,7 @@ TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
   causal.sequence.alignment = WindowAlignment::kCausal;
   PlaceRecognizer newest(causal, limits);
   mapReference(newest);
-  for (int i = 100; i < 250; ++i) {
-    newest.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
-  }
+  mapRevisit(newest);
   const PlaceAnswer causal_answer = newest.matchRecent(150, "seqslam");
   EXPECT_EQ(causal_answer.localised_row, 149);
   EXPECT_EQ(causal_answer.localised_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
