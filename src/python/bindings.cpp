@@ -573,13 +573,13 @@ void bindRecognizer(py::module_& m) {
           "'mrs', 'seqslam' or '' (default_method).")
       .def(
           "match_recent",
-          [](Recognizer& self, long long frames, const std::string& method) {
+          [](Recognizer& self, long long frames, const std::string& method, int end) {
             py::gil_scoped_release released;
-            return self.core().matchRecent(frames, method);
+            return self.core().matchRecent(frames, method, nullptr, end);
           },
-          py::arg("frames"), py::arg("method") = "",
-          "Where the map's newest `frames` frames lie among its older ones, recent_exclusion frames back "
-          "and more: a loop closure.")
+          py::arg("frames"), py::arg("method") = "", py::arg("end") = -1,
+          "Where the map's newest `frames` frames (or those before map frame `end`) lie among its older "
+          "ones, recent_exclusion frames back and more: a loop closure.")
       .def(
           "match_every_frame",
           [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {

@@ -50,7 +50,7 @@ struct NodeTopics {
   TopicInbox<Stamps> stamps;
 };
 
-/// What the stamps topic must carry for these ~loop_closure messages: one [newest test frame,
+/// What the stamps topic must carry for these ~loop_closure messages: one [localised test frame,
 /// reference frame] pair per accepted match whose two stamps are known, in the same order.
 std::vector<std::vector<double>> expectedStamps(const std::vector<LoopClosure>& closures) {
   std::vector<std::vector<double>> expected;
@@ -118,14 +118,14 @@ class LoopClosureStampsTest : public ::testing::Test {
     return srv;
   }
 
-  /// Calls the node's ~query and returns the ~loop_closure of this answer (the one whose newest test
-  /// frame is at `newest`).
-  static LoopClosure ask(NodeTopics& node, mrs_vpr::QuerySequence& srv, const ros::Time& newest) {
+  /// Calls the node's ~query and returns the ~loop_closure of this answer (the one whose localised
+  /// test frame is at `localised`).
+  static LoopClosure ask(NodeTopics& node, mrs_vpr::QuerySequence& srv, const ros::Time& localised) {
     EXPECT_TRUE(node.query.call(srv)) << "the service call itself failed";
     EXPECT_TRUE(srv.response.success) << srv.response.message;
     LoopClosure closure;
-    EXPECT_TRUE(node.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, newest); }, closure, 10.0))
-        << "no ~loop_closure for the query whose newest frame is at " << newest;
+    EXPECT_TRUE(node.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, localised); }, closure, 10.0))
+        << "no ~loop_closure for the query whose localised frame is at " << localised;
     return closure;
   }
 
@@ -135,10 +135,11 @@ class LoopClosureStampsTest : public ::testing::Test {
     return std::abs((stamp - expected).toSec()) < 1e-6;
   }
 
-  /// The stamps message whose newest test frame is at `newest`; whether one came within 10 s.
-  static bool waitForStamps(NodeTopics& node, const ros::Time& newest, Stamps& found) {
+  /// The stamps message whose localised test frame is at `localised`; whether one came within 10 s.
+  static bool waitForStamps(NodeTopics& node, const ros::Time& localised, Stamps& found) {
     return node.stamps.waitFor(
-        [&](const Stamps& m) { return m.data.size() == 2 && std::abs(m.data[0] - newest.toSec()) < 1e-6; }, found, 10.0);
+        [&](const Stamps& m) { return m.data.size() == 2 && std::abs(m.data[0] - localised.toSec()) < 1e-6; }, found,
+        10.0);
   }
 
   /// Ends a check with an accepted query of mapped frames, whose stamps are the last to come: once
@@ -148,8 +149,8 @@ class LoopClosureStampsTest : public ::testing::Test {
     auto sentinel = explicitQuery(route_->query, 100, 40, 60000.0 + sentinels_++ * 100.0);
     const LoopClosure last = ask(node, sentinel, sentinel.request.images.at(20).header.stamp);  // the middle
     ASSERT_TRUE(last.accepted) << sentinel.response.message;
-    Stamps newest;
-    ASSERT_TRUE(waitForStamps(node, last.header.stamp, newest));
+    Stamps last_stamps;
+    ASSERT_TRUE(waitForStamps(node, last.header.stamp, last_stamps));
     const std::vector<LoopClosure> closures = node.closures.received();
     const std::vector<Stamps> received = node.stamps.received();
     const std::vector<std::vector<double>> expected = expectedStamps(closures);
@@ -158,7 +159,7 @@ class LoopClosureStampsTest : public ::testing::Test {
       SCOPED_TRACE("accepted closure " + std::to_string(i));
       EXPECT_TRUE(received[i].layout.dim.empty());
       ASSERT_EQ(received[i].data.size(), 2U);
-      EXPECT_EQ(received[i].data[0], expected[i][0]);  // the newest test frame first, as LIO-SAM reads it
+      EXPECT_EQ(received[i].data[0], expected[i][0]);  // the localised test frame first, as LIO-SAM reads it
       EXPECT_EQ(received[i].data[1], expected[i][1]);
     }
   }
@@ -192,8 +193,8 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
       auto srv = explicitQuery(mapped ? route_->query : unmapped_->query, 100, 40, start, method);
       start += 100.0;
       // The middle of the 40 images (every one a keyframe here) is the one localised.
-      const ros::Time newest = srv.request.images.at(20).header.stamp;
-      const LoopClosure closure = ask(queried_, srv, newest);
+      const ros::Time localised = srv.request.images.at(20).header.stamp;
+      const LoopClosure closure = ask(queried_, srv, localised);
       EXPECT_EQ(closure.accepted, mapped) << srv.response.message;
       if (!closure.accepted) {
         ++rejected;
@@ -201,9 +202,9 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
       }
       ++accepted;
       Stamps stamps;
-      ASSERT_TRUE(waitForStamps(queried_, newest, stamps));
+      ASSERT_TRUE(waitForStamps(queried_, localised, stamps));
       // [stamp of the image localised, stamp of the reference frame answered].
-      EXPECT_EQ(stamps.data.at(0), newest.toSec());
+      EXPECT_EQ(stamps.data.at(0), localised.toSec());
       EXPECT_EQ(stamps.data.at(1), closure.reference_stamp.toSec());
       EXPECT_NEAR(stamps.data.at(1), kReferenceStart + closure.reference_index * kFramePeriod, 1e-3);
     }
@@ -228,19 +229,19 @@ TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
   // Of the newest 50 frames (10..59 of those played) the middle one, 35, is localised.
   constexpr double kQueryStart = 5000.0;
   playIntoNodes(route_->query, 200, 260, kQueryStart);
-  const ros::Time newest_query_frame(kQueryStart + 35 * kFramePeriod);
+  const ros::Time localised_query_frame(kQueryStart + 35 * kFramePeriod);
 
   mrs_vpr::QuerySequence recent;
   recent.request.recent_frames = 50;
-  const LoopClosure answer = ask(queried_, recent, newest_query_frame);
+  const LoopClosure answer = ask(queried_, recent, localised_query_frame);
   EXPECT_TRUE(answer.accepted) << recent.response.message;
   Stamps stamps;
-  ASSERT_TRUE(waitForStamps(queried_, newest_query_frame, stamps));
+  ASSERT_TRUE(waitForStamps(queried_, localised_query_frame, stamps));
   EXPECT_NEAR(stamps.data.at(1), kReferenceStart + answer.reference_index * kFramePeriod, 1e-3);
 
   // The continuous-mode node answers on its own once the newest frame is in its map, with the same 50
   // frames (auto_query_frames).
-  const ros::Time continuous_frame = newest_query_frame;
+  const ros::Time continuous_frame = localised_query_frame;
   LoopClosure automatic;
   ASSERT_TRUE(continuous_.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, continuous_frame); },
                                            automatic, 10.0));
@@ -251,10 +252,10 @@ TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
   // Then places not in the map: answers, but none accepted.
   constexpr double kUnmappedStart = 7000.0;
   playIntoNodes(unmapped_->query, 100, 160, kUnmappedStart);
-  const ros::Time newest_unmapped_frame(kUnmappedStart + 35 * kFramePeriod);  // the middle of 10..59
-  EXPECT_FALSE(ask(queried_, recent, newest_unmapped_frame).accepted) << recent.response.message;
+  const ros::Time localised_unmapped_frame(kUnmappedStart + 35 * kFramePeriod);  // the middle of 10..59
+  EXPECT_FALSE(ask(queried_, recent, localised_unmapped_frame).accepted) << recent.response.message;
   ASSERT_TRUE(continuous_.closures.waitFor(
-      [&](const LoopClosure& m) { return at(m.header.stamp, newest_unmapped_frame); }, automatic, 10.0));
+      [&](const LoopClosure& m) { return at(m.header.stamp, localised_unmapped_frame); }, automatic, 10.0));
   EXPECT_FALSE(automatic.accepted);
 
   expectStampsOfAcceptedClosuresOnly(queried_);

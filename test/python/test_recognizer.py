@@ -47,6 +47,21 @@ def test_match_recent_finds_the_newest_frames_among_the_older_ones(route):
     assert answer.newest_stamp == 1249.0
 
 
+def test_match_recent_ending_at_an_older_frame_and_a_centred_answer_name_the_frame_localised(route):
+    parameters = dict(ROUTE_PARAMETERS, alignment="centred")
+    recognizer = mrs_vpr.PlaceRecognizer(recent_exclusion=50, **parameters)
+    recognizer.add_frames(route["reference"])
+    recognizer.add_frames(route["query"][100:250], stamps=[1000.0 + i for i in range(100, 250)])
+    # Map frames 600..699 are the second traversal's 100..199; the middle of them, 150, is localised.
+    answer = recognizer.match_recent(100, method="seqslam", end=700)
+    assert answer.localised_row == 50
+    assert answer.localised_stamp == 1150.0
+    assert abs(answer.reference_index - route["query_to_reference"][150]) <= 3
+    assert answer.reference_index < 700 - 100 - 50
+    with pytest.raises(ValueError, match="the map holds 750 frames"):
+        recognizer.match_recent(100, end=751)
+
+
 def test_grey_uint8_and_uint16_images_localise_like_colour_ones(route):
     for scale, dtype in [(1, np.uint8), (257, np.uint16)]:
         recognizer = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
