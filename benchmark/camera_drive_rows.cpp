@@ -10,6 +10,7 @@
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
+#include "mrs_vpr/node/standing_frames.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -75,6 +76,8 @@ struct DriveCounts {
   int accepted = 0;
   int right = 0;
   int wrong = 0;
+  int standing_right = 0;  ///< Closures restated for the stopped frames a localised keyframe stands for.
+  int standing_wrong = 0;
   std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
   std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
 };
@@ -95,6 +98,10 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
   *length = recent;
   std::vector<int> keyframe_frame;  // the frame of the whole replay each keyframe was
   std::vector<int> route_of_frame;  // the route frame of each frame of the whole replay
+  std::vector<Stamp> stamp_of_frame;  // the stamp of each frame of the whole replay
+  // As the node restates a closure for the frames its keyframe stands for (standing_frames.hpp).
+  node::StandingFrames standing(kQueryPeriod);
+  double clock = 1.0;  // [s]
   std::vector<DriveCounts> counts(drives.size());
   int asked_at_size = 0;
   for (std::size_t d = 0; d < drives.size(); ++d) {
@@ -110,8 +117,13 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
       const DriveFrame& frame = drive.frames[static_cast<std::size_t>(i)];
       const int t = static_cast<int>(route_of_frame.size());
       route_of_frame.push_back(frame.route_frame);
+      stamp_of_frame.push_back(Stamp::fromSeconds(clock));
+      clock += 1.0 / drive.rate;
       const int stretch = stretchOf(i);
-      if (recognizer.addFrame(drive.images[static_cast<std::size_t>(i)]) == FrameAdmission::kAdmitted) {
+      const FrameAdmission admission = recognizer.addFrame(drive.images[static_cast<std::size_t>(i)]);
+      if (admission == FrameAdmission::kTooSimilar) standing.tooSimilar(stamp_of_frame.back());
+      if (admission == FrameAdmission::kAdmitted) {
+        standing.keyframe(stamp_of_frame.back());
         keyframe_frame.push_back(t);
         ++count.keyframes;
         count.stopped_keyframes += frame.kind == DriveFrameKind::kStopped ? 1 : 0;
@@ -157,6 +169,22 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         const int localised = stretchOf(keyframe_frame[static_cast<std::size_t>(anchor)] - drive_start);
         if (right && localised >= 0 && localised < stretches) {
           count.stretch_right[static_cast<std::size_t>(localised)] = true;
+        }
+        // The same closure restated for the frames the localised keyframe stands for, judged alike.
+        for (const Stamp stood : standing.of(stamp_of_frame[static_cast<std::size_t>(keyframe_frame[static_cast<std::size_t>(anchor)])])) {
+          const auto f = static_cast<int>(std::lower_bound(stamp_of_frame.begin(), stamp_of_frame.end(), stood) -
+                                          stamp_of_frame.begin());
+          bool stood_right = false;
+          for (int r = first; r <= last && !stood_right; ++r) {
+            stood_right = std::abs(route_of_frame[static_cast<std::size_t>(r)] -
+                                   route_of_frame[static_cast<std::size_t>(f)]) <= kRouteTolerance;
+          }
+          stood_right = stood_right && d > 0;
+          ++(stood_right ? count.standing_right : count.standing_wrong);
+          const int stood_stretch = stretchOf(f - drive_start);
+          if (stood_right && stood_stretch >= 0 && stood_stretch < stretches) {
+            count.stretch_right[static_cast<std::size_t>(stood_stretch)] = true;
+          }
         }
       }
     }
@@ -226,10 +254,11 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   std::printf("\nCamera drives (make_drive --seed %llu and %llu): the map drive at %.0f Hz, the revisit at %.0f Hz, "
               "each with 8 stops of 30-90 frames (noise, vibration, gain, a passer-by) and a stretch at half and one "
               "at double speed; one recognizer at the node's defaults (keyframes by appearance change %.2f), "
-              "continuous mode every %.0f s. right = the newest keyframe's route frame within %d of those the "
+              "continuous mode every %.0f s. right = the localised keyframe's route frame within %d of those the "
               "answer's keyframe stands for; stretches = %d-frame stretches of a drive after its first %d frames "
-              "with an accepted right answer (in brackets: those in which a keyframe came, the others lie within a "
-              "stop, where continuous mode asks nothing)\n",
+              "with an accepted right answer, restated ones included (in brackets: those in which a keyframe came, the "
+              "others lie within a stop); restated = accepted closures restated for the stopped frames their "
+              "keyframe stands for, one a period (node/standing_frames.hpp), right/wrong alike\n",
               static_cast<unsigned long long>(input.seed), static_cast<unsigned long long>(input.seed + 1), kMapRate,
               kRevisitRate, RecognizerParams{}.min_appearance_change, kQueryPeriod, kRouteTolerance, kStretchFrames,
               kWarmUpFrames);
@@ -250,9 +279,9 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
       const int stretches = static_cast<int>(c.stretch_right.size());
       const int with_right = static_cast<int>(std::count(c.stretch_right.begin(), c.stretch_right.end(), true));
       const int keyframed = static_cast<int>(std::count(c.stretch_keyframed.begin(), c.stretch_keyframed.end(), true));
-      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %5d %4d/%-4d (%d) %.3f\n", drive.name.c_str(), method.c_str(),
+      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %5d %4d/%-4d (%d) %.3f  restated %d/%d\n", drive.name.c_str(), method.c_str(),
                   length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, c.wrong, with_right,
-                  stretches, keyframed, shareOf(c.stretch_right));
+                  stretches, keyframed, shareOf(c.stretch_right), c.standing_right, c.standing_wrong);
       const double share = shareOf(c.stretch_right);
       rows.push_back({{"setting", "camera drive continuous " + std::string(d == 0 ? "map drive" : "revisit")},
                       {"method", method},
@@ -272,6 +301,8 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
                       {"accepted", c.accepted},
                       {"accepted_right", c.right},
                       {"accepted_wrong", c.wrong},
+                      {"restated_right", c.standing_right},
+                      {"restated_wrong", c.standing_wrong},
                       {"stretches", stretches},
                       {"stretches_keyframed", keyframed},
                       {"stretches_with_right", with_right},

@@ -32,6 +32,7 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.reset();
       travel_policy_.reset();
+      standing_frames_.clear();
     }
     ++map_version_;
     response.success = true;
@@ -71,6 +72,7 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.reset();
       travel_policy_.reset();
+      standing_frames_.clear();
     }
     ++map_version_;
     response.frames = static_cast<std::uint64_t>(loaded);

@@ -37,6 +37,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
       recognizer_(params.core, params.recognizer),
       keyframe_policy_(params.min_frame_interval, params.frame_stride),
       travel_policy_(params.min_travel),
+      standing_frames_(params.auto_query_period),
       nh_(nh),
       private_nh_(private_nh),
       query_nh_(private_nh),
@@ -199,6 +200,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
       ++frames_too_similar_;
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip(seconds);
+      standing_frames_.tooSimilar(stamp);
       return;
     }
     case FrameAdmission::kMapFull:
@@ -218,6 +220,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   ++map_version_;
   std::lock_guard<std::mutex> lock(state_mutex_);
   keyframe_policy_.keep(seconds);
+  standing_frames_.keyframe(stamp);
   if (position) travel_policy_.keep(*position);
   camera_frame_id_ = header.frame_id;
   const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -347,8 +350,9 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   }
   response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (response.success) {
-    const std::string unpublished = publishLoopClosure(input.header, answered, response);
+    const std::string unpublished = publishLoopClosure(input.header, answered, response, input.header.stamp);
     if (!unpublished.empty()) response.message += "; " + unpublished;
+    if (!input.images) publishStandingClosures(input.header, answered, response);
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
   } else {
@@ -390,9 +394,11 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
 }
 
 std::string PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
-                                                     const QuerySequence::Response& response) {
+                                                     const QuerySequence::Response& response,
+                                                     const ros::Time& localised_keyframe_stamp) {
   LoopClosure message;
   message.header = header;
+  message.localised_keyframe_stamp = localised_keyframe_stamp;
   message.reference_index = response.reference_index;
   message.reference_stamp = response.reference_stamp;
   message.query_length = static_cast<std::uint32_t>(answer.query_length);
@@ -411,6 +417,21 @@ std::string PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& hea
   const std::string unpublished = "not published on " + loop_closure_stamps_pub_.getTopic() + ": " + why;
   ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: an accepted loop closure was %s", unpublished.c_str());
   return unpublished;
+}
+
+void PlaceRecognitionNode::publishStandingClosures(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                                   const QuerySequence::Response& response) {
+  if (!response.accepted || params_.auto_query_period <= 0.0) return;
+  std::vector<Stamp> standing;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    standing = standing_frames_.of(answer.localised_stamp);
+  }
+  for (const Stamp stamp : standing) {
+    std_msgs::Header restated = header;
+    restated.stamp = rosTimeOf(stamp);
+    publishLoopClosure(restated, answer, response, header.stamp);
+  }
 }
 
 void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
@@ -440,7 +461,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
     const auto start = std::chrono::steady_clock::now();
     try {
       const PlaceAnswer answered = answer(input, response);
-      publishLoopClosure(input.header, answered, response);  // warns itself when stamps cannot go out
+      publishLoopClosure(input.header, answered, response, input.header.stamp);  // warns itself when stamps cannot go out
+      publishStandingClosures(input.header, answered, response);
     } catch (const std::exception& error) {
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
       return;

@@ -51,12 +51,13 @@ struct NodeTopics {
 };
 
 /// What the stamps topic must carry for these ~loop_closure messages: one [localised test frame,
-/// reference frame] pair per accepted match whose two stamps are known, in the same order.
+/// reference frame] pair per accepted match whose two stamps are known and that is not restated for a
+/// stopped frame, in the same order.
 std::vector<std::vector<double>> expectedStamps(const std::vector<LoopClosure>& closures) {
   std::vector<std::vector<double>> expected;
   for (const LoopClosure& closure : closures) {
     if (closure.accepted && closure.reference_index >= 0 && !closure.header.stamp.isZero() &&
-        !closure.reference_stamp.isZero()) {
+        !closure.reference_stamp.isZero() && closure.localised_keyframe_stamp == closure.header.stamp) {
       expected.push_back({closure.header.stamp.toSec(), closure.reference_stamp.toSec()});
     }
   }

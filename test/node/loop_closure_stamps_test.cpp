@@ -8,10 +8,11 @@ namespace mrs_vpr {
 namespace node {
 namespace {
 
-/// An accepted closure: the newest test frame at `newest`, reference frame 42 at `reference`.
+/// An accepted closure: the localised test frame at `newest`, reference frame 42 at `reference`.
 LoopClosure acceptedClosure(const ros::Time& newest, const ros::Time& reference) {
   LoopClosure closure;
   closure.header.stamp = newest;
+  closure.localised_keyframe_stamp = newest;
   closure.header.frame_id = "camera";
   closure.reference_index = 42;
   closure.reference_stamp = reference;
@@ -45,6 +46,15 @@ TEST(LoopClosureStamps, AnswersThatAreNotAcceptedGiveNothing) {
     EXPECT_FALSE(loopClosureStamps(closure, why).has_value());
     EXPECT_TRUE(why.empty()) << why;  // nothing wrong: there is simply no closure
   }
+}
+
+TEST(LoopClosureStamps, AClosureRestatedForAStoppedFrameGivesNothing) {
+  // LIO-SAM would pair it with the keyframe that the closure of its keyframe already closed.
+  LoopClosure restated = acceptedClosure(ros::Time(2003.0), ros::Time(1000.0));
+  restated.localised_keyframe_stamp = ros::Time(2000.0);
+  std::string why;
+  EXPECT_FALSE(loopClosureStamps(restated, why).has_value());
+  EXPECT_TRUE(why.empty()) << why;
 }
 
 TEST(LoopClosureStamps, AnAcceptedClosureWithoutAStampIsRefusedAndSaysWhich) {

@@ -27,6 +27,7 @@
 #include "mrs_vpr/node/master_watch.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/node/sequence_gaps.hpp"
+#include "mrs_vpr/node/standing_frames.hpp"
 #include "mrs_vpr/node/travel_policy.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
 
@@ -107,10 +108,15 @@ class PlaceRecognitionNode {
 
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
   PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
-  /// Publishes the answer on ~loop_closure and, when it is an accepted match, its stamps on
-  /// ~loop_closure_stamps; returns why an accepted match could not go there (empty otherwise).
+  /// Publishes the answer on ~loop_closure, for the frame of `header` (the keyframe localised, or a
+  /// frame it stands for), and, when it is an accepted match, its stamps on ~loop_closure_stamps;
+  /// returns why an accepted match could not go there (empty otherwise).
   std::string publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
-                                 const QuerySequence::Response& response);
+                                 const QuerySequence::Response& response, const ros::Time& localised_keyframe_stamp);
+  /// An accepted answer about map keyframes, restated for the frames its localised keyframe stands for
+  /// (standing_frames.hpp).
+  void publishStandingClosures(const std_msgs::Header& header, const PlaceAnswer& answer,
+                               const QuerySequence::Response& response);
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 
@@ -125,6 +131,7 @@ class PlaceRecognitionNode {
   KeyframePolicy keyframe_policy_;
   TravelPolicy travel_policy_;
   SequenceGaps sequence_gaps_;  // frames lost before the image callback
+  StandingFrames standing_frames_;  // frames too similar to a recent keyframe, one per ~auto_query_period
   std::string camera_frame_id_;
   double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
   std::uint64_t frames_timed_ = 0;
