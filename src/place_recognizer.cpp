@@ -233,14 +233,19 @@ PlaceAnswer PlaceRecognizer::match(const std::vector<cv::Mat>& test_sequence, co
       throw std::invalid_argument("image " + std::to_string(i) + " of the test sequence: " + error.what());
     }
   }
+  return matchKeyframesOf(descriptors, method);
+}
+
+PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, const std::string& method,
+                                              MatchExplanation* explanation) {
   std::vector<int> kept;
-  const DescriptorSequence keyframes = keyframesOf(descriptors, &kept);
-  if (descriptors.size() >= 2 && keyframes.size() < 2) {
-    throw std::invalid_argument("the test sequence's " + std::to_string(descriptors.size()) +
+  const DescriptorSequence keyframes = keyframesOf(frames, &kept);
+  if (frames.size() >= 2 && keyframes.size() < 2) {
+    throw std::invalid_argument("the test sequence's " + std::to_string(frames.size()) +
                                 " images hold fewer than 2 keyframes: the view hardly changes across them "
                                 "(min_appearance_change " + std::to_string(recognizer_.min_appearance_change) + ")");
   }
-  PlaceAnswer answer = match(keyframes, method);
+  PlaceAnswer answer = match(keyframes, method, explanation);
   if (answer.localised_row >= 0) answer.localised_row = kept.at(static_cast<std::size_t>(answer.localised_row));
   return answer;
 }

@@ -95,6 +95,11 @@ class PlaceRecognizer {
    * receives the index of each keyframe in `frames`.
    */
   DescriptorSequence keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen = nullptr) const;
+  /// match() of a test sequence of descriptors at the camera's rate: its keyframes (keyframesOf) are
+  /// matched, and the answer's localised_row counts among `frames`. Throws std::invalid_argument when
+  /// fewer than 2 of them are keyframes.
+  PlaceAnswer matchKeyframesOf(const DescriptorSequence& frames, const std::string& method = "",
+                               MatchExplanation* explanation = nullptr);
   /**
    * The same with a test sequence of descriptors. When `explanation` is not null it receives what a
    * picture of the answer needs (see match_explanation.hpp), computed while the map is still held;

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <exception>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -321,18 +320,8 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
         }
       }
       // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were.
-      std::vector<int> kept(request.images.size());
-      std::iota(kept.begin(), kept.end(), 0);
-      if (!travel_policy_.enabled()) {
-        const int given = input.images->size();
-        *input.images = recognizer_.keyframesOf(*input.images, &kept);
-        if (input.images->size() < 2) {
-          throw std::invalid_argument("the " + std::to_string(given) + " images hold " +
-                                      std::to_string(input.images->size()) +
-                                      " keyframe(s), fewer than 2: the view hardly changes across them (~min_appearance_change)");
-        }
-      }
-      for (const int i : kept) input.image_headers.push_back(request.images[static_cast<std::size_t>(i)].header);
+      input.keyframe_images = !travel_policy_.enabled();
+      for (const sensor_msgs::Image& image : request.images) input.image_headers.push_back(image.header);
     } else if (request.recent_frames == 0) {
       throw std::invalid_argument(
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
@@ -366,9 +355,10 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   // The answer is explained (for ~debug_image) only while someone watches.
   MatchExplanation explanation;
   MatchExplanation* const explain = debug_image_->wanted() ? &explanation : nullptr;
-  PlaceAnswer answered = input.images ? recognizer_.match(*input.images, input.method, explain)
-                                      : recognizer_.matchRecent(input.recent_frames, input.method, explain,
-                                                                input.end);
+  PlaceAnswer answered =
+      !input.images          ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
+      : input.keyframe_images ? recognizer_.matchKeyframesOf(*input.images, input.method, explain)
+                              : recognizer_.match(*input.images, input.method, explain);
   if (input.images) {
     input.header = input.image_headers.at(static_cast<std::size_t>(answered.localised_row));
   } else {

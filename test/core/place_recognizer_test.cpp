@@ -129,6 +129,32 @@ TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
   EXPECT_EQ(causal_answer.localised_stamp, Stamp::fromSecondsAndNanoseconds(1249, 0));
 }
 
+TEST(PlaceRecognizer, FramesAtTheCameraRateAreKeyframedAndTheAnswerNamesTheFrameGiven) {
+  Parameters centred = globalSearchParams();
+  centred.sequence.alignment = WindowAlignment::kCentred;
+  PlaceRecognizer recognizer(centred);
+  mapReference(recognizer);
+  // A camera twice as fast as the map's: each view twice, the second copy never a keyframe.
+  DescriptorSequence frames(recognizer.extractor().size());
+  for (int i = 100; i < 200; ++i) {
+    const cv::Mat descriptor = recognizer.describe(route().query[static_cast<std::size_t>(i)]);
+    frames.append(descriptor);
+    frames.append(descriptor);
+  }
+  const PlaceAnswer answer = recognizer.matchKeyframesOf(frames, "seqslam");
+  ASSERT_GE(answer.localised_row, 0);
+  EXPECT_EQ(answer.localised_row % 2, 0) << "a repeated frame cannot be the keyframe localised";
+  EXPECT_LE(answer.query_length, 100);
+  const int localised = 100 + answer.localised_row / 2;
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[static_cast<std::size_t>(localised)], 3))
+      << answer.match.reference_index << " for frame " << localised;
+  // A view that never changes holds a single keyframe.
+  DescriptorSequence standing(recognizer.extractor().size());
+  for (int i = 0; i < 10; ++i) standing.append(frames.descriptorRow(0));
+  EXPECT_NE(errorOf([&] { recognizer.matchKeyframesOf(standing); }).find("hold fewer than 2 keyframes"),
+            std::string::npos);
+}
+
 TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {
   PlaceRecognizer recognizer(routeParameters());
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10)); }).find("reference map is empty"), std::string::npos);
