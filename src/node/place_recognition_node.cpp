@@ -22,9 +22,6 @@ namespace node {
 namespace {
 
 constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
-/// Continuous mode's questions of one period take at most this share of it (by the last one's time);
-/// beyond, it localises fewer of the keyframes that came, evenly spread.
-constexpr double kContinuousShare = 0.2;
 
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
 
@@ -439,9 +436,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
   auto_query_version_ = version;
   // Each keyframe since the last question is localised once (continuous_queries.hpp), within
   // kContinuousShare of the period by the last question's time.
-  const double budget_ms = kContinuousShare * params_.auto_query_period * 1000.0;
-  const int affordable = auto_query_ms_ > 0.0 ? static_cast<int>(budget_ms / auto_query_ms_) : 1;
-  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, first_size, affordable);
+  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, first_size,
+                                                    affordableQueries(params_.auto_query_period, auto_query_ms_));
   auto_query_size_ = size;
   for (const int end : ends) {
     QueryInput input;

@@ -21,6 +21,13 @@ TEST(ContinuousQueryEnds, BeyondTheBudgetTheyAreThinnedEvenlyWithTheNewest) {
   EXPECT_EQ(continuousQueryEnds(100, 110, 50, 0), (Ends{110}));  // at least the newest
 }
 
+TEST(ContinuousQueryEnds, TheBudgetIsAFifthOfThePeriodByTheLastQuestionsTime) {
+  EXPECT_EQ(affordableQueries(1.0, 0.0), 1);     // none timed yet
+  EXPECT_EQ(affordableQueries(1.0, 20.0), 10);   // 200 ms of a second
+  EXPECT_EQ(affordableQueries(2.0, 20.0), 20);
+  EXPECT_EQ(affordableQueries(1.0, 300.0), 0);   // continuousQueryEnds still asks about the newest
+}
+
 TEST(ContinuousQueryEnds, TheFirstQuestionAndOneAfterTheMapShrankAskAboutTheNewestOnly) {
   EXPECT_EQ(continuousQueryEnds(0, 100000, 50, 1000), (Ends{100000}));  // a large map just loaded
   EXPECT_EQ(continuousQueryEnds(500, 80, 50, 1000), (Ends{80}));        // reset, then 80 new frames

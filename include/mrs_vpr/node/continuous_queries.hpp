@@ -6,6 +6,17 @@
 namespace mrs_vpr {
 namespace node {
 
+/// Continuous mode's questions of one period take at most this share of it (by the last one's time);
+/// beyond, it localises fewer of the keyframes that came, evenly spread.
+constexpr double kContinuousShare = 0.2;
+
+/// How many questions fit in kContinuousShare of a period of `period_s` when the last one took
+/// `last_query_ms` (1 before any was timed).
+inline int affordableQueries(double period_s, double last_query_ms) {
+  if (last_query_ms <= 0.0) return 1;
+  return static_cast<int>(kContinuousShare * period_s * 1000.0 / last_query_ms);
+}
+
 /**
  * The test sequences continuous mode asks about in one period, each given by the map's frame count
  * at its end (a sequence ending there holds the `length` frames before it).
