@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "mrs_vpr/trajectory_search.hpp"
@@ -36,6 +37,19 @@ float distinctiveness(float best, float runner_up, float spread, int rivals) {
   return std::max(0.0F, (runner_up - best) / spread);
 }
 
+int placesAmong(int rivals, int frames_per_end, const SequenceParams& params) {
+  return static_cast<int>(static_cast<long long>(rivals) * std::max(1, frames_per_end) /
+                          std::max(1, params.match_exclusion));
+}
+
+double requiredConfidence(int places, const SequenceParams& params) {
+  if (places >= kPlacesForPlainThreshold || params.accept_threshold <= 0.0) return params.accept_threshold;
+  // Fewer than 2 places cannot be told apart at all (and ln 1 = 0).
+  if (places < 2) return std::numeric_limits<double>::infinity();
+  return params.accept_threshold *
+         std::sqrt(std::log(static_cast<double>(kPlacesForPlainThreshold)) / std::log(static_cast<double>(places)));
+}
+
 bool atVelocityBound(const Match& match, const SequenceParams& params) {
   const std::vector<double> searched = velocities(params);
   // With one or two velocities every answer is at a bound: the user has fixed the speed.
@@ -50,7 +64,8 @@ void applyAcceptance(Match& match, const SequenceParams& params) {
   // As among too few rivals, there is then nothing to be sure about: the gap was measured among
   // trajectories that do not fit how the robot moved.
   if (match.at_velocity_bound) match.confidence = 0.0F;
-  match.accepted = match.reference_index >= 0 && match.confidence >= params.accept_threshold && !match.at_velocity_bound;
+  match.accepted = match.reference_index >= 0 && match.confidence >= requiredConfidence(match.rival_places, params) &&
+                   !match.at_velocity_bound;
 }
 
 std::string acceptanceVerdict(const Match& match, const SequenceParams& params) {
@@ -67,6 +82,15 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
             << " map frames a frame, the slowest or fastest of sequence/velocity_min..velocity_max ("
             << params.velocity_min << ".." << params.velocity_max
             << "): the robot may be moving outside that range (another speed, a stop, backwards)";
+    return message.str();
+  }
+  const double required = requiredConfidence(match.rival_places, params);
+  if (required > params.accept_threshold && match.confidence >= params.accept_threshold) {
+    std::ostringstream message;
+    message << "not accepted: confidence " << match.confidence << " below " << required
+            << ", sequence/accept_threshold raised for a map of about "
+            << match.rival_places << " places outside the answer's window (fewer than "
+            << kPlacesForPlainThreshold << ")";
     return message.str();
   }
   return "not accepted: confidence below sequence/accept_threshold";

@@ -89,7 +89,7 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
        &P::alignment_slack},
       {{"sequence/accept_threshold", Range::closed(0, 1000), {}, "",
         "An answer is accepted when its confidence (distinctiveness, in standard deviations) reaches this "
-        "and its trajectory is not at the slowest or fastest velocity."},
+        "(more on a map of fewer than 100 places) and its trajectory is not at the slowest or fastest velocity."},
        &P::accept_threshold},
   };
   return table;

@@ -39,6 +39,23 @@ constexpr int kMinRivalEnds = 100;
 /// fewer than kMinRivalEnds `rivals`.
 float distinctiveness(float best, float runner_up, float spread, int rivals);
 
+/// Places (see requiredConfidence) from which sequence/accept_threshold applies as it is.
+constexpr int kPlacesForPlainThreshold = 100;
+
+/// The distinct places among `rivals` ends of a table whose ends lie `frames_per_end` reference frames
+/// apart. Neighbouring ends are no independent chances: ends within params.match_exclusion frames of
+/// each other show one place.
+int placesAmong(int rivals, int frames_per_end, const SequenceParams& params);
+
+/**
+ * The confidence an answer among `places` rival places needs (placesAmong): params.accept_threshold,
+ * raised on maps of fewer than kPlacesForPlainThreshold places. For n places the bound above,
+ * exp(-d sqrt(2 ln n)), keeps its value at 100 places when d grows by sqrt(ln 100 / ln n): by 1.41 at
+ * 10 places, 1.07 at 50. (At the plain threshold, maps of 150 and 200 real frames accepted 5 and 1 of
+ * 2526 queries at sequence length 50 about places outside them.)
+ */
+double requiredConfidence(int places, const SequenceParams& params);
+
 /**
  * True when the answer's trajectory runs at the slowest or the fastest of the velocities searched
  * (when at least three are). The best fit then lies at the edge of the speeds the search assumes, and
@@ -49,7 +66,7 @@ float distinctiveness(float best, float runner_up, float spread, int rivals);
  */
 bool atVelocityBound(const Match& match, const SequenceParams& params);
 
-/// Sets match.accepted: a match was found, its confidence reaches params.accept_threshold, and its
+/// Sets match.accepted: a match was found, its confidence reaches requiredConfidence(), and its
 /// trajectory is not at a velocity bound (atVelocityBound; such a match gets confidence 0, as one
 /// among too few rivals does, and match.at_velocity_bound).
 void applyAcceptance(Match& match, const SequenceParams& params);

@@ -18,6 +18,9 @@ struct Match {
   /// Ends with a trajectory outside the answer's window: the wrong places the confidence was judged
   /// against. Below kMinRivalEnds (acceptance.hpp) the confidence is 0: the map is too small to tell.
   int rivals = 0;
+  /// The distinct places among the rivals (placesAmong, acceptance.hpp): on maps of fewer than
+  /// kPlacesForPlainThreshold the confidence needed rises (requiredConfidence).
+  int rival_places = 0;
   /// Whether the answer passes the acceptance rule (applyAcceptance): a match was found, confidence
   /// >= SequenceParams::accept_threshold and its velocity is not a bound of the searched ones. Only
   /// accepted answers should be used as loop closures.

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -52,10 +53,18 @@ TEST(Distinctiveness, IsZeroAmongTooFewRivals) {
   EXPECT_EQ(distinctiveness(1.0F, 400.0F, 0.5F, 0), 0.0F);
 }
 
-TEST(ApplyAcceptance, AcceptsAFoundMatchAtTheThreshold) {
-  SequenceParams params;  // Velocities 0.8 .. 1.2.
+/// A found match among the rivals of a large map (the threshold applies as it is).
+Match foundMatch() {
   Match match;
   match.reference_index = 7;
+  match.rivals = 5000;
+  match.rival_places = 500;
+  return match;
+}
+
+TEST(ApplyAcceptance, AcceptsAFoundMatchAtTheThreshold) {
+  SequenceParams params;  // Velocities 0.8 .. 1.2.
+  Match match = foundMatch();
   match.confidence = 3.0F;
   match.velocity = 1.0F;
   params.accept_threshold = 3.0;
@@ -72,8 +81,7 @@ TEST(ApplyAcceptance, AcceptsAFoundMatchAtTheThreshold) {
 
 TEST(ApplyAcceptance, RefusesATrajectoryAtTheSlowestOrFastestVelocity) {
   SequenceParams params;  // 0.8, 0.9, 1.0, 1.1, 1.2
-  Match match;
-  match.reference_index = 7;
+  Match match = foundMatch();
   match.confidence = 10.0F;
   for (float velocity : {0.8F, 1.2F}) {
     match.velocity = velocity;
@@ -109,14 +117,46 @@ TEST(ApplyAcceptance, OneOrTwoVelocitiesAreTheUsersFixedSpeedNotABound) {
   SequenceParams params;
   params.velocity_min = 1.0;
   params.velocity_max = 1.0;
-  Match match;
-  match.reference_index = 7;
+  Match match = foundMatch();
   match.confidence = 10.0F;
   match.velocity = 1.0F;
   applyAcceptance(match, params);
   EXPECT_TRUE(match.accepted);
   params.velocity_max = 1.1;  // 1.0 and 1.1.
   match.velocity = 1.1F;
+  applyAcceptance(match, params);
+  EXPECT_TRUE(match.accepted);
+}
+
+TEST(RequiredConfidence, RisesOnMapsOfFewerThanAHundredPlaces) {
+  SequenceParams params;  // accept_threshold 3, match_exclusion 10
+  EXPECT_EQ(placesAmong(1000, 1, params), 100);
+  EXPECT_EQ(placesAmong(125, 8, params), 100);  // a coarse table's ends stand for 8 frames each
+  EXPECT_DOUBLE_EQ(requiredConfidence(100, params), 3.0);
+  EXPECT_DOUBLE_EQ(requiredConfidence(100000, params), 3.0);
+  // The bound exp(-d sqrt(2 ln n)) kept at its value for 100 places.
+  EXPECT_NEAR(requiredConfidence(10, params), 3.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_NEAR(requiredConfidence(50, params), 3.0 * std::sqrt(std::log(100.0) / std::log(50.0)), 1e-9);
+  EXPECT_GT(requiredConfidence(20, params), requiredConfidence(50, params));
+  EXPECT_TRUE(std::isinf(requiredConfidence(1, params)));
+  params.accept_threshold = 0.0;  // the user accepts everything found
+  EXPECT_EQ(requiredConfidence(1, params), 0.0);
+}
+
+TEST(ApplyAcceptance, AFewDozenPlacesNeedMoreConfidence) {
+  SequenceParams params;
+  Match match = foundMatch();
+  match.velocity = 1.0F;
+  match.confidence = 3.5F;
+  match.rival_places = 100;
+  applyAcceptance(match, params);
+  EXPECT_TRUE(match.accepted);
+  match.rival_places = 12;  // needs 3 x 1.36
+  applyAcceptance(match, params);
+  EXPECT_FALSE(match.accepted);
+  const std::string verdict = acceptanceVerdict(match, params);
+  EXPECT_NE(verdict.find("raised for a map of about 12 places"), std::string::npos) << verdict;
+  match.confidence = 4.2F;
   applyAcceptance(match, params);
   EXPECT_TRUE(match.accepted);
 }
@@ -129,6 +169,7 @@ TEST(AcceptanceVerdict, SaysWhyAnAnswerIsNotAccepted) {
   match.rivals = kMinRivalEnds - 1;
   EXPECT_NE(acceptanceVerdict(match, params).find("ends outside the answer's window"), std::string::npos);
   match.rivals = kMinRivalEnds;
+  match.rival_places = kPlacesForPlainThreshold;
   match.confidence = 2.0F;
   match.velocity = 1.0F;
   EXPECT_EQ(acceptanceVerdict(match, params), "not accepted: confidence below sequence/accept_threshold");
