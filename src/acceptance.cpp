@@ -39,7 +39,7 @@ float distinctiveness(float best, float runner_up, float spread, int rivals) {
 
 int placesAmong(int rivals, int frames_per_end, const SequenceParams& params) {
   return static_cast<int>(static_cast<long long>(rivals) * std::max(1, frames_per_end) /
-                          std::max(1, params.match_exclusion));
+                          std::max(1, params.match_exclusion / 2));
 }
 
 double requiredConfidence(int places, const SequenceParams& params) {

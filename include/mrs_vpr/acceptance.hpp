@@ -39,12 +39,12 @@ constexpr int kMinRivalEnds = 100;
 /// fewer than kMinRivalEnds `rivals`.
 float distinctiveness(float best, float runner_up, float spread, int rivals);
 
-/// Places (see requiredConfidence) from which sequence/accept_threshold applies as it is.
+/// Places (see placesAmong) from which sequence/accept_threshold applies as it is.
 constexpr int kPlacesForPlainThreshold = 100;
 
 /// The distinct places among `rivals` ends of a table whose ends lie `frames_per_end` reference frames
-/// apart. Neighbouring ends are no independent chances: ends within params.match_exclusion frames of
-/// each other show one place.
+/// apart. Neighbouring ends are no independent chances: ends within params.match_exclusion / 2 frames
+/// of each other (the half-width of the window that is the answer's own place) show one place.
 int placesAmong(int rivals, int frames_per_end, const SequenceParams& params);
 
 /**

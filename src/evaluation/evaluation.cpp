@@ -102,6 +102,7 @@ QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& 
   record.score = match.score;
   record.confidence = match.confidence;
   record.accepted = match.accepted;
+  record.rival_places = match.rival_places;
   record.at_velocity_bound = match.at_velocity_bound;
   record.time_ms = time_ms;
   return record;

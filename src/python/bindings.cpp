@@ -386,6 +386,7 @@ py::dict recordDict(const QueryRecord& record) {
   row["score"] = record.score;
   row["confidence"] = record.confidence;
   row["accepted"] = record.accepted;
+  row["rival_places"] = record.rival_places;
   row["at_velocity_bound"] = record.at_velocity_bound;
   row["time_ms"] = record.time_ms;
   return row;
@@ -400,6 +401,10 @@ QueryRecord recordFrom(const py::handle& row) {
   record.score = row["score"].cast<float>();
   record.confidence = row["confidence"].cast<float>();
   record.accepted = row["accepted"].cast<bool>();
+  // Optional: dicts built by hand before the field existed still read.
+  if (py::isinstance<py::dict>(row) && row.cast<py::dict>().contains("rival_places")) {
+    record.rival_places = row["rival_places"].cast<int>();
+  }
   record.at_velocity_bound = row["at_velocity_bound"].cast<bool>();
   record.time_ms = row["time_ms"].cast<double>();
   return record;
@@ -449,6 +454,8 @@ void bindAnswers(py::module_& m) {
       .def_readonly("confidence", &Match::confidence,
                     "Distinctiveness in standard deviations of the query's own end costs; higher is surer.")
       .def_readonly("rivals", &Match::rivals, "Ends the confidence was judged against.")
+      .def_readonly("rival_places", &Match::rival_places,
+                    "Places among those ends; below 100 the confidence needed rises (doc/acceptance.md).")
       .def_readonly("accepted", &Match::accepted, "Whether the answer passes the acceptance rule (a loop closure).")
       .def_readonly("velocity", &Match::velocity, "Map frames per test frame along the answer's trajectory.")
       .def_readonly("at_velocity_bound", &Match::at_velocity_bound,

@@ -365,6 +365,7 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
                     {"score", record.score},
                     {"confidence", record.confidence},
                     {"accepted", record.accepted},
+                    {"rival_places", record.rival_places},
                     {"at_velocity_bound", record.at_velocity_bound},
                     {"time_ms", record.time_ms},
                     {"correct", mrs_vpr::isCorrect(record, tolerance)}});

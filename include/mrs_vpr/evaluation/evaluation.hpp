@@ -26,6 +26,7 @@ struct QueryRecord {
   float score = 1.0F;             ///< Best / runner-up, lower is better.
   float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
   bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
+  int rival_places = 0;           ///< Places the confidence was judged among (Match::rival_places).
   /// The answer's trajectory runs at a velocity bound (Match::at_velocity_bound; confidence 0).
   bool at_velocity_bound = false;
   double time_ms = 0.0;           ///< Time spent on this query.
