@@ -144,47 +144,42 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         if (!match.accepted) continue;
         ++count.accepted;
         // The localised keyframe's place (the newest, or the middle one when centred) against the places
-        // the answer's keyframe stands for.
+        // the answer's keyframe stands for; no place comes back during the first traversal.
         const int anchor = end - recent + wholeSequenceRows(recent, sequence.alignment).anchor;
-        const int place = route_of_frame[static_cast<std::size_t>(keyframe_frame.at(static_cast<std::size_t>(anchor)))];
+        const int localised_frame = keyframe_frame.at(static_cast<std::size_t>(anchor));
         const auto k = static_cast<std::size_t>(match.reference_index);
         const int first = keyframe_frame.at(k);
         const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
-        bool right = false;
-        for (int f = first; f <= last && !right; ++f) {
-          right = std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance;
-        }
-        // No place comes back during the first traversal: whatever it accepts there is wrong.
-        right = right && d > 0;
+        const auto answerShows = [&](int frame) {
+          const int place = route_of_frame[static_cast<std::size_t>(frame)];
+          for (int f = first; f <= last; ++f) {
+            if (std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance) return d > 0;
+          }
+          return false;
+        };
+        const bool right = answerShows(localised_frame);
         ++(right ? count.right : count.wrong);
         if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
           std::fprintf(stderr,
                        "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
                        "frames %d..%d, confidence %.2f\n",
-                       method.c_str(), drive.name.c_str(), i, place, match.reference_index,
-                       route_of_frame[static_cast<std::size_t>(first)], route_of_frame[static_cast<std::size_t>(last)],
-                       match.confidence);
+                       method.c_str(), drive.name.c_str(), i, route_of_frame[static_cast<std::size_t>(localised_frame)],
+                       match.reference_index, route_of_frame[static_cast<std::size_t>(first)],
+                       route_of_frame[static_cast<std::size_t>(last)], match.confidence);
         }
         // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
-        const int localised = stretchOf(keyframe_frame[static_cast<std::size_t>(anchor)] - drive_start);
-        if (right && localised >= 0 && localised < stretches) {
-          count.stretch_right[static_cast<std::size_t>(localised)] = true;
-        }
-        // The same closure restated for the frames the localised keyframe stands for, judged alike.
-        for (const Stamp stood : standing.of(stamp_of_frame[static_cast<std::size_t>(keyframe_frame[static_cast<std::size_t>(anchor)])])) {
-          const auto f = static_cast<int>(std::lower_bound(stamp_of_frame.begin(), stamp_of_frame.end(), stood) -
-                                          stamp_of_frame.begin());
-          bool stood_right = false;
-          for (int r = first; r <= last && !stood_right; ++r) {
-            stood_right = std::abs(route_of_frame[static_cast<std::size_t>(r)] -
-                                   route_of_frame[static_cast<std::size_t>(f)]) <= kRouteTolerance;
-          }
-          stood_right = stood_right && d > 0;
+        const auto confirm = [&](int frame) {
+          const int stretch = stretchOf(frame - drive_start);
+          if (stretch >= 0 && stretch < stretches) count.stretch_right[static_cast<std::size_t>(stretch)] = true;
+        };
+        if (right) confirm(localised_frame);
+        // The same closure restated for the stopped frames the localised keyframe stands for.
+        for (const Stamp stood : standing.of(stamp_of_frame[static_cast<std::size_t>(localised_frame)])) {
+          const auto frame = static_cast<int>(std::lower_bound(stamp_of_frame.begin(), stamp_of_frame.end(), stood) -
+                                              stamp_of_frame.begin());
+          const bool stood_right = answerShows(frame);
           ++(stood_right ? count.standing_right : count.standing_wrong);
-          const int stood_stretch = stretchOf(f - drive_start);
-          if (stood_right && stood_stretch >= 0 && stood_stretch < stretches) {
-            count.stretch_right[static_cast<std::size_t>(stood_stretch)] = true;
-          }
+          if (stood_right) confirm(frame);
         }
       }
     }
