@@ -37,9 +37,9 @@ float distinctiveness(float best, float runner_up, float spread, int rivals) {
   return std::max(0.0F, (runner_up - best) / spread);
 }
 
-int placesAmong(int rivals, int frames_per_end, const SequenceParams& params) {
+int placesAmong(int rivals, int frames_per_end, int match_exclusion) {
   return static_cast<int>(static_cast<long long>(rivals) * std::max(1, frames_per_end) /
-                          std::max(1, params.match_exclusion / 2));
+                          std::max(1, match_exclusion / 2));
 }
 
 double requiredConfidence(int places, const SequenceParams& params) {

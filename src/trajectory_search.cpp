@@ -99,7 +99,7 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
                     ? std::clamp(best / runner_up, 0.0F, 1.0F)
                     : 1.0F;
   match.rivals = rivals;
-  match.rival_places = rivals / std::max(1, half);  // ends within half the window show one place
+  match.rival_places = placesAmong(rivals, 1, exclusion);
   match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor), rivals);
   return match;
 }

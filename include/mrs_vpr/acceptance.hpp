@@ -43,9 +43,9 @@ float distinctiveness(float best, float runner_up, float spread, int rivals);
 constexpr int kPlacesForPlainThreshold = 100;
 
 /// The distinct places among `rivals` ends of a table whose ends lie `frames_per_end` reference frames
-/// apart. Neighbouring ends are no independent chances: ends within params.match_exclusion / 2 frames
-/// of each other (the half-width of the window that is the answer's own place) show one place.
-int placesAmong(int rivals, int frames_per_end, const SequenceParams& params);
+/// apart. Neighbouring ends are no independent chances: ends within match_exclusion / 2 frames of each
+/// other (the half-width of the window that is the answer's own place) show one place.
+int placesAmong(int rivals, int frames_per_end, int match_exclusion);
 
 /**
  * The confidence an answer among `places` rival places needs (placesAmong): params.accept_threshold,

@@ -47,7 +47,7 @@ Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, cons
 
 /// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
 /// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all), 0
-/// with fewer than kMinRivalEnds finite ends farther away; rival_places = those ends / (exclusion / 2).
+/// with fewer than kMinRivalEnds finite ends farther away; rival_places = placesAmong(those ends, 1, exclusion).
 Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion);
 
 /// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than

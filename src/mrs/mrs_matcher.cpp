@@ -329,7 +329,7 @@ class CoarseToFineSearch {
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
     result_.rivals = coarse.rivals;
-    result_.rival_places = placesAmong(coarse.rivals, coarse_stride, sequence_);
+    result_.rival_places = placesAmong(coarse.rivals, coarse_stride, sequence_.match_exclusion);
     applyAcceptance(result_, sequence_);
     return result_;
   }

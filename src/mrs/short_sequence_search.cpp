@@ -183,7 +183,7 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   match.velocity = velocity[static_cast<std::size_t>(winner)];
   match.score = (std::isfinite(runner_up) && runner_up > 0.0F) ? std::clamp(best / runner_up, 0.0F, 1.0F) : 1.0F;
   match.rivals = rivals;
-  match.rival_places = placesAmong(rivals, 1, sequence);
+  match.rival_places = placesAmong(rivals, 1, sequence.match_exclusion);
   // The larger of the two estimates of the spread: a confidence never above what either supports.
   const float spread = std::max(costSpread(first.cost), costSpread(samples));
   match.confidence = distinctiveness(best, runner_up, spread, rivals);

@@ -130,8 +130,8 @@ TEST(ApplyAcceptance, OneOrTwoVelocitiesAreTheUsersFixedSpeedNotABound) {
 
 TEST(RequiredConfidence, RisesOnMapsOfFewerThanAHundredPlaces) {
   SequenceParams params;  // accept_threshold 3, match_exclusion 10
-  EXPECT_EQ(placesAmong(500, 1, params), 100);  // ends within 5 frames show one place
-  EXPECT_EQ(placesAmong(125, 4, params), 100);  // a coarse table's ends stand for 4 frames each
+  EXPECT_EQ(placesAmong(500, 1, params.match_exclusion), 100);  // ends within 5 frames show one place
+  EXPECT_EQ(placesAmong(125, 4, params.match_exclusion), 100);  // a coarse table's ends stand for 4 frames each
   EXPECT_DOUBLE_EQ(requiredConfidence(100, params), 3.0);
   EXPECT_DOUBLE_EQ(requiredConfidence(100000, params), 3.0);
   // The bound exp(-d sqrt(2 ln n)) kept at its value for 100 places.
