@@ -316,8 +316,6 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
                                       inQuotes(image.encoding) + "): " + error.what());
         }
       }
-      // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were.
-      input.keyframe_images = !travel_policy_.enabled();
       for (const sensor_msgs::Image& image : request.images) input.image_headers.push_back(image.header);
     } else if (request.recent_frames == 0) {
       throw std::invalid_argument(
@@ -352,10 +350,12 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   // The answer is explained (for ~debug_image) only while someone watches.
   MatchExplanation explanation;
   MatchExplanation* const explain = debug_image_->wanted() ? &explanation : nullptr;
+  // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were
+  // (with keyframes by travel, the images are taken as keyframes already).
   PlaceAnswer answered =
-      !input.images          ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
-      : input.keyframe_images ? recognizer_.matchKeyframesOf(*input.images, input.method, explain)
-                              : recognizer_.match(*input.images, input.method, explain);
+      !input.images               ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
+      : travel_policy_.enabled()  ? recognizer_.match(*input.images, input.method, explain)
+                                  : recognizer_.matchKeyframesOf(*input.images, input.method, explain);
   if (input.images) {
     input.header = input.image_headers.at(static_cast<std::size_t>(answered.localised_row));
   } else {

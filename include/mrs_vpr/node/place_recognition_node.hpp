@@ -69,8 +69,7 @@ class PlaceRecognitionNode {
  private:
   /// What a query needs besides the map: the test sequence, when given explicitly.
   struct QueryInput {
-    std::unique_ptr<DescriptorSequence> images;  ///< Explicit test sequence, or null ...
-    bool keyframe_images = false;                ///< ... at the camera's rate: its keyframes are matched.
+    std::unique_ptr<DescriptorSequence> images;  ///< Explicit test sequence, or null.
     long long recent_frames = 0;                 ///< Otherwise the map's newest frames ...
     int end = -1;                                ///< ... before map frame `end` (-1: the newest).
     std::string method;
