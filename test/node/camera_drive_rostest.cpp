@@ -20,6 +20,7 @@
 
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/MapInfo.h"
+#include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "support/image_message.hpp"
@@ -205,6 +206,44 @@ TEST_F(CameraDriveTest, LoopClosuresOfAVehicleThatStopsAndChangesSpeedAreRightAn
               "too similar, %u keyframes\n",
               revisit_answers, right, restated_in_stops, static_cast<unsigned long long>(info.frames_too_similar),
               stopped, info.frames);
+}
+
+// Runs after the drives above have been played: the node's map holds both.
+TEST_F(CameraDriveTest, ImagesAtTheCameraRateAreKeyframedAsTheMapWas) {
+  ros::NodeHandle nh;
+  ros::ServiceClient query = nh.serviceClient<mrs_vpr::QuerySequence>(std::string(kNode) + "/query");
+  ASSERT_TRUE(query.waitForExistence(ros::Duration(30.0)));
+  const Route route = generateRoute();
+  // Route frames 40..79 of the revisit, each sent twice as a camera at twice the rate would: the
+  // copies are never keyframes, so the node searches at most 40 keyframes and names a first copy.
+  mrs_vpr::QuerySequence twice;
+  for (int r = 40; r < 80; ++r) {
+    for (int copy = 0; copy < 2; ++copy) {
+      const double stamp = 50000.0 + 2 * r + copy;
+      twice.request.images.push_back(
+          mrs_vpr::testing_support::imageMessage(route.revisit[static_cast<std::size_t>(r)], stamp));
+    }
+  }
+  mrs_vpr::testing_support::TopicInbox<mrs_vpr::LoopClosure> closures(nh, std::string(kNode) + "/loop_closure");
+  ASSERT_TRUE(closures.waitConnected(10.0));
+  ASSERT_TRUE(query.call(twice));
+  ASSERT_TRUE(twice.response.success) << twice.response.message;
+  mrs_vpr::LoopClosure closure;
+  ASSERT_TRUE(closures.waitFor([](const mrs_vpr::LoopClosure& m) { return m.header.stamp.toSec() >= 50000.0; },
+                               closure, 10.0));
+  EXPECT_LE(closure.query_length, 40U);
+  EXPECT_GE(closure.query_length, 2U);
+  // Stamps 50000 + 2 r + copy: a first copy has an even stamp.
+  EXPECT_EQ(std::lround(closure.header.stamp.toSec()) % 2, 0) << closure.header.stamp;
+
+  // One view, ten times: a single keyframe, refused with the reason.
+  mrs_vpr::QuerySequence standing;
+  for (int i = 0; i < 10; ++i) {
+    standing.request.images.push_back(mrs_vpr::testing_support::imageMessage(route.revisit[40], 60000.0 + i));
+  }
+  ASSERT_TRUE(query.call(standing));
+  EXPECT_FALSE(standing.response.success);
+  EXPECT_NE(standing.response.message.find("fewer than 2 keyframes"), std::string::npos) << standing.response.message;
 }
 
 }  // namespace
