@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "mrs_vpr/evaluation/camera_drive.hpp"
+#include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "mrs_vpr/node/standing_frames.hpp"
@@ -21,8 +22,9 @@ namespace {
 constexpr double kMapRate = 30.0;      // [Hz] the map drive's camera
 constexpr double kRevisitRate = 10.0;  // [Hz] the revisit's camera
 constexpr double kQueryPeriod = 1.0;   // [s] launch/mrs_vpr.launch's auto_query_period
-/// An answer is right when the revisit frame's route frame is within this of a route frame the
-/// answer's keyframe stands for.
+/// An answer is right when the revisit frame's place is within this many places of a place the
+/// answer's keyframe stands for (evaluation/route_places.hpp: route frames where the recording camera
+/// stood are one place).
 constexpr int kRouteTolerance = 2;
 /// The share of stretches is counted after the revisit's first frames (the map must reach back).
 constexpr int kWarmUpFrames = 100;
@@ -76,6 +78,7 @@ struct DriveCounts {
   int accepted = 0;
   int right = 0;
   int wrong = 0;
+  int wrong_route_frames = 0;  ///< Accepted answers wrong were each route frame a place of its own.
   int standing_right = 0;  ///< Closures restated for the stopped frames a localised keyframe stands for.
   int standing_wrong = 0;
   std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
@@ -87,15 +90,17 @@ struct DriveCounts {
  * as the node's continuous mode asks: only when a keyframe came since the last question, and only once
  * the map holds 2 L + recent_exclusion keyframes.
  */
-std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::string& method,
-                                        const DescriptorParams& descriptor, const SequenceParams& sequence,
-                                        bool each_keyframe, int* length) {
+std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::vector<int>& route_places,
+                                        const std::string& method, const DescriptorParams& descriptor,
+                                        const SequenceParams& sequence, bool each_keyframe, int* length) {
   node::NodeParameters node;
   node.core.descriptor = descriptor;
   node.core.sequence = sequence;
   PlaceRecognizer recognizer(node.core, node.recognizer);
   const int recent = node.autoQueryFrames();
   *length = recent;
+  std::vector<int> route_frame_numbers(route_places.size());  // each route frame a place of its own
+  for (std::size_t i = 0; i < route_frame_numbers.size(); ++i) route_frame_numbers[i] = static_cast<int>(i);
   std::vector<int> keyframe_frame;  // the frame of the whole replay each keyframe was
   std::vector<int> route_of_frame;  // the route frame of each frame of the whole replay
   std::vector<Stamp> stamp_of_frame;  // the stamp of each frame of the whole replay
@@ -150,15 +155,19 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         const auto k = static_cast<std::size_t>(match.reference_index);
         const int first = keyframe_frame.at(k);
         const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
-        const auto answerShows = [&](int frame) {
-          const int place = route_of_frame[static_cast<std::size_t>(frame)];
+        // Within kRouteTolerance of a frame the answer's keyframe stands for, in places or in route frames.
+        const auto within = [&](int frame, const std::vector<int>& position_of_route_frame) {
+          const int position = position_of_route_frame.at(static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(frame)]));
           for (int f = first; f <= last; ++f) {
-            if (std::abs(route_of_frame[static_cast<std::size_t>(f)] - place) <= kRouteTolerance) return d > 0;
+            const auto shown = static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(f)]);
+            if (std::abs(position_of_route_frame.at(shown) - position) <= kRouteTolerance) return d > 0;
           }
           return false;
         };
+        const auto answerShows = [&](int frame) { return within(frame, route_places); };
         const bool right = answerShows(localised_frame);
         ++(right ? count.right : count.wrong);
+        if (!within(localised_frame, route_frame_numbers)) ++count.wrong_route_frames;
         if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
           std::fprintf(stderr,
                        "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
@@ -191,7 +200,8 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
 /// with make_drive's ground truth: both keyframed as the node keyframes a camera, every query keyframe
 /// with a full sequence searched, an answer right when the truth is among the frames its keyframe
 /// stands for (within the evaluator's tolerance).
-EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive, const std::string& method,
+EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive,
+                                   const std::vector<int>& route_places, const std::string& method,
                                    const DescriptorParams& descriptor, const SequenceParams& sequence, int* reference_keyframes) {
   Parameters params;
   params.descriptor = descriptor;
@@ -214,7 +224,8 @@ EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& qu
   query_keyframed.total = static_cast<int>(query_drive.images.size());
   const DescriptorSequence query = reference.keyframesOf(revisit, &query_keyframed.frames);
   const GroundTruth truth =
-      driveGroundTruth(routeFramesOf(reference_drive.frames), routeFramesOf(query_drive.frames), kRouteTolerance);
+      driveGroundTruth(placesOf(routeFramesOf(reference_drive.frames), route_places),
+                       placesOf(routeFramesOf(query_drive.frames), route_places), kRouteTolerance);
   const std::vector<int> searched = perFrameQueries(query.size(), params.sequence);
   const auto start = std::chrono::steady_clock::now();
   const std::vector<Match> matches = reference.matchEveryFrame(query.view(), method);
@@ -242,6 +253,9 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   const int route = input.route_frames;
   const Drive map = makeDrive("map drive, summer 0.." + std::to_string(route - 1), kMapRate, *input.summer, 0, route,
                               input.seed);
+  const std::vector<cv::Mat> summer_route(input.summer->begin(), input.summer->begin() + route);
+  const std::vector<cv::Mat> winter_route(input.winter->begin(), input.winter->begin() + route);
+  const std::vector<int> places = routePlaces({&summer_route, &winter_route});
   const Drive revisit = makeDrive("revisit, winter " + std::to_string(input.part_begin) + ".." +
                                       std::to_string(input.part_end - 1),
                                   kRevisitRate, *input.winter, input.part_begin, input.part_end, input.seed + 1);
@@ -249,33 +263,37 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   std::printf("\nCamera drives (make_drive --seed %llu and %llu): the map drive at %.0f Hz, the revisit at %.0f Hz, "
               "each with 8 stops of 30-90 frames (noise, vibration, gain, a passer-by) and a stretch at half and one "
               "at double speed; one recognizer at the node's defaults (keyframes by appearance change %.2f), "
-              "continuous mode every %.0f s. right = the localised keyframe's route frame within %d of those the "
-              "answer's keyframe stands for; stretches = %d-frame stretches of a drive after its first %d frames "
+              "continuous mode every %.0f s. right = the localised keyframe's place within %d places of those the "
+              "answer's keyframe stands for, where route frames at which the recorded train stood are one place "
+              "(%d places in %d route frames; evaluation/route_places.hpp); wrong: by places, and in brackets were "
+              "each route frame a place; stretches = %d-frame stretches of a drive after its first %d frames "
               "with an accepted right answer, restated ones included (in brackets: those in which a keyframe came, the "
               "others lie within a stop); restated = accepted closures restated for the stopped frames their "
               "keyframe stands for, one a period (node/standing_frames.hpp), right/wrong alike\n",
               static_cast<unsigned long long>(input.seed), static_cast<unsigned long long>(input.seed + 1), kMapRate,
-              kRevisitRate, RecognizerParams{}.min_appearance_change, kQueryPeriod, kRouteTolerance, kStretchFrames,
-              kWarmUpFrames);
+              kRevisitRate, RecognizerParams{}.min_appearance_change, kQueryPeriod, kRouteTolerance,
+              places.back() + 1, route, kStretchFrames, kWarmUpFrames);
   for (const Drive* drive : {&map, &revisit}) {
     std::printf("  %-26s %5zu frames, %4d stopped; %d route frames at half speed from %d, %d at double speed from %d\n",
                 drive->name.c_str(), drive->frames.size(), stoppedFrames(*drive), drive->slow_frames, drive->slow_begin,
                 drive->fast_frames, drive->fast_begin);
   }
-  std::printf("%-28s %-8s %4s %9s %10s %7s %8s %5s %5s %17s\n", "drive", "method", "L", "keyframes", "kf stopped",
+  std::printf("%-28s %-8s %4s %9s %10s %7s %8s %5s %10s %17s\n", "drive", "method", "L", "keyframes", "kf stopped",
               "queries", "accepted", "right", "wrong", "stretches");
   std::vector<nlohmann::json> rows;
   for (const std::string& method : input.methods) {
     int length = 0;
-    const std::vector<DriveCounts> counts = continuousMode({&map, &revisit}, method, input.descriptor, input.sequence, input.each_keyframe, &length);
+    const std::vector<DriveCounts> counts =
+        continuousMode({&map, &revisit}, places, method, input.descriptor, input.sequence, input.each_keyframe, &length);
     for (std::size_t d = 0; d < counts.size(); ++d) {
       const Drive& drive = d == 0 ? map : revisit;
       const DriveCounts& c = counts[d];
       const int stretches = static_cast<int>(c.stretch_right.size());
       const int with_right = static_cast<int>(std::count(c.stretch_right.begin(), c.stretch_right.end(), true));
       const int keyframed = static_cast<int>(std::count(c.stretch_keyframed.begin(), c.stretch_keyframed.end(), true));
-      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %5d %4d/%-4d (%d) %.3f  restated %d/%d\n", drive.name.c_str(), method.c_str(),
-                  length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, c.wrong, with_right,
+      const std::string wrong = std::to_string(c.wrong) + " (" + std::to_string(c.wrong_route_frames) + ")";
+      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d\n", drive.name.c_str(), method.c_str(),
+                  length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, wrong.c_str(), with_right,
                   stretches, keyframed, shareOf(c.stretch_right), c.standing_right, c.standing_wrong);
       const double share = shareOf(c.stretch_right);
       rows.push_back({{"setting", "camera drive continuous " + std::string(d == 0 ? "map drive" : "revisit")},
@@ -296,6 +314,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
                       {"accepted", c.accepted},
                       {"accepted_right", c.right},
                       {"accepted_wrong", c.wrong},
+                      {"accepted_wrong_by_route_frame", c.wrong_route_frames},
                       {"restated_right", c.standing_right},
                       {"restated_wrong", c.standing_wrong},
                       {"stretches", stretches},
@@ -309,7 +328,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   for (const std::string& method : input.methods) {
     int reference_keyframes = 0;
     const EvaluationSummary summary =
-        perFrameProtocol(map, revisit, method, input.descriptor, input.sequence, &reference_keyframes);
+        perFrameProtocol(map, revisit, places, method, input.descriptor, input.sequence, &reference_keyframes);
     per_frame("camera drives per-frame (mrs_vpr_eval)", method, summary, reference_keyframes,
               input.sequence.sequence_length);
   }
