@@ -83,7 +83,12 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
   const double unrelated = scale();
   last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
-  return last_change_ >= min_change_;
+  if (last_change_ < min_change_) return false;
+  // The newest keyframe is the mean's; the older ones are compared one by one.
+  for (std::size_t i = 0; i + 1 < latest_.size(); ++i) {
+    if (regionDifference(descriptor.ptr<std::uint8_t>(), latest_[i].data()) < min_change_ * unrelated) return false;
+  }
+  return true;
 }
 
 void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
@@ -94,6 +99,8 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     recent_keyframes_.pop_front();
   }
   recent_keyframes_.push_back(values);
+  latest_.push_back(values);
+  if (static_cast<int>(latest_.size()) > kRecentKeyframes) latest_.pop_front();
   mean_ = std::move(values);
   frames_in_mean_ = 1;
 }
@@ -111,6 +118,7 @@ void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
 AppearanceKeyframes AppearanceKeyframes::follower() const {
   AppearanceKeyframes next(*this);
   next.mean_.clear();
+  next.latest_.clear();
   next.frames_in_mean_ = 0;
   next.last_change_ = 0.0;
   return next;
@@ -120,6 +128,7 @@ void AppearanceKeyframes::reset() {
   mean_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();
+  latest_.clear();
   samples_.clear();
   last_change_ = 0.0;
 }

@@ -127,6 +127,23 @@ TEST_P(AppearanceKeyframesTest, ASmoothRouteKeepsItsKeyframesFewPlacesApart) {
   EXPECT_LE(largest_gap, 15);
 }
 
+TEST_P(AppearanceKeyframesTest, AViewAmongTheRecentKeyframesIsNotNewAgain) {
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  cv::RNG rng(6);
+  keyframesOf(keyframes, extractor, drive(0.0, 12.0, 150, rng));  // The scale comes from the drive.
+  // A camera that swings between two views (a flickering light, a gate opening and closing): each
+  // switch changes the view by far more than min_change, but both views are already keyframes.
+  std::vector<cv::Mat> swinging;
+  for (int i = 0; i < 40; ++i) swinging.push_back(viewAt(i % 2 == 0 ? 2400.0 : 2800.0, 1.0, 1.0, rng));
+  EXPECT_EQ(keyframesOf(keyframes, extractor, swinging), 2);
+  // Once more than kRecentKeyframes other keyframes came, the first view is new again (a revisit).
+  std::vector<cv::Mat> away;
+  for (int i = 0; i <= AppearanceKeyframes::kRecentKeyframes; ++i) away.push_back(viewAt(3200.0 + 400.0 * i, 1, 1, rng));
+  EXPECT_EQ(keyframesOf(keyframes, extractor, away), AppearanceKeyframes::kRecentKeyframes + 1);
+  EXPECT_EQ(keyframesOf(keyframes, extractor, {viewAt(2400.0, 1.0, 1.0, rng)}), 1);
+}
+
 TEST_P(AppearanceKeyframesTest, ZeroKeepsEveryFrameAndResetForgetsTheLastKeyframe) {
   const DescriptorExtractor extractor(GetParam());
   cv::RNG rng(4);
