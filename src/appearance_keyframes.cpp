@@ -85,7 +85,7 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
   if (last_change_ < min_change_) return false;
   // The newest keyframe is the mean's; the older ones are compared one by one.
-  for (std::size_t i = 0; i + 1 < latest_.size(); ++i) {
+  for (std::size_t i = 0; compare_recent_ && i + 1 < latest_.size(); ++i) {
     if (regionDifference(descriptor.ptr<std::uint8_t>(), latest_[i].data()) < min_change_ * unrelated) return false;
   }
   return true;
@@ -119,6 +119,7 @@ AppearanceKeyframes AppearanceKeyframes::follower() const {
   AppearanceKeyframes next(*this);
   next.mean_.clear();
   next.latest_.clear();
+  next.compare_recent_ = false;
   next.frames_in_mean_ = 0;
   next.last_change_ = 0.0;
   return next;

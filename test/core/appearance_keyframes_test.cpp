@@ -137,6 +137,9 @@ TEST_P(AppearanceKeyframesTest, AViewAmongTheRecentKeyframesIsNotNewAgain) {
   std::vector<cv::Mat> swinging;
   for (int i = 0; i < 40; ++i) swinging.push_back(viewAt(i % 2 == 0 ? 2400.0 : 2800.0, 1.0, 1.0, rng));
   EXPECT_EQ(keyframesOf(keyframes, extractor, swinging), 2);
+  // A follower (another camera's traversal on this scale) compares with its newest keyframe only.
+  AppearanceKeyframes follower = keyframes.follower();
+  EXPECT_EQ(keyframesOf(follower, extractor, swinging), 40);
   // Once more than kRecentKeyframes other keyframes came, the first view is new again (a revisit).
   std::vector<cv::Mat> away;
   for (int i = 0; i <= AppearanceKeyframes::kRecentKeyframes; ++i) away.push_back(viewAt(3200.0 + 400.0 * i, 1, 1, rng));
