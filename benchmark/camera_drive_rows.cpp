@@ -197,7 +197,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
 }
 
 /// The evaluator's per-frame protocol on two drives, as mrs_vpr_eval runs it on make_drive's folders
-/// with make_drive's ground truth: both keyframed as the node keyframes a camera, every query keyframe
+/// with make_drive's ground truth (--places-from both seasons): both keyframed as the node keyframes a camera, every query keyframe
 /// with a full sequence searched, an answer right when the truth is among the frames its keyframe
 /// stands for (within the evaluator's tolerance).
 EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive,

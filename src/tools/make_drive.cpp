@@ -11,12 +11,15 @@
 #include <string>
 #include <vector>
 
+#include <boost/algorithm/string.hpp>
 #include <boost/program_options.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/evaluation/drive_file.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
+#include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/image_codecs.hpp"
 #include "tool_main.hpp"
 
@@ -29,7 +32,8 @@ constexpr const char* kUsage =
     "Usage: make_drive --images DIR --output DRIVE [--begin F] [--end F] [--seed S] [--stops K]\n"
     "                  [--stop-frames-min N] [--stop-frames-max N] [--slow-frames N] [--fast-frames N]\n"
     "                  [--noise G] [--vibration PX] [--gain G] [--force]\n"
-    "       make_drive --ground-truth FILE.csv --reference DRIVE_A --query DRIVE_B [--route-tolerance T] [--force]\n"
+    "       make_drive --ground-truth FILE.csv --reference DRIVE_A --query DRIVE_B [--route-tolerance T]\n"
+    "                  [--places-from DIR[,DIR...]] [--force]\n"
     "\n"
     "The first form drives the route of DIR's images [F, F_end) (file-name order) as a camera-only vehicle\n"
     "does: it stops K times (after a route frame, for N_min..N_max frames, the view with sensor noise,\n"
@@ -41,6 +45,9 @@ constexpr const char* kUsage =
     "\n"
     "The second form writes the ground truth of two drives of one route (e.g. the same frame numbers in\n"
     "two seasons): query frame i matches the reference frames whose route frame is within T of its own.\n"
+    "With --places-from (the route's image folders, e.g. both seasons), route frames where the recording\n"
+    "camera stood in every folder count as one place, and T counts places: a station where the recording\n"
+    "stood still is one place, not dozens of frames apart.\n"
     "Then: mrs_vpr_eval --reference DRIVE_A --query DRIVE_B --ground-truth FILE.csv --protocol per-frame\n";
 
 struct Options {
@@ -53,6 +60,7 @@ struct Options {
   std::string reference;
   std::string query;
   int route_tolerance = 2;
+  std::string places_from;  ///< Comma-separated route image folders; empty: every route frame a place.
   bool force = false;
 };
 
@@ -134,6 +142,41 @@ void writeDrive(const Options& options) {
             << (drive.fastBegin() < 0 ? -1 : options.begin + drive.fastBegin()) << "\n";
 }
 
+/// Every image of `folder` (file-name order) in grey, at most kPlacesWidth pixels wide: the steps of
+/// a route are compared relative to its median step, which does not need the full resolution.
+std::vector<cv::Mat> routeImages(const std::string& folder) {
+  constexpr int kPlacesWidth = 64;
+  std::vector<cv::Mat> images;
+  for (const std::string& file : mrs_vpr::listImageFiles(folder)) {
+    cv::Mat image = mrs_vpr::loadImage(file);
+    if (image.channels() > 1) cv::cvtColor(image, image, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    if (image.cols > kPlacesWidth) {
+      cv::resize(image, image, cv::Size(kPlacesWidth, std::max(1, image.rows * kPlacesWidth / image.cols)), 0, 0,
+                 cv::INTER_AREA);
+    }
+    images.push_back(image);
+  }
+  return images;
+}
+
+/// The place of each route frame (evaluation/route_places.hpp) from comma-separated image folders.
+std::vector<int> routePlacesOf(const std::string& folders) {
+  std::vector<std::string> names;
+  boost::split(names, folders, boost::is_any_of(","));
+  std::vector<std::vector<cv::Mat>> traversals;
+  for (const std::string& name : names) {
+    traversals.push_back(routeImages(name));
+    if (traversals.back().size() != traversals.front().size()) {
+      throw std::invalid_argument("--places-from: '" + name + "' has " + std::to_string(traversals.back().size()) +
+                                  " images but '" + names.front() + "' has " + std::to_string(traversals.front().size()) +
+                                  ": the folders must show the same route frames");
+    }
+  }
+  std::vector<const std::vector<cv::Mat>*> pointers;
+  for (const std::vector<cv::Mat>& traversal : traversals) pointers.push_back(&traversal);
+  return mrs_vpr::routePlaces(pointers);
+}
+
 /// The ground truth of two drives, as mrs_vpr_eval reads it.
 void writeGroundTruth(const Options& options) {
   if (fs::is_directory(options.ground_truth)) {
@@ -145,8 +188,13 @@ void writeGroundTruth(const Options& options) {
   const auto route_of = [](const std::string& drive) {
     return mrs_vpr::routeFramesOf(mrs_vpr::readDriveFile((fs::path(drive) / mrs_vpr::kDriveFileName).string()));
   };
-  const std::vector<int> reference = route_of(options.reference);
-  const std::vector<int> query = route_of(options.query);
+  std::vector<int> reference = route_of(options.reference);
+  std::vector<int> query = route_of(options.query);
+  if (!options.places_from.empty()) {
+    const std::vector<int> places = routePlacesOf(options.places_from);
+    reference = mrs_vpr::placesOf(reference, places);
+    query = mrs_vpr::placesOf(query, places);
+  }
   const mrs_vpr::GroundTruth truth = mrs_vpr::driveGroundTruth(reference, query, options.route_tolerance);
   std::ofstream file(options.ground_truth);
   file << "query_index,matching_ref_indices\n";
@@ -159,7 +207,8 @@ void writeGroundTruth(const Options& options) {
   }
   if (!file) throw std::runtime_error("cannot write '" + options.ground_truth + "'");
   std::cerr << "make_drive: ground truth of " << query.size() << " query frames against " << reference.size()
-            << " reference frames (route tolerance " << options.route_tolerance << ") in " << options.ground_truth;
+            << " reference frames (route tolerance " << options.route_tolerance
+            << (options.places_from.empty() ? " route frames" : " places") << ") in " << options.ground_truth;
   if (without_truth > 0) std::cerr << "; " << without_truth << " query frames show no reference frame's place";
   std::cerr << "\n";
 }
@@ -195,7 +244,10 @@ int run(int argc, char** argv) {
       ("reference", po::value(&options.reference), "reference drive (a folder make_drive wrote)")
       ("query", po::value(&options.query), "query drive (a folder make_drive wrote)")
       ("route-tolerance", po::value(&options.route_tolerance)->default_value(options.route_tolerance),
-       "route frames apart that still show the same place")
+       "route frames (or places, with --places-from) apart that still show the same place")
+      ("places-from", po::value(&options.places_from),
+       "the route's image folders, comma-separated: route frames where the recording camera stood in all of them "
+       "are one place")
       ("force", po::bool_switch(&options.force), "replace an existing drive or ground-truth file");
   // clang-format on
   po::variables_map variables;
@@ -211,6 +263,7 @@ int run(int argc, char** argv) {
   }
   if (drives) {
     if (options.images.empty() || options.output.empty()) throw std::invalid_argument("a drive needs --images and --output");
+    if (!options.places_from.empty()) throw std::invalid_argument("--places-from belongs to the ground truth's form");
     writeDrive(options);
   } else {
     if (options.ground_truth.empty() || options.reference.empty() || options.query.empty()) {

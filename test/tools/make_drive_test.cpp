@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 
 #include "mrs_vpr/evaluation/drive_file.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
@@ -160,6 +161,52 @@ TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
   EXPECT_GT(summary.at("queries").get<int>(), 0);
   EXPECT_GT(summary.at("accepted").get<int>(), 0);
   EXPECT_EQ(summary.at("accepted_precision").get<double>(), 1.0) << evaluated.out;
+}
+
+TEST_F(MakeDriveTest, PlacesFromTheRouteMakeAStandingRecordingOnePlace) {
+  // A route of 40 frames whose recording camera stood from frame 10 to 19 (noisy copies of frame 10).
+  mrs_vpr::SyntheticRouteParams params;
+  params.reference_frames = 40;
+  params.query_frames = 2;
+  std::vector<cv::Mat> route = mrs_vpr::generateSyntheticRoute(params).reference;
+  cv::RNG rng(7);
+  for (int i = 11; i < 20; ++i) {
+    cv::Mat noise(route[10].size(), CV_16SC(route[10].channels()));
+    rng.fill(noise, cv::RNG::NORMAL, 0, 1);
+    cv::add(route[10], noise, route[static_cast<std::size_t>(i)], cv::noArray(), route[10].type());
+  }
+  mrs_vpr::testing_support::writeImageFolder(path("standing_route"), route);
+  // Two drives of it, frame for frame (only their drive.csv is read).
+  std::vector<mrs_vpr::DriveFrame> frames(route.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) frames[i].route_frame = static_cast<int>(i);
+  for (const std::string name : {"standing_map", "standing_revisit"}) {
+    fs::create_directories(path(name));
+    mrs_vpr::writeDriveFile(path(name + "/drive.csv"), frames);
+  }
+  const auto truthOfFrame = [&](const std::string& extra, int query) {
+    const Result result = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
+                                    path("standing_map") + " --query " + path("standing_revisit") + extra);
+    EXPECT_EQ(result.status, 0) << result.err;
+    std::ifstream file(path("standing.csv"));
+    std::string line;
+    for (int row = 0; row <= query + 1; ++row) std::getline(file, line);
+    std::istringstream matches(line.substr(line.find(',') + 1));
+    std::vector<int> result_frames;
+    for (int frame = 0; matches >> frame;) result_frames.push_back(frame);
+    return result_frames;
+  };
+  // By route frames, frame 18 is 2 frames from 16..20; as places, the whole stand and 2 places around it.
+  EXPECT_EQ(truthOfFrame("", 18), (std::vector<int>{16, 17, 18, 19, 20}));
+  EXPECT_EQ(truthOfFrame(" --places-from " + path("standing_route"), 18),
+            (std::vector<int>{8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21}));
+  EXPECT_EQ(truthOfFrame(" --places-from " + path("standing_route") + "," + path("standing_route"), 30),
+            (std::vector<int>{28, 29, 30, 31, 32}));
+
+  const Result mismatched = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
+                                      path("standing_map") + " --query " + path("standing_revisit") +
+                                      " --places-from " + path("standing_route") + "," + path("summer"));
+  EXPECT_EQ(mismatched.status, 1);
+  EXPECT_NE(mismatched.err.find("must show the same route frames"), std::string::npos) << mismatched.err;
 }
 
 TEST_F(MakeDriveTest, BadInputGivesOneLineAndExitCodeOne) {
