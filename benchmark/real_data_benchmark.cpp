@@ -82,6 +82,7 @@ struct Options {
   int drive_alignment_slack = mrs_vpr::SequenceParams{}.alignment_slack;
   std::string drive_alignment = mrs_vpr::toString(mrs_vpr::SequenceParams{}.alignment);
   std::string drive_queries = "each";  // as the node asks
+  int drive_seeds = 1;                 // drives of seeds seed .. seed + drive_seeds - 1
   bool diagnose = false;
   std::string json;  ///< Every row of the tables also goes to this file (for mrs_vpr_plot benchmark).
   int hypotheses = mrs_vpr::MrsParams{}.hypotheses;
@@ -97,7 +98,7 @@ constexpr const char* kUsage =
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
     "                              [--drive-alignment-slack S] [--drive-alignment causal|centred]\n"
-    "                              [--drive-queries newest|each] [--diagnose]\n"
+    "                              [--drive-queries newest|each] [--drive-seeds K] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
     "                              [--methods seqslam,mrs,mrs-first-pass] [--json FILE]\n"
@@ -141,6 +142,8 @@ std::optional<Options> parse(int argc, char** argv) {
       ("drive-queries", po::value(&options.drive_queries)->default_value(options.drive_queries),
        "each | newest: continuous mode localises each keyframe since its last question (the node), or only the "
        "newest")
+      ("drive-seeds", po::value(&options.drive_seeds)->default_value(options.drive_seeds),
+       "camera drives of seeds S .. S + K - 1 (map drive seed s, revisit s + 1), then a summary over them")
       ("diagnose", po::bool_switch(&options.diagnose), "print where MRS kept the truth, level by level")
       ("hypotheses", po::value(&options.hypotheses)->default_value(options.hypotheses),
        "mrs: hypotheses carried down from the coarsest level")
@@ -787,7 +790,6 @@ int run(int argc, char** argv) {
     drives.part_end = part_end;
     drives.methods = options.methods;
     drives.descriptor = options.descriptor;
-    drives.seed = options.seed;
     if (options.drive_length > 0) drives.sequence.sequence_length = options.drive_length;
     drives.sequence.alignment_slack = options.drive_alignment_slack;
     drives.sequence.alignment = mrs_vpr::parseWindowAlignment(options.drive_alignment);
@@ -797,12 +799,27 @@ int run(int argc, char** argv) {
     drives.each_keyframe = options.drive_queries == "each";
     drives.sequence.velocity_min = options.velocity_min;
     drives.sequence.velocity_max = options.velocity_max;
-    mrs_vpr::benchmark::runCameraDrives(
-        drives, [&](const std::vector<nlohmann::json>& rows) { report.add(rows); },
-        [&](const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& summary,
-            int reference_frames, int sequence_length) {
-          report.row(setting, method, summary, {"per-frame", false, reference_frames, sequence_length});
-        });
+    if (options.drive_seeds < 1) {
+      throw std::invalid_argument("--drive-seeds must be >= 1, got " + std::to_string(options.drive_seeds));
+    }
+    std::vector<nlohmann::json> continuous_rows;
+    for (int k = 0; k < options.drive_seeds; ++k) {
+      drives.seed = options.seed + static_cast<std::uint64_t>(k);
+      mrs_vpr::benchmark::runCameraDrives(
+          drives,
+          [&](const std::vector<nlohmann::json>& rows) {
+            for (nlohmann::json row : rows) {
+              row["seed"] = drives.seed;
+              continuous_rows.push_back(row);
+              report.add({row});
+            }
+          },
+          [&](const std::string& setting, const std::string& method, const mrs_vpr::EvaluationSummary& summary,
+              int reference_frames, int sequence_length) {
+            report.row(setting, method, summary, {"per-frame", false, reference_frames, sequence_length});
+          });
+    }
+    if (options.drive_seeds > 1) mrs_vpr::benchmark::printDriveSeedSummary(continuous_rows);
   }
   report.write(options);
   return 0;
