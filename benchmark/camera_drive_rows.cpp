@@ -198,9 +198,9 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
 }
 
 /// The evaluator's per-frame protocol on two drives, as mrs_vpr_eval runs it on make_drive's folders
-/// with make_drive's ground truth (--places-from both seasons): both keyframed as the node keyframes a camera, every query keyframe
-/// with a full sequence searched, an answer right when the truth is among the frames its keyframe
-/// stands for (within the evaluator's tolerance).
+/// with make_drive's ground truth (--places-from both seasons): both keyframed as the node keyframes a
+/// camera, every query keyframe with a full sequence searched, an answer right when the truth is among
+/// the frames its keyframe stands for (within the evaluator's tolerance).
 EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive,
                                    const std::vector<int>& route_places, const std::string& method,
                                    const DescriptorParams& descriptor, const SequenceParams& sequence, int* reference_keyframes) {
@@ -336,7 +336,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
 }
 
 void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
-  /// The bar for a revisit: accepted right closures in this share of its stretches.
+  // The target for a revisit: accepted right closures in this share of its stretches.
   constexpr double kStretchTarget = 0.7;
   struct Totals {
     int revisits = 0;

@@ -12,9 +12,9 @@ namespace mrs_vpr {
  *
  * Route frames are moments of a recording, not places. In the shared Nordland route the train stands
  * (in stations, at signals) for up to 50 consecutive frames: 211 of its 1782 steps in 21 runs, whose
- * frames differ by about a grey level. Counted in route frames, an answer that puts the robot at another frame of
- * the same station is "wrong" by dozens of frames although it names the very place; counted in places
- * it is right, and an answer one place off is still one place off.
+ * frames differ by about a grey level. Counted in route frames, an answer that puts the robot at
+ * another frame of the same station is "wrong" by dozens of frames although it names the very place;
+ * counted in places it is right, and an answer one place off is still one place off.
  *
  * A step between consecutive route frames is standing when its mean absolute grey-level difference is
  * below `standing_share` times the median step of the route, in every traversal: the median step is a
