@@ -75,6 +75,7 @@ double AppearanceKeyframes::scale() const {
 
 bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   CV_Assert(descriptor.type() == CV_8UC1 && static_cast<int>(descriptor.total()) == size_ && descriptor.isContinuous());
+  last_seen_before_ = false;
   if (!enabled() || frames_in_mean_ == 0) {
     last_change_ = 0.0;
     return true;
@@ -86,7 +87,10 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   if (last_change_ < min_change_) return false;
   // The newest keyframe is the mean's; the older ones are compared one by one.
   for (std::size_t i = 0; compare_recent_ && i + 1 < latest_.size(); ++i) {
-    if (regionDifference(descriptor.ptr<std::uint8_t>(), latest_[i].data()) < min_change_ * unrelated) return false;
+    if (regionDifference(descriptor.ptr<std::uint8_t>(), latest_[i].data()) < min_change_ * unrelated) {
+      last_seen_before_ = true;
+      return false;
+    }
   }
   return true;
 }
@@ -132,6 +136,7 @@ void AppearanceKeyframes::reset() {
   latest_.clear();
   samples_.clear();
   last_change_ = 0.0;
+  last_seen_before_ = false;
 }
 
 }  // namespace mrs_vpr

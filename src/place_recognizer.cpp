@@ -69,7 +69,7 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   if (!keyframes_.wants(descriptor)) {
     keyframes_.skip(descriptor);
-    return FrameAdmission::kTooSimilar;
+    return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
   }
   const FrameAdmission admission = append(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted) {

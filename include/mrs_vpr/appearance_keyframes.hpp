@@ -73,6 +73,10 @@ class AppearanceKeyframes {
   /// scale learnt here, which goes on from there.
   AppearanceKeyframes follower() const;
 
+  /// Whether wants() last refused a frame because it looks like one of the older recent keyframes
+  /// (kRecentKeyframes), not like the newest: a view seen again, which the newest keyframe does not
+  /// stand for.
+  bool lastSeenBefore() const { return last_seen_before_; }
   /// The change of the frame wants() last looked at, in units of the scale (0 before any).
   double lastChange() const { return last_change_; }
   /// The difference between unrelated views the change is measured in (bytes, mean absolute).
@@ -94,6 +98,7 @@ class AppearanceKeyframes {
   bool compare_recent_ = true;             ///< False for a follower (see kRecentKeyframes).
   std::deque<double> samples_;       ///< Differences of keyframes kUnrelatedGap apart.
   double last_change_ = 0.0;
+  bool last_seen_before_ = false;
 };
 
 }  // namespace mrs_vpr

@@ -42,6 +42,8 @@ enum class FrameAdmission {
   kMapFull,      ///< Dropped: the map holds RecognizerParams::max_frames.
   kPendingFull,  ///< Dropped: max_pending_frames are already waiting for a long query.
   kTooSimilar,   ///< Not a keyframe: too little has changed since the last one (offerDescriptor).
+  /// Not a keyframe: it looks like one of the keyframes before the last (a view seen again; offerDescriptor).
+  kSeenRecently,
 };
 
 /**

@@ -192,11 +192,13 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   const FrameAdmission admission = travel_policy_.enabled() ? map_->add(descriptor, stamp, header.frame_id, header.seq)
                                                             : map_->offer(descriptor, stamp, header.frame_id, header.seq);
   switch (admission) {
-    case FrameAdmission::kTooSimilar: {
+    case FrameAdmission::kTooSimilar:
+    case FrameAdmission::kSeenRecently: {
       ++frames_too_similar_;
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip(seconds);
-      standing_frames_.tooSimilar(stamp);
+      // Only a view like the newest keyframe's stands at its place; one like an older keyframe may not.
+      if (admission == FrameAdmission::kTooSimilar) standing_frames_.tooSimilar(stamp);
       return;
     }
     case FrameAdmission::kMapFull:

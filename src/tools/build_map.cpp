@@ -140,7 +140,7 @@ int run(int argc, char** argv) {
     flush();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
     if (appearance.enabled()) {
-      std::cerr << "build_map: " << too_similar << " frames too similar to the last keyframe to be kept "
+      std::cerr << "build_map: " << too_similar << " frames too similar to a recent keyframe to be kept "
                 << "(--min-appearance-change " << min_appearance_change << ")\n";
     }
     if (keyframes) {

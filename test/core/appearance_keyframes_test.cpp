@@ -178,6 +178,18 @@ TEST_P(AppearanceKeyframesTest, TheScaleBecomesTheDataOwnOnceKeyframesAreFarEnou
 INSTANTIATE_TEST_SUITE_P(FrontEnds, AppearanceKeyframesTest, ::testing::Values(DescriptorParams{}, thumbnailParams()),
                          [](const auto& info) { return info.param.type; });
 
+TEST(PlaceRecognizer, AViewLikeAnOlderKeyframeIsSeenRecentlyNotTooSimilar) {
+  // The node restates closures only for frames too similar to the newest keyframe: a frame that looks
+  // like an older one (a robot swinging back) must say so.
+  PlaceRecognizer recognizer;
+  cv::RNG rng(8);
+  for (int i = 0; i < 150; ++i) recognizer.addFrame(viewAt(12.0 * i, 1, 1, rng));  // the scale
+  ASSERT_EQ(recognizer.addFrame(viewAt(2400.0, 1, 1, rng)), FrameAdmission::kAdmitted);
+  ASSERT_EQ(recognizer.addFrame(viewAt(2800.0, 1, 1, rng)), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.addFrame(viewAt(2800.0, 1, 1, rng)), FrameAdmission::kTooSimilar);
+  EXPECT_EQ(recognizer.addFrame(viewAt(2400.0, 1, 1, rng)), FrameAdmission::kSeenRecently);
+}
+
 TEST(PlaceRecognizer, KeyframesFramesByAppearanceButTakesDescriptorsAsKeyframes) {
   PlaceRecognizer recognizer;
   cv::RNG rng(6);

@@ -139,7 +139,7 @@ class PlaceRecognitionNode {
 
   std::atomic<std::uint64_t> frames_received_{0};
   std::atomic<std::uint64_t> frames_skipped_{0};
-  std::atomic<std::uint64_t> frames_too_similar_{0};  ///< Views too similar to the last keyframe's.
+  std::atomic<std::uint64_t> frames_too_similar_{0};  ///< Views too similar to a recent keyframe's.
   std::atomic<std::uint64_t> frames_without_pose_{0};
   std::atomic<std::uint64_t> frames_dropped_{0};
   std::atomic<std::uint64_t> frames_failed_{0};
