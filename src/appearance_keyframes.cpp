@@ -85,9 +85,11 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   const double unrelated = scale();
   last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
   if (last_change_ < min_change_) return false;
-  // The newest keyframe is the mean's; the older ones are compared one by one.
-  for (std::size_t i = 0; compare_recent_ && i + 1 < latest_.size(); ++i) {
-    if (regionDifference(descriptor.ptr<std::uint8_t>(), latest_[i].data()) < min_change_ * unrelated) {
+  // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one.
+  const std::size_t kept = recent_keyframes_.size();
+  const std::size_t first = kept - std::min<std::size_t>(kept, kRecentKeyframes);
+  for (std::size_t i = first; compare_recent_ && i + 1 < kept; ++i) {
+    if (regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_[i].data()) < min_change_ * unrelated) {
       last_seen_before_ = true;
       return false;
     }
@@ -103,8 +105,6 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     recent_keyframes_.pop_front();
   }
   recent_keyframes_.push_back(values);
-  latest_.push_back(values);
-  if (static_cast<int>(latest_.size()) > kRecentKeyframes) latest_.pop_front();
   mean_ = std::move(values);
   frames_in_mean_ = 1;
 }
@@ -122,7 +122,6 @@ void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
 AppearanceKeyframes AppearanceKeyframes::follower() const {
   AppearanceKeyframes next(*this);
   next.mean_.clear();
-  next.latest_.clear();
   next.compare_recent_ = false;
   next.frames_in_mean_ = 0;
   next.last_change_ = 0.0;
@@ -133,7 +132,6 @@ void AppearanceKeyframes::reset() {
   mean_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();
-  latest_.clear();
   samples_.clear();
   last_change_ = 0.0;
   last_seen_before_ = false;

@@ -51,6 +51,7 @@ class AppearanceKeyframes {
   static constexpr int kMinScaleSamples = 9;
   /// This traversal's keyframes a new keyframe must differ from (tried on the tune half: 4, 8, 16).
   static constexpr int kRecentKeyframes = 16;
+  static_assert(kRecentKeyframes <= kUnrelatedGap, "the recent keyframes are read from those the scale keeps");
   /// Seed of the noise image whose view stands in for an unrelated one.
   static constexpr std::uint64_t kNoiseSeed = 1;
 
@@ -94,8 +95,8 @@ class AppearanceKeyframes {
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
   int frames_in_mean_ = 0;           ///< ... and how many there are.
   std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
-  std::deque<std::vector<float>> latest_;  ///< This traversal's last kRecentKeyframes keyframes.
-  bool compare_recent_ = true;             ///< False for a follower (see kRecentKeyframes).
+  /// False for a follower (see kRecentKeyframes), whose recent_keyframes_ start with the map's.
+  bool compare_recent_ = true;
   std::deque<double> samples_;       ///< Differences of keyframes kUnrelatedGap apart.
   double last_change_ = 0.0;
   bool last_seen_before_ = false;
