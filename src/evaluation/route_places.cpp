@@ -1,22 +1,18 @@
 #include "mrs_vpr/evaluation/route_places.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 #include <string>
 
-#include <opencv2/imgproc.hpp>
+#include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/evaluation/evaluation.hpp"
 
 namespace mrs_vpr {
 namespace {
 
+/// A route image in grey (the types toGrey takes): a header that shares the converted data, if any.
 cv::Mat grey(const cv::Mat& image) {
-  if (image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3 && image.channels() != 4)) {
-    throw std::invalid_argument("route images must be 8-bit with 1, 3 or 4 channels");
-  }
-  if (image.channels() == 1) return image;
-  cv::Mat converted;
-  cv::cvtColor(image, converted, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
-  return converted;
+  cv::Mat buffer;
+  return toGrey(image, ChannelOrder::kBgr, buffer);
 }
 
 /// Mean absolute grey-level difference of each pair of consecutive images.
@@ -32,12 +28,6 @@ std::vector<double> steps(const std::vector<cv::Mat>& route) {
     previous = current;
   }
   return differences;
-}
-
-double median(std::vector<double> values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace

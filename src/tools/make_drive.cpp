@@ -15,6 +15,7 @@
 #include <boost/program_options.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/evaluation/drive_file.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
@@ -148,8 +149,8 @@ std::vector<cv::Mat> routeImages(const std::string& folder) {
   constexpr int kPlacesWidth = 64;
   std::vector<cv::Mat> images;
   for (const std::string& file : mrs_vpr::listImageFiles(folder)) {
-    cv::Mat image = mrs_vpr::loadImage(file);
-    if (image.channels() > 1) cv::cvtColor(image, image, image.channels() == 3 ? cv::COLOR_BGR2GRAY : cv::COLOR_BGRA2GRAY);
+    cv::Mat buffer;
+    cv::Mat image = mrs_vpr::toGrey(mrs_vpr::loadImage(file), mrs_vpr::ChannelOrder::kBgr, buffer);
     if (image.cols > kPlacesWidth) {
       cv::resize(image, image, cv::Size(kPlacesWidth, std::max(1, image.rows * kPlacesWidth / image.cols)), 0, 0,
                  cv::INTER_AREA);

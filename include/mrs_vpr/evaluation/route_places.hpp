@@ -27,9 +27,9 @@ constexpr double kStandingShare = 0.1;
 
 /// The place of each route frame (0, 1, ...: a place more for each step that is not standing in
 /// every traversal). `traversals`: the route's images in route order, one vector per traversal, all
-/// the same length and each image 8-bit with 1, 3 or 4 channels and the size of that traversal's first.
-/// Throws std::invalid_argument when the traversals are empty or differ in length, an image differs in
-/// size or type, or standing_share is not in [0, 1).
+/// the same length and each image of a type toGrey takes (descriptor.hpp) and the size of that
+/// traversal's first. Throws std::invalid_argument when the traversals are empty or differ in length,
+/// an image differs in size or its type is not taken, or standing_share is not in [0, 1).
 std::vector<int> routePlaces(const std::vector<const std::vector<cv::Mat>*>& traversals,
                              double standing_share = kStandingShare);
 
