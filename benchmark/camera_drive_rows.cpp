@@ -347,7 +347,6 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     double share_sum = 0.0;
     int reaching_target = 0;
     int without_wrong = 0;
-    int map_drives = 0;
     int map_accepted = 0;
     int map_queries = 0;
   };
@@ -355,7 +354,6 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
   for (const nlohmann::json& row : continuous_rows) {
     Totals& totals = by_method[row.at("method").get<std::string>()];
     if (row.at("out_of_map").get<bool>()) {
-      ++totals.map_drives;
       totals.map_accepted += row.at("accepted").get<int>();
       totals.map_queries += row.at("queries").get<int>();
       continue;
