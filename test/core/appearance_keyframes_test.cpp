@@ -63,13 +63,20 @@ std::vector<cv::Mat> drive(double from, double speed, int frames, cv::RNG& rng) 
   return views;
 }
 
+/// Keyframes at a change of 0.4 whose scale (unrelated views) comes from a drive along the strip.
+AppearanceKeyframes keyframesScaledByADrive(const DescriptorExtractor& extractor, const DescriptorParams& params,
+                                            cv::RNG& rng) {
+  AppearanceKeyframes keyframes(params, 0.4);
+  keyframesOf(keyframes, extractor, drive(0.0, 12.0, 150, rng));
+  return keyframes;
+}
+
 class AppearanceKeyframesTest : public ::testing::TestWithParam<DescriptorParams> {};
 
 TEST_P(AppearanceKeyframesTest, AStopAddsNoKeyframeWhateverItsNoiseAndGain) {
   const DescriptorExtractor extractor(GetParam());
-  AppearanceKeyframes keyframes(GetParam(), 0.4);
   cv::RNG rng(1);
-  keyframesOf(keyframes, extractor, drive(0.0, 12.0, 150, rng));  // The scale comes from the drive.
+  AppearanceKeyframes keyframes = keyframesScaledByADrive(extractor, GetParam(), rng);
   std::vector<cv::Mat> standing;
   for (int i = 0; i < 200; ++i) {
     // Sub-pixel vibration, a gain of +-2% and sensor noise, never an exact copy.
@@ -129,9 +136,8 @@ TEST_P(AppearanceKeyframesTest, ASmoothRouteKeepsItsKeyframesFewPlacesApart) {
 
 TEST_P(AppearanceKeyframesTest, AViewAmongTheRecentKeyframesIsNotNewAgain) {
   const DescriptorExtractor extractor(GetParam());
-  AppearanceKeyframes keyframes(GetParam(), 0.4);
   cv::RNG rng(6);
-  keyframesOf(keyframes, extractor, drive(0.0, 12.0, 150, rng));  // The scale comes from the drive.
+  AppearanceKeyframes keyframes = keyframesScaledByADrive(extractor, GetParam(), rng);
   // A camera that swings between two views (a flickering light, a gate opening and closing): each
   // switch changes the view by far more than min_change, but both views are already keyframes.
   std::vector<cv::Mat> swinging;
