@@ -9,8 +9,9 @@
 // nothing of the writing is resident) loads the map into a PlaceRecognizer and answers winter
 // queries of N frames with both methods, side by side.
 //
-// Last, continuous mode: frames of the route in winter join the map as keyframes, a few per period,
+// Then continuous mode: frames of the route in winter join the map as keyframes, a few per period,
 // and matchRecent answers once a period; the row gives the CPU time of those queries per period.
+// Last, service questions about the map's newest frames ("recent" rows), both methods on one map.
 //
 //   mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]
 //                               [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2] [--threads 1]
@@ -39,6 +40,7 @@
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/memory_reuse.hpp"
+#include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
@@ -409,6 +411,89 @@ void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recogni
   }
 }
 
+/// Service questions about the map's newest frames (`~query {recent_frames: N}`, matchRecent): frames
+/// of the route in winter join the map as keyframes, from `next_route_frame` on, and both methods
+/// answer on the same map. Two kinds of row: "recent" asks after each new keyframe, as while
+/// continuous mode runs, so that MRS has kept the rows of all but the newest frame
+/// (mrs/recent_rows.hpp); "recent*" asks after N new keyframes, none of whose rows it has, so that it
+/// searches as for any test sequence.
+void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
+                   double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
+                   int& next_route_frame) {
+  std::vector<int> route_frame_of;  // Of each map frame added here, from the map's size before.
+  const int base = recognizer.size();
+  const auto addKeyframes = [&](int count) {
+    if (next_route_frame + count > static_cast<int>(winter.size())) {
+      throw std::invalid_argument("--lengths/--queries: the route in winter is too short for the recent rows");
+    }
+    for (int i = 0; i < count; ++i, ++next_route_frame) {
+      recognizer.addDescriptor(recognizer.describe(winter[static_cast<std::size_t>(next_route_frame)]));
+      route_frame_of.push_back(next_route_frame);
+    }
+    recognizer.flush();
+  };
+  for (const bool rows_kept : {true, false}) {
+    if (rows_kept) {
+      // Not timed: as continuous mode does, a question after each keyframe, until the rows kept cover a
+      // whole test sequence.
+      addKeyframes(length);
+      for (int i = 0; i < length; ++i) {
+        addKeyframes(1);
+        recognizer.matchRecent(length, "mrs");
+      }
+    }
+    const int asked = rows_kept ? options.queries : options.brute_queries;
+    std::vector<double> mrs_ms;
+    std::vector<double> brute_ms;
+    int mrs_right = 0;
+    int mrs_accepted = 0;
+    int mrs_accepted_wrong = 0;
+    int brute_right = 0;
+    int same_frame = 0;
+    int same_accepted = 0;
+    double confidence_gap = 0.0;
+    for (int q = 0; q < asked; ++q) {
+      addKeyframes(rows_kept ? 1 : length);
+      const int first = recognizer.size() - length;
+      auto right = [&](const mrs_vpr::PlaceAnswer& answer) {
+        const int route_frame = route_frame_of[static_cast<std::size_t>(first + answer.localised_row - base)];
+        return std::llabs(answer.match.reference_index - (options.truth_offset + route_frame)) <= 5;
+      };
+      auto start = Clock::now();
+      const mrs_vpr::PlaceAnswer mrs = recognizer.matchRecent(length, "mrs");
+      mrs_ms.push_back(secondsSince(start) * 1e3);
+      mrs_right += right(mrs) ? 1 : 0;
+      mrs_accepted += mrs.match.accepted ? 1 : 0;
+      mrs_accepted_wrong += mrs.match.accepted && !right(mrs) ? 1 : 0;
+      if (q < options.brute_queries) {
+        start = Clock::now();
+        const mrs_vpr::PlaceAnswer brute = recognizer.matchRecent(length, "seqslam");
+        brute_ms.push_back(secondsSince(start) * 1e3);
+        brute_right += right(brute) ? 1 : 0;
+        same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
+        same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
+        confidence_gap =
+            std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
+      }
+    }
+    const double brute = median(brute_ms);
+    const double fast = median(mrs_ms);
+    char speed_up[32] = "-";
+    char same[32] = "-";
+    char gap[32] = "-";
+    if (!brute_ms.empty()) {
+      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
+      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
+      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
+    }
+    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n",
+                sizeName(base).c_str(), length, rows_kept ? "recent" : "recent*", load_s, rss_per_frame,
+                peak_per_frame, fast, brute, mrs_right, asked, speed_up, brute_right,
+                static_cast<int>(brute_ms.size()), mrs_accepted_wrong, mrs_accepted, same, gap);
+    std::fflush(stdout);
+  }
+}
+
 /// The child: loads one map and answers the queries; prints its rows.
 int measure(const Options& options) {
   cv::setNumThreads(options.threads);
@@ -448,6 +533,14 @@ int measure(const Options& options) {
     }
   }
   if (options.periods > 0) measureContinuous(options, recognizer, winter);
+  // The second half of the route: continuous mode's keyframes come from the first.
+  int next_route_frame = static_cast<int>(winter.size()) / 2;
+  for (int length : options.lengths) {
+    // Longer sequences take MRS's coarse levels, which keep nothing between queries.
+    if (length < mrs_vpr::kMaxRecentRows) {
+      measureRecent(options, recognizer, length, load_s, rss_per_frame, peak_per_frame, winter, next_route_frame);
+    }
+  }
   return 0;
 }
 
@@ -465,7 +558,8 @@ int run(int argc, char** argv) {
               "the core's default parameters, velocity step 0.02 from N = 128 on\n",
               lengths.c_str(), options.queries, options.brute_queries, options.threads,
               static_cast<unsigned long long>(options.seed));
-  std::printf("queries: winter = the route in winter; summer* = summer with a new shift, gain and noise. "
+  std::printf("queries: winter = the route in winter; summer* = summer with a new shift, gain and noise; "
+              "recent = the map's newest N frames (the route in winter, added as keyframes) after one new keyframe, recent* = after N. "
               "load = database to a queryable map;\nRSS/frame = resident growth of the load; peak = the process's "
               "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted;\n"
               "same = queries where mrs and brute force gave the same frame / the same acceptance / of those both "

@@ -43,6 +43,7 @@ PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParam
   // The map keeps MRS's coarse cells up to date as frames arrive, so that a query does not
   // transform the whole map again.
   map_.keepCoarseCells(params_.mrs.levels, params_.descriptor);
+  recent_rows_ = std::make_unique<RecentRows>(params_.sequence.contrast_window, kMaxRecentRows);
 }
 
 cv::Mat PlaceRecognizer::describe(const cv::Mat& image, ChannelOrder order) const {
@@ -166,6 +167,7 @@ int PlaceRecognizer::reset() {
   const int cleared = map_.size() + static_cast<int>(pending_.size());
   pending_.clear();
   map_.clear();
+  recent_rows_->clear();
   map_frames_ = 0;
   frames_admitted_ = 0;
   reserved_frames_ = 0;
@@ -177,7 +179,7 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     state.frames = map_.size();
-    state.memory_bytes = map_.memoryBytes();
+    state.memory_bytes = map_.memoryBytes() + recent_rows_->memoryBytes();
     state.descriptor_size = map_.descriptorSize();
     if (!map_.empty()) {
       state.first_stamp = map_.stamp(0);
@@ -203,7 +205,7 @@ const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) co
 }
 
 PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, const std::string& method,
-                                    MatchExplanation* explanation) const {
+                                    MatchExplanation* explanation, const MapFrames* map_frames) const {
   const SequenceMatcher& matcher = matcherFor(method);
   PlaceAnswer answer;
   answer.method = matcher.name();
@@ -212,8 +214,13 @@ PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, 
   std::vector<MrsLevelTrace> levels;
   const auto* mrs = dynamic_cast<const MrsMatcher*>(&matcher);
   // Only an explained MRS answer records its levels: the same search, plus a copy of the particles.
-  answer.match = explanation != nullptr && mrs != nullptr ? mrs->match(reference, query, &levels)
-                                                          : matcher.match(reference, query);
+  std::vector<MrsLevelTrace>* trace = explanation != nullptr ? &levels : nullptr;
+  if (mrs != nullptr && map_frames != nullptr) {
+    answer.match = mrs->matchMapFrames(map_frames->map, reference.count, map_frames->first, query.count, *recent_rows_,
+                                       trace);
+  } else {
+    answer.match = mrs != nullptr ? mrs->match(reference, query, trace) : matcher.match(reference, query);
+  }
   if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
   if (explanation != nullptr) {
     *explanation = explainMatch(reference, query, answer.match, params_.sequence, params_.descriptor);
@@ -336,7 +343,9 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
                                   " - recent_exclusion " + std::to_string(recognizer_.recent_exclusion) +
                                   "); the search needs at least " + std::to_string(recent));
     }
-    result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation);
+    // The test frames are the map's own: MRS keeps their rows of the difference matrix between queries.
+    const MapFrames map_frames{map_.view(0, frames_in_map), size - recent};
+    result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_stamp = map_.stamp(size - recent + result.localised_row);
   }

@@ -133,11 +133,19 @@ std::vector<int> distinctMinima(const std::vector<float>& cost_by_anchor, int se
 
 AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities) {
   CV_Assert(enhanced.type() == CV_32FC1);
-  if (rows.first < 0 || rows.last >= enhanced.rows || rows.first > rows.last || rows.anchor < rows.first ||
-      rows.anchor > rows.last) {
+  std::vector<const float*> row_data(static_cast<std::size_t>(enhanced.rows));
+  for (int t = 0; t < enhanced.rows; ++t) row_data[static_cast<std::size_t>(t)] = enhanced.ptr<float>(t);
+  AnchorCosts costs;
+  costsByAnchor(row_data, enhanced.cols, rows, velocities, costs);
+  return costs;
+}
+
+void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, const SequenceRows& rows,
+                   const std::vector<double>& velocities, AnchorCosts& costs) {
+  if (rows.first < 0 || rows.last >= static_cast<int>(enhanced_rows.size()) || rows.first > rows.last ||
+      rows.anchor < rows.first || rows.anchor > rows.last) {
     throw std::invalid_argument("test sequence rows are outside the difference matrix");
   }
-  const int columns = enhanced.cols;
   const int length = rows.last - rows.first + 1;
   // offsets[v][t - first]: the column of row t, relative to the anchor's, at velocity v.
   std::vector<std::vector<int>> offsets(velocities.size(), std::vector<int>(static_cast<std::size_t>(length)));
@@ -147,9 +155,8 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
           static_cast<int>(std::lround(velocities[v] * (t - rows.anchor)));
     }
   }
-  AnchorCosts costs;
-  costs.cost.assign(columns, std::numeric_limits<float>::infinity());
-  costs.velocity.assign(columns, 0.0F);
+  costs.cost.assign(static_cast<std::size_t>(std::max(0, columns)), std::numeric_limits<float>::infinity());
+  costs.velocity.assign(costs.cost.size(), 0.0F);
   // Blocks of anchors are independent: each writes only its own costs, so threads share the work
   // and the result does not depend on how it is split.
   constexpr int kBlock = 256;
@@ -168,8 +175,9 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
         // Row t's cells of anchors [begin, end): inside the row, as begin and end keep every
         // trajectory inside the matrix.
         for (int t = rows.first; t <= rows.last; ++t) {
-          row_starts[static_cast<std::size_t>(t - rows.first)] =
-              enhanced.ptr<float>(t) + offsets[v][static_cast<std::size_t>(t - rows.first)] + begin;
+          row_starts[static_cast<std::size_t>(t - rows.first)] = enhanced_rows[static_cast<std::size_t>(t)] +
+                                                                  offsets[v][static_cast<std::size_t>(t - rows.first)] +
+                                                                  begin;
         }
         sumRows(row_starts.data(), length, end - begin, sums.data());
         keepLowerMeans(sums.data(), end - begin, static_cast<float>(length), static_cast<float>(velocities[v]),
@@ -177,7 +185,6 @@ AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, con
       }
     }
   });
-  return costs;
 }
 
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "mrs_vpr/mrs/compact_cells.hpp"
+#include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
 namespace mrs_vpr {
@@ -30,6 +31,16 @@ class MrsMatcher : public SequenceMatcher {
   Match match(SequenceView reference, SequenceView query) const override;
   /// The same search, recording each level, coarsest first, into `trace` (when not null).
   Match match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
+  /**
+   * match() of a test sequence of the map's own frames [first, first + count) against its frames
+   * [0, reference_count), as matchRecent asks; `map` is the whole map. A sequence with no coarser
+   * level reads and extends the rows `recent` keeps between queries (mrs/recent_rows.hpp): every end
+   * is scored as the brute force scores it, for the cost of the trajectory sums and of the rows of
+   * frames no earlier query included. When most frames have no row yet (the first questions, or
+   * questions far apart), the search answers as match() does and the newest frames' rows are kept.
+   */
+  Match matchMapFrames(SequenceView map, int reference_count, int first, int count, RecentRows& recent,
+                       std::vector<MrsLevelTrace>* trace = nullptr) const;
   /// Per-frame protocol; with no coarser level for sequence_length frames, the brute force's shared
   /// difference matrix gives the same answers once for all frames.
   std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const override;

@@ -16,6 +16,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/match_explanation.hpp"
+#include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/stamp.hpp"
@@ -169,8 +170,13 @@ class PlaceRecognizer {
   const SequenceMatcher& matcherFor(const std::string& method) const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;
+  /// Test frames that are the map's own: frames [first, first + count) of `map`, the whole map.
+  struct MapFrames {
+    SequenceView map;
+    int first = 0;
+  };
   PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method,
-                     MatchExplanation* explanation) const;
+                     MatchExplanation* explanation, const MapFrames* map_frames = nullptr) const;
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
   void flushLocked();
   /// addDescriptor without the keyframe bookkeeping.
@@ -190,6 +196,8 @@ class PlaceRecognizer {
   DescriptorSequence map_;
   std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
   int reserved_frames_ = 0;         // under map_mutex_
+  // MRS's first-pass rows of the newest frames, for matchRecent; emptied with the map.
+  std::unique_ptr<RecentRows> recent_rows_;
 
   // Under pending_mutex_, held for a few instructions only. frames_admitted_ counts the map and the
   // pending frames in one place, so that a frame arriving while a flush has emptied the buffer but not

@@ -36,6 +36,11 @@ struct AnchorCosts {
 /// Costs of all straight trajectories through `enhanced` (see searchTrajectories), per anchor column.
 AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities);
 
+/// The same through rows held apart (`enhanced_rows[t]`: `columns` values of row t) into `costs`,
+/// whose storage is reused.
+void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, const SequenceRows& rows,
+                   const std::vector<double>& velocities, AnchorCosts& costs);
+
 /**
  * Brute-force straight-trajectory search through an enhanced difference matrix (test frames x
  * reference frames): for every anchor reference column j and velocity v, the trajectory visits

@@ -1,0 +1,93 @@
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
+
+namespace mrs_vpr {
+
+/// Rows a PlaceRecognizer keeps at most: test sequences of up to this many frames reuse them. Each
+/// holds 4 bytes a map frame (4 MB at a million frames). Continuous mode asks sequence_length frames.
+constexpr int kMaxRecentRows = 128;
+
+/// MRS reads kept rows when at most 1 / kMissingRowsShare of a test sequence's frames lack one
+/// (their rows cost that share of the brute force's differences), and searches otherwise.
+constexpr int kMissingRowsShare = 4;
+
+/**
+ * The contrast-enhanced rows of the difference matrix for the map's own newest frames, kept between
+ * queries: test sequences of them (matchRecent, continuous mode) ask again and again about mostly the
+ * same frames. A frame's row, its differences to every map frame, is computed when a query first
+ * includes the frame and extended as the map grows, instead of again at every query. A query then
+ * only sums trajectories through rows it already has, and every end's cost is the brute force's.
+ *
+ * A cell of a row is final once the map reaches half a contrast window beyond it; the few cells the
+ * end of a query's reference clips are enhanced for that query alone. Rows are kept for the newest
+ * frames, as many as the longest test sequence asked, at most `max_rows`. Thread-safe: queries that
+ * use the rows take turns.
+ */
+class RecentRows {
+ public:
+  RecentRows(int contrast_window, int max_rows);
+
+  /// Whether a test sequence of `count` frames may use kept rows.
+  bool covers(int count) const { return count >= 1 && count <= max_rows_; }
+
+  /**
+   * costsByAnchor(enhanceContrast(D, contrast_window), rows, velocities) into `costs`, for the
+   * difference matrix D of map frames [first, first + count) against map frames [0, columns): the
+   * brute force's costs, up to float rounding of the contrast statistics. `map` is the whole map;
+   * rows of frames it no longer holds are dropped. Returns the descriptor comparisons made. Throws
+   * std::invalid_argument when the frames or columns lie outside `map`.
+   */
+  long long costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
+                  const std::vector<double>& velocities, AnchorCosts& costs);
+
+  /// Test frames among map frames [first, first + count) that have no row yet. Their rows cost as
+  /// much as the brute force's differences, so a caller may prefer another search when most are missing.
+  int missingRows(SequenceView map, int first, int count);
+  /**
+   * Computes rows for the test frames after the newest one that has a row, when that one is among
+   * them (queries come often enough for rows to keep up with the map), or else for the newest frame
+   * only: what a query answered without the rows keeps, so that the rows fill in over the next
+   * queries at the cost of the frames that arrive. Returns the comparisons made.
+   */
+  long long keepNewestRows(SequenceView map, int first, int count);
+
+  /// Forgets every row: the map was emptied or replaced.
+  void clear();
+  /// Bytes the rows hold.
+  std::size_t memoryBytes() const;
+  /// Frames that have a row.
+  int rowCount() const;
+
+ private:
+  struct Row {
+    int final_end = 0;          ///< Cells [0, final_end) are final.
+    std::vector<float> values;  ///< One a map frame; past final_end, scratch.
+  };
+
+  /// Cells of a map of `frames` frames that no query's reference end can clip.
+  int finalEnd(int frames) const;
+  /// Throws std::invalid_argument unless frames [first, first + count) and `columns` lie in `map`.
+  void requireInside(SequenceView map, int first, int count, int columns) const;
+  /// Drops rows of frames the map no longer holds, or older than the test frames and the newest
+  /// kept_rows_; the caller holds mutex_.
+  void forgetStaleLocked(SequenceView map, int first, int count);
+  /// Extends `rows` (map frame, row) to finalEnd(map.count); returns the comparisons made.
+  long long extend(SequenceView map, const std::vector<std::pair<int, Row*>>& rows) const;
+
+  int contrast_window_;
+  int max_rows_;
+
+  mutable std::mutex mutex_;
+  std::map<int, Row> rows_;  ///< By map frame.
+  int kept_rows_ = 0;        ///< The longest test sequence asked, at most max_rows_.
+};
+
+}  // namespace mrs_vpr

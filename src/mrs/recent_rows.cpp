@@ -1,0 +1,169 @@
+#include "mrs_vpr/mrs/recent_rows.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <opencv2/core/utility.hpp>
+
+#include "mrs_vpr/contrast_enhancement.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+/// Raw differences between map frame `frame` and map frames [begin, end), into `raw` (resized).
+void rawDifferences(SequenceView map, int frame, int begin, int end, std::vector<float>& raw) {
+  raw.resize(static_cast<std::size_t>(std::max(0, end - begin)));
+  if (end <= begin) return;
+  cv::Mat out(1, end - begin, CV_32F, raw.data());
+  computeDifferenceMatrix(map.slice(frame, frame + 1), map.slice(begin, end), out);
+}
+
+}  // namespace
+
+RecentRows::RecentRows(int contrast_window, int max_rows) : contrast_window_(contrast_window), max_rows_(max_rows) {
+  if (contrast_window_ < 0) throw std::invalid_argument("contrast_window must not be negative");
+}
+
+int RecentRows::finalEnd(int frames) const {
+  return contrast_window_ == 0 ? frames : std::max(0, frames - contrast_window_ / 2);
+}
+
+long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, Row*>>& rows) const {
+  const int final_end = finalEnd(map.count);
+  const int half = contrast_window_ / 2;
+  const auto frames = static_cast<std::size_t>(map.count);
+  // Rows final up to the same cell need the same raw columns: one difference matrix each, so that the
+  // map streams through the cache once for all of them, as in the brute force.
+  std::map<int, std::vector<std::pair<int, Row*>>> by_final_end;
+  for (const auto& entry : rows) {
+    if (entry.second->final_end < final_end) by_final_end[entry.second->final_end].push_back(entry);
+  }
+  long long comparisons = 0;
+  for (const auto& [old_end, group] : by_final_end) {
+    // enhanceRowSpan reads the raw cells its windows see.
+    const int raw_begin = std::max(0, old_end - half);
+    const int raw_end = std::min(map.count, final_end + half);
+    DescriptorSequence test_frames(map.descriptor_size);
+    test_frames.reserve(static_cast<int>(group.size()));
+    for (const auto& entry : group) {
+      test_frames.append(cv::Mat(1, map.descriptor_size, CV_8U, const_cast<std::uint8_t*>(map.frame(entry.first))));
+    }
+    cv::Mat raw(static_cast<int>(group.size()), raw_end - raw_begin, CV_32F);
+    computeDifferenceMatrix(test_frames.view(), map.slice(raw_begin, raw_end), raw);
+    comparisons += static_cast<long long>(raw.total());
+    cv::parallel_for_(cv::Range(0, raw.rows), [&](const cv::Range& part) {
+      for (int i = part.start; i < part.end; ++i) {
+        Row& row = *group[static_cast<std::size_t>(i)].second;
+        // Room to grow, so that the row is not copied at every new frame.
+        if (row.values.capacity() < frames) row.values.reserve(frames + frames / 8);
+        if (row.values.size() < frames) row.values.resize(frames);
+        enhanceRowSpan(raw.ptr<float>(i), map.count, old_end, final_end, contrast_window_, row.values.data() + old_end);
+        row.final_end = final_end;
+      }
+    });
+  }
+  return comparisons;
+}
+
+void RecentRows::requireInside(SequenceView map, int first, int count, int columns) const {
+  if (first < 0 || count < 1 || first + count > map.count || columns < 1 || columns > map.count) {
+    throw std::invalid_argument("RecentRows: frames [" + std::to_string(first) + ", " + std::to_string(first + count) +
+                                ") against " + std::to_string(columns) + " columns lie outside a map of " +
+                                std::to_string(map.count) + " frames");
+  }
+}
+
+void RecentRows::forgetStaleLocked(SequenceView map, int first, int count) {
+  // A map that shrank was emptied or replaced: its rows describe other frames.
+  const bool shrank = !rows_.empty() && (rows_.rbegin()->first >= map.count ||
+                                          rows_.rbegin()->second.final_end > finalEnd(map.count));
+  if (shrank) rows_.clear();
+  kept_rows_ = std::min(max_rows_, std::max(kept_rows_, count));
+  rows_.erase(rows_.begin(), rows_.lower_bound(std::min(first, map.count - kept_rows_)));
+}
+
+int RecentRows::missingRows(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  int missing = 0;
+  for (int frame = first; frame < first + count; ++frame) missing += rows_.count(frame) == 0 ? 1 : 0;
+  return missing;
+}
+
+long long RecentRows::keepNewestRows(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  // The frames after the newest that has a row, when that one is still among the test frames (queries
+  // come often enough to keep up); the newest frame alone otherwise.
+  int from = first + count - 1;
+  auto newest = rows_.lower_bound(first + count);
+  if (newest != rows_.begin() && (--newest)->first >= first) from = newest->first + 1;
+  std::vector<std::pair<int, Row*>> added;
+  for (int frame = from; frame < first + count; ++frame) added.emplace_back(frame, &rows_[frame]);
+  return extend(map, added);
+}
+
+long long RecentRows::costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
+                            const std::vector<double>& velocities, AnchorCosts& costs) {
+  if (!covers(count)) {
+    throw std::invalid_argument("RecentRows: " + std::to_string(count) + " test frames, at most " +
+                                std::to_string(max_rows_) + " kept");
+  }
+  requireInside(map, first, count, columns);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+
+  std::vector<std::pair<int, Row*>> test_rows;
+  for (int frame = first; frame < first + count; ++frame) test_rows.emplace_back(frame, &rows_[frame]);
+  long long comparisons = extend(map, test_rows);
+
+  // The reference ends at `columns`: the cells whose contrast window that end clips are enhanced for
+  // this query, over the final ones, which are put back afterwards.
+  const int tail_begin = finalEnd(columns);
+  const auto tail = static_cast<std::ptrdiff_t>(columns - tail_begin);
+  const int half = contrast_window_ / 2;
+  std::vector<float> final_tails(static_cast<std::size_t>(count * tail));
+  std::vector<const float*> row_data;
+  std::vector<float> raw;
+  for (int i = 0; i < count; ++i) {
+    float* values = test_rows[static_cast<std::size_t>(i)].second->values.data();
+    row_data.push_back(values);
+    if (tail == 0) continue;
+    std::copy(values + tail_begin, values + columns, final_tails.begin() + i * tail);
+    const int raw_begin = std::max(0, tail_begin - half);
+    rawDifferences(map, first + i, raw_begin, columns, raw);
+    comparisons += columns - raw_begin;
+    enhanceRowSpan(raw.data(), columns, tail_begin, columns, contrast_window_, values + tail_begin);
+  }
+  costsByAnchor(row_data, columns, rows, velocities, costs);
+  for (int i = 0; i < count && tail > 0; ++i) {
+    const auto kept = final_tails.begin() + i * tail;
+    std::copy(kept, kept + tail, test_rows[static_cast<std::size_t>(i)].second->values.data() + tail_begin);
+  }
+  return comparisons;
+}
+
+void RecentRows::clear() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  rows_.clear();
+  kept_rows_ = 0;
+}
+
+std::size_t RecentRows::memoryBytes() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::size_t bytes = 0;
+  for (const auto& entry : rows_) bytes += entry.second.values.capacity() * sizeof(float);
+  return bytes;
+}
+
+int RecentRows::rowCount() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return static_cast<int>(rows_.size());
+}
+
+}  // namespace mrs_vpr

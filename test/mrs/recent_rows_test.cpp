@@ -1,0 +1,165 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/contrast_enhancement.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/mrs/recent_rows.hpp"
+#include "mrs_vpr/mrs_matcher.hpp"
+#include "mrs_vpr/seqslam_matcher.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+constexpr int kWindow = 10;
+const std::vector<double> kVelocities{0.8, 0.9, 1.0, 1.1, 1.2};
+
+/// `count` random descriptors of `size` bytes appended to `map`.
+void appendRandomFrames(DescriptorSequence& map, int count, int size, cv::RNG& rng) {
+  for (int i = 0; i < count; ++i) {
+    cv::Mat frame(1, size, CV_8U);
+    rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+    map.append(frame);
+  }
+}
+
+/// The brute force's costs: the whole enhanced difference matrix of the test frames.
+AnchorCosts bruteForceCosts(SequenceView map, int first, int count, int columns, const SequenceRows& rows) {
+  const cv::Mat differences = computeDifferenceMatrix(map.slice(first, first + count), map.slice(0, columns));
+  return costsByAnchor(enhanceContrast(differences, kWindow), rows, kVelocities);
+}
+
+void expectSameCosts(const AnchorCosts& kept, const AnchorCosts& brute, const std::string& where) {
+  ASSERT_EQ(kept.cost.size(), brute.cost.size()) << where;
+  for (std::size_t j = 0; j < brute.cost.size(); ++j) {
+    if (std::isinf(brute.cost[j])) {
+      EXPECT_TRUE(std::isinf(kept.cost[j])) << where << ", end " << j;
+      continue;
+    }
+    ASSERT_NEAR(kept.cost[j], brute.cost[j], 1e-4F) << where << ", end " << j;
+  }
+}
+
+// A map growing by a few frames between questions about its newest 20, each question's reference
+// ending at a different distance before them: the kept rows give the brute force's cost for every end.
+TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
+  cv::RNG rng(3);
+  DescriptorSequence map(64);
+  appendRandomFrames(map, 300, 64, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  const SequenceRows rows{0, 19, 10};
+  AnchorCosts kept;
+  for (int step = 0; step < 12; ++step) {
+    appendRandomFrames(map, 1 + step % 4, 64, rng);
+    const int first = map.size() - 20;
+    for (const int gap : {30, 3, 100}) {  // A shorter reference after a longer one: tails put back.
+      const int columns = first - gap;
+      recent.costs(map.view(), first, 20, columns, rows, kVelocities, kept);
+      expectSameCosts(kept, bruteForceCosts(map.view(), first, 20, columns, rows),
+                      "map " + std::to_string(map.size()) + ", reference " + std::to_string(columns));
+    }
+  }
+  EXPECT_EQ(recent.rowCount(), 20);  // Rows of frames that left the test sequence were dropped.
+  EXPECT_GE(recent.memoryBytes(), 20 * map.size() * sizeof(float));
+}
+
+TEST(RecentRows, AMapEmptiedAndFilledAgainIsNotReadFromOldRows) {
+  cv::RNG rng(5);
+  DescriptorSequence map(64);
+  appendRandomFrames(map, 400, 64, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  const SequenceRows rows{0, 9, 9};
+  AnchorCosts kept;
+  recent.costs(map.view(), 390, 10, 350, rows, kVelocities, kept);
+  DescriptorSequence smaller(64);
+  appendRandomFrames(smaller, 200, 64, rng);
+  recent.costs(smaller.view(), 190, 10, 150, rows, kVelocities, kept);
+  expectSameCosts(kept, bruteForceCosts(smaller.view(), 190, 10, 150, rows), "after the map shrank");
+  recent.clear();
+  EXPECT_EQ(recent.rowCount(), 0);
+  EXPECT_EQ(recent.missingRows(smaller.view(), 190, 10), 10);
+}
+
+// Questions that follow the map keep up with it a few frames at a time; a question long after the last
+// keeps only its newest frame's row, not those of every frame that came in between.
+TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
+  cv::RNG rng(7);
+  DescriptorSequence map(64);
+  appendRandomFrames(map, 200, 64, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  EXPECT_EQ(recent.missingRows(map.view(), 180, 20), 20);
+  EXPECT_GT(recent.keepNewestRows(map.view(), 180, 20), 0);
+  EXPECT_EQ(recent.missingRows(map.view(), 180, 20), 19);
+  appendRandomFrames(map, 3, 64, rng);
+  recent.keepNewestRows(map.view(), 183, 20);
+  EXPECT_EQ(recent.missingRows(map.view(), 183, 20), 16);  // The 3 new frames have rows now.
+  appendRandomFrames(map, 100, 64, rng);
+  recent.keepNewestRows(map.view(), 283, 20);
+  EXPECT_EQ(recent.missingRows(map.view(), 283, 20), 19);
+  EXPECT_EQ(recent.rowCount(), 1);
+}
+
+TEST(RecentRows, RefusesFramesOutsideTheMapAndSequencesLongerThanItKeeps) {
+  cv::RNG rng(9);
+  DescriptorSequence map(64);
+  appendRandomFrames(map, 100, 64, rng);
+  RecentRows recent(kWindow, 16);
+  AnchorCosts kept;
+  EXPECT_FALSE(recent.covers(17));
+  EXPECT_THROW(recent.costs(map.view(), 80, 17, 50, SequenceRows{0, 16, 16}, kVelocities, kept), std::invalid_argument);
+  EXPECT_THROW(recent.costs(map.view(), 95, 10, 50, SequenceRows{0, 9, 9}, kVelocities, kept), std::invalid_argument);
+  EXPECT_THROW(recent.costs(map.view(), 80, 10, 101, SequenceRows{0, 9, 9}, kVelocities, kept), std::invalid_argument);
+}
+
+// Questions about a revisit, asked after each new frame as continuous mode asks: once the rows have
+// filled in, MRS's answer is the brute force's, and before, its own search's.
+TEST(RecentRows, MrsAnswersAsTheBruteForceFromKeptRows) {
+  cv::RNG rng(11);
+  const int size = DescriptorParams{}.descriptorSize();
+  DescriptorSequence map(size);
+  appendRandomFrames(map, 800, size, rng);
+  SequenceParams sequence;
+  sequence.contrast_window = kWindow;
+  const MrsMatcher mrs(sequence, MrsParams{});
+  const SeqSlamMatcher brute(sequence);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  int answered_from_rows = 0;
+  for (int revisit = 0; revisit < 60; ++revisit) {
+    const cv::Mat original(1, size, CV_8U, const_cast<std::uint8_t*>(map.view().frame(200 + revisit)));
+    cv::Mat noise(1, size, CV_16S);
+    rng.fill(noise, cv::RNG::NORMAL, 0, 12);
+    cv::Mat frame;
+    original.convertTo(frame, CV_16S);
+    frame += noise;
+    cv::Mat revisited;
+    frame.convertTo(revisited, CV_8U);  // Saturating: a noisy view of frame 200 + revisit.
+    map.append(revisited);
+    if (revisit < 20) continue;
+    const int first = map.size() - 20;
+    const int columns = first - 10;
+    const int missing = recent.missingRows(map.view(), first, 20);
+    const Match kept = mrs.matchMapFrames(map.view(), columns, first, 20, recent);
+    const Match searched = mrs.match(map.view(0, columns), map.view(first, map.size()));
+    const Match reference = brute.match(map.view(0, columns), map.view(first, map.size()));
+    if (missing > 20 / kMissingRowsShare) {
+      EXPECT_EQ(kept.reference_index, searched.reference_index) << "revisit " << revisit;
+      EXPECT_FLOAT_EQ(kept.confidence, searched.confidence) << "revisit " << revisit;
+      continue;
+    }
+    ++answered_from_rows;
+    EXPECT_EQ(kept.reference_index, reference.reference_index) << "revisit " << revisit;
+    EXPECT_EQ(kept.velocity, reference.velocity) << "revisit " << revisit;
+    EXPECT_NEAR(kept.confidence, reference.confidence, 1e-3F) << "revisit " << revisit;
+    EXPECT_EQ(kept.accepted, reference.accepted) << "revisit " << revisit;
+    // The centred anchor, 9 frames before the newest: a view of frame 200 + revisit - 9.
+    EXPECT_NEAR(kept.reference_index, 200 + revisit - 9, 2) << "revisit " << revisit;
+  }
+  EXPECT_GT(answered_from_rows, 20);  // The rows filled in after a few questions.
+}
+
+}  // namespace
+}  // namespace mrs_vpr
