@@ -22,6 +22,9 @@ namespace node {
 namespace {
 
 constexpr double kWarningPeriod = 5.0;  // [s] between repeated warnings about bad frames
+// Answers a publisher holds while the transport sends them. Continuous mode may localise every keyframe
+// of a period at once, and restate up to 100 answers for a stop: a short queue would drop the oldest.
+constexpr int kAnswerQueue = 1000;
 
 std::string inQuotes(const std::string& text) { return "'" + text + "'"; }
 
@@ -41,8 +44,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   openMap();  // First: a map database that cannot be used stops the node before it offers anything.
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
-  loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", 10);
-  loop_closure_stamps_pub_ = private_nh_.advertise<std_msgs::Float64MultiArray>("loop_closure_stamps", 10);
+  loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", kAnswerQueue);
+  loop_closure_stamps_pub_ = private_nh_.advertise<std_msgs::Float64MultiArray>("loop_closure_stamps", kAnswerQueue);
   map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
   debug_image_ = std::make_unique<DebugImagePublisher>(private_nh_);
   query_srv_ = query_nh_.advertiseService("query", &PlaceRecognitionNode::queryCallback, this);
