@@ -91,6 +91,7 @@ int RecentRows::missingRows(SequenceView map, int first, int count) {
   forgetStaleLocked(map, first, count);
   int missing = 0;
   for (int frame = first; frame < first + count; ++frame) missing += rows_.count(frame) == 0 ? 1 : 0;
+  countBytesLocked();  // Rows may have been dropped.
   return missing;
 }
 
@@ -105,7 +106,9 @@ long long RecentRows::keepNewestRows(SequenceView map, int first, int count) {
   if (newest != rows_.begin() && (--newest)->first >= first) from = newest->first + 1;
   std::vector<std::pair<int, Row*>> added;
   for (int frame = from; frame < first + count; ++frame) added.emplace_back(frame, &rows_[frame]);
-  return extend(map, added);
+  const long long comparisons = extend(map, added);
+  countBytesLocked();
+  return comparisons;
 }
 
 long long RecentRows::costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
@@ -145,6 +148,7 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
     const auto kept = final_tails.begin() + i * tail;
     std::copy(kept, kept + tail, test_rows[static_cast<std::size_t>(i)].second->values.data() + tail_begin);
   }
+  countBytesLocked();
   return comparisons;
 }
 
@@ -152,13 +156,13 @@ void RecentRows::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   rows_.clear();
   kept_rows_ = 0;
+  bytes_ = 0;
 }
 
-std::size_t RecentRows::memoryBytes() const {
-  std::lock_guard<std::mutex> lock(mutex_);
+void RecentRows::countBytesLocked() {
   std::size_t bytes = 0;
   for (const auto& entry : rows_) bytes += entry.second.values.capacity() * sizeof(float);
-  return bytes;
+  bytes_ = bytes;
 }
 
 int RecentRows::rowCount() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <map>
 #include <mutex>
@@ -61,8 +62,8 @@ class RecentRows {
 
   /// Forgets every row: the map was emptied or replaced.
   void clear();
-  /// Bytes the rows hold.
-  std::size_t memoryBytes() const;
+  /// Bytes the rows hold (as of the last query: read without waiting for a running one).
+  std::size_t memoryBytes() const { return bytes_.load(); }
   /// Frames that have a row.
   int rowCount() const;
 
@@ -79,6 +80,8 @@ class RecentRows {
   /// Drops rows of frames the map no longer holds, or older than the test frames and the newest
   /// kept_rows_; the caller holds mutex_.
   void forgetStaleLocked(SequenceView map, int first, int count);
+  /// Sets bytes_; the caller holds mutex_.
+  void countBytesLocked();
   /// Extends `rows` (map frame, row) to finalEnd(map.count); returns the comparisons made.
   long long extend(SequenceView map, const std::vector<std::pair<int, Row*>>& rows) const;
 
@@ -88,6 +91,7 @@ class RecentRows {
   mutable std::mutex mutex_;
   std::map<int, Row> rows_;  ///< By map frame.
   int kept_rows_ = 0;        ///< The longest test sequence asked, at most max_rows_.
+  std::atomic<std::size_t> bytes_{0};
 };
 
 }  // namespace mrs_vpr
