@@ -411,6 +411,9 @@ void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recogni
   }
 }
 
+/// Route frames between continuous mode's keyframes and the recent rows'.
+constexpr int kRouteGap = 100;
+
 /// Service questions about the map's newest frames (`~query {recent_frames: N}`, matchRecent): frames
 /// of the route in winter join the map as keyframes, from `next_route_frame` on, and both methods
 /// answer on the same map. Two kinds of row: "recent" asks after each new keyframe, as while
@@ -533,8 +536,11 @@ int measure(const Options& options) {
     }
   }
   if (options.periods > 0) measureContinuous(options, recognizer, winter);
-  // The second half of the route: continuous mode's keyframes come from the first.
-  int next_route_frame = static_cast<int>(winter.size()) / 2;
+  // Past continuous mode's keyframes, with a gap of 100 places, so that no question finds those.
+  const int continuous_frames = options.periods > 0 ? options.periods * options.keyframes_per_period +
+                                                          recognizer.parameters().sequence.sequence_length
+                                                    : 0;
+  int next_route_frame = continuous_frames + kRouteGap;
   for (int length : options.lengths) {
     // Longer sequences take MRS's coarse levels, which keep nothing between queries.
     if (length < mrs_vpr::kMaxRecentRows) {
