@@ -13,6 +13,9 @@
 namespace mrs_vpr {
 namespace {
 
+// Cells of a row enhanced as one piece of work.
+constexpr int kStretch = 16384;
+
 /// Raw differences between map frame `frame` and map frames [begin, end), into `raw` (resized).
 void rawDifferences(SequenceView map, int frame, int begin, int end, std::vector<float>& raw) {
   raw.resize(static_cast<std::size_t>(std::max(0, end - begin)));
@@ -54,14 +57,22 @@ long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, 
     cv::Mat raw(static_cast<int>(group.size()), raw_end - raw_begin, CV_32F);
     computeDifferenceMatrix(test_frames.view(), map.slice(raw_begin, raw_end), raw);
     comparisons += static_cast<long long>(raw.total());
-    cv::parallel_for_(cv::Range(0, raw.rows), [&](const cv::Range& part) {
-      for (int i = part.start; i < part.end; ++i) {
-        Row& row = *group[static_cast<std::size_t>(i)].second;
-        // Room to grow, so that the row is not copied at every new frame.
-        if (row.values.capacity() < frames) row.values.reserve(frames + frames / 8);
-        if (row.values.size() < frames) row.values.resize(frames);
-        enhanceRowSpan(raw.ptr<float>(i), map.count, old_end, final_end, contrast_window_, row.values.data() + old_end);
-        row.final_end = final_end;
+    for (const auto& entry : group) {
+      Row& row = *entry.second;
+      // Room to grow, so that the row is not copied at every new frame.
+      if (row.values.capacity() < frames) row.values.reserve(frames + frames / 8);
+      if (row.values.size() < frames) row.values.resize(frames);
+      row.final_end = final_end;
+    }
+    // Stretches of every row enhanced in parallel: a single new row is most of a question's work.
+    const int stretches = (final_end - old_end + kStretch - 1) / kStretch;
+    cv::parallel_for_(cv::Range(0, raw.rows * stretches), [&](const cv::Range& part) {
+      for (int k = part.start; k < part.end; ++k) {
+        const int begin = old_end + (k % stretches) * kStretch;
+        const int end = std::min(final_end, begin + kStretch);
+        const float* seen = raw.ptr<float>(k / stretches) + (std::max(0, begin - half) - raw_begin);
+        float* out = group[static_cast<std::size_t>(k / stretches)].second->values.data() + begin;
+        enhanceRowSpan(seen, map.count, begin, end, contrast_window_, out);
       }
     });
   }
