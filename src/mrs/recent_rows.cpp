@@ -114,7 +114,11 @@ long long RecentRows::keepNewestRows(SequenceView map, int first, int count) {
   // come often enough to keep up); the newest frame alone otherwise.
   int from = first + count - 1;
   auto newest = rows_.lower_bound(first + count);
-  if (newest != rows_.begin() && (--newest)->first >= first) from = newest->first + 1;
+  if (newest != rows_.begin() && (--newest)->first >= first) {
+    // At most as many as a question may miss and still read the rows: more would cost a good part of
+    // the brute force's differences on every question of a robot that adds keyframes faster.
+    from = std::max(newest->first + 1, first + count - std::max(1, count / kMissingRowsShare));
+  }
   std::vector<std::pair<int, Row*>> added;
   for (int frame = from; frame < first + count; ++frame) added.emplace_back(frame, &rows_[frame]);
   const long long comparisons = extend(map, added);

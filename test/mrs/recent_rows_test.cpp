@@ -97,9 +97,12 @@ TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
   appendRandomFrames(map, 3, 64, rng);
   recent.keepNewestRows(map.view(), 183, 20);
   EXPECT_EQ(recent.missingRows(map.view(), 183, 20), 16);  // The 3 new frames have rows now.
+  appendRandomFrames(map, 8, 64, rng);
+  recent.keepNewestRows(map.view(), 191, 20);
+  EXPECT_EQ(recent.missingRows(map.view(), 191, 20), 11);  // At most a quarter of them: the newest 5.
   appendRandomFrames(map, 100, 64, rng);
-  recent.keepNewestRows(map.view(), 283, 20);
-  EXPECT_EQ(recent.missingRows(map.view(), 283, 20), 19);
+  recent.keepNewestRows(map.view(), 291, 20);
+  EXPECT_EQ(recent.missingRows(map.view(), 291, 20), 19);
   EXPECT_EQ(recent.rowCount(), 1);
 }
 

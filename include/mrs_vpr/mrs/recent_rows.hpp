@@ -54,9 +54,10 @@ class RecentRows {
   int missingRows(SequenceView map, int first, int count);
   /**
    * Computes rows for the test frames after the newest one that has a row, when that one is among
-   * them (queries come often enough for rows to keep up with the map), or else for the newest frame
-   * only: what a query answered without the rows keeps, so that the rows fill in over the next
-   * queries at the cost of the frames that arrive. Returns the comparisons made.
+   * them (queries come often enough for rows to keep up with the map), at most count /
+   * kMissingRowsShare of the newest, or else for the newest frame only: what a query answered
+   * without the rows keeps, so that the rows fill in over the next queries at the cost of the frames
+   * that arrive. Returns the comparisons made.
    */
   long long keepNewestRows(SequenceView map, int first, int count);
 
