@@ -104,6 +104,32 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
             std::string::npos);
 }
 
+// Questions about the newest frames after each new one, as continuous mode asks: once MRS has kept
+// their rows (mrs/recent_rows.hpp), its answers are the brute force's; the rows are counted in the
+// map's memory and go with a reset.
+TEST(PlaceRecognizer, QuestionsAboutTheNewestFramesReadKeptRowsWithTheBruteForcesAnswer) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(globalSearchParams(), limits);
+  mapReference(recognizer);
+  const std::size_t map_bytes = recognizer.state().memory_bytes;
+  for (int i = 100; i < 160; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)], Stamp::fromSecondsAndNanoseconds(1000 + i, 0));
+    if (i < 120) continue;
+    const PlaceAnswer mrs = recognizer.matchRecent(20, "mrs");
+    const PlaceAnswer brute = recognizer.matchRecent(20, "seqslam");
+    EXPECT_EQ(mrs.match.reference_index, brute.match.reference_index) << "frame " << i;
+    EXPECT_EQ(mrs.match.accepted, brute.match.accepted) << "frame " << i;
+    EXPECT_NEAR(mrs.match.confidence, brute.match.confidence, 1e-3F) << "frame " << i;
+    EXPECT_EQ(mrs.localised_stamp, brute.localised_stamp) << "frame " << i;
+  }
+  // 20 rows of 4 bytes for each of about 640 map frames, and the room each keeps to grow.
+  const std::size_t with_rows = recognizer.state().memory_bytes;
+  EXPECT_GE(with_rows, map_bytes + 20 * 4 * 600);
+  recognizer.reset();  // The map keeps its storage for the next frames; the rows go.
+  EXPECT_LE(recognizer.state().memory_bytes + 20 * 4 * 600, with_rows);
+}
+
 TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
   Parameters centred = globalSearchParams();
   centred.sequence.alignment = WindowAlignment::kCentred;  // the default
