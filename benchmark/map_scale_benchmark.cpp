@@ -414,6 +414,11 @@ void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recogni
 /// Route frames between continuous mode's keyframes and the recent rows'.
 constexpr int kRouteGap = 100;
 
+/// Frames of the route measureRecent adds for test sequences of `length` frames.
+int recentRouteFrames(const Options& options, int length) {
+  return 2 * length + options.queries + options.brute_queries * length;
+}
+
 /// Service questions about the map's newest frames (`~query {recent_frames: N}`, matchRecent): frames
 /// of the route in winter join the map as keyframes, from `next_route_frame` on, and both methods
 /// answer on the same map. Two kinds of row: "recent" asks after each new keyframe, as while
@@ -536,11 +541,20 @@ int measure(const Options& options) {
     }
   }
   if (options.periods > 0) measureContinuous(options, recognizer, winter);
-  // Past continuous mode's keyframes, with a gap of 100 places, so that no question finds those.
+  // Past continuous mode's keyframes, with a gap of up to 100 places, so that no question finds those.
   const int continuous_frames = options.periods > 0 ? options.periods * options.keyframes_per_period +
                                                           recognizer.parameters().sequence.sequence_length
                                                     : 0;
-  int next_route_frame = continuous_frames + kRouteGap;
+  int recent_frames = 0;
+  for (int length : options.lengths) {
+    if (length < mrs_vpr::kMaxRecentRows) recent_frames += recentRouteFrames(options, length);
+  }
+  int next_route_frame = std::min(continuous_frames + kRouteGap, static_cast<int>(winter.size()) - recent_frames);
+  if (next_route_frame < continuous_frames) {
+    std::printf("%9s recent rows skipped: they need %d frames of the route in winter after continuous mode's %d, "
+                "of %zu\n", sizeName(frames).c_str(), recent_frames, continuous_frames, winter.size());
+    return 0;
+  }
   for (int length : options.lengths) {
     // Longer sequences take MRS's coarse levels, which keep nothing between queries.
     if (length < mrs_vpr::kMaxRecentRows) {

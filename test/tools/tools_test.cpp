@@ -972,6 +972,20 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
       EXPECT_EQ(row[12].substr(row[12].rfind('/')), "/1") << row[12];  // same frame / acceptance, of 1
     }
   }
+  // Questions about the newest frames, with rows kept and without: both methods answered.
+  for (const std::string kind : {"recent", "recent*"}) {
+    int rows = 0;
+    std::istringstream lines(result.out);
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      const std::vector<std::string> tokens{std::istream_iterator<std::string>(words), {}};
+      if (tokens.size() == 14 && tokens[1] == "10" && tokens[2] == kind) {
+        ++rows;
+        EXPECT_EQ(tokens[12].substr(tokens[12].rfind('/')), "/1") << line;  // both methods answered one
+      }
+    }
+    EXPECT_EQ(rows, 2) << kind << " (one a map)\n" << result.out;
+  }
   // Continuous mode: one row a method, its queries' CPU share at a 1 s period.
   EXPECT_NE(result.out.find("mrs continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("seqslam continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
