@@ -414,8 +414,8 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   checkInputs(reference, query);
   if (levelsFor(count, reference_count) > 0 || !recent.covers(count)) return match(reference, query, trace);
   if (recent.missingRows(map, first, count) > count / kMissingRowsShare) {
-    // Rows for most of the frames would cost about the brute force: the search answers, and the rows
-    // of the newest frames are kept for the queries that follow.
+    // Rows for more than a quarter of the frames would cost a good part of the brute force: the search
+    // answers, and the rows of the newest frames are kept for the questions that follow.
     Match answer = match(reference, query, trace);
     answer.comparisons += recent.keepNewestRows(map, first, count);
     return answer;
@@ -424,20 +424,18 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   thread_local AnchorCosts costs;  // Map-sized: kept by the querying thread for its next query.
   const long long comparisons =
       recent.costs(map, first, count, reference_count, rows, velocities(sequence_), costs);
-  // As the brute force scores its table (searchTrajectories).
-  Match match = scoreFromCosts(costs.cost, sequence_.match_exclusion);
-  if (match.reference_index >= 0) match.velocity = costs.velocity[static_cast<std::size_t>(match.reference_index)];
-  match.comparisons = comparisons;
+  Match result = scoreFromCosts(costs, sequence_.match_exclusion);  // As the brute force scores its table.
+  result.comparisons = comparisons;
   if (trace != nullptr) {
     MrsLevelTrace level;
     level.table_minima = distinctMinima(costs.cost, sequence_.match_exclusion, MrsLevelTrace::kTracedMinima);
     level.candidates = level.table_minima;
-    level.table_confidence = match.confidence;
+    level.table_confidence = result.confidence;
     trace->push_back(std::move(level));
   }
-  placeAnswer(match, reference, query, rows);
-  applyAcceptance(match, sequence_);
-  return match;
+  placeAnswer(result, reference, query, rows);
+  applyAcceptance(result, sequence_);
+  return result;
 }
 
 }  // namespace mrs_vpr
