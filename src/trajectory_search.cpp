@@ -110,7 +110,7 @@ Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
   return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion);
 }
 
-Match scoreFromCosts(const AnchorCosts& costs, int exclusion) {
+Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion) {
   Match match = scoreFromCosts(costs.cost, exclusion);
   if (match.reference_index >= 0) match.velocity = costs.velocity[static_cast<std::size_t>(match.reference_index)];
   return match;
@@ -194,7 +194,7 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
 }
 
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
-  Match match = scoreFromCosts(costsByAnchor(enhanced, rows, velocities(params)), params.match_exclusion);
+  Match match = scoreAnchorCosts(costsByAnchor(enhanced, rows, velocities(params)), params.match_exclusion);
   match.comparisons = static_cast<long long>(rows.last - rows.first + 1) * enhanced.cols;
   return match;
 }

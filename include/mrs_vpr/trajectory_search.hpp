@@ -58,8 +58,8 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
 /// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than
 /// exclusion/2 frames away, as scoreAround does.
 Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion);
-/// The same for a table of ends and velocities: the answer's velocity is its end's.
-Match scoreFromCosts(const AnchorCosts& costs, int exclusion);
+/// scoreFromCosts of a table of ends and velocities; the answer's velocity is its end's.
+Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion);
 
 /// Up to `count` ends with the lowest finite costs, lowest first, each more than `separation`
 /// ends from every one chosen before it: the distinct places a table of end costs suggests.

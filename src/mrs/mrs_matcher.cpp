@@ -424,7 +424,7 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   thread_local AnchorCosts costs;  // Map-sized: kept by the querying thread for its next query.
   const long long comparisons =
       recent.costs(map, first, count, reference_count, rows, velocities(sequence_), costs);
-  Match result = scoreFromCosts(costs, sequence_.match_exclusion);  // As the brute force scores its table.
+  Match result = scoreAnchorCosts(costs, sequence_.match_exclusion);  // As the brute force scores its table.
   result.comparisons = comparisons;
   if (trace != nullptr) {
     MrsLevelTrace level;
