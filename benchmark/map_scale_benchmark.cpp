@@ -286,6 +286,54 @@ mrs_vpr::Parameters paramsFor(int length, const mrs_vpr::DescriptorParams& descr
   return params;
 }
 
+/// One row's figures: mrs's answers and times, and the brute force's on the first of the same questions.
+struct RowTally {
+  std::vector<double> mrs_ms;
+  std::vector<double> brute_ms;
+  int mrs_right = 0;
+  int mrs_accepted = 0;
+  int mrs_accepted_wrong = 0;
+  int brute_right = 0;
+  int same_frame = 0;
+  int same_accepted = 0;
+  double confidence_gap = 0.0;
+
+  void addMrs(const mrs_vpr::PlaceAnswer& mrs, double ms, bool right) {
+    mrs_ms.push_back(ms);
+    mrs_right += right ? 1 : 0;
+    mrs_accepted += mrs.match.accepted ? 1 : 0;
+    mrs_accepted_wrong += mrs.match.accepted && !right ? 1 : 0;
+  }
+
+  void addBrute(const mrs_vpr::PlaceAnswer& mrs, const mrs_vpr::PlaceAnswer& brute, double ms, bool right) {
+    brute_ms.push_back(ms);
+    brute_right += right ? 1 : 0;
+    same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
+    same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
+    confidence_gap =
+        std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
+  }
+
+  void print(const std::string& map, int length, const char* kind, double load_s, double rss_per_frame,
+             double peak_per_frame) const {
+    const double brute = median(brute_ms);
+    const double fast = median(mrs_ms);
+    char speed_up[32] = "-";
+    char same[32] = "-";
+    char gap[32] = "-";
+    if (!brute_ms.empty()) {
+      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
+      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
+      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
+    }
+    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n", map.c_str(),
+                length, kind, load_s, rss_per_frame, peak_per_frame, fast, brute, mrs_right,
+                static_cast<int>(mrs_ms.size()), speed_up, brute_right, static_cast<int>(brute_ms.size()),
+                mrs_accepted_wrong, mrs_accepted, same, gap);
+    std::fflush(stdout);
+  }
+};
+
 /// One map's rows for test sequences of `length` frames.
 void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
                    double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
@@ -297,15 +345,7 @@ void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
   for (const bool across_seasons : {true, false}) {
     std::mt19937_64 rng(options.seed);
     std::uniform_int_distribution<int> end_of(length - 1, static_cast<int>(winter.size()) - 1);
-    std::vector<double> mrs_ms;
-    std::vector<double> brute_ms;
-    int mrs_right = 0;
-    int mrs_accepted = 0;
-    int mrs_accepted_wrong = 0;
-    int brute_right = 0;
-    int same_frame = 0;
-    int same_accepted = 0;
-    double confidence_gap = 0.0;
+    RowTally tally;
     for (int q = 0; q < options.queries; ++q) {
       const int end = end_of(rng);
       const Augmenter::Look look = augmenter.nextLook(2);
@@ -321,18 +361,11 @@ void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
       };
       auto start = Clock::now();
       const mrs_vpr::PlaceAnswer mrs = recognizer.match(query, "mrs");
-      mrs_ms.push_back(secondsSince(start) * 1e3);
-      mrs_right += right(mrs) ? 1 : 0;
-      mrs_accepted += mrs.match.accepted ? 1 : 0;
-      mrs_accepted_wrong += mrs.match.accepted && !right(mrs) ? 1 : 0;
+      tally.addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
       if (q < options.brute_queries) {
         start = Clock::now();
         const mrs_vpr::PlaceAnswer brute = recognizer.match(query, "seqslam");
-        brute_ms.push_back(secondsSince(start) * 1e3);
-        brute_right += right(brute) ? 1 : 0;
-        same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
-        same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
-        confidence_gap = std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
+        tally.addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
         if (std::getenv("MRS_VPR_SHOW_ANSWERS") != nullptr) {
           std::fprintf(stderr, "N=%d %s query %d: truth %lld, mrs %d (confidence %.2f%s), brute %d (%.2f%s)\n", length,
                        across_seasons ? "winter" : "summer*", q, first_truth + mrs.localised_row, mrs.match.reference_index, mrs.match.confidence,
@@ -341,21 +374,8 @@ void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
         }
       }
     }
-    const double brute = median(brute_ms);
-    const double fast = median(mrs_ms);
-    char speed_up[32] = "-";
-    char same[32] = "-";
-    char gap[32] = "-";
-    if (!brute_ms.empty()) {
-      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
-      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
-      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
-    }
-    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n",
-                sizeName(frames).c_str(), length, across_seasons ? "winter" : "summer*", load_s, rss_per_frame,
-                peak_per_frame, fast, brute, mrs_right, options.queries, speed_up, brute_right,
-                static_cast<int>(brute_ms.size()), mrs_accepted_wrong, mrs_accepted, same, gap);
-    std::fflush(stdout);
+    tally.print(sizeName(frames), length, across_seasons ? "winter" : "summer*", load_s, rss_per_frame,
+                peak_per_frame);
   }
 }
 
@@ -451,15 +471,7 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
       }
     }
     const int asked = rows_kept ? options.queries : options.brute_queries;
-    std::vector<double> mrs_ms;
-    std::vector<double> brute_ms;
-    int mrs_right = 0;
-    int mrs_accepted = 0;
-    int mrs_accepted_wrong = 0;
-    int brute_right = 0;
-    int same_frame = 0;
-    int same_accepted = 0;
-    double confidence_gap = 0.0;
+    RowTally tally;
     for (int q = 0; q < asked; ++q) {
       addKeyframes(rows_kept ? 1 : length);
       const int first = recognizer.size() - length;
@@ -469,36 +481,14 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
       };
       auto start = Clock::now();
       const mrs_vpr::PlaceAnswer mrs = recognizer.matchRecent(length, "mrs");
-      mrs_ms.push_back(secondsSince(start) * 1e3);
-      mrs_right += right(mrs) ? 1 : 0;
-      mrs_accepted += mrs.match.accepted ? 1 : 0;
-      mrs_accepted_wrong += mrs.match.accepted && !right(mrs) ? 1 : 0;
+      tally.addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
       if (q < options.brute_queries) {
         start = Clock::now();
         const mrs_vpr::PlaceAnswer brute = recognizer.matchRecent(length, "seqslam");
-        brute_ms.push_back(secondsSince(start) * 1e3);
-        brute_right += right(brute) ? 1 : 0;
-        same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
-        same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
-        confidence_gap =
-            std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
+        tally.addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
       }
     }
-    const double brute = median(brute_ms);
-    const double fast = median(mrs_ms);
-    char speed_up[32] = "-";
-    char same[32] = "-";
-    char gap[32] = "-";
-    if (!brute_ms.empty()) {
-      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
-      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
-      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
-    }
-    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n",
-                sizeName(base).c_str(), length, rows_kept ? "recent" : "recent*", load_s, rss_per_frame,
-                peak_per_frame, fast, brute, mrs_right, asked, speed_up, brute_right,
-                static_cast<int>(brute_ms.size()), mrs_accepted_wrong, mrs_accepted, same, gap);
-    std::fflush(stdout);
+    tally.print(sizeName(base), length, rows_kept ? "recent" : "recent*", load_s, rss_per_frame, peak_per_frame);
   }
 }
 

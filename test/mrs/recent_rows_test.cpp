@@ -27,6 +27,13 @@ void appendRandomFrames(DescriptorSequence& map, int count, int size, cv::RNG& r
   }
 }
 
+/// A map of `frames` random descriptors of 64 bytes.
+DescriptorSequence randomMap(int frames, cv::RNG& rng) {
+  DescriptorSequence map(64);
+  appendRandomFrames(map, frames, 64, rng);
+  return map;
+}
+
 /// The brute force's costs: the whole enhanced difference matrix of the test frames.
 AnchorCosts bruteForceCosts(SequenceView map, int first, int count, int columns, const SequenceRows& rows) {
   const cv::Mat differences = computeDifferenceMatrix(map.slice(first, first + count), map.slice(0, columns));
@@ -48,8 +55,7 @@ void expectSameCosts(const AnchorCosts& kept, const AnchorCosts& brute, const st
 // ending at a different distance before them: the kept rows give the brute force's cost for every end.
 TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
   cv::RNG rng(3);
-  DescriptorSequence map(64);
-  appendRandomFrames(map, 300, 64, rng);
+  DescriptorSequence map = randomMap(300, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
   const SequenceRows rows{0, 19, 10};
   AnchorCosts kept;
@@ -69,14 +75,12 @@ TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
 
 TEST(RecentRows, AMapEmptiedAndFilledAgainIsNotReadFromOldRows) {
   cv::RNG rng(5);
-  DescriptorSequence map(64);
-  appendRandomFrames(map, 400, 64, rng);
+  DescriptorSequence map = randomMap(400, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
   const SequenceRows rows{0, 9, 9};
   AnchorCosts kept;
   recent.costs(map.view(), 390, 10, 350, rows, kVelocities, kept);
-  DescriptorSequence smaller(64);
-  appendRandomFrames(smaller, 200, 64, rng);
+  DescriptorSequence smaller = randomMap(200, rng);
   recent.costs(smaller.view(), 190, 10, 150, rows, kVelocities, kept);
   expectSameCosts(kept, bruteForceCosts(smaller.view(), 190, 10, 150, rows), "after the map shrank");
   recent.clear();
@@ -88,8 +92,7 @@ TEST(RecentRows, AMapEmptiedAndFilledAgainIsNotReadFromOldRows) {
 // keeps only its newest frame's row, not those of every frame that came in between.
 TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
   cv::RNG rng(7);
-  DescriptorSequence map(64);
-  appendRandomFrames(map, 200, 64, rng);
+  DescriptorSequence map = randomMap(200, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
   EXPECT_EQ(recent.missingRows(map.view(), 180, 20), 20);
   EXPECT_GT(recent.keepNewestRows(map.view(), 180, 20), 0);
@@ -108,8 +111,7 @@ TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
 
 TEST(RecentRows, RefusesFramesOutsideTheMapAndSequencesLongerThanItKeeps) {
   cv::RNG rng(9);
-  DescriptorSequence map(64);
-  appendRandomFrames(map, 100, 64, rng);
+  DescriptorSequence map = randomMap(100, rng);
   RecentRows recent(kWindow, 16);
   AnchorCosts kept;
   EXPECT_FALSE(recent.covers(17));
