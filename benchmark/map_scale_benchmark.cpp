@@ -24,12 +24,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <utility>
 #include <vector>
 
 #include <time.h>
@@ -298,6 +300,21 @@ struct RowTally {
   int same_accepted = 0;
   double confidence_gap = 0.0;
 
+  /// Times `ask` (a question to the method named) with mrs, and with the brute force too when
+  /// `with_brute`; `right` judges an answer. Returns the answers (the brute force's when asked).
+  std::pair<mrs_vpr::PlaceAnswer, std::optional<mrs_vpr::PlaceAnswer>> time(
+      const std::function<mrs_vpr::PlaceAnswer(const char* method)>& ask, bool with_brute,
+      const std::function<bool(const mrs_vpr::PlaceAnswer&)>& right) {
+    auto start = Clock::now();
+    const mrs_vpr::PlaceAnswer mrs = ask("mrs");
+    addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
+    if (!with_brute) return {mrs, std::nullopt};
+    start = Clock::now();
+    const mrs_vpr::PlaceAnswer brute = ask("seqslam");
+    addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
+    return {mrs, brute};
+  }
+
   void addMrs(const mrs_vpr::PlaceAnswer& mrs, double ms, bool right) {
     mrs_ms.push_back(ms);
     mrs_right += right ? 1 : 0;
@@ -359,13 +376,10 @@ void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
       auto right = [&](const mrs_vpr::PlaceAnswer& answer) {
         return std::llabs(answer.match.reference_index - (first_truth + answer.localised_row)) <= 5;
       };
-      auto start = Clock::now();
-      const mrs_vpr::PlaceAnswer mrs = recognizer.match(query, "mrs");
-      tally.addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
-      if (q < options.brute_queries) {
-        start = Clock::now();
-        const mrs_vpr::PlaceAnswer brute = recognizer.match(query, "seqslam");
-        tally.addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
+      const auto [mrs, answered] = tally.time([&](const char* method) { return recognizer.match(query, method); },
+                                              q < options.brute_queries, right);
+      if (answered) {
+        const mrs_vpr::PlaceAnswer& brute = *answered;
         if (std::getenv("MRS_VPR_SHOW_ANSWERS") != nullptr) {
           std::fprintf(stderr, "N=%d %s query %d: truth %lld, mrs %d (confidence %.2f%s), brute %d (%.2f%s)\n", length,
                        across_seasons ? "winter" : "summer*", q, first_truth + mrs.localised_row, mrs.match.reference_index, mrs.match.confidence,
@@ -479,14 +493,8 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
         const int route_frame = route_frame_of[static_cast<std::size_t>(first + answer.localised_row - base)];
         return std::llabs(answer.match.reference_index - (options.truth_offset + route_frame)) <= 5;
       };
-      auto start = Clock::now();
-      const mrs_vpr::PlaceAnswer mrs = recognizer.matchRecent(length, "mrs");
-      tally.addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
-      if (q < options.brute_queries) {
-        start = Clock::now();
-        const mrs_vpr::PlaceAnswer brute = recognizer.matchRecent(length, "seqslam");
-        tally.addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
-      }
+      tally.time([&](const char* method) { return recognizer.matchRecent(length, method); },
+                 q < options.brute_queries, right);
     }
     tally.print(sizeName(base), length, rows_kept ? "recent" : "recent*", load_s, rss_per_frame, peak_per_frame);
   }
