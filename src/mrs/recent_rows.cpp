@@ -45,20 +45,23 @@ long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, 
     if (entry.second->final_end < final_end) by_final_end[entry.second->final_end].push_back(entry);
   }
   long long comparisons = 0;
-  for (const auto& [old_end, group] : by_final_end) {
+  for (const auto& entry : by_final_end) {
+    const int old_end = entry.first;  // Named here: C++17 lambdas cannot capture structured bindings.
+    const std::vector<std::pair<int, Row*>>& group = entry.second;
     // enhanceRowSpan reads the raw cells its windows see.
     const int raw_begin = std::max(0, old_end - half);
     const int raw_end = std::min(map.count, final_end + half);
     DescriptorSequence test_frames(map.descriptor_size);
     test_frames.reserve(static_cast<int>(group.size()));
-    for (const auto& entry : group) {
-      test_frames.append(cv::Mat(1, map.descriptor_size, CV_8U, const_cast<std::uint8_t*>(map.frame(entry.first))));
+    for (const auto& test_row : group) {
+      test_frames.append(
+          cv::Mat(1, map.descriptor_size, CV_8U, const_cast<std::uint8_t*>(map.frame(test_row.first))));
     }
     cv::Mat raw(static_cast<int>(group.size()), raw_end - raw_begin, CV_32F);
     computeDifferenceMatrix(test_frames.view(), map.slice(raw_begin, raw_end), raw);
     comparisons += static_cast<long long>(raw.total());
-    for (const auto& entry : group) {
-      Row& row = *entry.second;
+    for (const auto& test_row : group) {
+      Row& row = *test_row.second;
       // Room to grow, so that the row is not copied at every new frame.
       if (row.values.capacity() < frames) row.values.reserve(frames + frames / 8);
       if (row.values.size() < frames) row.values.resize(frames);
