@@ -196,7 +196,8 @@ class PlaceRecognizer {
   DescriptorSequence map_;
   std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
   int reserved_frames_ = 0;         // under map_mutex_
-  // MRS's first-pass rows of the newest frames, for matchRecent; emptied with the map.
+  // MRS's rows of the difference matrix for the newest frames, for matchRecent; emptied with the map.
+  // Made once the parameters are validated.
   std::unique_ptr<RecentRows> recent_rows_;
 
   // Under pending_mutex_, held for a few instructions only. frames_admitted_ counts the map and the

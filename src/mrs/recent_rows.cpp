@@ -16,14 +16,6 @@ namespace {
 // Cells of a row enhanced as one piece of work.
 constexpr int kStretch = 16384;
 
-/// Raw differences between map frame `frame` and map frames [begin, end), into `raw` (resized).
-void rawDifferences(SequenceView map, int frame, int begin, int end, std::vector<float>& raw) {
-  raw.resize(static_cast<std::size_t>(std::max(0, end - begin)));
-  if (end <= begin) return;
-  cv::Mat out(1, end - begin, CV_32F, raw.data());
-  computeDifferenceMatrix(map.slice(frame, frame + 1), map.slice(begin, end), out);
-}
-
 }  // namespace
 
 RecentRows::RecentRows(int contrast_window, int max_rows) : contrast_window_(contrast_window), max_rows_(max_rows) {
@@ -157,7 +149,9 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
     if (tail == 0) continue;
     std::copy(values + tail_begin, values + columns, final_tails.begin() + i * tail);
     const int raw_begin = std::max(0, tail_begin - half);
-    rawDifferences(map, first + i, raw_begin, columns, raw);
+    raw.resize(static_cast<std::size_t>(columns - raw_begin));
+    descriptorDifferences(map.frame(first + i), map.frame(raw_begin), map.pitch(), columns - raw_begin,
+                          map.descriptor_size, raw.data());
     comparisons += columns - raw_begin;
     enhanceRowSpan(raw.data(), columns, tail_begin, columns, contrast_window_, values + tail_begin);
   }
