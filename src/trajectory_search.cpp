@@ -44,6 +44,28 @@ void keepLowerMeans(const float* __restrict sum, int width, float length, float 
   }
 }
 
+/// The lowest of `count` costs from `costs` (infinity when count is 0). Eight running minima: a single
+/// one would wait on itself at every cost, and a map-sized table is scored on every query.
+float lowestCost(const float* costs, int count) {
+  constexpr int kChains = 8;
+  float lowest[kChains];
+  std::fill(lowest, lowest + kChains, std::numeric_limits<float>::infinity());
+  int i = 0;
+  for (; i + kChains <= count; i += kChains) {
+    for (int k = 0; k < kChains; ++k) lowest[k] = std::min(lowest[k], costs[i + k]);
+  }
+  for (; i < count; ++i) lowest[0] = std::min(lowest[0], costs[i]);
+  return *std::min_element(lowest, lowest + kChains);
+}
+
+/// How many of `count` costs are finite (a trajectory fits their end).
+MRS_VPR_VECTOR_KERNEL
+int finiteCosts(const float* __restrict costs, int count) {
+  int finite = 0;
+  for (int i = 0; i < count; ++i) finite += std::abs(costs[i]) < std::numeric_limits<float>::infinity() ? 1 : 0;
+  return finite;
+}
+
 }  // namespace
 
 std::vector<double> velocities(const SequenceParams& params) {
@@ -83,15 +105,13 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
   const int columns = static_cast<int>(cost_by_anchor.size());
   if (winner < 0 || winner >= columns) return match;
   const int half = exclusion / 2;
-  float best = std::numeric_limits<float>::infinity();
-  float runner_up = std::numeric_limits<float>::infinity();
-  int rivals = 0;
-  for (int j = 0; j < columns; ++j) {
-    const bool rival = std::abs(j - winner) > half;
-    float& slot = rival ? runner_up : best;
-    slot = std::min(slot, cost_by_anchor[j]);
-    if (rival && std::isfinite(cost_by_anchor[j])) ++rivals;
-  }
+  // The ends within half of the winner, [near_begin, near_end), are its own; all others are rivals.
+  const int near_begin = std::max(0, winner - half);
+  const int near_end = std::min(columns, winner + half + 1);
+  const float* costs = cost_by_anchor.data();
+  const float best = lowestCost(costs + near_begin, near_end - near_begin);
+  const float runner_up = std::min(lowestCost(costs, near_begin), lowestCost(costs + near_end, columns - near_end));
+  const int rivals = finiteCosts(costs, near_begin) + finiteCosts(costs + near_end, columns - near_end);
   match.reference_index = winner;
   match.sequence_difference = best;
   // Without a distinct runner-up there is nothing to be sure about: score 1, confidence 0.
@@ -105,8 +125,10 @@ Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int excl
 }
 
 Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
-  const auto best = std::min_element(cost_by_anchor.begin(), cost_by_anchor.end());
-  if (best == cost_by_anchor.end() || !std::isfinite(*best)) return Match{};  // No trajectory fits.
+  const float lowest = lowestCost(cost_by_anchor.data(), static_cast<int>(cost_by_anchor.size()));
+  if (!std::isfinite(lowest)) return Match{};  // No trajectory fits.
+  // The first end at the lowest cost, as a scan from the start would pick.
+  const auto best = std::find(cost_by_anchor.begin(), cost_by_anchor.end(), lowest);
   return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion);
 }
 

@@ -219,6 +219,22 @@ TEST(ScoreFromCosts, NothingFitsOrNoRunnerUp) {
   EXPECT_FLOAT_EQ(alone.confidence, 0.0F);
 }
 
+TEST(ScoreFromCosts, TheFirstOfEqualLowestEndsWinsAndRivalsAreCountedOnBothSides) {
+  // 1003 ends: the lowest cost twice, the second time among the last few ends, which a table read in
+  // groups of several ends reads apart; a rival to either side of the winner.
+  std::vector<float> costs(1003, 5.0F);
+  costs[1001] = 1.0F;
+  costs[700] = 1.0F;
+  costs[3] = 2.0F;
+  costs[1002] = kInf;
+  const Match match = scoreFromCosts(costs, 10);
+  EXPECT_EQ(match.reference_index, 700);
+  EXPECT_EQ(match.rivals, 1003 - 11 - 1);  // All but the winner's 11 ends and the one with no trajectory.
+  EXPECT_FLOAT_EQ(match.score, 1.0F);      // The other end at 1 is a rival.
+  costs[1001] = 3.0F;
+  EXPECT_FLOAT_EQ(scoreFromCosts(costs, 10).score, 0.5F);  // Now end 3's 2.
+}
+
 TEST(ScoreAround, ScoresAGivenWinner) {
   const std::vector<float> costs{4.0F, 3.0F, 2.0F, 8.0F, 8.0F, 8.0F, 1.0F};
   // Winner 1 (not the global minimum): best within +-1 is 2 (index 2), runner-up beyond is 1 (index 6).
