@@ -76,20 +76,20 @@ std::size_t windowPartsStorage(int count, int n) {
 
 /**
  * The enhanced values of the cells whose whole window of n values lies in `values` (count of them):
- * out[i] for the cell values[i + n / 2]. The values are centred on the middle one, so that sum of
- * squares minus squared sum keeps its precision in single precision: a window's values then differ
- * from it by about the row's spread, not by their mean. The window sums are read straight from
- * their parts (up to three; more are folded first), so the z-scores take one more pass.
- * `buffers` holds 5 * count + windowPartsStorage(count, n) floats.
+ * out[i] for the cell values[i + n / 2]. The values are taken relative to `pivot`, a value of the
+ * same row, so that sum of squares minus squared sum keeps its precision in single precision: a
+ * window's values then differ from it by about the row's spread, not by their mean. The window sums
+ * are read straight from their parts (up to three; more are folded first), so the z-scores take one
+ * more pass. A cell's parts and arithmetic depend on its window and the pivot alone, not on where
+ * `values` starts. `buffers` holds 5 * count + windowPartsStorage(count, n) floats.
  */
 MRS_VPR_VECTOR_KERNEL
-void enhanceInterior(const float* values, int count, int n, float shift, float* out, float* buffers) {
+void enhanceInterior(const float* values, int count, int n, float shift, float pivot, float* out, float* buffers) {
   float* y = buffers;
   float* y2 = y + count;
   float* folded = y2 + count;  // Parts folded together when there are more than three.
   float* folded2 = folded + count;
   float* zeros = folded2 + count;  // Stands for a missing part: x + 0 is x.
-  const float pivot = values[count / 2];
   for (int c = 0; c < count; ++c) {
     y[c] = values[c] - pivot;
     y2[c] = y[c] * y[c];
@@ -157,7 +157,7 @@ float enhanceCell(float centre, const float* values, int count, int window) {
   return zScore(centre, sum, sum_of_squares, count) + contrastShift(window);
 }
 
-void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float* out) {
+void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float first, float* out) {
   if (window == 0) {
     std::copy(raw, raw + (end - begin), out);
     return;
@@ -176,11 +176,11 @@ void enhanceRowSpan(const float* raw, int columns, int begin, int end, int windo
   for (int c = interior_end; c < end; ++c) clipped(c);
   if (interior_begin < interior_end) {
     // The interior's windows cover raw columns [interior_begin - half, interior_end + half).
-    const int first = interior_begin - half;
+    const int window_begin = interior_begin - half;
     const int count = interior_end - interior_begin + 2 * half;
     thread_local std::vector<float> buffers;  // Kept between rows and calls: no allocation per row.
     buffers.resize(5 * static_cast<std::size_t>(count) + windowPartsStorage(count, 2 * half + 1));
-    enhanceInterior(raw + (first - raw_begin), count, 2 * half + 1, contrastShift(window),
+    enhanceInterior(raw + (window_begin - raw_begin), count, 2 * half + 1, contrastShift(window), first,
                     out + (interior_begin - begin), buffers.data());
   }
 }
@@ -199,8 +199,8 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) 
   }
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
     for (int row = rows.start; row < rows.end; ++row) {
-      enhanceRowSpan(differences.ptr<float>(row), differences.cols, 0, differences.cols, window,
-                     enhanced.ptr<float>(row));
+      const float* raw = differences.ptr<float>(row);
+      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, raw[0], enhanced.ptr<float>(row));
     }
   });
 }

@@ -33,7 +33,9 @@ int realignEnd(SequenceView reference, SequenceView query, const SequenceRows& r
     raw.resize(static_cast<std::size_t>(raw_end - raw_begin));
     descriptorDifferences(query.frame(rows.first + i), reference.frame(raw_begin), reference.pitch(),
                           raw_end - raw_begin, query.descriptor_size, raw.data());
-    enhanceRowSpan(raw.data(), reference.count, begin, begin + width, contrast_window,
+    const float first_difference =
+        descriptorDifference(query.frame(rows.first + i), reference.frame(0), query.descriptor_size);
+    enhanceRowSpan(raw.data(), reference.count, begin, begin + width, contrast_window, first_difference,
                    band.data() + static_cast<std::ptrdiff_t>(i) * width);
   }
 

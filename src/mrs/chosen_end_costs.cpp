@@ -18,6 +18,12 @@ ChosenEndCosts::ChosenEndCosts(SequenceView reference, SequenceView query, const
   offsets_.assign(velocities_.size(), std::vector<int>(static_cast<std::size_t>(length)));
   lowest_.assign(static_cast<std::size_t>(length), std::numeric_limits<int>::max());
   highest_.assign(static_cast<std::size_t>(length), std::numeric_limits<int>::min());
+  // One comparison a row more, so that the pieces of a row are enhanced as the whole row.
+  first_differences_.assign(static_cast<std::size_t>(length), 0.0F);
+  for (int r = 0; r < length && reference_.count > 0; ++r) {
+    first_differences_[static_cast<std::size_t>(r)] =
+        descriptorDifference(query_.frame(rows_.first + r), reference_.frame(0), reference_.descriptor_size);
+  }
   for (std::size_t v = 0; v < velocities_.size(); ++v) {
     for (int r = 0; r < length; ++r) {
       // As costsByAnchor rounds them.
@@ -64,7 +70,8 @@ long long ChosenEndCosts::compute(int begin, int end, float* cost, float* veloci
                           raw_end - raw_begin, reference_.descriptor_size, raw.data());
     comparisons += raw_end - raw_begin;
     enhanced.resize(start[row] + static_cast<std::size_t>(visited_end - visited_begin));
-    enhanceRowSpan(raw.data(), columns, visited_begin, visited_end, contrast_window_, enhanced.data() + start[row]);
+    enhanceRowSpan(raw.data(), columns, visited_begin, visited_end, contrast_window_, first_differences_[row],
+                   enhanced.data() + start[row]);
   }
   const auto cell = [&](int r, int column) {
     const auto row = static_cast<std::size_t>(r);

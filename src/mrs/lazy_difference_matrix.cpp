@@ -64,7 +64,15 @@ void LazyDifferenceMatrix::enhancedRow(int row, int begin, int end, float* out) 
   const int half = contrast_window_ / 2;
   const int raw_begin = std::max(0, begin - half);
   const float* raw = rawRow(row, raw_begin, std::min(columns(), end + half));
-  enhanceRowSpan(raw, columns(), begin, end, contrast_window_, out);
+  RowInterval& interval = rows_[static_cast<std::size_t>(row)];
+  if (!interval.first_difference && contrast_window_ > 0) {
+    // Every piece of the row is enhanced relative to its difference at column 0: known when the row
+    // starts there, else one comparison more.
+    float first_difference = raw[0];
+    if (raw_begin > 0) compare(row, 0, 1, &first_difference);
+    interval.first_difference = first_difference;
+  }
+  enhanceRowSpan(raw, columns(), begin, end, contrast_window_, interval.first_difference.value_or(0.0F), out);
 }
 
 void LazyDifferenceMatrix::enhancedRows(const std::vector<RowRequest>& requests) {

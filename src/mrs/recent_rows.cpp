@@ -52,8 +52,9 @@ long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, 
     cv::Mat raw(static_cast<int>(group.size()), raw_end - raw_begin, CV_32F);
     computeDifferenceMatrix(test_frames.view(), map.slice(raw_begin, raw_end), raw);
     comparisons += static_cast<long long>(raw.total());
-    for (const auto& test_row : group) {
-      Row& row = *test_row.second;
+    for (std::size_t k = 0; k < group.size(); ++k) {
+      Row& row = *group[k].second;
+      if (old_end == 0) row.first_difference = raw.at<float>(static_cast<int>(k), 0);  // New: raw from column 0.
       // Room to grow, so that the row is not copied at every new frame.
       if (row.values.capacity() < frames) row.values.reserve(frames + frames / 8);
       if (row.values.size() < frames) row.values.resize(frames);
@@ -66,8 +67,9 @@ long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, 
         const int begin = old_end + (k % stretches) * kStretch;
         const int end = std::min(final_end, begin + kStretch);
         const float* seen = raw.ptr<float>(k / stretches) + (std::max(0, begin - half) - raw_begin);
-        float* out = group[static_cast<std::size_t>(k / stretches)].second->values.data() + begin;
-        enhanceRowSpan(seen, map.count, begin, end, contrast_window_, out);
+        Row& row = *group[static_cast<std::size_t>(k / stretches)].second;
+        enhanceRowSpan(seen, map.count, begin, end, contrast_window_, row.first_difference,
+                       row.values.data() + begin);
       }
     });
   }
@@ -153,7 +155,9 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
     descriptorDifferences(map.frame(first + i), map.frame(raw_begin), map.pitch(), columns - raw_begin,
                           map.descriptor_size, raw.data());
     comparisons += columns - raw_begin;
-    enhanceRowSpan(raw.data(), columns, tail_begin, columns, contrast_window_, values + tail_begin);
+    const float first_difference = test_rows[static_cast<std::size_t>(i)].second->first_difference;
+    enhanceRowSpan(raw.data(), columns, tail_begin, columns, contrast_window_, first_difference,
+                   values + tail_begin);
   }
   costsByAnchor(row_data, columns, rows, velocities, costs);
   for (int i = 0; i < count && tail > 0; ++i) {

@@ -46,6 +46,10 @@ void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector
   const Reach reach = trajectoryReach(rows, velocities);
   const int half = contrast_window / 2;
   const int tiles = (columns + kTileAnchors - 1) / kTileAnchors;
+  // Each row's raw difference at column 0: every tile's piece of a row is enhanced relative to it,
+  // so that the pieces are the whole row's cells.
+  cv::Mat first_differences(rows.last + 1, 1, CV_32F);
+  if (columns > 0) tile(0, 1, first_differences);
   cv::parallel_for_(cv::Range(0, tiles), [&](const cv::Range& range) {
     // Kept by each thread between tiles and queries (a Mat would reallocate whenever a tile's width
     // changes, as it does at the map's edges).
@@ -67,7 +71,7 @@ void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector
       cv::Mat enhanced(raw.rows, visited_end - visited_begin, CV_32F, enhanced_storage.data());
       for (int row = 0; row < raw.rows; ++row) {
         enhanceRowSpan(raw.ptr<float>(row), columns, visited_begin, visited_end, contrast_window,
-                       enhanced.ptr<float>(row));
+                       first_differences.at<float>(row), enhanced.ptr<float>(row));
       }
       // Anchors whose trajectories fit in these columns are those that fit in the whole matrix:
       // the columns reach as far as any trajectory of the tile's anchors, or to the matrix's edge.

@@ -120,7 +120,7 @@ TEST(PlaceRecognizer, QuestionsAboutTheNewestFramesReadKeptRowsWithTheBruteForce
     const PlaceAnswer brute = recognizer.matchRecent(20, "seqslam");
     EXPECT_EQ(mrs.match.reference_index, brute.match.reference_index) << "frame " << i;
     EXPECT_EQ(mrs.match.accepted, brute.match.accepted) << "frame " << i;
-    EXPECT_NEAR(mrs.match.confidence, brute.match.confidence, 1e-3F) << "frame " << i;
+    EXPECT_EQ(mrs.match.confidence, brute.match.confidence) << "frame " << i;
     EXPECT_EQ(mrs.localised_stamp, brute.localised_stamp) << "frame " << i;
   }
   // 20 rows of 4 bytes for each of about 640 map frames, and the room each keeps to grow.

@@ -98,7 +98,7 @@ TEST(LazyDifferenceMatrix, EnhancedRowsReachThePartialLastCellOfTheGrid) {
   for (int row = 0; row < lazy.rows(); ++row) {
     lazy.enhancedRow(row, level.grid_size - 4, level.grid_size, out.data());
     for (int c = level.grid_size - 4; c < level.grid_size; ++c) {
-      EXPECT_NEAR(out[static_cast<std::size_t>(c - (level.grid_size - 4))], dense.at<float>(row, c), 1e-4F)
+      EXPECT_EQ(out[static_cast<std::size_t>(c - (level.grid_size - 4))], dense.at<float>(row, c))
           << "row " << row << ", column " << c;
     }
   }
@@ -120,7 +120,7 @@ TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
       std::vector<float> out(static_cast<std::size_t>(end - begin));
       lazy.enhancedRow(row, begin, end, out.data());
       for (int c = begin; c < end; ++c) {
-        EXPECT_NEAR(out[static_cast<std::size_t>(c - begin)], dense.at<float>(row, c), 1e-4F)
+        EXPECT_EQ(out[static_cast<std::size_t>(c - begin)], dense.at<float>(row, c))  // To the bit.
             << "row " << row << ", column " << c;
       }
     }

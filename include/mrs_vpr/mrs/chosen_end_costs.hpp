@@ -37,6 +37,7 @@ class ChosenEndCosts {
   std::vector<std::vector<int>> offsets_;  ///< offsets_[v][t - first]: row t's column, relative to the end's.
   std::vector<int> lowest_;                ///< Per row: the lowest offset of any velocity.
   std::vector<int> highest_;               ///< Per row: the highest.
+  std::vector<float> first_differences_;   ///< Per row: at column 0, for enhanceRowSpan.
 };
 
 }  // namespace mrs_vpr

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <optional>
 #include <vector>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
@@ -51,6 +52,7 @@ class LazyDifferenceMatrix {
     int begin = 0;
     int end = 0;
     std::vector<float> values;
+    std::optional<float> first_difference;  ///< At column 0, for enhanceRowSpan; computed on first use.
   };
 
   /// Raw differences of `row` over [begin, end), computed where missing; valid until the next call.

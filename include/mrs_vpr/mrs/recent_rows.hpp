@@ -70,8 +70,9 @@ class RecentRows {
 
  private:
   struct Row {
-    int final_end = 0;          ///< Cells [0, final_end) are final.
-    std::vector<float> values;  ///< One a map frame; past final_end, scratch.
+    int final_end = 0;              ///< Cells [0, final_end) are final.
+    float first_difference = 0.0F;  ///< At column 0: every piece of the row is enhanced relative to it.
+    std::vector<float> values;      ///< One a map frame; past final_end, scratch.
   };
 
   /// Cells of a map of `frames` frames that no query's reference end can clip.
