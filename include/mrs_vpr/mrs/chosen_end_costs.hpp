@@ -11,9 +11,9 @@ namespace mrs_vpr {
  * The brute force's costs (costsByAnchor on the contrast-enhanced full difference matrix) of chosen
  * ends only, from the cells their trajectories visit and the raw differences their contrast windows
  * see: a few hundred ends of a large map cost a few hundred thin diagonal bands of the matrix, not
- * the matrix. The cells are enhanced row by row as enhanceContrast does and summed in the order
- * costsByAnchor sums them, so a cost equals the brute force's up to the float rounding of the
- * contrast statistics (which see a shorter stretch of the row).
+ * the matrix. The cells are enhanced row by row as enhanceContrast does (enhanceRowSpan, with each
+ * row's difference at column 0) and summed in the order costsByAnchor sums them, so a cost equals the
+ * brute force's to the bit.
  */
 class ChosenEndCosts {
  public:

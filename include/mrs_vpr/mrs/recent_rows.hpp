@@ -42,7 +42,7 @@ class RecentRows {
   /**
    * costsByAnchor(enhanceContrast(D, contrast_window), rows, velocities) into `costs`, for the
    * difference matrix D of map frames [first, first + count) against map frames [0, columns): the
-   * brute force's costs, up to float rounding of the contrast statistics. `map` is the whole map;
+   * brute force's costs, to the bit. `map` is the whole map;
    * rows of frames it no longer holds are dropped. Returns the descriptor comparisons made. Throws
    * std::invalid_argument when the frames or columns lie outside `map`.
    */

@@ -20,7 +20,8 @@ using DifferenceTile = std::function<void(int begin, int end, cv::Mat& raw)>;
  * KB) stay in the cache from the differences to the sums, and a map of a million frames needs no
  * matrix of 75 MB per query. Tiles overlap by the trajectories' reach, about a tenth more cells.
  * Tiles are fixed, not split by thread, so the costs do not depend on the number of threads; they
- * equal the whole matrix's up to float rounding of the contrast statistics.
+ * equal the whole matrix's to the bit (each row's pieces are enhanced relative to its difference at
+ * column 0, which `tile` gives once for all rows).
  */
 AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
                                int contrast_window, const DifferenceTile& tile);
