@@ -200,7 +200,8 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) 
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
     for (int row = rows.start; row < rows.end; ++row) {
       const float* raw = differences.ptr<float>(row);
-      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, raw[0], enhanced.ptr<float>(row));
+      const float first = differences.cols > 0 ? raw[0] : 0.0F;
+      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, first, enhanced.ptr<float>(row));
     }
   });
 }
