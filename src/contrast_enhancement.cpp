@@ -157,7 +157,8 @@ float enhanceCell(float centre, const float* values, int count, int window) {
   return zScore(centre, sum, sum_of_squares, count) + contrastShift(window);
 }
 
-void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float first, float* out) {
+void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float first_difference,
+                    float* out) {
   if (window == 0) {
     std::copy(raw, raw + (end - begin), out);
     return;
@@ -180,8 +181,8 @@ void enhanceRowSpan(const float* raw, int columns, int begin, int end, int windo
     const int count = interior_end - interior_begin + 2 * half;
     thread_local std::vector<float> buffers;  // Kept between rows and calls: no allocation per row.
     buffers.resize(5 * static_cast<std::size_t>(count) + windowPartsStorage(count, 2 * half + 1));
-    enhanceInterior(raw + (window_begin - raw_begin), count, 2 * half + 1, contrastShift(window), first,
-                    out + (interior_begin - begin), buffers.data());
+    enhanceInterior(raw + (window_begin - raw_begin), count, 2 * half + 1, contrastShift(window),
+                    first_difference, out + (interior_begin - begin), buffers.data());
   }
 }
 
@@ -200,8 +201,9 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) 
   cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
     for (int row = rows.start; row < rows.end; ++row) {
       const float* raw = differences.ptr<float>(row);
-      const float first = differences.cols > 0 ? raw[0] : 0.0F;
-      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, first, enhanced.ptr<float>(row));
+      const float first_difference = differences.cols > 0 ? raw[0] : 0.0F;
+      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, first_difference,
+                     enhanced.ptr<float>(row));
     }
   });
 }

@@ -19,11 +19,12 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced);
 
 /// Enhances columns [begin, end) of one row of `columns` raw differences into `out`, exactly as
 /// enhanceContrast does, to the bit, from the raw differences their windows see: `raw` holds columns
-/// [max(0, begin - window / 2), min(columns, end + window / 2)), and `first` is the row's raw
-/// difference at column 0. A search that needs a few cells of a row computes only those, and a row
-/// enhanced in pieces (as the map grows) equals the row enhanced whole: the window sums are taken
-/// relative to `first`, which every piece of the row shares.
-void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float first, float* out);
+/// [max(0, begin - window / 2), min(columns, end + window / 2)), and `first_difference` is the row's
+/// raw difference at column 0. A search that needs a few cells of a row computes only those, and a
+/// row enhanced in pieces (as the map grows) equals the row enhanced whole: the window sums are taken
+/// relative to `first_difference`, which every piece of the row shares.
+void enhanceRowSpan(const float* raw, int columns, int begin, int end, int window, float first_difference,
+                    float* out);
 
 /// Enhances one cell: `values` holds the window's raw differences, `centre` the cell's own.
 float enhanceCell(float centre, const float* values, int count, int window);
