@@ -135,7 +135,14 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
 
   std::vector<std::pair<int, Row*>> test_rows;
   for (int frame = first; frame < first + count; ++frame) test_rows.emplace_back(frame, &rows_[frame]);
-  long long comparisons = extend(map, test_rows);
+  // Continuous mode asks about each keyframe since its last question, oldest first, and every later
+  // question's test frames include the keyframes after this one's: their rows join this pass over the
+  // map, which reading the map bounds, rather than each paying for a pass of its own. At most as many
+  // as a question may miss and still read the rows.
+  std::vector<std::pair<int, Row*>> extended = test_rows;
+  const int newer_end = std::min(map.count, first + count + std::min(count / kMissingRowsShare, max_rows_ - count));
+  for (int frame = first + count; frame < newer_end; ++frame) extended.emplace_back(frame, &rows_[frame]);
+  long long comparisons = extend(map, extended);
 
   // The reference ends at `columns`: the cells whose contrast window that end clips are enhanced for
   // this query, over the final ones, which are put back afterwards.

@@ -111,6 +111,32 @@ TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
   EXPECT_EQ(recent.rowCount(), 1);
 }
 
+// Continuous mode asks about each keyframe since its last question, oldest first: the first question
+// computes the rows of the keyframes after its own in the same pass, so that the next ones find them,
+// a quarter of its length at most however far back it asks.
+TEST(RecentRows, AQuestionBeforeTheNewestKeyframesComputesTheirRowsInTheSamePass) {
+  cv::RNG rng(13);
+  DescriptorSequence map = randomMap(300, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  const SequenceRows rows{0, 19, 10};
+  AnchorCosts kept;
+  const long long comparisons = recent.costs(map.view(), 277, 20, 250, rows, kVelocities, kept);
+  // Test frames 277..296 and the newer 297..299 against the whole map, and again, for each test frame,
+  // the 10 raw cells of the 5 that the reference's end clips.
+  EXPECT_EQ(comparisons, 23LL * 300 + 20 * 10);
+  EXPECT_EQ(recent.rowCount(), 23);
+  for (const int first : {278, 279, 280}) {
+    EXPECT_EQ(recent.missingRows(map.view(), first, 20), 0) << first;
+    recent.costs(map.view(), first, 20, 250, rows, kVelocities, kept);
+    expectSameCosts(kept, bruteForceCosts(map.view(), first, 20, 250, rows), "test frames from " + std::to_string(first));
+  }
+
+  RecentRows far_back(kWindow, kMaxRecentRows);
+  far_back.costs(map.view(), 200, 20, 150, rows, kVelocities, kept);
+  EXPECT_EQ(far_back.rowCount(), 25);  // 5 newer rows: a quarter of the 20 test frames, not all 80.
+  expectSameCosts(kept, bruteForceCosts(map.view(), 200, 20, 150, rows), "far back");
+}
+
 TEST(RecentRows, RefusesFramesOutsideTheMapAndSequencesLongerThanItKeeps) {
   cv::RNG rng(9);
   DescriptorSequence map = randomMap(100, rng);

@@ -43,8 +43,10 @@ class RecentRows {
    * costsByAnchor(enhanceContrast(D, contrast_window), rows, velocities) into `costs`, for the
    * difference matrix D of map frames [first, first + count) against map frames [0, columns): the
    * brute force's costs, to the bit. `map` is the whole map;
-   * rows of frames it no longer holds are dropped. Returns the descriptor comparisons made. Throws
-   * std::invalid_argument when the frames or columns lie outside `map`.
+   * rows of frames it no longer holds are dropped. The rows of up to count / kMissingRowsShare map
+   * frames after the test frames are computed in the same pass over the map: the next questions of
+   * continuous mode, which asks about each new keyframe in turn, read them. Returns the descriptor
+   * comparisons made. Throws std::invalid_argument when the frames or columns lie outside `map`.
    */
   long long costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
                   const std::vector<double>& velocities, AnchorCosts& costs);
