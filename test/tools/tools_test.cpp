@@ -989,6 +989,12 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   // Continuous mode: one row a method, its queries' CPU share at a 1 s period.
   EXPECT_NE(result.out.find("mrs continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("seqslam continuous mode: 1 keyframes a period"), std::string::npos) << result.out;
+  // How fast the machine streams each map: the cost of a new keyframe's row, which bounds the rows' speed-up.
+  for (const std::string size : {"2k", "2500"}) {
+    EXPECT_NE(result.out.find(size + "  map stream: one keyframe against every map frame (a new keyframe's row), median of 7: "),
+              std::string::npos)
+        << size << "\n" << result.out;
+  }
 }
 
 }  // namespace
