@@ -413,9 +413,10 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   const SequenceView query = map.slice(first, first + count);
   checkInputs(reference, query);
   if (levelsFor(count, reference_count) > 0 || !recent.covers(count)) return match(reference, query, trace);
-  if (recent.missingRows(map, first, count) > count / kMissingRowsShare) {
-    // Rows for more than a quarter of the frames would cost a good part of the brute force: the search
-    // answers, and the rows of the newest frames are kept for the questions that follow.
+  if (recent.missingRows(map, first, count) > count / kMissingRowsShare && !recent.keepsPace(map, first, count)) {
+    // Rows for more than a quarter of the frames would cost a good part of the brute force at every
+    // question that comes too late for the rows to keep up: the search answers, and the rows of the
+    // newest frames are kept for the questions that follow.
     Match answer = match(reference, query, trace);
     answer.comparisons += recent.keepNewestRows(map, first, count);
     return answer;

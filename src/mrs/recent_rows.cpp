@@ -103,6 +103,15 @@ int RecentRows::missingRows(SequenceView map, int first, int count) {
   return missing;
 }
 
+bool RecentRows::keepsPace(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  auto newest = rows_.lower_bound(first + count);
+  if (newest == rows_.begin() || (--newest)->first < first) return false;
+  return first + count - 1 - newest->first <= count / kMissingRowsShare;
+}
+
 long long RecentRows::keepNewestRows(SequenceView map, int first, int count) {
   requireInside(map, first, count, map.count);
   std::lock_guard<std::mutex> lock(mutex_);

@@ -55,6 +55,14 @@ class RecentRows {
   /// much as the brute force's differences, so a caller may prefer another search when most are missing.
   int missingRows(SequenceView map, int first, int count);
   /**
+   * Whether questions come often enough for the rows to keep up: the newest of the test frames that
+   * has a row is followed by at most count / kMissingRowsShare of them. Then the rows the older test
+   * frames lack (from before the questions began) are worth computing, once, in one pass over the
+   * map, rather than searching at each question until they have left the sequence; afterwards each
+   * question adds only the frames that are new.
+   */
+  bool keepsPace(SequenceView map, int first, int count);
+  /**
    * Computes rows for the test frames after the newest one that has a row, when that one is among
    * them (queries come often enough for rows to keep up with the map), at most count /
    * kMissingRowsShare of the newest, or else for the newest frame only: what a query answered
