@@ -415,11 +415,10 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   if (levelsFor(count, reference_count) > 0 || !recent.covers(count)) return match(reference, query, trace);
   if (recent.missingRows(map, first, count) > count / kMissingRowsShare && !recent.keepsPace(map, first, count)) {
     // Rows for more than a quarter of the frames would cost a good part of the brute force at every
-    // question that comes too late for the rows to keep up: the search answers, and the rows of the
-    // newest frames are kept for the questions that follow.
-    Match answer = match(reference, query, trace);
-    answer.comparisons += recent.keepNewestRows(map, first, count);
-    return answer;
+    // question that comes too late for the rows to keep up: the search answers, and the question is
+    // noted, so that the next one computes the rows if it keeps pace.
+    recent.noteAsked(map, first, count);
+    return match(reference, query, trace);
   }
   const SequenceRows rows = wholeSequenceRows(count, sequence_.alignment);
   thread_local AnchorCosts costs;  // Map-sized: kept by the querying thread for its next query.

@@ -1,6 +1,7 @@
 #include "mrs_vpr/mrs/recent_rows.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -89,6 +90,7 @@ void RecentRows::forgetStaleLocked(SequenceView map, int first, int count) {
   const bool shrank = !rows_.empty() && (rows_.rbegin()->first >= map.count ||
                                           rows_.rbegin()->second.final_end > finalEnd(map.count));
   if (shrank) rows_.clear();
+  if (map.count < asked_map_size_) asked_newest_ = -1;
   kept_rows_ = std::min(max_rows_, std::max(kept_rows_, count));
   rows_.erase(rows_.begin(), rows_.lower_bound(std::min(first, map.count - kept_rows_)));
 }
@@ -107,29 +109,20 @@ bool RecentRows::keepsPace(SequenceView map, int first, int count) {
   requireInside(map, first, count, map.count);
   std::lock_guard<std::mutex> lock(mutex_);
   forgetStaleLocked(map, first, count);
-  auto newest = rows_.lower_bound(first + count);
-  if (newest == rows_.begin() || (--newest)->first < first) return false;
-  return first + count - 1 - newest->first <= count / kMissingRowsShare;
+  int newest_known = asked_newest_ >= first && asked_newest_ < first + count ? asked_newest_ : -1;
+  const auto after_rows = rows_.lower_bound(first + count);
+  if (after_rows != rows_.begin()) {
+    const int newest_row = std::prev(after_rows)->first;
+    if (newest_row >= first) newest_known = std::max(newest_known, newest_row);
+  }
+  return newest_known >= 0 && first + count - 1 - newest_known <= count / kMissingRowsShare;
 }
 
-long long RecentRows::keepNewestRows(SequenceView map, int first, int count) {
+void RecentRows::noteAsked(SequenceView map, int first, int count) {
   requireInside(map, first, count, map.count);
   std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
-  // The frames after the newest that has a row, when that one is still among the test frames (queries
-  // come often enough to keep up); the newest frame alone otherwise.
-  int from = first + count - 1;
-  auto newest = rows_.lower_bound(first + count);
-  if (newest != rows_.begin() && (--newest)->first >= first) {
-    // At most as many as a question may miss and still read the rows: more would cost a good part of
-    // the brute force's differences on every question of a robot that adds keyframes faster.
-    from = std::max(newest->first + 1, first + count - std::max(1, count / kMissingRowsShare));
-  }
-  std::vector<std::pair<int, Row*>> added;
-  for (int frame = from; frame < first + count; ++frame) added.emplace_back(frame, &rows_[frame]);
-  const long long comparisons = extend(map, added);
-  countBytesLocked();
-  return comparisons;
+  asked_newest_ = first + count - 1;
+  asked_map_size_ = map.count;
 }
 
 long long RecentRows::costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
@@ -188,6 +181,8 @@ void RecentRows::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   rows_.clear();
   kept_rows_ = 0;
+  asked_newest_ = -1;
+  asked_map_size_ = 0;
   bytes_ = 0;
 }
 

@@ -90,25 +90,19 @@ TEST(RecentRows, AMapEmptiedAndFilledAgainIsNotReadFromOldRows) {
   EXPECT_EQ(recent.missingRows(smaller.view(), 190, 10), 10);
 }
 
-// Questions that follow the map keep up with it a few frames at a time; a question long after the last
-// keeps only its newest frame's row, not those of every frame that came in between.
-TEST(RecentRows, RowsFillInOverQuestionsThatFollowTheMap) {
+// A question answered without the rows keeps none, however often questions come: the next question
+// computes them if it keeps pace. A map that shrank is another map, whose questions are not those noted.
+TEST(RecentRows, AQuestionAnsweredWithoutTheRowsIsNotedNotKept) {
   cv::RNG rng(7);
-  DescriptorSequence map = randomMap(200, rng);
+  DescriptorSequence map = randomMap(300, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
-  EXPECT_EQ(recent.missingRows(map.view(), 180, 20), 20);
-  EXPECT_GT(recent.keepNewestRows(map.view(), 180, 20), 0);
-  EXPECT_EQ(recent.missingRows(map.view(), 180, 20), 19);
-  appendRandomFrames(map, 3, 64, rng);
-  recent.keepNewestRows(map.view(), 183, 20);
-  EXPECT_EQ(recent.missingRows(map.view(), 183, 20), 16);  // The 3 new frames have rows now.
-  appendRandomFrames(map, 8, 64, rng);
-  recent.keepNewestRows(map.view(), 191, 20);
-  EXPECT_EQ(recent.missingRows(map.view(), 191, 20), 11);  // At most a quarter of them: the newest 5.
-  appendRandomFrames(map, 100, 64, rng);
-  recent.keepNewestRows(map.view(), 291, 20);
-  EXPECT_EQ(recent.missingRows(map.view(), 291, 20), 19);
-  EXPECT_EQ(recent.rowCount(), 1);
+  recent.noteAsked(map.view(), 260, 20);
+  EXPECT_EQ(recent.rowCount(), 0);
+  EXPECT_EQ(recent.missingRows(map.view(), 265, 20), 20);
+  EXPECT_TRUE(recent.keepsPace(map.view(), 265, 20));
+  const DescriptorSequence smaller = randomMap(285, rng);
+  EXPECT_FALSE(recent.keepsPace(smaller.view(), 265, 20));
+  EXPECT_FALSE(recent.keepsPace(map.view(), 265, 20));  // Forgotten with the smaller map.
 }
 
 // Continuous mode asks about each keyframe since its last question, oldest first: the first question
@@ -137,19 +131,24 @@ TEST(RecentRows, AQuestionBeforeTheNewestKeyframesComputesTheirRowsInTheSamePass
   expectSameCosts(kept, bruteForceCosts(map.view(), 200, 20, 150, rows), "far back");
 }
 
-// The rows keep pace when the newest test frame with a row is followed by at most a quarter of the
-// test frames: questions come often enough, and the older frames' missing rows are worth one pass.
-TEST(RecentRows, KeepPaceWhileAtMostAQuarterOfTheTestFramesFollowTheNewestRow) {
+// Questions keep pace when the newest test frame that has a row, or that the last question asked
+// about, is followed by at most a quarter of the test frames: the missing rows are then worth one pass.
+TEST(RecentRows, KeepPaceWhileAtMostAQuarterOfTheTestFramesFollowTheNewestKnownOne) {
   cv::RNG rng(15);
   DescriptorSequence map = randomMap(300, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
-  EXPECT_FALSE(recent.keepsPace(map.view(), 280, 20));  // No row at all.
-  recent.keepNewestRows(map.view(), 270, 20);           // Frame 289's row alone.
+  EXPECT_FALSE(recent.keepsPace(map.view(), 280, 20));  // Nothing known.
+  recent.noteAsked(map.view(), 270, 20);                // A question about frames up to 289.
   EXPECT_TRUE(recent.keepsPace(map.view(), 270, 20));
   EXPECT_TRUE(recent.keepsPace(map.view(), 275, 20));    // 5 test frames after frame 289.
   EXPECT_FALSE(recent.keepsPace(map.view(), 276, 20));   // 6.
   EXPECT_FALSE(recent.keepsPace(map.view(), 290, 10));   // Frame 289 is not a test frame.
-  EXPECT_EQ(recent.rowCount(), 1);                       // Asking computes nothing.
+  EXPECT_EQ(recent.rowCount(), 0);                       // Asking computes nothing.
+
+  AnchorCosts kept;
+  recent.costs(map.view(), 255, 20, 200, SequenceRows{0, 19, 10}, kVelocities, kept);  // Rows of 255..279.
+  recent.noteAsked(map.view(), 200, 20);                 // An older question: frame 219.
+  EXPECT_TRUE(recent.keepsPace(map.view(), 264, 20));    // 4 test frames after the row of frame 279.
 }
 
 TEST(RecentRows, RefusesFramesOutsideTheMapAndSequencesLongerThanItKeeps) {
@@ -163,9 +162,9 @@ TEST(RecentRows, RefusesFramesOutsideTheMapAndSequencesLongerThanItKeeps) {
   EXPECT_THROW(recent.costs(map.view(), 80, 10, 101, SequenceRows{0, 9, 9}, kVelocities, kept), std::invalid_argument);
 }
 
-// Questions about a revisit, asked after each new frame as continuous mode asks: the first searches
-// and keeps the newest frame's row; from the second on the rows keep pace, the older frames' rows are
-// computed in one pass, and MRS's answer is the brute force's.
+// Questions about a revisit, asked after each new frame as continuous mode asks: the first searches;
+// from the second on the questions keep pace, every row is computed in one pass, and MRS's answer is
+// the brute force's.
 TEST(RecentRows, MrsAnswersAsTheBruteForceFromKeptRows) {
   cv::RNG rng(11);
   const int size = DescriptorParams{}.descriptorSize();

@@ -56,20 +56,18 @@ class RecentRows {
   int missingRows(SequenceView map, int first, int count);
   /**
    * Whether questions come often enough for the rows to keep up: the newest of the test frames that
-   * has a row is followed by at most count / kMissingRowsShare of them. Then the rows the older test
-   * frames lack (from before the questions began) are worth computing, once, in one pass over the
-   * map, rather than searching at each question until they have left the sequence; afterwards each
-   * question adds only the frames that are new.
+   * has a row, or that the last question asked about (noteAsked), is followed by at most count /
+   * kMissingRowsShare of them. Then the rows the test frames lack (from before the questions began)
+   * are worth computing, once, in one pass over the map, and afterwards each question adds only the
+   * frames that are new. Otherwise they would cost a good part of the brute force at every question.
    */
   bool keepsPace(SequenceView map, int first, int count);
   /**
-   * Computes rows for the test frames after the newest one that has a row, when that one is among
-   * them (queries come often enough for rows to keep up with the map), at most count /
-   * kMissingRowsShare of the newest, or else for the newest frame only: what a query answered
-   * without the rows keeps, so that the rows fill in over the next queries at the cost of the frames
-   * that arrive. Returns the comparisons made.
+   * Records a question about map frames [first, first + count) that was answered without the rows,
+   * so that the next question can tell whether it keeps pace. Computes no row: a row kept for a
+   * question that comes too late to read it would cost a pass over the map for nothing.
    */
-  long long keepNewestRows(SequenceView map, int first, int count);
+  void noteAsked(SequenceView map, int first, int count);
 
   /// Forgets every row: the map was emptied or replaced.
   void clear();
@@ -103,6 +101,8 @@ class RecentRows {
   mutable std::mutex mutex_;
   std::map<int, Row> rows_;  ///< By map frame.
   int kept_rows_ = 0;        ///< The longest test sequence asked, at most max_rows_.
+  int asked_newest_ = -1;    ///< The newest test frame of the last question noteAsked recorded.
+  int asked_map_size_ = 0;   ///< The map's size then: a smaller map is another map.
   std::atomic<std::size_t> bytes_{0};
 };
 
