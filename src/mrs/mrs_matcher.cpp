@@ -413,7 +413,7 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   const SequenceView query = map.slice(first, first + count);
   checkInputs(reference, query);
   if (levelsFor(count, reference_count) > 0 || !recent.covers(count)) return match(reference, query, trace);
-  if (recent.missingRows(map, first, count) > count / kMissingRowsShare && !recent.keepsPace(map, first, count)) {
+  if (!recent.readsRows(map, first, count)) {
     // Rows for more than a quarter of the frames would cost a good part of the brute force at every
     // question that comes too late for the rows to keep up: the search answers, and the question is
     // noted, so that the next one computes the rows if it keeps pace.

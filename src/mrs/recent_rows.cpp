@@ -95,20 +95,13 @@ void RecentRows::forgetStaleLocked(SequenceView map, int first, int count) {
   rows_.erase(rows_.begin(), rows_.lower_bound(std::min(first, map.count - kept_rows_)));
 }
 
-int RecentRows::missingRows(SequenceView map, int first, int count) {
-  requireInside(map, first, count, map.count);
-  std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
+int RecentRows::missingRowsLocked(int first, int count) const {
   int missing = 0;
   for (int frame = first; frame < first + count; ++frame) missing += rows_.count(frame) == 0 ? 1 : 0;
-  countBytesLocked();  // Rows may have been dropped.
   return missing;
 }
 
-bool RecentRows::keepsPace(SequenceView map, int first, int count) {
-  requireInside(map, first, count, map.count);
-  std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
+bool RecentRows::keepsPaceLocked(int first, int count) const {
   int newest_known = asked_newest_ >= first && asked_newest_ < first + count ? asked_newest_ : -1;
   const auto after_rows = rows_.lower_bound(first + count);
   if (after_rows != rows_.begin()) {
@@ -116,6 +109,30 @@ bool RecentRows::keepsPace(SequenceView map, int first, int count) {
     if (newest_row >= first) newest_known = std::max(newest_known, newest_row);
   }
   return newest_known >= 0 && first + count - 1 - newest_known <= count / kMissingRowsShare;
+}
+
+int RecentRows::missingRows(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  countBytesLocked();  // Rows may have been dropped.
+  return missingRowsLocked(first, count);
+}
+
+bool RecentRows::keepsPace(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  countBytesLocked();
+  return keepsPaceLocked(first, count);
+}
+
+bool RecentRows::readsRows(SequenceView map, int first, int count) {
+  requireInside(map, first, count, map.count);
+  std::lock_guard<std::mutex> lock(mutex_);
+  forgetStaleLocked(map, first, count);
+  countBytesLocked();
+  return missingRowsLocked(first, count) <= count / kMissingRowsShare || keepsPaceLocked(first, count);
 }
 
 void RecentRows::noteAsked(SequenceView map, int first, int count) {

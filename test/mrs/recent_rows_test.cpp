@@ -100,6 +100,8 @@ TEST(RecentRows, AQuestionAnsweredWithoutTheRowsIsNotedNotKept) {
   EXPECT_EQ(recent.rowCount(), 0);
   EXPECT_EQ(recent.missingRows(map.view(), 265, 20), 20);
   EXPECT_TRUE(recent.keepsPace(map.view(), 265, 20));
+  EXPECT_TRUE(recent.readsRows(map.view(), 265, 20));    // Every row missing, but the questions keep pace.
+  EXPECT_FALSE(recent.readsRows(map.view(), 266, 20));   // 6 test frames after the noted one.
   const DescriptorSequence smaller = randomMap(285, rng);
   EXPECT_FALSE(recent.keepsPace(smaller.view(), 265, 20));
   EXPECT_FALSE(recent.keepsPace(map.view(), 265, 20));  // Forgotten with the smaller map.
@@ -121,8 +123,10 @@ TEST(RecentRows, AQuestionBeforeTheNewestKeyframesComputesTheirRowsInTheSamePass
   EXPECT_EQ(recent.rowCount(), 23);
   for (const int first : {278, 279, 280}) {
     EXPECT_EQ(recent.missingRows(map.view(), first, 20), 0) << first;
+    EXPECT_TRUE(recent.readsRows(map.view(), first, 20)) << first;
     recent.costs(map.view(), first, 20, 250, rows, kVelocities, kept);
-    expectSameCosts(kept, bruteForceCosts(map.view(), first, 20, 250, rows), "test frames from " + std::to_string(first));
+    expectSameCosts(kept, bruteForceCosts(map.view(), first, 20, 250, rows),
+                    "test frames from " + std::to_string(first));
   }
 
   RecentRows far_back(kWindow, kMaxRecentRows);
@@ -190,8 +194,7 @@ TEST(RecentRows, MrsAnswersAsTheBruteForceFromKeptRows) {
     if (revisit < 20) continue;
     const int first = map.size() - 20;
     const int columns = first - 10;
-    const bool search = recent.missingRows(map.view(), first, 20) > 20 / kMissingRowsShare &&
-                        !recent.keepsPace(map.view(), first, 20);
+    const bool search = !recent.readsRows(map.view(), first, 20);
     const Match kept = mrs.matchMapFrames(map.view(), columns, first, 20, recent);
     const Match reference = brute.match(map.view(0, columns), map.view(first, map.size()));
     if (search) {

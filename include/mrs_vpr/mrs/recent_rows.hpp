@@ -62,6 +62,10 @@ class RecentRows {
    * frames that are new. Otherwise they would cost a good part of the brute force at every question.
    */
   bool keepsPace(SequenceView map, int first, int count);
+  /// Whether a question about map frames [first, first + count) reads the rows (costs, which computes
+  /// those it lacks) rather than searching: at most count / kMissingRowsShare of them lack a row, or
+  /// the questions keep pace (keepsPace).
+  bool readsRows(SequenceView map, int first, int count);
   /**
    * Records a question about map frames [first, first + count) that was answered without the rows,
    * so that the next question can tell whether it keeps pace. Computes no row: a row kept for a
@@ -90,6 +94,9 @@ class RecentRows {
   /// Drops rows of frames the map no longer holds, or older than the test frames and the newest
   /// kept_rows_; the caller holds mutex_.
   void forgetStaleLocked(SequenceView map, int first, int count);
+  /// missingRows and keepsPace once stale rows are dropped; the caller holds mutex_.
+  int missingRowsLocked(int first, int count) const;
+  bool keepsPaceLocked(int first, int count) const;
   /// Sets bytes_; the caller holds mutex_.
   void countBytesLocked();
   /// Extends `rows` (map frame, row) to finalEnd(map.count); returns the comparisons made.
