@@ -111,27 +111,26 @@ bool RecentRows::keepsPaceLocked(int first, int count) const {
   return newest_known >= 0 && first + count - 1 - newest_known <= count / kMissingRowsShare;
 }
 
-int RecentRows::missingRows(SequenceView map, int first, int count) {
+std::unique_lock<std::mutex> RecentRows::lockFresh(SequenceView map, int first, int count) {
   requireInside(map, first, count, map.count);
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   forgetStaleLocked(map, first, count);
   countBytesLocked();  // Rows may have been dropped.
+  return lock;
+}
+
+int RecentRows::missingRows(SequenceView map, int first, int count) {
+  const auto lock = lockFresh(map, first, count);
   return missingRowsLocked(first, count);
 }
 
 bool RecentRows::keepsPace(SequenceView map, int first, int count) {
-  requireInside(map, first, count, map.count);
-  std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
-  countBytesLocked();
+  const auto lock = lockFresh(map, first, count);
   return keepsPaceLocked(first, count);
 }
 
 bool RecentRows::readsRows(SequenceView map, int first, int count) {
-  requireInside(map, first, count, map.count);
-  std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
-  countBytesLocked();
+  const auto lock = lockFresh(map, first, count);
   return missingRowsLocked(first, count) <= count / kMissingRowsShare || keepsPaceLocked(first, count);
 }
 

@@ -94,6 +94,9 @@ class RecentRows {
   /// Drops rows of frames the map no longer holds, or older than the test frames and the newest
   /// kept_rows_; the caller holds mutex_.
   void forgetStaleLocked(SequenceView map, int first, int count);
+  /// Checks the frames (requireInside), takes mutex_ and drops stale rows: what every question about
+  /// the rows does first.
+  std::unique_lock<std::mutex> lockFresh(SequenceView map, int first, int count);
   /// missingRows and keepsPace once stale rows are dropped; the caller holds mutex_.
   int missingRowsLocked(int first, int count) const;
   bool keepsPaceLocked(int first, int count) const;
