@@ -462,10 +462,11 @@ int recentRouteFrames(const Options& options, int length) {
 
 /// Service questions about the map's newest frames (`~query {recent_frames: N}`, matchRecent): frames
 /// of the route in winter join the map as keyframes, from `next_route_frame` on, and both methods
-/// answer on the same map. Two kinds of row: "recent" asks after each new keyframe, as while
+/// answer on the same map. Three kinds of row: "recent" asks after each new keyframe, as while
 /// continuous mode runs, so that MRS has kept the rows of all but the newest frame
-/// (mrs/recent_rows.hpp); "recent*" asks after N new keyframes, none of whose rows it has, so that it
-/// searches as for any test sequence.
+/// (mrs/recent_rows.hpp); "recent=" asks again with no new keyframe, as of a loaded map that is not
+/// growing, so that MRS has every row; "recent*" asks after N new keyframes, none of whose rows it
+/// has, so that it searches as for any test sequence.
 void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
                    double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
                    int& next_route_frame) {
@@ -481,8 +482,13 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
     }
     recognizer.flush();
   };
-  for (const bool rows_kept : {true, false}) {
-    if (rows_kept) {
+  struct Kind {
+    const char* name;
+    int new_keyframes;  ///< Before each question.
+  };
+  for (const Kind kind : {Kind{"recent", 1}, Kind{"recent=", 0}, Kind{"recent*", length}}) {
+    const bool rows_kept = kind.new_keyframes < length;
+    if (kind.new_keyframes == 1) {
       // Not timed: as continuous mode does, a question after each keyframe, until the rows kept cover a
       // whole test sequence.
       addKeyframes(length);
@@ -494,7 +500,7 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
     const int asked = rows_kept ? options.queries : options.brute_queries;
     RowTally tally;
     for (int q = 0; q < asked; ++q) {
-      addKeyframes(rows_kept ? 1 : length);
+      addKeyframes(kind.new_keyframes);
       const int first = recognizer.size() - length;
       auto right = [&](const mrs_vpr::PlaceAnswer& answer) {
         const int route_frame = route_frame_of[static_cast<std::size_t>(first + answer.localised_row - base)];
@@ -503,7 +509,7 @@ void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
       tally.time([&](const char* method) { return recognizer.matchRecent(length, method); },
                  q < options.brute_queries, right);
     }
-    tally.print(sizeName(base), length, rows_kept ? "recent" : "recent*", load_s, rss_per_frame, peak_per_frame);
+    tally.print(sizeName(base), length, kind.name, load_s, rss_per_frame, peak_per_frame);
   }
 }
 
@@ -612,7 +618,8 @@ int run(int argc, char** argv) {
               lengths.c_str(), options.queries, options.brute_queries, options.threads,
               static_cast<unsigned long long>(options.seed));
   std::printf("queries: winter = the route in winter; summer* = summer with a new shift, gain and noise; "
-              "recent = the map's newest N frames (the route in winter, added as keyframes) after one new keyframe, recent* = after N. "
+              "recent = the map's newest N frames (the route in winter, added as keyframes) after one new keyframe, "
+              "recent= = again with none (a map that is not growing), recent* = after N. "
               "load = database to a queryable map;\nRSS/frame = resident growth of the load; peak = the process's "
               "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted;\n"
               "same = queries where mrs and brute force gave the same frame / the same acceptance / of those both "

@@ -972,8 +972,9 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
       EXPECT_EQ(row[12].substr(row[12].rfind('/')), "/1") << row[12];  // same frame / acceptance, of 1
     }
   }
-  // Questions about the newest frames, with rows kept and without: both methods answered.
-  for (const std::string kind : {"recent", "recent*"}) {
+  // Questions about the newest frames, with rows kept (after a new keyframe, and again with none) and
+  // without: both methods answered.
+  for (const std::string kind : {"recent", "recent=", "recent*"}) {
     int rows = 0;
     std::istringstream lines(result.out);
     for (std::string line; std::getline(lines, line);) {
@@ -982,6 +983,8 @@ TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
       if (tokens.size() == 14 && tokens[1] == "10" && tokens[2] == kind) {
         ++rows;
         EXPECT_EQ(tokens[12].substr(tokens[12].rfind('/')), "/1") << line;  // both methods answered one
+        // From kept rows MRS gives the brute force's frame and acceptance.
+        if (kind == "recent=") EXPECT_EQ(tokens[12], "1/1/1") << line;
       }
     }
     EXPECT_EQ(rows, 2) << kind << " (one a map)\n" << result.out;
