@@ -172,10 +172,10 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
           std::fprintf(stderr,
                        "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
-                       "frames %d..%d, confidence %.2f\n",
+                       "frames %d..%d, confidence %.2f, velocity %.2f\n",
                        method.c_str(), drive.name.c_str(), i, route_of_frame[static_cast<std::size_t>(localised_frame)],
                        match.reference_index, route_of_frame[static_cast<std::size_t>(first)],
-                       route_of_frame[static_cast<std::size_t>(last)], match.confidence);
+                       route_of_frame[static_cast<std::size_t>(last)], match.confidence, match.velocity);
         }
         // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
         const auto confirm = [&](int frame) {
