@@ -547,7 +547,7 @@ int measure(const Options& options) {
   const auto before = residentBytes();
   const auto load_start = Clock::now();
   mrs_vpr::RecognizerParams limits;
-  limits.max_frames = 0;  // Unbounded: the default capacity (500k frames) is below the largest map.
+  limits.max_frames = 0;  // Unbounded: the largest maps measured may exceed the default capacity.
   limits.min_appearance_change = 0.0;  // The map's frames are keyframes already.
   mrs_vpr::PlaceRecognizer recognizer(paramsFor(10, descriptor), limits);
   {

@@ -11,7 +11,7 @@ time (the first calls search and then fill the rows in).
     roslaunch mrs_vpr mrs_vpr.launch database:=/tmp/map100k.db &
     /usr/bin/python3 doc/experiments/node_recent_queries.py [--node /mrs_vpr] [--lengths 10,50,100] [--calls 10]
 
-The map-scale benchmark writes that database. A map of more than 500000 frames needs ~max_frames 0.
+The map-scale benchmark writes that database.
 """
 import argparse
 import statistics

@@ -118,7 +118,7 @@ struct MrsParams {
 
 /// How a PlaceRecognizer holds its map and answers, besides the search's own Parameters.
 struct RecognizerParams {
-  int max_frames = 500000;             ///< Map capacity [frames], 0 = unbounded (about 1 GB at 64 x 32).
+  int max_frames = 2000000;            ///< Map capacity [frames], 0 = unbounded (about 1.9 GB with HOG).
   int max_pending_frames = 600;        ///< Frames held back while a query reads the map (20 s at 30 Hz).
   int recent_exclusion = 100;          ///< matchRecent does not search this many frames before the test sequence.
   std::string default_method = "mrs";  ///< Method of a query that names none: "mrs" or "seqslam".
