@@ -29,6 +29,7 @@
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 #include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
@@ -121,6 +122,8 @@ struct MethodResult {
 MethodResult runQueries(mrs_vpr::PlaceRecognizer& reference, const std::string& method,
                         const mrs_vpr::DescriptorSequence& query, const std::vector<int>& starts,
                         const std::vector<int>& truth, const Options& options) {
+  const int anchor =
+      mrs_vpr::wholeSequenceRows(options.sequence_length, reference.parameters().sequence.alignment).anchor;
   MethodResult result;
   std::vector<std::vector<double>> runs(starts.size());
   double elapsed_s = 0.0;
@@ -134,7 +137,9 @@ MethodResult runQueries(mrs_vpr::PlaceRecognizer& reference, const std::string& 
       elapsed_s += runs[q].back() / 1000.0;
       if (pass > 0) continue;  // Runs repeat the same answer.
       result.comparisons += match.comparisons;
-      const int expected = truth[static_cast<std::size_t>(starts[q] + options.sequence_length - 1)];
+      // The answer names the reference frame of the test frame the sequence localises (its anchor:
+      // the middle frame at the default sequence/alignment, the newest when causal).
+      const int expected = truth[static_cast<std::size_t>(starts[q] + anchor)];
       if (match.reference_index >= 0 && std::abs(match.reference_index - expected) <= options.tolerance) {
         ++result.successes;
       }
