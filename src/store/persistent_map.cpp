@@ -19,7 +19,8 @@ void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path,
   const int capacity = recognizer.recognizerParameters().max_frames;
   if (capacity > 0 && frames > capacity) {
     throw MapDatabaseError("map database '" + path + "': it holds " + std::to_string(frames) +
-                           " frames, more than max_frames (" + std::to_string(capacity) + ")");
+                           " frames, more than max_frames (" + std::to_string(capacity) +
+                           "): raise max_frames to at least that, or to 0 (unbounded)");
   }
 }
 

@@ -255,7 +255,7 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
       {"other.db", "another kind"},
       {"truncated.db", "malformed"},
       {"small.db", "descriptors of the thumbnail (32 x 32, patches of 8 px) front end, not of the hog (128 x 64 window"},
-      {"big.db", "50 frames, more than max_frames (40)"},
+      {"big.db", "50 frames, more than max_frames (40): raise max_frames to at least that, or to 0 (unbounded)"},
       {"missing.db", "no such file"},
       {"map.db", "own database"},
   };
