@@ -147,9 +147,8 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
     throw std::invalid_argument("RecentRows: " + std::to_string(count) + " test frames, at most " +
                                 std::to_string(max_rows_) + " kept");
   }
-  requireInside(map, first, count, columns);
-  std::lock_guard<std::mutex> lock(mutex_);
-  forgetStaleLocked(map, first, count);
+  requireInside(map, first, count, columns);  // The columns too: lockFresh checks the frames only.
+  const auto lock = lockFresh(map, first, count);
 
   std::vector<std::pair<int, Row*>> test_rows;
   for (int frame = first; frame < first + count; ++frame) test_rows.emplace_back(frame, &rows_[frame]);
