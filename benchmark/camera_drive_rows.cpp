@@ -176,6 +176,18 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
                        method.c_str(), drive.name.c_str(), i, route_of_frame[static_cast<std::size_t>(localised_frame)],
                        match.reference_index, route_of_frame[static_cast<std::size_t>(first)],
                        route_of_frame[static_cast<std::size_t>(last)], match.confidence, match.velocity);
+          // The route frames of the test sequence's keyframes (* the localised one) and of the map's
+          // keyframes around the answer (* the answer): where their spacing differs, and how.
+          const auto route_of_keyframe = [&](int keyframe) {
+            return route_of_frame[static_cast<std::size_t>(keyframe_frame.at(static_cast<std::size_t>(keyframe)))];
+          };
+          std::fprintf(stderr, "  test keyframes:");
+          for (int q = end - recent; q < end; ++q) std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == anchor ? "*" : "");
+          std::fprintf(stderr, "\n  map keyframes: ");
+          for (int q = std::max(0, match.reference_index - recent); q < std::min(size, match.reference_index + recent); ++q) {
+            std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == match.reference_index ? "*" : "");
+          }
+          std::fprintf(stderr, "\n");
         }
         // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
         const auto confirm = [&](int frame) {
