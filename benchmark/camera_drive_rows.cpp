@@ -182,9 +182,12 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
             return route_of_frame[static_cast<std::size_t>(keyframe_frame.at(static_cast<std::size_t>(keyframe)))];
           };
           std::fprintf(stderr, "  test keyframes:");
-          for (int q = end - recent; q < end; ++q) std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == anchor ? "*" : "");
+          for (int q = end - recent; q < end; ++q) {
+            std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == anchor ? "*" : "");
+          }
           std::fprintf(stderr, "\n  map keyframes: ");
-          for (int q = std::max(0, match.reference_index - recent); q < std::min(size, match.reference_index + recent); ++q) {
+          const int shown_end = std::min(size, match.reference_index + recent);
+          for (int q = std::max(0, match.reference_index - recent); q < shown_end; ++q) {
             std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == match.reference_index ? "*" : "");
           }
           std::fprintf(stderr, "\n");
