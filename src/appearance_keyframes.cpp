@@ -78,12 +78,18 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   last_seen_before_ = false;
   if (!enabled() || frames_in_mean_ == 0) {
     last_change_ = 0.0;
+    last_keyframe_change_ = 0.0;
     return true;
   }
   std::vector<float> mean(mean_);
   for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
   const double unrelated = scale();
   last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
+  // The mean is the keyframe until a frame joins it.
+  last_keyframe_change_ =
+      frames_in_mean_ == 1 || unrelated <= 0.0
+          ? last_change_
+          : regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_.back().data()) / unrelated;
   if (last_change_ < min_change_) return false;
   // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one.
   const std::size_t kept = recent_keyframes_.size();
@@ -111,9 +117,10 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
 
 void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
   if (frames_in_mean_ == 0) return;  // Nothing to compare with yet: the next frame is a keyframe anyway.
-  // A frame already half-way to the next place is motion, not noise: averaging it in would drag the
-  // reference along with the camera (on the generated route, gaps of 130 places instead of 7).
-  if (last_change_ >= min_change_ / 2) return;
+  // A frame well on its way from the keyframe is motion, not noise. Measured from the keyframe, not
+  // from the mean, so that joined frames cannot drag the reference along with the camera (measured
+  // from the mean at three quarters of min_change: gaps of 128 places on the generated route).
+  if (last_keyframe_change_ >= min_change_ * kReferenceShare) return;
   const std::uint8_t* bytes = descriptor.ptr<std::uint8_t>();
   for (int i = 0; i < size_; ++i) mean_[static_cast<std::size_t>(i)] += bytes[i];
   ++frames_in_mean_;
@@ -125,6 +132,7 @@ AppearanceKeyframes AppearanceKeyframes::follower() const {
   next.compare_recent_ = false;
   next.frames_in_mean_ = 0;
   next.last_change_ = 0.0;
+  next.last_keyframe_change_ = 0.0;
   return next;
 }
 
@@ -134,6 +142,7 @@ void AppearanceKeyframes::reset() {
   recent_keyframes_.clear();
   samples_.clear();
   last_change_ = 0.0;
+  last_keyframe_change_ = 0.0;
   last_seen_before_ = false;
 }
 
