@@ -172,12 +172,13 @@ with open(truth_file) as f:
         truth[int(row["query_index"])] = [int(i) for i in row["matching_ref_indices"].split()]
 
 print()
-print("true: reference frame of the query's newest frame; predicted: the node's answer (by its stamp);")
+print("query: the bag frames sent, and the one the answer places (the middle one: sequence/alignment")
+print("centred); true: that frame's reference frame; predicted: the node's answer (by its stamp);")
 print("conf: confidence, the gap to the best rival in standard deviations of the query's own costs;")
 print("acc: confidence >= ~sequence/accept_threshold (3), on a trajectory not at the slowest or fastest")
 print("velocity searched (the node's message says why not); time_ms: the node's time")
 print()
-print("%-8s %-11s %6s %10s %6s %6s %5s %9s" % ("method", "query", "true", "predicted", "error", "conf", "acc", "time_ms"))
+print("%-8s %-15s %6s %10s %6s %6s %5s %9s" % ("method", "query", "true", "predicted", "error", "conf", "acc", "time_ms"))
 errors = {"mrs": [], "seqslam": []}
 accepted_wrong = 0
 unaccepted_misses = []
@@ -185,19 +186,21 @@ with open(results) as f:
     for line in f:
         answer = json.loads(line)
         request = answer["request"]
-        # query_bag sends keyframes (frames whose view changed), not always consecutive frames: the
-        # stamp of the newest one names its bag frame.
+        # query_bag sends keyframes (frames whose view changed), not always consecutive frames: a
+        # frame's stamp names its bag frame. The answer places the frame of localised_stamp.
         last = round((request["last_stamp"] - query_start) * rate)
-        true_index = truth[last][0]
-        frames = "%d-%d" % (request["start"], last)
         if not answer["success"]:
-            print("%-8s %-11s %6d   failed: %s" % (request["method"], frames, true_index, answer["message"]))
+            frames = "%d-%d" % (request["start"], last)
+            print("%-8s %-15s %6s   failed: %s" % (request["method"], frames, "", answer["message"]))
             continue
+        localised = round((answer["localised_stamp"] - query_start) * rate)
+        true_index = truth[localised][0]
+        frames = "%d-%d @%d" % (request["start"], last, localised)
         # The node's map index equals the bag frame only if it kept every frame; the stamp always tells.
         predicted = round((answer["reference_stamp"] - start_time) * rate)
         error = abs(predicted - true_index)
         errors[request["method"]].append(error)
-        print("%-8s %-11s %6d %10d %6d %6.2f %5s %9.1f" % (
+        print("%-8s %-15s %6d %10d %6d %6.2f %5s %9.1f" % (
             request["method"], frames, true_index, predicted, error, answer["confidence"],
             "yes" if answer["accepted"] else "no", answer["elapsed_ms"]))
         if error > 5 and answer["accepted"]:

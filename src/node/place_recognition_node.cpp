@@ -380,6 +380,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.score = match.score;
   response.confidence = match.confidence;
   response.reference_stamp = rosTimeOf(answered.reference_stamp);
+  response.localised_stamp = input.header.stamp;
   response.accepted = match.accepted;
   response.message = acceptanceVerdict(match, params_.core.sequence);
   return answered;

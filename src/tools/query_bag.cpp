@@ -171,6 +171,8 @@ int run(int argc, char** argv) {
                        {"reference_index", response.reference_index},
                        {"reference_stamp", response.reference_stamp.toSec()},
                        {"reference_stamp_ns", exactNanoseconds(response.reference_stamp)},
+                       {"localised_stamp", response.localised_stamp.toSec()},
+                       {"localised_stamp_ns", exactNanoseconds(response.localised_stamp)},
                        {"score", response.score},
                        {"confidence", response.confidence},
                        {"accepted", static_cast<bool>(response.accepted)},

@@ -156,6 +156,7 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
     EXPECT_EQ(closure.accepted, response.accepted);
     EXPECT_FLOAT_EQ(closure.confidence, response.confidence);
     EXPECT_EQ(closure.header.stamp, srv.request.images.back().header.stamp);
+    EXPECT_EQ(response.localised_stamp, closure.header.stamp);  // The frame the answer places.
     EXPECT_EQ(closure.header.frame_id, "camera");
   }
 }
