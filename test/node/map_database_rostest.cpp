@@ -262,7 +262,7 @@ TEST_F(MapDatabaseNodeTest, TheNodeAndBuildMapStoreTheSameMapFromTheSameFrames) 
 
   const auto offline = storedFrames(path("offline.db"));
   const auto online = storedFrames(path("node.db"));
-  EXPECT_GT(offline.size(), 100U);  // The route's frames show distinct places: few are too similar.
+  EXPECT_GT(offline.size(), 75U);  // The route's frames show distinct places: most are keyframes.
   ASSERT_EQ(online.size(), offline.size());
   for (std::size_t i = 0; i < offline.size(); ++i) {
     SCOPED_TRACE("frame " + std::to_string(i));
