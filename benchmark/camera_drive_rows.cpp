@@ -93,10 +93,12 @@ struct DriveCounts {
  */
 std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives, const std::vector<int>& route_places,
                                         const std::string& method, const DescriptorParams& descriptor,
-                                        const SequenceParams& sequence, bool each_keyframe, int* length) {
+                                        const SequenceParams& sequence, double min_appearance_change,
+                                        bool each_keyframe, int* length) {
   node::NodeParameters node;
   node.core.descriptor = descriptor;
   node.core.sequence = sequence;
+  node.recognizer.min_appearance_change = min_appearance_change;
   PlaceRecognizer recognizer(node.core, node.recognizer);
   const int recent = node.autoQueryFrames();
   *length = recent;
@@ -218,12 +220,14 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
 /// the frames its keyframe stands for (within the evaluator's tolerance).
 EvaluationSummary perFrameProtocol(const Drive& reference_drive, const Drive& query_drive,
                                    const std::vector<int>& route_places, const std::string& method,
-                                   const DescriptorParams& descriptor, const SequenceParams& sequence, int* reference_keyframes) {
+                                   const DescriptorParams& descriptor, const SequenceParams& sequence,
+                                   double min_appearance_change, int* reference_keyframes) {
   Parameters params;
   params.descriptor = descriptor;
   params.sequence = sequence;
   RecognizerParams map_params;
   map_params.max_frames = 0;
+  map_params.min_appearance_change = min_appearance_change;
   PlaceRecognizer reference(params, map_params);
   Keyframes reference_keyframed;
   for (const cv::Mat& image : reference_drive.images) {
@@ -287,7 +291,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
               "others lie within a stop); restated = accepted closures restated for the stopped frames their "
               "keyframe stands for, one a period (node/standing_frames.hpp), right/wrong alike\n",
               static_cast<unsigned long long>(input.seed), static_cast<unsigned long long>(input.seed + 1), kMapRate,
-              kRevisitRate, RecognizerParams{}.min_appearance_change, kQueryPeriod, kRouteTolerance,
+              kRevisitRate, input.min_appearance_change, kQueryPeriod, kRouteTolerance,
               places.back() + 1, route, kStretchFrames, kWarmUpFrames);
   for (const Drive* drive : {&map, &revisit}) {
     std::printf("  %-26s %5zu frames, %4d stopped; %d route frames at half speed from %d, %d at double speed from %d\n",
@@ -300,7 +304,8 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   for (const std::string& method : input.methods) {
     int length = 0;
     const std::vector<DriveCounts> counts =
-        continuousMode({&map, &revisit}, places, method, input.descriptor, input.sequence, input.each_keyframe, &length);
+        continuousMode({&map, &revisit}, places, method, input.descriptor, input.sequence,
+                       input.min_appearance_change, input.each_keyframe, &length);
     for (std::size_t d = 0; d < counts.size(); ++d) {
       const Drive& drive = d == 0 ? map : revisit;
       const DriveCounts& c = counts[d];
@@ -344,7 +349,8 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
   for (const std::string& method : input.methods) {
     int reference_keyframes = 0;
     const EvaluationSummary summary =
-        perFrameProtocol(map, revisit, places, method, input.descriptor, input.sequence, &reference_keyframes);
+        perFrameProtocol(map, revisit, places, method, input.descriptor, input.sequence, input.min_appearance_change,
+                         &reference_keyframes);
     per_frame("camera drives per-frame (mrs_vpr_eval)", method, summary, reference_keyframes,
               input.sequence.sequence_length);
   }

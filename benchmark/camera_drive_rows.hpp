@@ -29,6 +29,8 @@ struct CameraDriveInput {
   DescriptorParams descriptor;  ///< The front end; every other parameter is at its default.
   std::uint64_t seed = 42;      ///< The map drive's seed; the revisit's is seed + 1.
   SequenceParams sequence;      ///< The sequence search (the node's defaults unless set).
+  /// Keyframes by appearance change (RecognizerParams::min_appearance_change; the node's default unless set).
+  double min_appearance_change = RecognizerParams{}.min_appearance_change;
   /// Continuous mode localises every keyframe that came since its last question, as the node does;
   /// false: only the newest.
   bool each_keyframe = true;

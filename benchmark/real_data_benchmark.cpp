@@ -80,6 +80,7 @@ struct Options {
   bool drives = true;
   int drive_length = 0;
   int drive_alignment_slack = mrs_vpr::SequenceParams{}.alignment_slack;
+  double drive_min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
   std::string drive_alignment = mrs_vpr::toString(mrs_vpr::SequenceParams{}.alignment);
   std::string drive_queries = "each";  // as the node asks
   int drive_seeds = 1;                 // drives of seeds seed .. seed + drive_seeds - 1
@@ -137,6 +138,9 @@ std::optional<Options> parse(int argc, char** argv) {
        "keyframes per test sequence of the camera-drive rows; 0 = the node's default")
       ("drive-alignment-slack", po::value(&options.drive_alignment_slack)->default_value(options.drive_alignment_slack),
        "sequence/alignment_slack of the camera-drive rows")
+      ("drive-min-appearance-change",
+       po::value(&options.drive_min_appearance_change)->default_value(options.drive_min_appearance_change),
+       "min_appearance_change of the camera-drive rows (keyframes by appearance change)")
       ("drive-alignment", po::value(&options.drive_alignment)->default_value(options.drive_alignment),
        "sequence/alignment of the camera-drive rows: the keyframe an answer localises")
       ("drive-queries", po::value(&options.drive_queries)->default_value(options.drive_queries),
@@ -792,6 +796,7 @@ int run(int argc, char** argv) {
     drives.descriptor = options.descriptor;
     if (options.drive_length > 0) drives.sequence.sequence_length = options.drive_length;
     drives.sequence.alignment_slack = options.drive_alignment_slack;
+    drives.min_appearance_change = options.drive_min_appearance_change;
     drives.sequence.alignment = mrs_vpr::parseWindowAlignment(options.drive_alignment);
     if (options.drive_queries != "newest" && options.drive_queries != "each") {
       throw std::invalid_argument("--drive-queries must be newest or each, got '" + options.drive_queries + "'");
