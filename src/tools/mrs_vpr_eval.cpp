@@ -50,9 +50,11 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: mrs_vpr_eval --reference DIR|BAG|MAP.db --query DIR|BAG [--topic T] [--ground-truth FILE.csv]\n"
-    "                    --method mrs|seqslam --protocol per-frame|global --sequence-length N\n"
+    "                    --protocol per-frame|global [--method mrs|seqslam] [--sequence-length N]\n"
+    "                    [--min-appearance-change C] [--alignment causal|centred]\n"
     "                    [--queries K] [--tolerance T] [--seed S] [--output FILE.json]\n"
     "                    [--accept-threshold C] [--threads T] [--out-of-map] [--plots DIR]\n"
+    "--method, --sequence-length, --min-appearance-change and --alignment default to the node's.\n"
     "\n"
     "Evaluates visual place recognition of a query traversal against a reference traversal.\n"
     "Image folders are read in file-name order; bags (*.bag) give the sensor_msgs/Image or\n"
