@@ -26,14 +26,17 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: build_map (--images DIR | --bag BAG --topic T [--min-travel M [--odom-frame F] [--base-frame B]])\n"
-    "                 --output MAP.db [--append] [--force] [--descriptor hog|thumbnail] [front-end options]\n"
+    "                 --output MAP.db [--min-appearance-change C] [--append] [--force]\n"
+    "                 [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps, in the SQLite map database MAP.db. A new map is written to MAP.db.part and\n"
     "renamed only when complete; an existing MAP.db is extended with --append (with the front end it\n"
     "records, unless one is given) or replaced with --force.\n"
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
-    "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n";
+    "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n"
+    "Otherwise a frame is kept once its view has changed by C of the difference between unrelated\n"
+    "views, as the node's ~min_appearance_change keeps it (0: every frame).\n";
 
 /// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
 constexpr std::size_t kBatch = 1000;

@@ -29,7 +29,8 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: query_bag --bag B.bag --topic T --start I --count N [--min-travel M [--odom-frame F]\n"
-    "                 [--base-frame B]] [--method mrs|seqslam] [--service /mrs_vpr/query] [--timeout SEC]\n"
+    "                 [--base-frame B]] [--min-appearance-change C] [--method mrs|seqslam]\n"
+    "                 [--service /mrs_vpr/query] [--timeout SEC]\n"
     "       query_bag --recent-frames K [--method mrs|seqslam] [--service /mrs_vpr/query]\n"
     "\n"
     "Calls the mrs_vpr node's query service (mrs_vpr/QuerySequence) with frames I..I+N-1 of topic T\n"
