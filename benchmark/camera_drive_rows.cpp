@@ -87,7 +87,8 @@ struct DriveCounts {
 };
 
 /**
- * Both drives, one after the other, into one recognizer at the node's defaults, asked every period
+ * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,
+ * the sequence search and the keyframe threshold given, asked every period
  * as the node's continuous mode asks: only when a keyframe came since the last question, and only once
  * the map holds 2 L + recent_exclusion keyframes.
  */

@@ -26,7 +26,7 @@ struct CameraDriveInput {
   int part_begin = 0;
   int part_end = 0;
   std::vector<std::string> methods;
-  DescriptorParams descriptor;  ///< The front end; every other parameter is at its default.
+  DescriptorParams descriptor;  ///< The front end.
   std::uint64_t seed = 42;      ///< The map drive's seed; the revisit's is seed + 1.
   SequenceParams sequence;      ///< The sequence search (the node's defaults unless set).
   /// Keyframes by appearance change (RecognizerParams::min_appearance_change; the node's default unless set).
@@ -44,7 +44,8 @@ using PerFrameRow = std::function<void(const std::string& setting, const std::st
  * The map drive (summer, whole route) at 30 Hz and the revisit (winter, the reported part) at 10 Hz,
  * each with make_drive's defaults (8 stops of 30-90 frames, a half- and a double-speed stretch of 100
  * route frames; stretches of a quarter of a route shorter than 400 frames), go
- * frame by frame into one PlaceRecognizer at the node's defaults (keyframes by appearance), which
+ * frame by frame into one PlaceRecognizer at the node's defaults but for the input's settings
+ * (keyframes by appearance), which
  * every second, as the node's continuous mode, asks where its newest keyframes lie (matchRecent of
  * the node's continuous-mode length) when a keyframe came since the last question. Prints a table per
  * method and hands its rows to `add` for --json. Then the evaluator's per-frame protocol on the two

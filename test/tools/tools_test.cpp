@@ -952,6 +952,23 @@ TEST_F(ToolsTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousModeAn
   EXPECT_GT(rows[2].at("summary").at("queries").get<int>(), 0);
 }
 
+TEST_F(ToolsTest, TheRealDataBenchmarksDrivesKeyframeAtTheThresholdGiven) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_every_frame.json");
+  const Result result =
+      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+          " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5"
+          " --drive-min-appearance-change 0 --json " + output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("keyframes by appearance change 0.00"), std::string::npos) << result.out;
+  const json rows = json::parse(readText(output)).at("rows");
+  ASSERT_EQ(rows.size(), 3U) << rows.dump();
+  // At 0 every frame is a keyframe, stopped ones included (at the default, stops add almost none).
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_EQ(rows[i].at("stopped_keyframes"), rows[i].at("drive").at("stopped_frames")) << rows[i].dump();
+  }
+}
+
 TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   const fs::path data = realDataLayout(path(""));
   const fs::path maps = path("maps");
