@@ -913,12 +913,18 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
   }
 }
 
+/// The real-data benchmark's camera-drive rows alone (seeds 5 and 6, brute force), with `options`,
+/// written as JSON to `output`.
+std::string cameraDrivesCommand(const fs::path& data, const std::string& options, const std::string& output) {
+  return std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+         " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5" + options +
+         " --json " + output;
+}
+
 TEST_F(ToolsTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousModeAndTheEvaluator) {
   const fs::path data = realDataLayout(path(""));
   const std::string output = path("real_benchmark_drives.json");
-  const Result result =
-      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
-          " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5 --json " + output);
+  const Result result = run(cameraDrivesCommand(data, "", output));
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_NE(result.out.find("Camera drives (make_drive --seed 5 and 6)"), std::string::npos) << result.out;
   const json rows = json::parse(readText(output)).at("rows");
@@ -955,10 +961,7 @@ TEST_F(ToolsTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousModeAn
 TEST_F(ToolsTest, TheRealDataBenchmarksDrivesKeyframeAtTheThresholdGiven) {
   const fs::path data = realDataLayout(path(""));
   const std::string output = path("real_benchmark_every_frame.json");
-  const Result result =
-      run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
-          " --part all --references 1.8k --methods seqslam --skip-per-frame --skip-global --seed 5"
-          " --drive-min-appearance-change 0 --json " + output);
+  const Result result = run(cameraDrivesCommand(data, " --drive-min-appearance-change 0", output));
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_NE(result.out.find("keyframes by appearance change 0.00"), std::string::npos) << result.out;
   const json rows = json::parse(readText(output)).at("rows");
