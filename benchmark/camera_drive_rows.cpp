@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <stdexcept>
 
@@ -82,6 +83,9 @@ struct DriveCounts {
   int wrong_route_frames = 0;  ///< Accepted answers wrong were each route frame a place of its own.
   int standing_right = 0;  ///< Closures restated for the stopped frames a localised keyframe stands for.
   int standing_wrong = 0;
+  /// The farthest a wrong closure (accepted or restated) lies from the route frames its answer's
+  /// keyframe stands for, in route frames: how wrong the wrong ones are (0 when there are none).
+  int largest_wrong_error = 0;
   std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
   std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
 };
@@ -169,8 +173,21 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
           return false;
         };
         const auto answerShows = [&](int frame) { return within(frame, route_places); };
+        // Route frames from `frame`'s route frame to the nearest one the answer's keyframe stands for.
+        const auto routeFramesOff = [&](int frame) {
+          const int route_frame = route_of_frame[static_cast<std::size_t>(frame)];
+          int off = std::numeric_limits<int>::max();
+          for (int f = first; f <= last; ++f) {
+            off = std::min(off, std::abs(route_of_frame[static_cast<std::size_t>(f)] - route_frame));
+          }
+          return off;
+        };
+        const auto noteWrong = [&](int frame) {
+          if (d > 0) count.largest_wrong_error = std::max(count.largest_wrong_error, routeFramesOff(frame));
+        };
         const bool right = answerShows(localised_frame);
         ++(right ? count.right : count.wrong);
+        if (!right) noteWrong(localised_frame);
         if (!within(localised_frame, route_frame_numbers)) ++count.wrong_route_frames;
         if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
           std::fprintf(stderr,
@@ -208,6 +225,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
           const bool stood_right = answerShows(frame);
           ++(stood_right ? count.standing_right : count.standing_wrong);
           if (stood_right) confirm(frame);
+          if (!stood_right) noteWrong(frame);
         }
       }
     }
@@ -314,9 +332,11 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
       const int with_right = static_cast<int>(std::count(c.stretch_right.begin(), c.stretch_right.end(), true));
       const int keyframed = static_cast<int>(std::count(c.stretch_keyframed.begin(), c.stretch_keyframed.end(), true));
       const std::string wrong = std::to_string(c.wrong) + " (" + std::to_string(c.wrong_route_frames) + ")";
-      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d\n", drive.name.c_str(), method.c_str(),
+      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d", drive.name.c_str(), method.c_str(),
                   length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, wrong.c_str(), with_right,
                   stretches, keyframed, shareOf(c.stretch_right), c.standing_right, c.standing_wrong);
+      if (d > 0 && c.wrong + c.standing_wrong > 0) std::printf(", wrong by up to %d route frames", c.largest_wrong_error);
+      std::printf("\n");
       const double share = shareOf(c.stretch_right);
       rows.push_back({{"setting", "camera drive continuous " + std::string(d == 0 ? "map drive" : "revisit")},
                       {"method", method},
@@ -339,6 +359,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
                       {"accepted_wrong_by_route_frame", c.wrong_route_frames},
                       {"restated_right", c.standing_right},
                       {"restated_wrong", c.standing_wrong},
+                      {"largest_wrong_error_route_frames", c.largest_wrong_error},
                       {"stretches", stretches},
                       {"stretches_keyframed", keyframed},
                       {"stretches_with_right", with_right},
@@ -365,6 +386,7 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     int wrong = 0;
     int wrong_route_frames = 0;
     int restated_wrong = 0;
+    int largest_wrong_error = 0;  ///< In route frames, over the revisits.
     int accepted = 0;
     double share_sum = 0.0;
     int reaching_target = 0;
@@ -386,6 +408,8 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     totals.wrong += wrong;
     totals.wrong_route_frames += row.at("accepted_wrong_by_route_frame").get<int>();
     totals.restated_wrong += restated_wrong;
+    totals.largest_wrong_error =
+        std::max(totals.largest_wrong_error, row.at("largest_wrong_error_route_frames").get<int>());
     totals.accepted += row.at("accepted").get<int>();
     const double share = row.at("stretch_share").is_null() ? 0.0 : row.at("stretch_share").get<double>();
     totals.share_sum += share;
@@ -393,10 +417,12 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     totals.without_wrong += wrong + restated_wrong == 0 ? 1 : 0;
   }
   for (const auto& [method, t] : by_method) {
-    std::printf("drives of %d seeds, %s: revisits accepted %d, wrong %d (by route frame %d), restated wrong %d; "
+    std::printf("drives of %d seeds, %s: revisits accepted %d, wrong %d (by route frame %d), restated wrong %d, "
+                "wrong by up to %d route frames; "
                 "stretches confirmed %.3f on average, %d of %d revisits at %.0f%% or more, %d without a wrong "
                 "closure; map drives accepted %d of %d answers\n",
                 t.revisits, method.c_str(), t.accepted, t.wrong, t.wrong_route_frames, t.restated_wrong,
+                t.largest_wrong_error,
                 t.revisits > 0 ? t.share_sum / t.revisits : std::nan(""), t.reaching_target, t.revisits,
                 100.0 * kStretchTarget, t.without_wrong, t.map_accepted, t.map_queries);
   }
