@@ -83,9 +83,11 @@ struct DriveCounts {
   int wrong_route_frames = 0;  ///< Accepted answers wrong were each route frame a place of its own.
   int standing_right = 0;  ///< Closures restated for the stopped frames a localised keyframe stands for.
   int standing_wrong = 0;
-  /// The farthest a wrong closure (accepted or restated) lies from the route frames its answer's
-  /// keyframe stands for, in route frames: how wrong the wrong ones are (0 when there are none).
-  int largest_wrong_error = 0;
+  /// The farthest a wrong closure (accepted or restated) lies from what its answer's keyframe stands
+  /// for: how wrong the wrong ones are (0 when there are none). In places (the judge's unit: route
+  /// frames where the recording stood count as one) and in route frames.
+  int largest_wrong_places = 0;
+  int largest_wrong_route_frames = 0;
   std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
   std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
 };
@@ -173,17 +175,21 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
           return false;
         };
         const auto answerShows = [&](int frame) { return within(frame, route_places); };
-        // Route frames from `frame`'s route frame to the nearest one the answer's keyframe stands for.
-        const auto routeFramesOff = [&](int frame) {
-          const int route_frame = route_of_frame[static_cast<std::size_t>(frame)];
+        // From `frame` to the nearest frame the answer's keyframe stands for, in places or in route frames.
+        const auto distance = [&](int frame, const std::vector<int>& position_of_route_frame) {
+          const int position = position_of_route_frame.at(static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(frame)]));
           int off = std::numeric_limits<int>::max();
           for (int f = first; f <= last; ++f) {
-            off = std::min(off, std::abs(route_of_frame[static_cast<std::size_t>(f)] - route_frame));
+            const auto shown = static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(f)]);
+            off = std::min(off, std::abs(position_of_route_frame.at(shown) - position));
           }
           return off;
         };
         const auto noteWrong = [&](int frame) {
-          if (d > 0) count.largest_wrong_error = std::max(count.largest_wrong_error, routeFramesOff(frame));
+          if (d == 0) return;  // No place comes back on the first traversal: every closure there is wrong.
+          count.largest_wrong_places = std::max(count.largest_wrong_places, distance(frame, route_places));
+          count.largest_wrong_route_frames =
+              std::max(count.largest_wrong_route_frames, distance(frame, route_frame_numbers));
         };
         const bool right = answerShows(localised_frame);
         ++(right ? count.right : count.wrong);
@@ -335,7 +341,9 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
       std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d", drive.name.c_str(), method.c_str(),
                   length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, wrong.c_str(), with_right,
                   stretches, keyframed, shareOf(c.stretch_right), c.standing_right, c.standing_wrong);
-      if (d > 0 && c.wrong + c.standing_wrong > 0) std::printf(", wrong by up to %d route frames", c.largest_wrong_error);
+      if (d > 0 && c.wrong + c.standing_wrong > 0) {
+        std::printf(", wrong by up to %d places (%d route frames)", c.largest_wrong_places, c.largest_wrong_route_frames);
+      }
       std::printf("\n");
       const double share = shareOf(c.stretch_right);
       rows.push_back({{"setting", "camera drive continuous " + std::string(d == 0 ? "map drive" : "revisit")},
@@ -359,7 +367,8 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
                       {"accepted_wrong_by_route_frame", c.wrong_route_frames},
                       {"restated_right", c.standing_right},
                       {"restated_wrong", c.standing_wrong},
-                      {"largest_wrong_error_route_frames", c.largest_wrong_error},
+                      {"largest_wrong_error_places", c.largest_wrong_places},
+                      {"largest_wrong_error_route_frames", c.largest_wrong_route_frames},
                       {"stretches", stretches},
                       {"stretches_keyframed", keyframed},
                       {"stretches_with_right", with_right},
@@ -386,7 +395,8 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     int wrong = 0;
     int wrong_route_frames = 0;
     int restated_wrong = 0;
-    int largest_wrong_error = 0;  ///< In route frames, over the revisits.
+    int largest_wrong_places = 0;  ///< Over the revisits.
+    int largest_wrong_route_frames = 0;
     int accepted = 0;
     double share_sum = 0.0;
     int reaching_target = 0;
@@ -408,8 +418,9 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     totals.wrong += wrong;
     totals.wrong_route_frames += row.at("accepted_wrong_by_route_frame").get<int>();
     totals.restated_wrong += restated_wrong;
-    totals.largest_wrong_error =
-        std::max(totals.largest_wrong_error, row.at("largest_wrong_error_route_frames").get<int>());
+    totals.largest_wrong_places = std::max(totals.largest_wrong_places, row.at("largest_wrong_error_places").get<int>());
+    totals.largest_wrong_route_frames =
+        std::max(totals.largest_wrong_route_frames, row.at("largest_wrong_error_route_frames").get<int>());
     totals.accepted += row.at("accepted").get<int>();
     const double share = row.at("stretch_share").is_null() ? 0.0 : row.at("stretch_share").get<double>();
     totals.share_sum += share;
@@ -418,11 +429,11 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
   }
   for (const auto& [method, t] : by_method) {
     std::printf("drives of %d seeds, %s: revisits accepted %d, wrong %d (by route frame %d), restated wrong %d, "
-                "wrong by up to %d route frames; "
+                "wrong by up to %d places (%d route frames); "
                 "stretches confirmed %.3f on average, %d of %d revisits at %.0f%% or more, %d without a wrong "
                 "closure; map drives accepted %d of %d answers\n",
                 t.revisits, method.c_str(), t.accepted, t.wrong, t.wrong_route_frames, t.restated_wrong,
-                t.largest_wrong_error,
+                t.largest_wrong_places, t.largest_wrong_route_frames,
                 t.revisits > 0 ? t.share_sum / t.revisits : std::nan(""), t.reaching_target, t.revisits,
                 100.0 * kStretchTarget, t.without_wrong, t.map_accepted, t.map_queries);
   }
