@@ -179,12 +179,17 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   std::vector<double> times;
   double total_ms = 0.0;
   int accepted_correct = 0;
+  int largest_wrong_error = -1;  // None yet.
   for (const QueryRecord& record : records) {
+    const int error = absoluteError(record);
     if (record.accepted) {
       ++summary.accepted;
-      if (isCorrect(record, tolerance)) ++accepted_correct;
+      if (isCorrect(record, tolerance)) {
+        ++accepted_correct;
+      } else if (error >= 0) {
+        largest_wrong_error = std::max(largest_wrong_error, error);
+      }
     }
-    const int error = absoluteError(record);
     if (error >= 0) errors.push_back(error);
     times.push_back(record.time_ms);
     total_ms += record.time_ms;
@@ -194,6 +199,7 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
     summary.accepted_recall = static_cast<double>(accepted_correct) / static_cast<double>(records.size());
   }
   if (summary.accepted > 0) summary.accepted_precision = static_cast<double>(accepted_correct) / summary.accepted;
+  if (largest_wrong_error >= 0) summary.largest_wrong_accepted_error = largest_wrong_error;
   summary.median_abs_error = median(errors);
   summary.median_time_ms = median(times);
   summary.total_time_s = total_ms / 1000.0;

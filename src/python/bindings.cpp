@@ -434,6 +434,7 @@ py::dict summaryDict(const EvaluationSummary& summary) {
   row["accepted_rate"] = summary.accepted_rate;
   row["accepted_precision"] = summary.accepted_precision;
   row["accepted_recall"] = summary.accepted_recall;
+  row["largest_wrong_accepted_error"] = summary.largest_wrong_accepted_error;
   row["median_abs_error"] = summary.median_abs_error;
   row["median_time_ms"] = summary.median_time_ms;
   row["total_time_s"] = summary.total_time_s;

@@ -350,6 +350,7 @@ json summaryToJson(const mrs_vpr::EvaluationSummary& summary) {
           {"accepted_rate", summary.accepted_rate},
           {"accepted_precision", number(summary.accepted_precision)},
           {"accepted_recall", summary.accepted_recall},
+          {"largest_wrong_accepted_error", number(summary.largest_wrong_accepted_error)},
           {"median_abs_error", number(summary.median_abs_error)},
           {"median_time_ms", number(summary.median_time_ms)},
           {"total_time_s", summary.total_time_s}};

@@ -189,6 +189,7 @@ TEST(Evaluation, SummaryByHand) {
   EXPECT_DOUBLE_EQ(summary.total_time_s, 0.022);
   EXPECT_EQ(summary.accepted, 0);
   EXPECT_TRUE(std::isnan(summary.accepted_precision));  // Nothing accepted: precision undefined.
+  EXPECT_TRUE(std::isnan(summary.largest_wrong_accepted_error));  // ... and no wrong one.
   EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.0);
 }
 
@@ -203,8 +204,13 @@ TEST(Evaluation, AcceptedPrecisionRecallAndRate) {
   EXPECT_DOUBLE_EQ(summary.accepted_rate, 0.5);
   EXPECT_DOUBLE_EQ(summary.accepted_precision, 0.5);
   EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.25);
-  records[3].accepted = true;  // An answer about a place outside the map is always false.
+  EXPECT_DOUBLE_EQ(summary.largest_wrong_accepted_error, 4.0);
+  records[3].accepted = true;  // An answer about a place outside the map is always false ...
   EXPECT_DOUBLE_EQ(summarise(records, 1).accepted_precision, 1.0 / 3.0);
+  // ... and has no distance to a true frame.
+  EXPECT_DOUBLE_EQ(summarise(records, 1).largest_wrong_accepted_error, 4.0);
+  records[1].accepted = false;
+  EXPECT_TRUE(std::isnan(summarise(records, 1).largest_wrong_accepted_error));
 }
 
 // ------------------------------------------------------------------------------------------------

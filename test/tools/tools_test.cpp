@@ -109,7 +109,7 @@ TEST_F(ToolsTest, PerFrameSeqSlamFindsThePlantedAlignment) {
   const json document = json::parse(readText(output));
   const json& summary = document.at("summary");
   for (const char* field : {"tolerance", "queries", "top1", "pr_auc", "recall_at_100_precision", "median_abs_error",
-                            "median_time_ms", "total_time_s"}) {
+                            "largest_wrong_accepted_error", "median_time_ms", "total_time_s"}) {
     EXPECT_TRUE(summary.contains(field)) << field;
   }
   EXPECT_EQ(summary.at("queries").get<int>(), 91);  // Query frames 9..99 have 10 frames behind them.

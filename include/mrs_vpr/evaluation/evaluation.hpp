@@ -55,6 +55,10 @@ struct EvaluationSummary {
   /// Correct accepted / accepted: NaN when nothing was accepted.
   double accepted_precision = std::numeric_limits<double>::quiet_NaN();
   double accepted_recall = 0.0;    ///< Correct accepted / queries.
+  /// How far the wrong accepted answers lie: the largest distance of one from its nearest true frame
+  /// [frames]. NaN when no accepted answer about a place in the map is wrong (an answer about a place
+  /// outside it has no distance; accepted_rate counts those).
+  double largest_wrong_accepted_error = std::numeric_limits<double>::quiet_NaN();
   double median_abs_error = std::numeric_limits<double>::quiet_NaN();
   double median_time_ms = std::numeric_limits<double>::quiet_NaN();
   double total_time_s = 0.0;  ///< Sum of the queries' times; a caller may replace it by a wall time.
