@@ -331,6 +331,7 @@ class Report {
                        {"accepted", s.accepted},
                        {"accepted_precision", number(s.accepted_precision)},
                        {"accepted_recall", s.accepted_recall},
+                       {"largest_wrong_accepted_error", number(s.largest_wrong_accepted_error)},
                        {"median_time_ms", number(s.median_time_ms)}}}});
   }
 

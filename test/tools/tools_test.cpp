@@ -903,6 +903,12 @@ TEST_F(ToolsTest, TheRealDataBenchmarkRunsWithTheGivenOptions) {
     const int length = i % 2 == 0 ? 20 : 30;
     EXPECT_EQ(rows[i].at("sequence_length"), length);
     EXPECT_EQ(rows[i].at("summary").at("queries"), 3);
+    // A number when an accepted answer was wrong, else null.
+    const json& wrong_error = rows[i].at("summary").at("largest_wrong_accepted_error");
+    const double precision = rows[i].at("summary").at("accepted_precision").is_null()
+                                 ? 1.0
+                                 : rows[i].at("summary").at("accepted_precision").get<double>();
+    EXPECT_EQ(wrong_error.is_null(), precision == 1.0) << rows[i].dump();
     if (i < 2) {
       EXPECT_EQ(rows[i].at("reference_frames"), 100);  // The route: as many summer frames as there are winter ones.
     } else {
