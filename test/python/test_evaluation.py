@@ -29,6 +29,7 @@ def test_per_frame_records_every_query_frame_with_a_full_sequence(route, short_s
     assert summary["tolerance"] == 3
     assert summary["top1"] > 0.9
     assert summary["accepted_precision"] == 1.0
+    assert np.isnan(summary["largest_wrong_accepted_error"])  # no accepted answer is wrong
     curve = evaluation.pr_curve
     assert len(curve["threshold"]) == len(curve["precision"]) == len(curve["recall"]) > 0
     assert np.all(np.diff(curve["recall"]) >= 0)
