@@ -165,16 +165,6 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         const auto k = static_cast<std::size_t>(match.reference_index);
         const int first = keyframe_frame.at(k);
         const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
-        // Within kRouteTolerance of a frame the answer's keyframe stands for, in places or in route frames.
-        const auto within = [&](int frame, const std::vector<int>& position_of_route_frame) {
-          const int position = position_of_route_frame.at(static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(frame)]));
-          for (int f = first; f <= last; ++f) {
-            const auto shown = static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(f)]);
-            if (std::abs(position_of_route_frame.at(shown) - position) <= kRouteTolerance) return d > 0;
-          }
-          return false;
-        };
-        const auto answerShows = [&](int frame) { return within(frame, route_places); };
         // From `frame` to the nearest frame the answer's keyframe stands for, in places or in route frames.
         const auto distance = [&](int frame, const std::vector<int>& position_of_route_frame) {
           const int position = position_of_route_frame.at(static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(frame)]));
@@ -185,6 +175,11 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
           }
           return off;
         };
+        // Right: within kRouteTolerance of a frame the answer's keyframe stands for, on a revisit.
+        const auto within = [&](int frame, const std::vector<int>& position_of_route_frame) {
+          return d > 0 && distance(frame, position_of_route_frame) <= kRouteTolerance;
+        };
+        const auto answerShows = [&](int frame) { return within(frame, route_places); };
         const auto noteWrong = [&](int frame) {
           if (d == 0) return;  // No place comes back on the first traversal: every closure there is wrong.
           count.largest_wrong_places = std::max(count.largest_wrong_places, distance(frame, route_places));
