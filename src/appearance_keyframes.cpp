@@ -100,6 +100,12 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
       return false;
     }
   }
+  // A stray of a standing camera: the view of the newest keyframe, like one of its noisy copies.
+  if (last_keyframe_change_ < kStrayShare * min_change_) {
+    for (const std::vector<float>& joined : joined_) {
+      if (regionDifference(descriptor.ptr<std::uint8_t>(), joined.data()) < min_change_ * unrelated) return false;
+    }
+  }
   return true;
 }
 
@@ -111,6 +117,7 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     recent_keyframes_.pop_front();
   }
   recent_keyframes_.push_back(values);
+  joined_.clear();
   mean_ = std::move(values);
   frames_in_mean_ = 1;
 }
@@ -124,11 +131,14 @@ void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
   const std::uint8_t* bytes = descriptor.ptr<std::uint8_t>();
   for (int i = 0; i < size_; ++i) mean_[static_cast<std::size_t>(i)] += bytes[i];
   ++frames_in_mean_;
+  joined_.push_front(asFloats(descriptor));
+  if (static_cast<int>(joined_.size()) > kJoinedFrames) joined_.pop_back();
 }
 
 AppearanceKeyframes AppearanceKeyframes::follower() const {
   AppearanceKeyframes next(*this);
   next.mean_.clear();
+  next.joined_.clear();
   next.compare_recent_ = false;
   next.frames_in_mean_ = 0;
   next.last_change_ = 0.0;
@@ -138,6 +148,7 @@ AppearanceKeyframes AppearanceKeyframes::follower() const {
 
 void AppearanceKeyframes::reset() {
   mean_.clear();
+  joined_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();
   samples_.clear();

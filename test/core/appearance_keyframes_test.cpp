@@ -203,6 +203,54 @@ TEST_P(AppearanceKeyframesTest, AStandingCamerasNoiseAveragesOutOfTheReference) 
 INSTANTIATE_TEST_SUITE_P(FrontEnds, AppearanceKeyframesTest, ::testing::Values(DescriptorParams{}, thumbnailParams()),
                          [](const auto& info) { return info.param.type; });
 
+TEST(AppearanceKeyframes, AStandingCamerasStrayLikeAFrameThatJoinedTheReferenceIsNotAKeyframe) {
+  // Descriptors by hand in HOG's layout (regions of 4 x 9 bytes), so that each distance is exact. In
+  // units of min_change, the joined frame lies 1/3 from the keyframe; the stray lies 8/9 from the
+  // joined frame, 1.22 from the keyframe (within kStrayShare) and 1.06 from the reference (their mean).
+  const DescriptorParams params;
+  const DescriptorExtractor extractor(params);
+  // Both recognisers learn the same scale from the same drive.
+  const auto scaled = [&] {
+    cv::RNG rng(5);
+    return keyframesScaledByADrive(extractor, params, rng);
+  };
+  AppearanceKeyframes keyframes = scaled();
+  const int region = 4 * params.hog_bins;
+  const auto descriptor = [&](double joined_offset, double stray_offset) {
+    cv::Mat bytes(1, params.descriptorSize(), CV_8UC1, cv::Scalar(40));
+    for (int i = 0; i < bytes.cols; ++i) {
+      if (i % region < 4) bytes.at<std::uint8_t>(i) = cv::saturate_cast<std::uint8_t>(40 + joined_offset);
+      if (i % region >= region - 4) bytes.at<std::uint8_t>(i) = cv::saturate_cast<std::uint8_t>(40 + stray_offset);
+    }
+    return bytes;
+  };
+  const cv::Mat keyframe = descriptor(0.0, 0.0);
+  ASSERT_TRUE(keyframes.wants(keyframe));
+  keyframes.keep(keyframe);
+  // Four bytes of 36 changed by 9 x d change the region by d.
+  const double min_change = 0.4 * keyframes.scale();
+  ASSERT_LT(40 + 9 * min_change, 255.0);
+  const cv::Mat joined = descriptor(9 * min_change / 3, 0.0);
+  ASSERT_FALSE(keyframes.wants(joined));
+  keyframes.skip(joined);
+  const cv::Mat stray = descriptor(9 * min_change / 3, 9 * min_change * 8 / 9);
+  EXPECT_FALSE(keyframes.wants(stray));
+  EXPECT_GT(keyframes.lastChange(), 0.4);  // Over min_change from the reference: the joined frame keeps it out.
+  EXPECT_FALSE(keyframes.lastSeenBefore());
+  // The joined frame shows the keyframe's view itself; the stray, refused, does not stand there.
+  EXPECT_FALSE(keyframes.lastStood());
+  const cv::Mat between = descriptor(9 * min_change / 3, 9 * min_change * 0.8);  // 0.97 from the reference
+  EXPECT_FALSE(keyframes.wants(between));
+  EXPECT_FALSE(keyframes.lastStood());
+  EXPECT_FALSE(keyframes.wants(joined));
+  EXPECT_TRUE(keyframes.lastStood());
+  // Without the joined frame the same view is new.
+  AppearanceKeyframes without = scaled();
+  ASSERT_TRUE(without.wants(keyframe));
+  without.keep(keyframe);
+  EXPECT_TRUE(without.wants(stray));
+}
+
 TEST(PlaceRecognizer, AViewLikeAnOlderKeyframeIsSeenRecentlyNotTooSimilar) {
   // The node restates closures only for frames too similar to the newest keyframe: a frame that looks
   // like an older one (a robot swinging back) must say so.
