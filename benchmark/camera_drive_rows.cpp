@@ -136,7 +136,9 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
       clock += 1.0 / drive.rate;
       const int stretch = stretchOf(i);
       const FrameAdmission admission = recognizer.addFrame(drive.images[static_cast<std::size_t>(i)]);
-      if (admission == FrameAdmission::kTooSimilar) standing.tooSimilar(stamp_of_frame.back());
+      if (admission == FrameAdmission::kTooSimilar && recognizer.lastFrameStood()) {
+        standing.tooSimilar(stamp_of_frame.back());
+      }
       if (admission == FrameAdmission::kAdmitted) {
         standing.keyframe(stamp_of_frame.back());
         keyframe_frame.push_back(t);

@@ -94,6 +94,11 @@ double PlaceRecognizer::lastAppearanceChange() const {
   return keyframes_.lastChange();
 }
 
+bool PlaceRecognizer::lastFrameStood() const {
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  return keyframes_.lastStood();
+}
+
 FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);

@@ -85,6 +85,10 @@ class PlaceRecognizer {
   /// The appearance change of the frame last offered, in units of the difference between unrelated
   /// views (0 when keyframes are not chosen by appearance).
   double lastAppearanceChange() const;
+  /// Whether the last frame offerDescriptor() refused as kTooSimilar shows the newest keyframe's view
+  /// itself (AppearanceKeyframes::lastStood): the node restates the keyframe's closures for such frames
+  /// only, not for frames on their way to the next place.
+  bool lastFrameStood() const;
 
   /// Where the test sequence (images, oldest first, at the camera's rate or spaced already) ends in the
   /// map. Its keyframes are matched, chosen as the map's (keyframesOf). `method` "" is the default one.

@@ -200,8 +200,9 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
       ++frames_too_similar_;
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip(seconds);
-      // Only a view like the newest keyframe's stands at its place; one like an older keyframe may not.
-      if (admission == FrameAdmission::kTooSimilar) standing_frames_.tooSimilar(stamp);
+      // Only the newest keyframe's own view stands at its place; one like an older keyframe, or one on its
+      // way from the newest, may not.
+      if (admission == FrameAdmission::kTooSimilar && recognizer_.lastFrameStood()) standing_frames_.tooSimilar(stamp);
       return;
     }
     case FrameAdmission::kMapFull:
