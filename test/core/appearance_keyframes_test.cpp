@@ -263,6 +263,26 @@ TEST(PlaceRecognizer, AViewLikeAnOlderKeyframeIsSeenRecentlyNotTooSimilar) {
   EXPECT_EQ(recognizer.addFrame(viewAt(2400.0, 1, 1, rng)), FrameAdmission::kSeenRecently);
 }
 
+TEST(PlaceRecognizer, OnlyAFrameAtTheNewestKeyframesOwnViewStood) {
+  // The node restates a keyframe's closures for the frames that stood at its view: those within
+  // kReferenceShare of min_change of its reference, not those on their way to the next place.
+  PlaceRecognizer recognizer;
+  cv::RNG rng(9);
+  for (int i = 0; i < 150; ++i) recognizer.addFrame(viewAt(12.0 * i, 1, 1, rng));  // the scale
+  ASSERT_EQ(recognizer.addFrame(viewAt(3000.0, 1, 1, rng)), FrameAdmission::kAdmitted);
+  const double stood_below = AppearanceKeyframes::kReferenceShare * RecognizerParams{}.min_appearance_change;
+  int stood = 0;
+  int on_its_way = 0;
+  // A camera creeping on from the keyframe, a tenth of a pixel a frame, until a keyframe comes.
+  for (double x = 3000.1; recognizer.addFrame(viewAt(x, 1, 1, rng)) == FrameAdmission::kTooSimilar; x += 0.1) {
+    const bool expected = recognizer.lastAppearanceChange() < stood_below;
+    EXPECT_EQ(recognizer.lastFrameStood(), expected) << "change " << recognizer.lastAppearanceChange();
+    ++(expected ? stood : on_its_way);
+  }
+  EXPECT_GT(stood, 0);
+  EXPECT_GT(on_its_way, 0);
+}
+
 TEST(PlaceRecognizer, KeyframesFramesByAppearanceButTakesDescriptorsAsKeyframes) {
   PlaceRecognizer recognizer;
   cv::RNG rng(6);
