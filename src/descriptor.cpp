@@ -1,11 +1,31 @@
 #include "mrs_vpr/descriptor.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
 
 namespace mrs_vpr {
+namespace {
+
+/// OpenCV hands a colour conversion of more than 2^16 pixels to its thread pool. For one camera frame
+/// waking the pool costs more CPU than the conversion itself (640 x 480: 0.42 ms of CPU against 0.15
+/// ms on the calling thread alone, at 30 Hz), so a frame is converted in bands below that size, each
+/// on the calling thread. The pixels are the same as one call's.
+constexpr int kPixelsPerBand = 1 << 16;
+
+void convertInBands(const cv::Mat& image, int code, cv::Mat& grey) {
+  grey.create(image.rows, image.cols, CV_8UC1);
+  const int band_rows = std::max(1, kPixelsPerBand / image.cols);
+  for (int top = 0; top < image.rows; top += band_rows) {
+    const int bottom = std::min(image.rows, top + band_rows);
+    cv::Mat band = grey.rowRange(top, bottom);
+    cv::cvtColor(image.rowRange(top, bottom), band, code);
+  }
+}
+
+}  // namespace
 
 const cv::Mat& toGrey(const cv::Mat& image, ChannelOrder order, cv::Mat& buffer) {
   if (image.empty()) {
@@ -17,10 +37,10 @@ const cv::Mat& toGrey(const cv::Mat& image, ChannelOrder order, cv::Mat& buffer)
     case CV_16UC1:
       return image;
     case CV_8UC3:
-      cv::cvtColor(image, buffer, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY);
+      convertInBands(image, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY, buffer);
       return buffer;
     case CV_8UC4:
-      cv::cvtColor(image, buffer, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY);
+      convertInBands(image, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY, buffer);
       return buffer;
     default:
       throw std::invalid_argument("unsupported image type " + cv::typeToString(image.type()) +

@@ -136,6 +136,31 @@ TEST(DescriptorExtractor, FourChannelImagesIgnoreAlphaAndHonourChannelOrder) {
   EXPECT_EQ(cv::norm(extractor.compute(rgba, ChannelOrder::kRgb), expected, cv::NORM_INF), 0.0);
 }
 
+TEST(ToGrey, ACameraFrameConvertedInBandsHasTheWholeConversionsPixels) {
+  // 641 x 481: several bands of the conversion, the last one partial, and a non-continuous ROI.
+  const cv::Mat big = colourImage(700, 500, 6);
+  const cv::Mat frame = big(cv::Rect(13, 7, 641, 481));
+  cv::Mat frame_with_alpha;
+  cv::cvtColor(frame, frame_with_alpha, cv::COLOR_BGR2BGRA);
+  const struct {
+    const cv::Mat& image;
+    ChannelOrder order;
+    int code;
+  } cases[] = {{frame, ChannelOrder::kBgr, cv::COLOR_BGR2GRAY},
+               {frame, ChannelOrder::kRgb, cv::COLOR_RGB2GRAY},
+               {frame_with_alpha, ChannelOrder::kBgr, cv::COLOR_BGRA2GRAY},
+               {frame_with_alpha, ChannelOrder::kRgb, cv::COLOR_RGBA2GRAY}};
+  for (const auto& conversion : cases) {
+    cv::Mat expected;
+    cv::cvtColor(conversion.image, expected, conversion.code);
+    cv::Mat buffer;
+    const cv::Mat& grey = toGrey(conversion.image, conversion.order, buffer);
+    ASSERT_EQ(grey.type(), CV_8UC1);
+    ASSERT_EQ(grey.size(), expected.size());
+    EXPECT_EQ(cv::norm(grey, expected, cv::NORM_INF), 0.0) << "conversion code " << conversion.code;
+  }
+}
+
 TEST(DescriptorExtractor, NonContinuousRoiIsDescribedLikeItsCopy) {
   const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat big = colourImage(200, 120, 5);
