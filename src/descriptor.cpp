@@ -15,7 +15,8 @@ namespace {
 /// on the calling thread. The pixels are the same as one call's.
 constexpr int kPixelsPerBand = 1 << 16;
 
-void convertInBands(const cv::Mat& image, int code, cv::Mat& grey) {
+void convertInBands(const cv::Mat& colour, int code, cv::Mat& grey) {
+  const cv::Mat image = colour;  // Shares the pixels: `grey` may be `colour` itself, reallocated below.
   grey.create(image.rows, image.cols, CV_8UC1);
   const int band_rows = std::max(1, kPixelsPerBand / image.cols);
   for (int top = 0; top < image.rows; top += band_rows) {

@@ -159,6 +159,13 @@ TEST(ToGrey, ACameraFrameConvertedInBandsHasTheWholeConversionsPixels) {
     ASSERT_EQ(grey.size(), expected.size());
     EXPECT_EQ(cv::norm(grey, expected, cv::NORM_INF), 0.0) << "conversion code " << conversion.code;
   }
+  // The buffer may be the image itself, as with cv::cvtColor.
+  cv::Mat in_place = frame.clone();
+  cv::Mat expected;
+  cv::cvtColor(in_place, expected, cv::COLOR_BGR2GRAY);
+  const cv::Mat& grey = toGrey(in_place, ChannelOrder::kBgr, in_place);
+  ASSERT_EQ(grey.type(), CV_8UC1);
+  EXPECT_EQ(cv::norm(grey, expected, cv::NORM_INF), 0.0);
 }
 
 TEST(DescriptorExtractor, NonContinuousRoiIsDescribedLikeItsCopy) {
