@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -91,22 +93,19 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
           ? last_change_
           : regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_.back().data()) / unrelated;
   if (last_change_ < min_change_) return false;
+  const auto unchanged_from = [&](const std::vector<float>& other) {
+    return regionDifference(descriptor.ptr<std::uint8_t>(), other.data()) < min_change_ * unrelated;
+  };
   // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one.
   const std::size_t kept = recent_keyframes_.size();
-  const std::size_t first = kept - std::min<std::size_t>(kept, kRecentKeyframes);
-  for (std::size_t i = first; compare_recent_ && i + 1 < kept; ++i) {
-    if (regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_[i].data()) < min_change_ * unrelated) {
-      last_seen_before_ = true;
-      return false;
-    }
+  const auto first = recent_keyframes_.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(kept, kRecentKeyframes));
+  if (compare_recent_ && std::any_of(first, std::prev(recent_keyframes_.end()), unchanged_from)) {
+    last_seen_before_ = true;
+    return false;
   }
   // A stray of a standing camera: the view of the newest keyframe, like one of its noisy copies.
-  if (last_keyframe_change_ < kStrayShare * min_change_) {
-    for (const std::vector<float>& joined : joined_) {
-      if (regionDifference(descriptor.ptr<std::uint8_t>(), joined.data()) < min_change_ * unrelated) return false;
-    }
-  }
-  return true;
+  return last_keyframe_change_ >= kStrayShare * min_change_ ||
+         std::none_of(joined_.begin(), joined_.end(), unchanged_from);
 }
 
 void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
