@@ -75,23 +75,6 @@ TEST(MrsMatcher, LevelsForKeepsEnoughRivalEndsOnTheCoarsestLevel) {
   EXPECT_EQ(search.levelsFor(300, 300), 0);  // Not enough at any stride: the brute force's search.
 }
 
-TEST(MrsMatcher, RecoversThePlantedAlignmentOfGlobalQueries) {
-  const auto& route = standardRoute();
-  const auto matcher = makeMatcher("mrs", globalSearchParams());
-  for (int length : {100, 150, 200}) {
-    for (int start : {0, 60, 130, 199}) {
-      const int end = start + length - 1;
-      if (end >= route.query.size()) continue;
-      const Match match = matcher->match(route.reference.view(), route.query.view(start, end + 1));
-      const int truth = route.query_to_reference[static_cast<std::size_t>(end)];
-      EXPECT_TRUE(within(match.reference_index, truth, 3))
-          << "N = " << length << ", start " << start << ": got " << match.reference_index << ", truth " << truth;
-      EXPECT_TRUE(match.accepted) << "N = " << length << ", start " << start << ": confidence "
-                                  << match.confidence;
-    }
-  }
-}
-
 TEST(MrsMatcher, FindsACopyOfTheReferenceAwayFromItsEnds) {
   const auto& route = standardRoute();
   const auto mrs = makeMatcher("mrs", routeParameters());
@@ -122,38 +105,6 @@ TEST(MrsMatcher, FindsASequenceEndingAtTheNewestReferenceFrame) {
   const auto& route = standardRoute();
   const auto mrs = makeMatcher("mrs", routeParameters());
   EXPECT_EQ(mrs->match(route.reference.view(), route.reference.view(440, 600)).reference_index, 599);
-}
-
-TEST(MrsMatcher, CentredAlignmentReportsTheMiddleFrame) {
-  const auto& route = standardRoute();
-  Parameters params = globalSearchParams();
-  params.sequence.alignment = WindowAlignment::kCentred;
-  const auto matcher = makeMatcher("mrs", params);
-  for (int start : {20, 150, 250}) {
-    const int length = 128;
-    const Match match = matcher->match(route.reference.view(), route.query.view(start, start + length));
-    const int truth = route.query_to_reference[static_cast<std::size_t>(start + length / 2)];
-    EXPECT_TRUE(within(match.reference_index, truth, 3))
-        << "start " << start << ": got " << match.reference_index << ", truth " << truth;
-  }
-  EXPECT_EQ(matcher->match(route.reference.view(), route.reference.view(300, 428)).reference_index, 364);
-}
-
-TEST(MrsMatcher, MatchEveryFrameGetsMostFramesRightAndSkipsIncompleteSequences) {
-  const auto& route = standardRoute();
-  const auto matcher = makeMatcher("mrs", routeParameters());  // sequence_length 10
-  const SequenceView query = route.query.view(0, 200);
-  const std::vector<Match> matches = matcher->matchEveryFrame(route.reference.view(), query);
-  ASSERT_EQ(matches.size(), 200U);
-  for (int frame = 0; frame < 9; ++frame) EXPECT_EQ(matches[static_cast<std::size_t>(frame)].reference_index, -1);
-  int correct = 0;
-  for (int frame = 9; frame < 200; ++frame) {
-    correct += within(matches[static_cast<std::size_t>(frame)].reference_index,
-                      route.query_to_reference[static_cast<std::size_t>(frame)], 3)
-                   ? 1
-                   : 0;
-  }
-  EXPECT_GE(correct, 0.9 * 191) << correct << " of 191";
 }
 
 TEST(MrsMatcher, CentredMatchEveryFrameLocalisesTheFrameItself) {
