@@ -18,6 +18,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 
@@ -42,17 +43,6 @@ sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, cons
 
 class CompressedTransportTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    mrs_vpr::SyntheticRouteParams params;  // the demo's route: 600 reference and 400 query frames
-    params.reference_frames = 600;
-    params.query_frames = 400;
-    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(params));
-  }
-  static void TearDownTestSuite() {
-    delete route_;
-    route_ = nullptr;
-  }
-
   void SetUp() override {
     for (const std::string& node : kNodes) {
       ASSERT_TRUE(ros::service::waitForService(node + "/query", ros::Duration(30.0))) << node;
@@ -71,14 +61,14 @@ class CompressedTransportTest : public ::testing::Test {
     for (const ros::Publisher& publisher : {raw, jpeg, png}) {
       ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << publisher.getTopic() << " has no subscriber";
     }
-    for (std::size_t i = 0; i < route_->reference.size(); ++i) {
+    for (std::size_t i = 0; i < route_.reference.size(); ++i) {
       const double stamp = 1000.0 + static_cast<double>(i) * kFramePeriod;
-      raw.publish(imageMessage(route_->reference[i], stamp));
-      jpeg.publish(toCompressed(route_->reference[i], stamp, "jpeg"));
-      png.publish(toCompressed(route_->reference[i], stamp, "png"));
+      raw.publish(imageMessage(route_.reference[i], stamp));
+      jpeg.publish(toCompressed(route_.reference[i], stamp, "jpeg"));
+      png.publish(toCompressed(route_.reference[i], stamp, "png"));
       ros::WallDuration(0.002).sleep();
     }
-    const auto frames = static_cast<std::uint32_t>(route_->reference.size());
+    const auto frames = static_cast<std::uint32_t>(route_.reference.size());
     for (const std::string& node : kNodes) {
       MapInfoWatch watch(nh_, node);
       mrs_vpr::MapInfo info;
@@ -97,7 +87,7 @@ class CompressedTransportTest : public ::testing::Test {
   mrs_vpr::QuerySequence::Response query(const std::string& node, int first, const std::string& method) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + kQueryLength; ++i) {
-      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_.query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     EXPECT_TRUE(mrs_vpr::testing_support::callService(node + "/query", srv)) << node;
@@ -105,12 +95,11 @@ class CompressedTransportTest : public ::testing::Test {
   }
 
   const std::vector<std::string> kNodes{"/mrs_vpr_raw", "/jpeg/mrs_vpr", "/mrs_vpr_png"};
-  static mrs_vpr::SyntheticRoute* route_;
+  const mrs_vpr::SyntheticRoute& route_ = mrs_vpr::testing_support::standardRouteImages();
   static bool mapped_;
   ros::NodeHandle nh_;
 };
 
-mrs_vpr::SyntheticRoute* CompressedTransportTest::route_ = nullptr;
 bool CompressedTransportTest::mapped_ = false;
 
 TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
@@ -120,7 +109,7 @@ TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
       const auto raw = query("/mrs_vpr_raw", first, method);
       ASSERT_TRUE(raw.success) << raw.message;
       if (raw.accepted) {  // the first stretch is a guess, not accepted, as in the demo
-        const int truth = route_->query_to_reference[static_cast<std::size_t>(first + kQueryLength - 1)];
+        const int truth = route_.query_to_reference[static_cast<std::size_t>(first + kQueryLength - 1)];
         EXPECT_NEAR(raw.reference_index, truth, 5);
       }
 
@@ -153,7 +142,7 @@ TEST_F(CompressedTransportTest, BadCompressedFramesAreCountedAndTheNodeKeepsMapp
       },
       30.0));
 
-  const cv::Mat& image = route_->reference[0];
+  const cv::Mat& image = route_.reference[0];
   double stamp = 5000.0;
   std::vector<sensor_msgs::CompressedImage> bad;
   bad.push_back(toCompressed(image, stamp, "jpeg"));

@@ -17,6 +17,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
@@ -30,23 +31,14 @@ constexpr double kFramePeriod = 0.1;  // [s]
 
 class DebugImageTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    mrs_vpr::SyntheticRouteParams params;  // 400 reference frames, 300 query frames, 128 x 64
-    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(params));
-  }
-  static void TearDownTestSuite() {
-    delete route_;
-    route_ = nullptr;
-  }
-
   void SetUp() override {
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr_debug/query", ros::Duration(30.0)));
     query_ = mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh_, "mrs_vpr_debug/query");
     if (!mapped_) {
       ros::Publisher images = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
       ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(images, 1, 20.0));
-      for (std::size_t i = 0; i < route_->reference.size(); ++i) {
-        images.publish(imageMessage(route_->reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
+      for (std::size_t i = 0; i < route_.reference.size(); ++i) {
+        images.publish(imageMessage(route_.reference[i], 1000.0 + static_cast<double>(i) * kFramePeriod));
         ros::WallDuration(0.002).sleep();
       }
       ASSERT_TRUE(map_info_.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 400; }, 20.0));
@@ -65,7 +57,7 @@ class DebugImageTest : public ::testing::Test {
   mrs_vpr::QuerySequence::Response query(int first, int count, const std::string& method) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_.query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     EXPECT_TRUE(query_.call(srv)) << "the service call itself failed";
@@ -73,7 +65,7 @@ class DebugImageTest : public ::testing::Test {
     return srv.response;
   }
 
-  static mrs_vpr::SyntheticRoute* route_;
+  const mrs_vpr::SyntheticRoute& route_ = mrs_vpr::testing_support::defaultRouteImages();
   static bool mapped_;
 
   ros::NodeHandle nh_;
@@ -81,7 +73,6 @@ class DebugImageTest : public ::testing::Test {
   mrs_vpr::testing_support::MapInfoWatch map_info_{nh_, "mrs_vpr_debug"};
 };
 
-mrs_vpr::SyntheticRoute* DebugImageTest::route_ = nullptr;
 bool DebugImageTest::mapped_ = false;
 
 // The tests run in this order (gtest keeps declaration order) and share the node.

@@ -19,6 +19,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
@@ -66,18 +67,6 @@ std::vector<std::vector<double>> expectedStamps(const std::vector<LoopClosure>& 
 
 class LoopClosureStampsTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(mrs_vpr::SyntheticRouteParams{}));
-    mrs_vpr::SyntheticRouteParams unmapped;  // another seed: none of its places is in the map
-    unmapped.seed = 8;
-    unmapped_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(unmapped));
-  }
-  static void TearDownTestSuite() {
-    delete route_;
-    delete unmapped_;
-    route_ = unmapped_ = nullptr;
-  }
-
   void SetUp() override {
     ASSERT_TRUE(ros::service::waitForService("queried/mrs_vpr/query", ros::Duration(30.0)));
     ASSERT_TRUE(ros::service::waitForService("continuous/mrs_vpr/query", ros::Duration(30.0)));
@@ -88,7 +77,7 @@ class LoopClosureStampsTest : public ::testing::Test {
       ASSERT_TRUE(node->stamps.waitConnected()) << "nothing publishes " << node->stamps_topic;
     }
     if (map_frames_ == 0) {
-      playIntoNodes(route_->reference, 0, static_cast<int>(route_->reference.size()), kReferenceStart);
+      playIntoNodes(route_.reference, 0, static_cast<int>(route_.reference.size()), kReferenceStart);
     }
   }
 
@@ -147,7 +136,7 @@ class LoopClosureStampsTest : public ::testing::Test {
   /// they are in, so is every message published before them, and the stamps topic must then hold
   /// exactly the expected pairs, equal to the last bit.
   void expectStampsOfAcceptedClosuresOnly(NodeTopics& node) {
-    auto sentinel = explicitQuery(route_->query, 100, 40, 60000.0 + sentinels_++ * 100.0);
+    auto sentinel = explicitQuery(route_.query, 100, 40, 60000.0 + sentinels_++ * 100.0);
     const LoopClosure last = ask(node, sentinel, sentinel.request.images.at(20).header.stamp);  // the middle
     ASSERT_TRUE(last.accepted) << sentinel.response.message;
     Stamps last_stamps;
@@ -165,8 +154,8 @@ class LoopClosureStampsTest : public ::testing::Test {
     }
   }
 
-  static mrs_vpr::SyntheticRoute* route_;
-  static mrs_vpr::SyntheticRoute* unmapped_;
+  const mrs_vpr::SyntheticRoute& route_ = mrs_vpr::testing_support::defaultRouteImages();
+  const mrs_vpr::SyntheticRoute& unmapped_ = mrs_vpr::testing_support::unmappedRouteImages();
   static std::uint32_t map_frames_;
   static int sentinels_;
 
@@ -176,8 +165,6 @@ class LoopClosureStampsTest : public ::testing::Test {
   NodeTopics continuous_{nh_, "continuous"};
 };
 
-mrs_vpr::SyntheticRoute* LoopClosureStampsTest::route_ = nullptr;
-mrs_vpr::SyntheticRoute* LoopClosureStampsTest::unmapped_ = nullptr;
 std::uint32_t LoopClosureStampsTest::map_frames_ = 0;
 int LoopClosureStampsTest::sentinels_ = 0;
 
@@ -191,7 +178,7 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
   for (const std::string method : {"mrs", "seqslam"}) {
     for (const bool mapped : {true, false}) {
       SCOPED_TRACE(method + (mapped ? ", mapped" : ", unmapped"));
-      auto srv = explicitQuery(mapped ? route_->query : unmapped_->query, 100, 40, start, method);
+      auto srv = explicitQuery(mapped ? route_.query : unmapped_.query, 100, 40, start, method);
       start += 100.0;
       // The middle of the 40 images (every one a keyframe here) is the one localised.
       const ros::Time localised = srv.request.images.at(20).header.stamp;
@@ -216,7 +203,7 @@ TEST_F(LoopClosureStampsTest, ServiceQueriesWithImages) {
 }
 
 TEST_F(LoopClosureStampsTest, AnAcceptedAnswerToUnstampedImagesSaysWhyItsStampsAreNotPublished) {
-  auto srv = explicitQuery(route_->query, 100, 40, 0.0);
+  auto srv = explicitQuery(route_.query, 100, 40, 0.0);
   for (auto& image : srv.request.images) image.header.stamp = ros::Time();
   const LoopClosure closure = ask(queried_, srv, ros::Time());
   EXPECT_TRUE(closure.accepted);
@@ -229,7 +216,7 @@ TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
   // The second traversal passes the camera: accepted answers, the localised map frame's stamp first.
   // Of the newest 50 frames (10..59 of those played) the middle one, 35, is localised.
   constexpr double kQueryStart = 5000.0;
-  playIntoNodes(route_->query, 200, 260, kQueryStart);
+  playIntoNodes(route_.query, 200, 260, kQueryStart);
   const ros::Time localised_query_frame(kQueryStart + 35 * kFramePeriod);
 
   mrs_vpr::QuerySequence recent;
@@ -252,7 +239,7 @@ TEST_F(LoopClosureStampsTest, TheNewestMapFramesInQueriesAndInContinuousMode) {
 
   // Then places not in the map: answers, but none accepted.
   constexpr double kUnmappedStart = 7000.0;
-  playIntoNodes(unmapped_->query, 100, 160, kUnmappedStart);
+  playIntoNodes(unmapped_.query, 100, 160, kUnmappedStart);
   const ros::Time localised_unmapped_frame(kUnmappedStart + 35 * kFramePeriod);  // the middle of 10..59
   EXPECT_FALSE(ask(queried_, recent, localised_unmapped_frame).accepted) << recent.response.message;
   ASSERT_TRUE(continuous_.closures.waitFor(

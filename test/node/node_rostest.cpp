@@ -22,6 +22,7 @@
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
@@ -38,22 +39,13 @@ constexpr double kFramePeriod = 0.1;        // [s]
 
 class NodeTest : public ::testing::Test {
  protected:
-  static void SetUpTestSuite() {
-    mrs_vpr::SyntheticRouteParams params;  // 400 reference frames, 300 query frames, 128 x 64
-    route_ = new mrs_vpr::SyntheticRoute(mrs_vpr::generateSyntheticRoute(params));
-  }
-  static void TearDownTestSuite() {
-    delete route_;
-    route_ = nullptr;
-  }
-
   void SetUp() override {
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr/query", ros::Duration(30.0)));
     ASSERT_TRUE(ros::service::waitForService("mrs_vpr_auto/query", ros::Duration(30.0)));
     image_pub_ = nh_.advertise<sensor_msgs::Image>("camera/image", 1000);
     query_ = mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh_, "mrs_vpr/query");
     if (!reference_published_) {
-      playIntoNodes(route_->reference, 0, static_cast<int>(route_->reference.size()), kReferenceStart);
+      playIntoNodes(route_.reference, 0, static_cast<int>(route_.reference.size()), kReferenceStart);
       reference_published_ = true;
     }
     ASSERT_TRUE(loop_closures_.waitConnected());
@@ -90,7 +82,7 @@ class NodeTest : public ::testing::Test {
   mrs_vpr::QuerySequence explicitQuery(int first, int count, const std::string& method) const {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(imageMessage(route_->query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      srv.request.images.push_back(imageMessage(route_.query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
     }
     srv.request.method = method;
     return srv;
@@ -110,7 +102,7 @@ class NodeTest : public ::testing::Test {
     EXPECT_EQ(response.reference_index, -1);
   }
 
-  static mrs_vpr::SyntheticRoute* route_;
+  const mrs_vpr::SyntheticRoute& route_ = mrs_vpr::testing_support::defaultRouteImages();
   static bool reference_published_;
   static std::uint32_t map_frames_;
 
@@ -123,7 +115,6 @@ class NodeTest : public ::testing::Test {
   TopicInbox<mrs_vpr::LoopClosure> auto_loop_closures_{nh_, "mrs_vpr_auto/loop_closure"};
 };
 
-mrs_vpr::SyntheticRoute* NodeTest::route_ = nullptr;
 bool NodeTest::reference_published_ = false;
 std::uint32_t NodeTest::map_frames_ = 0;
 
@@ -132,7 +123,7 @@ std::uint32_t NodeTest::map_frames_ = 0;
 TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
   const int first = 100;
   const int count = 40;
-  const int truth = route_->query_to_reference[first + count - 1];
+  const int truth = route_.query_to_reference[first + count - 1];
   for (const std::string method : {"", "mrs", "seqslam"}) {
     SCOPED_TRACE("method '" + method + "'");
     loop_closures_.clear();
@@ -164,9 +155,7 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
 TEST_F(NodeTest, PlacesNotInTheMapAreAnsweredButNotAccepted) {
   // A route generated from another seed (none of its places is mapped) and uniform noise: the search
   // still has a best end, but it does not stand out from the query's own costs.
-  mrs_vpr::SyntheticRouteParams unmapped_params;
-  unmapped_params.seed = 8;
-  const mrs_vpr::SyntheticRoute unmapped = mrs_vpr::generateSyntheticRoute(unmapped_params);
+  const mrs_vpr::SyntheticRoute& unmapped = mrs_vpr::testing_support::unmappedRouteImages();
   cv::RNG noise(99);
   std::vector<std::pair<std::string, std::vector<cv::Mat>>> sequences{
       {"unmapped route", {unmapped.query.begin() + 100, unmapped.query.begin() + 140}}, {"noise", {}}};
@@ -243,7 +232,7 @@ TEST_F(NodeTest, BadRequestsAreReportedAndTheNodeKeepsServing) {
   auto good = explicitQuery(150, 30, "mrs");
   const auto response = call(good);
   ASSERT_TRUE(response.success) << response.message;
-  EXPECT_NEAR(response.reference_index, route_->query_to_reference[179], kTolerance);
+  EXPECT_NEAR(response.reference_index, route_.query_to_reference[179], kTolerance);
 }
 
 TEST_F(NodeTest, RecentFramesAndContinuousMode) {
@@ -252,9 +241,9 @@ TEST_F(NodeTest, RecentFramesAndContinuousMode) {
   const int first = 200;
   const int count = 60;
   auto_loop_closures_.clear();
-  playIntoNodes(route_->query, first, first + count, kQueryStart);
+  playIntoNodes(route_.query, first, first + count, kQueryStart);
   const int newest = first + count - 1;
-  const int truth = route_->query_to_reference[static_cast<std::size_t>(newest)];
+  const int truth = route_.query_to_reference[static_cast<std::size_t>(newest)];
   const ros::Time newest_stamp(kQueryStart + (count - 1) * kFramePeriod);
 
   for (const std::string method : {"mrs", "seqslam"}) {
@@ -308,7 +297,7 @@ TEST_F(NodeTest, AMapTooSmallToJudgeAnswersButSaysWhyNothingIsAccepted) {
   constexpr int kFrames = 40;
   ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(image_pub_, 2, 20.0));
   for (int i = 0; i < kFrames; ++i) {
-    image_pub_.publish(imageMessage(route_->reference[static_cast<std::size_t>(i)], 30000.0 + i * kFramePeriod));
+    image_pub_.publish(imageMessage(route_.reference[static_cast<std::size_t>(i)], 30000.0 + i * kFramePeriod));
     ros::WallDuration(0.002).sleep();
   }
   ASSERT_TRUE(map_info_.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == kFrames; }, 20.0));
@@ -316,7 +305,7 @@ TEST_F(NodeTest, AMapTooSmallToJudgeAnswersButSaysWhyNothingIsAccepted) {
     SCOPED_TRACE(method);
     mrs_vpr::QuerySequence srv;
     for (int i = 20; i < 30; ++i) {  // Frames of the map itself: the answer is right.
-      srv.request.images.push_back(imageMessage(route_->reference[static_cast<std::size_t>(i)], 31000.0 + i));
+      srv.request.images.push_back(imageMessage(route_.reference[static_cast<std::size_t>(i)], 31000.0 + i));
     }
     srv.request.method = method;
     const auto response = call(srv);

@@ -62,6 +62,23 @@ inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
   return describeRoute(generateSyntheticRoute(route_params));
 }
 
+/// The images of the default route (SyntheticRouteParams{}: 400 reference frames, 300 query frames,
+/// 128 x 64), generated once per test program.
+inline const SyntheticRoute& defaultRouteImages() {
+  static const SyntheticRoute route = generateSyntheticRoute(SyntheticRouteParams{});
+  return route;
+}
+
+/// The default route generated with another seed: none of its places is in the default route's map.
+inline const SyntheticRoute& unmappedRouteImages() {
+  static const SyntheticRoute route = [] {
+    SyntheticRouteParams params;
+    params.seed = 8;
+    return generateSyntheticRoute(params);
+  }();
+  return route;
+}
+
 /// The images of the standard route: 600 reference frames, 400 query frames, the default seed.
 inline const SyntheticRoute& standardRouteImages() {
   static const SyntheticRoute route = [] {
