@@ -35,7 +35,7 @@ TEST(MakeMatcher, BuildsBothMethodsAndRejectsOthers) {
 TEST(SeqSlamMatcher, ComparesEveryQueryFrameWithEveryReferenceFrame) {
   const auto& route = standardRoute();
   const auto matcher = makeMatcher("seqslam", globalSearchParams());
-  for (int length : {100, 200}) {
+  for (int length : {100, 150, 200}) {
     const Match match = matcher->match(route.reference.view(), route.query.view(0, length));
     EXPECT_EQ(match.comparisons, static_cast<long long>(length) * route.reference.size()) << "N = " << length;
   }

@@ -32,15 +32,17 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
-#include "mrs_vpr/synthetic_route.hpp"
 #include "support/format_one_map.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
+
+using mrs_vpr::testing_support::defaultRouteImages;
 
 namespace fs = std::filesystem;
 
@@ -49,16 +51,11 @@ constexpr double kFramePeriod = 0.1;        // [s] between the stamps of publish
 constexpr int kTolerance = 5;               // frames
 const char* const kTopic = "/map_test/image";
 
-const mrs_vpr::SyntheticRoute& route() {
-  static const mrs_vpr::SyntheticRoute generated = generateSyntheticRoute(mrs_vpr::SyntheticRouteParams{});
-  return generated;  // 400 reference frames, 300 query frames
-}
-
 /// The exact stamp of reference frame i, as published.
 mrs_vpr::Stamp referenceStamp(int i) { return mrs_vpr::node::stampOf(ros::Time(kReferenceStart + i * kFramePeriod)); }
 
 sensor_msgs::ImagePtr referenceMessage(int i) {
-  return mrs_vpr::bag::toImageMessage(route().reference[static_cast<std::size_t>(i)], "bgr8",
+  return mrs_vpr::bag::toImageMessage(defaultRouteImages().reference[static_cast<std::size_t>(i)], "bgr8",
                                       ros::Time(kReferenceStart + i * kFramePeriod), "camera");
 }
 
@@ -173,7 +170,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
   static mrs_vpr::QuerySequence::Response query(const NodeProcess& node, int first, int count) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(*mrs_vpr::bag::toImageMessage(route().query[static_cast<std::size_t>(i)], "bgr8",
+      srv.request.images.push_back(*mrs_vpr::bag::toImageMessage(defaultRouteImages().query[static_cast<std::size_t>(i)], "bgr8",
                                                                  ros::Time(9000.0 + i * kFramePeriod), "camera"));
     }
     srv.request.method = "seqslam";
@@ -183,7 +180,7 @@ class MapDatabaseNodeTest : public ::testing::Test {
 
   /// The first query frame that shows reference frame `reference` or a later one.
   static int queryFrameAt(int reference) {
-    const auto& truth = route().query_to_reference;
+    const auto& truth = defaultRouteImages().query_to_reference;
     for (std::size_t i = 0; i < truth.size(); ++i) {
       if (truth[i] >= reference) return static_cast<int>(i);
     }
@@ -222,17 +219,17 @@ TEST_F(MapDatabaseNodeTest, ARestartedNodeKeepsItsMapAndAnswersAboutTheFirstPart
   // A stretch of the second traversal over reference frames mapped before the restart.
   const int first = queryFrameAt(60);
   const int last = first + 79;
-  ASSERT_LT(route().query_to_reference[static_cast<std::size_t>(last)], 200);
+  ASSERT_LT(defaultRouteImages().query_to_reference[static_cast<std::size_t>(last)], 200);
   auto response = query(*node, first, 80);
   ASSERT_TRUE(response.success) << response.message;
-  EXPECT_NEAR(response.reference_index, route().query_to_reference[static_cast<std::size_t>(last)], kTolerance);
+  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(last)], kTolerance);
   EXPECT_NEAR(response.reference_stamp.toSec(), kReferenceStart + response.reference_index * kFramePeriod, 1e-3);
   EXPECT_TRUE(response.accepted);
   // And one over frames mapped after it.
   const int later = queryFrameAt(210);
   response = query(*node, later, 60);
   ASSERT_TRUE(response.success) << response.message;
-  EXPECT_NEAR(response.reference_index, route().query_to_reference[static_cast<std::size_t>(later + 59)], kTolerance);
+  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(later + 59)], kTolerance);
   EXPECT_EQ(node->stop(), 0);
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 
-// A generated route described once per test run and shared by the matcher tests.
+// Generated routes, each generated (and described) once per test program and shared by its tests.
 
 #include <cstdint>
 #include <cstdlib>
