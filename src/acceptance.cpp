@@ -76,6 +76,10 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
            " to tell a place from chance";
   }
+  if (match.repeated_view) {
+    return "not accepted: most of the test sequence's keyframes show one view again (a camera standing in a "
+           "dark or textureless place, whose noise made keyframes), which says nothing about the place";
+  }
   if (match.at_velocity_bound) {
     std::ostringstream message;
     message << "not accepted: the best trajectory runs at " << match.velocity

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstddef>
 #include <iterator>
 #include <stdexcept>
@@ -42,6 +43,8 @@ AppearanceKeyframes::AppearanceKeyframes(const DescriptorParams& front_end, doub
     }
     regions_ = across * (front_end.image_height / side);
   }
+  region_size_.assign(static_cast<std::size_t>(regions_), 0.0);
+  for (int region : region_of_) region_size_[static_cast<std::size_t>(region)] += 1.0;
   // A view unrelated to any place: seeded noise, so that every run has the same stand-in.
   cv::Mat noise(front_end.isHog() ? front_end.hog_window_height : front_end.image_height,
                 front_end.isHog() ? front_end.hog_window_width : front_end.image_width, CV_8UC1);
@@ -61,6 +64,19 @@ double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float*
   }
   for (std::size_t r = 0; r < sums.size(); ++r) sums[r] /= counts[r];
   return medianOf(sums);
+}
+
+double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const std::uint8_t* b) const {
+  // Integer sums: exact, and several times cheaper than the float reference's.
+  thread_local std::vector<int> sums;
+  thread_local std::vector<double> means;
+  sums.assign(static_cast<std::size_t>(regions_), 0);
+  for (int i = 0; i < size_; ++i) {
+    sums[static_cast<std::size_t>(region_of_[static_cast<std::size_t>(i)])] += std::abs(a[i] - b[i]);
+  }
+  means.resize(sums.size());
+  for (std::size_t r = 0; r < sums.size(); ++r) means[r] = sums[r] / region_size_[r];
+  return medianOf(means);
 }
 
 double AppearanceKeyframes::scale() const {

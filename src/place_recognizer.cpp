@@ -262,6 +262,11 @@ PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, 
   return answer;
 }
 
+AppearanceKeyframes PlaceRecognizer::keyframesCopy() const {
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  return keyframes_;
+}
+
 DescriptorSequence PlaceRecognizer::keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen) const {
   AppearanceKeyframes keyframes = [&] {
     std::lock_guard<std::mutex> lock(keyframes_mutex_);
@@ -325,6 +330,8 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
   matcherFor(method);
   if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
   flush();  // The newest frames must be in the map before they can be the test sequence.
+  // Judged on the scale of the camera that made both the map and these keyframes (repeated_views.hpp).
+  const RepeatedViews repeated_views(keyframesCopy());
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
@@ -351,6 +358,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     // The test frames are the map's own: MRS keeps their rows of the difference matrix between queries.
     const MapFrames map_frames{map_.view(0, frames_in_map), size - recent};
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);
+    refuseRepeatedViews(result.match, map_.view(size - recent, size), repeated_views);
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_stamp = map_.stamp(size - recent + result.localised_row);
   }

@@ -82,6 +82,8 @@ class AppearanceKeyframes {
   AppearanceKeyframes(const DescriptorParams& front_end, double min_change);
 
   bool enabled() const { return min_change_ > 0.0; }
+  /// The change that makes a keyframe, in units of scale().
+  double minChange() const { return min_change_; }
   /// True when `descriptor` has changed enough since the last keyframe (always for the first frame, and
   /// when disabled). Does not remember it: call keep() or skip().
   bool wants(const cv::Mat& descriptor);
@@ -112,11 +114,14 @@ class AppearanceKeyframes {
 
   /// The median over regions of the mean absolute difference of `a` and `b` (descriptorSize() bytes).
   double regionDifference(const std::uint8_t* a, const float* b) const;
+  /// The same between two descriptors (the keyframes of a test sequence, repeated_views.hpp).
+  double regionDifference(const std::uint8_t* a, const std::uint8_t* b) const;
 
  private:
   double min_change_;
   int size_;
   std::vector<int> region_of_;       ///< Per descriptor byte, its region.
+  std::vector<double> region_size_;  ///< Per region, its bytes.
   int regions_ = 0;
   std::vector<float> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...

@@ -30,6 +30,10 @@ struct Match {
   /// The trajectory runs at the slowest or fastest velocity searched (atVelocityBound): such an
   /// answer has confidence 0 and is never accepted.
   bool at_velocity_bound = false;
+  /// Most of the test sequence's keyframes show one view again (repeated_views.hpp): a camera standing
+  /// where its noise made keyframes. Set on an answer that passed the rest of the acceptance rule, which
+  /// is then not accepted.
+  bool repeated_view = false;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

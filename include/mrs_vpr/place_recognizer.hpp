@@ -18,6 +18,7 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/repeated_views.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/stamp.hpp"
 
@@ -172,6 +173,8 @@ class PlaceRecognizer {
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;
+  /// The keyframe rule as it stands, for judging without its lock (taken before the map's).
+  AppearanceKeyframes keyframesCopy() const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;
   /// Test frames that are the map's own: frames [first, first + count) of `map`, the whole map.

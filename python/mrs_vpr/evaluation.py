@@ -8,9 +8,9 @@ import time
 from mrs_vpr import _bindings
 
 #: records: one dict per evaluated query (query_index, true_indices, predicted_index, score,
-#: confidence, accepted, rival_places, at_velocity_bound, time_ms); summary: a dict of the figures (top1, pr_auc,
-#: recall_at_100_precision, accepted, accepted_precision, ...); pr_curve: NumPy arrays threshold,
-#: precision and recall.
+#: confidence, accepted, rival_places, at_velocity_bound, repeated_view, time_ms); summary: a dict of
+#: the figures (top1, pr_auc, recall_at_100_precision, accepted, accepted_precision, ...); pr_curve:
+#: NumPy arrays threshold, precision and recall.
 Evaluation = collections.namedtuple("Evaluation", "records summary pr_curve")
 
 summarise = _bindings.summarise

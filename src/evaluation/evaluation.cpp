@@ -104,6 +104,7 @@ QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& 
   record.accepted = match.accepted;
   record.rival_places = match.rival_places;
   record.at_velocity_bound = match.at_velocity_bound;
+  record.repeated_view = match.repeated_view;
   record.time_ms = time_ms;
   return record;
 }

@@ -388,6 +388,7 @@ py::dict recordDict(const QueryRecord& record) {
   row["accepted"] = record.accepted;
   row["rival_places"] = record.rival_places;
   row["at_velocity_bound"] = record.at_velocity_bound;
+  row["repeated_view"] = record.repeated_view;
   row["time_ms"] = record.time_ms;
   return row;
 }
@@ -406,6 +407,9 @@ QueryRecord recordFrom(const py::handle& row) {
     record.rival_places = row["rival_places"].cast<int>();
   }
   record.at_velocity_bound = row["at_velocity_bound"].cast<bool>();
+  if (py::isinstance<py::dict>(row) && row.cast<py::dict>().contains("repeated_view")) {
+    record.repeated_view = row["repeated_view"].cast<bool>();
+  }
   record.time_ms = row["time_ms"].cast<double>();
   return record;
 }
@@ -461,6 +465,9 @@ void bindAnswers(py::module_& m) {
       .def_readonly("velocity", &Match::velocity, "Map frames per test frame along the answer's trajectory.")
       .def_readonly("at_velocity_bound", &Match::at_velocity_bound,
                     "The trajectory runs at the slowest or fastest velocity searched (never accepted).")
+      .def_readonly("repeated_view", &Match::repeated_view,
+                    "Most of the test sequence's keyframes show one view again, as a camera standing in the dark "
+                    "makes them (never accepted).")
       .def_readonly("sequence_difference", &Match::sequence_difference,
                     "Mean difference along the best trajectory; compare within one method and length only.")
       .def_readonly("comparisons", &Match::comparisons, "Image comparisons the search made.")

@@ -370,6 +370,7 @@ json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int toleran
                     {"accepted", record.accepted},
                     {"rival_places", record.rival_places},
                     {"at_velocity_bound", record.at_velocity_bound},
+                    {"repeated_view", record.repeated_view},
                     {"time_ms", record.time_ms},
                     {"correct", mrs_vpr::isCorrect(record, tolerance)}});
   }

@@ -183,6 +183,10 @@ TEST(AcceptanceVerdict, SaysWhyAnAnswerIsNotAccepted) {
   match.confidence = 5.0F;
   applyAcceptance(match, params);
   EXPECT_EQ(acceptanceVerdict(match, params), "accepted");
+  match.accepted = false;
+  match.repeated_view = true;
+  const std::string repeated = acceptanceVerdict(match, params);
+  EXPECT_NE(repeated.find("keyframes show one view again"), std::string::npos) << repeated;
 }
 
 }  // namespace

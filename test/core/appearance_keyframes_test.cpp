@@ -9,6 +9,7 @@
 #include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/repeated_views.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "support/front_ends.hpp"
 
@@ -299,6 +300,82 @@ TEST(PlaceRecognizer, KeyframesFramesByAppearanceButTakesDescriptorsAsKeyframes)
   PlaceRecognizer all(Parameters{}, every_frame);
   EXPECT_EQ(all.addFrame(view), FrameAdmission::kAdmitted);
   EXPECT_EQ(all.addFrame(view), FrameAdmission::kAdmitted);
+}
+
+/// Descriptors of `views`, as a test sequence.
+DescriptorSequence sequenceOf(const DescriptorExtractor& extractor, const std::vector<cv::Mat>& views) {
+  DescriptorSequence sequence(extractor.size());
+  for (const cv::Mat& view : views) sequence.append(extractor.compute(view));
+  return sequence;
+}
+
+/// A camera standing in the dark: the strip's view at x at 1% of its light, with sensor noise and
+/// vibration. HOG's block normalisation amplifies the noise until many of its frames pass the change.
+std::vector<cv::Mat> darkStop(double x, int frames, cv::RNG& rng) {
+  std::vector<cv::Mat> views;
+  for (int i = 0; i < frames; ++i) views.push_back(viewAt(x + rng.uniform(-0.3, 0.3), 0.01, 2.0, rng));
+  return views;
+}
+
+/// Keyframes on the default front end (HOG), scaled by a drive along the strip.
+AppearanceKeyframes hogKeyframes(const DescriptorExtractor& extractor, cv::RNG& rng) {
+  return keyframesScaledByADrive(extractor, DescriptorParams{}, rng);
+}
+
+TEST(RepeatedViews, AStandingCameraInTheDarkRepeatsOneViewThoughItsNoiseMakesKeyframes) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(3);
+  const AppearanceKeyframes keyframes = hogKeyframes(extractor, rng);
+  AppearanceKeyframes standing = keyframes;
+  EXPECT_GT(keyframesOf(standing, extractor, darkStop(2500.0, 60, rng)), 10);  // what the rule is for
+  EXPECT_TRUE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, darkStop(2500.0, 20, rng)).view()));
+  // A long sequence is judged on a sample of its keyframes.
+  const DescriptorSequence long_stop = sequenceOf(extractor, darkStop(2500.0, 4 * RepeatedViews::kMaxJudged, rng));
+  EXPECT_TRUE(RepeatedViews(keyframes).mostlyRepeated(long_stop.view()));
+}
+
+TEST(RepeatedViews, AMovingCameraRepeatsNoView) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(4);
+  const AppearanceKeyframes keyframes = hogKeyframes(extractor, rng);
+  EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, drive(2000.0, 12.0, 40, rng)).view()));
+  // A sequence that stands in the dark for a third of its keyframes still shows mostly distinct views.
+  std::vector<cv::Mat> partly = drive(2000.0, 12.0, 14, rng);
+  for (const cv::Mat& view : darkStop(2168.0, 6, rng)) partly.push_back(view);
+  EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, partly).view()));
+}
+
+TEST(RepeatedViews, JudgesNothingWithoutKeyframesByAppearance) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(5);
+  const AppearanceKeyframes every_frame(DescriptorParams{}, 0.0);
+  EXPECT_FALSE(RepeatedViews(every_frame).enabled());
+  EXPECT_FALSE(RepeatedViews(every_frame).mostlyRepeated(sequenceOf(extractor, darkStop(2500.0, 20, rng)).view()));
+}
+
+TEST(RepeatedViews, RefusesOnlyAnAcceptedAnswerAboutRepeatedViews) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(6);
+  const RepeatedViews views(hogKeyframes(extractor, rng));
+  const DescriptorSequence stop = sequenceOf(extractor, darkStop(2500.0, 20, rng));
+  const DescriptorSequence moving = sequenceOf(extractor, drive(2000.0, 12.0, 20, rng));
+  Match accepted;
+  accepted.reference_index = 40;
+  accepted.confidence = 6.0F;
+  accepted.accepted = true;
+  Match about_the_stop = accepted;
+  refuseRepeatedViews(about_the_stop, stop.view(), views);
+  EXPECT_FALSE(about_the_stop.accepted);
+  EXPECT_TRUE(about_the_stop.repeated_view);
+  EXPECT_EQ(about_the_stop.reference_index, 40);  // the answer stays; only the verdict changes
+  Match about_the_drive = accepted;
+  refuseRepeatedViews(about_the_drive, moving.view(), views);
+  EXPECT_TRUE(about_the_drive.accepted);
+  EXPECT_FALSE(about_the_drive.repeated_view);
+  Match refused = accepted;
+  refused.accepted = false;
+  refuseRepeatedViews(refused, stop.view(), views);
+  EXPECT_FALSE(refused.repeated_view);  // not judged: nothing to take back
 }
 
 }  // namespace

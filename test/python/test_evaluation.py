@@ -23,7 +23,7 @@ def test_per_frame_records_every_query_frame_with_a_full_sequence(route, short_s
     record = evaluation.records[0]
     assert record["true_indices"] == [int(route["query_to_reference"][19])]
     assert set(record) == {"query_index", "true_indices", "predicted_index", "score", "confidence", "accepted",
-                           "rival_places", "at_velocity_bound", "time_ms"}
+                           "rival_places", "at_velocity_bound", "repeated_view", "time_ms"}
     summary = evaluation.summary
     assert summary["queries"] == 381
     assert summary["tolerance"] == 3

@@ -208,11 +208,12 @@ TEST_F(ToolsTest, RecordsCarryTheAcceptanceRuleAndTheSummaryCountsIt) {
   for (const json& record : records) {
     ASSERT_TRUE(record.at("accepted").is_boolean()) << record;
     // The core's rule, the same for every method: found, confidence >= the threshold (raised among
-    // fewer than 100 places) and a trajectory inside the velocity bounds.
+    // fewer than 100 places), a trajectory inside the velocity bounds and a test sequence of distinct views.
     const double required = mrs_vpr::requiredConfidence(record.at("rival_places").get<int>(), rule);
     EXPECT_GE(required, 2.5);
     const bool expected = record.at("predicted_index").get<int>() >= 0 &&
-                          record.at("confidence").get<double>() >= required && !record.at("at_velocity_bound").get<bool>();
+                          record.at("confidence").get<double>() >= required &&
+                          !record.at("at_velocity_bound").get<bool>() && !record.at("repeated_view").get<bool>();
     EXPECT_EQ(record.at("accepted").get<bool>(), expected) << record;
     accepted += expected ? 1 : 0;
     accepted_correct += expected && record.at("correct").get<bool>() ? 1 : 0;

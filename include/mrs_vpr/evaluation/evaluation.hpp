@@ -29,6 +29,8 @@ struct QueryRecord {
   int rival_places = 0;           ///< Places the confidence was judged among (Match::rival_places).
   /// The answer's trajectory runs at a velocity bound (Match::at_velocity_bound; confidence 0).
   bool at_velocity_bound = false;
+  /// Most of the test sequence's keyframes show one view again (Match::repeated_view; not accepted).
+  bool repeated_view = false;
   double time_ms = 0.0;           ///< Time spent on this query.
 };
 

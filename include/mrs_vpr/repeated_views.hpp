@@ -1,0 +1,54 @@
+#pragma once
+
+#include "mrs_vpr/appearance_keyframes.hpp"
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/match.hpp"
+
+namespace mrs_vpr {
+
+/**
+ * Whether most keyframes of a test sequence show a view that the sequence shows again further on: a
+ * camera standing in a dark or textureless place, whose noise block normalisation amplifies until
+ * frame after frame passes `min_appearance_change`, makes such keyframes. A sequence of one view
+ * carries no sequence to match, and two such stops, in two dark places, look alike: on the real-data
+ * benchmark's camera drives a stop in a tunnel was accepted as a loop closure to another tunnel stop
+ * up to 19 times a drive. An answer about such a sequence is not accepted (Match::repeated_view).
+ *
+ * A keyframe repeats a view when another keyframe of the sequence, kMinGap to kRecentKeyframes
+ * keyframes away, differs from it by less than AppearanceKeyframes::kStrayShare of
+ * `min_appearance_change`: what noisy copies of one view differ by, while keyframes of a moving camera
+ * a few keyframes apart show different places. Neighbours closer than kMinGap are not compared: a slow
+ * camera's consecutive keyframes lie that close. Long sequences are judged on kMaxJudged keyframes
+ * spread over them.
+ *
+ * The distances are on the scale of the map's camera, so the rule judges only test sequences of the
+ * map's own keyframes (PlaceRecognizer::matchRecent: the node's continuous mode and `recent_frames`
+ * queries). Another camera's traversal can differ less on that scale than the map's camera does
+ * between places (blur, fog, night: AppearanceKeyframes::follower), and its moving keyframes would
+ * then count as repeats: judged so, the per-frame evaluation of the generated route's camera drives
+ * (test/tools/make_drive_test.cpp) accepted no answer at all.
+ */
+class RepeatedViews {
+ public:
+  /// Keyframes apart, at least, for two keyframes to count as one view shown again.
+  static constexpr int kMinGap = 3;
+  /// Keyframes judged at most; longer sequences are sampled evenly.
+  static constexpr int kMaxJudged = 64;
+
+  /// Judged on the scale and regions of `keyframes` (a copy: taken before the map is locked).
+  explicit RepeatedViews(const AppearanceKeyframes& keyframes) : keyframes_(keyframes) {}
+
+  /// Whether the rule can judge: keyframes by appearance are on and their scale is known.
+  bool enabled() const;
+  /// Whether more than half the judged keyframes of `sequence` repeat a view.
+  bool mostlyRepeated(SequenceView sequence) const;
+
+ private:
+  AppearanceKeyframes keyframes_;
+};
+
+/// Takes back the acceptance of `match` when its test sequence mostly repeats a view, and says so
+/// (Match::repeated_view). Judges only accepted answers: the pass over the keyframes changes nothing else.
+void refuseRepeatedViews(Match& match, SequenceView test_sequence, const RepeatedViews& views);
+
+}  // namespace mrs_vpr
