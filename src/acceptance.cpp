@@ -5,18 +5,10 @@
 #include <limits>
 #include <sstream>
 
+#include "mrs_vpr/median.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
-namespace {
-
-float medianOf(std::vector<float>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
-}  // namespace
 
 float costSpread(const std::vector<float>& costs) {
   const std::size_t step = std::max<std::size_t>(1, costs.size() / kSpreadSamples);
@@ -26,10 +18,10 @@ float costSpread(const std::vector<float>& costs) {
     if (std::isfinite(costs[i])) samples.push_back(costs[i]);
   }
   if (samples.size() < 3) return 0.0F;
-  const float centre = medianOf(samples);
+  const float centre = upperMedian(samples);
   for (float& value : samples) value = std::abs(value - centre);
   // 1.4826 MAD is the standard deviation of a Gaussian.
-  return 1.4826F * medianOf(samples);
+  return 1.4826F * upperMedian(samples);
 }
 
 float distinctiveness(float best, float runner_up, float spread, int rivals) {

@@ -2,23 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "mrs_vpr/front_end/front_end.hpp"
+#include "mrs_vpr/median.hpp"
 
 namespace mrs_vpr {
 namespace {
-
-/// The median of `values` (reordered).
-double medianOf(std::vector<double>& values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
 
 std::vector<float> asFloats(const cv::Mat& descriptor) {
   return std::vector<float>(descriptor.ptr<std::uint8_t>(), descriptor.ptr<std::uint8_t>() + descriptor.total());
@@ -27,24 +21,9 @@ std::vector<float> asFloats(const cv::Mat& descriptor) {
 }  // namespace
 
 AppearanceKeyframes::AppearanceKeyframes(const DescriptorParams& front_end, double min_change)
-    : min_change_(min_change), size_(front_end.descriptorSize()) {
-  front_end.validate();
-  // Regions are what each front end normalises on its own: HOG's blocks, the thumbnail's patches.
-  region_of_.resize(static_cast<std::size_t>(size_));
-  if (front_end.isHog()) {
-    const int block = 4 * front_end.hog_bins;
-    for (int i = 0; i < size_; ++i) region_of_[static_cast<std::size_t>(i)] = i / block;
-    regions_ = size_ / block;
-  } else {
-    const int side = front_end.patch_size;
-    const int across = front_end.image_width / side;
-    for (int i = 0; i < size_; ++i) {
-      region_of_[static_cast<std::size_t>(i)] = (i / front_end.image_width / side) * across + (i % front_end.image_width) / side;
-    }
-    regions_ = across * (front_end.image_height / side);
-  }
-  region_size_.assign(static_cast<std::size_t>(regions_), 0.0);
-  for (int region : region_of_) region_size_[static_cast<std::size_t>(region)] += 1.0;
+    : min_change_(min_change),
+      size_(front_end.descriptorSize()),
+      regions_(std::make_shared<const DescriptorRegions>(front_end)) {
   // A view unrelated to any place: seeded noise, so that every run has the same stand-in.
   cv::Mat noise(front_end.isHog() ? front_end.hog_window_height : front_end.image_height,
                 front_end.isHog() ? front_end.hog_window_width : front_end.image_width, CV_8UC1);
@@ -53,36 +32,13 @@ AppearanceKeyframes::AppearanceKeyframes(const DescriptorParams& front_end, doub
 }
 
 double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float* b) const {
-  thread_local std::vector<double> sums;
-  thread_local std::vector<double> counts;
-  sums.assign(static_cast<std::size_t>(regions_), 0.0);
-  counts.assign(static_cast<std::size_t>(regions_), 0.0);
-  for (int i = 0; i < size_; ++i) {
-    const auto region = static_cast<std::size_t>(region_of_[static_cast<std::size_t>(i)]);
-    sums[region] += std::fabs(static_cast<double>(a[i]) - b[i]);
-    counts[region] += 1.0;
-  }
-  for (std::size_t r = 0; r < sums.size(); ++r) sums[r] /= counts[r];
-  return medianOf(sums);
-}
-
-double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const std::uint8_t* b) const {
-  // Integer sums: exact, and several times cheaper than the float reference's.
-  thread_local std::vector<int> sums;
-  thread_local std::vector<double> means;
-  sums.assign(static_cast<std::size_t>(regions_), 0);
-  for (int i = 0; i < size_; ++i) {
-    sums[static_cast<std::size_t>(region_of_[static_cast<std::size_t>(i)])] += std::abs(a[i] - b[i]);
-  }
-  means.resize(sums.size());
-  for (std::size_t r = 0; r < sums.size(); ++r) means[r] = sums[r] / region_size_[r];
-  return medianOf(means);
+  return regions_->difference(a, b);
 }
 
 double AppearanceKeyframes::scale() const {
   if (static_cast<int>(samples_.size()) >= kMinScaleSamples) {
     std::vector<double> values(samples_.begin(), samples_.end());
-    return medianOf(values);
+    return upperMedian(values);
   }
   if (frames_in_mean_ == 0) return 0.0;
   std::vector<float> mean(mean_);

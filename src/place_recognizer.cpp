@@ -262,9 +262,9 @@ PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, 
   return answer;
 }
 
-AppearanceKeyframes PlaceRecognizer::keyframesCopy() const {
+RepeatedViews PlaceRecognizer::repeatedViews() const {
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
-  return keyframes_;
+  return RepeatedViews(keyframes_);
 }
 
 DescriptorSequence PlaceRecognizer::keyframesOf(const DescriptorSequence& frames, std::vector<int>* chosen) const {
@@ -331,7 +331,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
   if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
   flush();  // The newest frames must be in the map before they can be the test sequence.
   // Judged on the scale of the camera that made both the map and these keyframes (repeated_views.hpp).
-  const RepeatedViews repeated_views(keyframesCopy());
+  const RepeatedViews repeated_views = repeatedViews();
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);

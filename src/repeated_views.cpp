@@ -5,11 +5,12 @@
 
 namespace mrs_vpr {
 
-bool RepeatedViews::enabled() const { return keyframes_.enabled() && keyframes_.scale() > 0.0; }
+RepeatedViews::RepeatedViews(const AppearanceKeyframes& keyframes) : regions_(keyframes.regions()) {
+  if (keyframes.enabled()) same_view_ = AppearanceKeyframes::kStrayShare * keyframes.minChange() * keyframes.scale();
+}
 
 bool RepeatedViews::mostlyRepeated(SequenceView sequence) const {
   if (!enabled() || sequence.count <= kMinGap) return false;
-  const double same_view = AppearanceKeyframes::kStrayShare * keyframes_.minChange() * keyframes_.scale();
   const int step = (sequence.count + kMaxJudged - 1) / kMaxJudged;
   int judged_count = 0;
   int repeats = 0;
@@ -20,7 +21,7 @@ bool RepeatedViews::mostlyRepeated(SequenceView sequence) const {
     ++judged_count;
     const auto shows_it = [&](int j) {
       return j >= 0 && j < sequence.count &&
-             keyframes_.regionDifference(sequence.frame(j), sequence.frame(i)) < same_view;
+             regions_->difference(sequence.frame(j), sequence.frame(i)) < same_view_;
     };
     for (int gap = kMinGap; gap <= AppearanceKeyframes::kRecentKeyframes; ++gap) {
       if (shows_it(i - gap) || shows_it(i + gap)) {

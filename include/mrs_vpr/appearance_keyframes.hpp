@@ -2,10 +2,12 @@
 
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/descriptor_regions.hpp"
 #include "mrs_vpr/parameters.hpp"
 
 namespace mrs_vpr {
@@ -114,15 +116,13 @@ class AppearanceKeyframes {
 
   /// The median over regions of the mean absolute difference of `a` and `b` (descriptorSize() bytes).
   double regionDifference(const std::uint8_t* a, const float* b) const;
-  /// The same between two descriptors (the keyframes of a test sequence, repeated_views.hpp).
-  double regionDifference(const std::uint8_t* a, const std::uint8_t* b) const;
+  /// The regions the differences are measured over (shared by every copy).
+  const std::shared_ptr<const DescriptorRegions>& regions() const { return regions_; }
 
  private:
   double min_change_;
   int size_;
-  std::vector<int> region_of_;       ///< Per descriptor byte, its region.
-  std::vector<double> region_size_;  ///< Per region, its bytes.
-  int regions_ = 0;
+  std::shared_ptr<const DescriptorRegions> regions_;
   std::vector<float> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
   int frames_in_mean_ = 0;           ///< ... and how many there are.

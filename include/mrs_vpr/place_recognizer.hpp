@@ -173,8 +173,9 @@ class PlaceRecognizer {
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;
-  /// The keyframe rule as it stands, for judging without its lock (taken before the map's).
-  AppearanceKeyframes keyframesCopy() const;
+  /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock before the
+  /// map's (the order offerDescriptor and reset take them in).
+  RepeatedViews repeatedViews() const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;
   /// Test frames that are the map's own: frames [first, first + count) of `map`, the whole map.

@@ -1,6 +1,9 @@
 #pragma once
 
+#include <memory>
+
 #include "mrs_vpr/appearance_keyframes.hpp"
+#include "mrs_vpr/descriptor_regions.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
 
@@ -35,16 +38,18 @@ class RepeatedViews {
   /// Keyframes judged at most; longer sequences are sampled evenly.
   static constexpr int kMaxJudged = 64;
 
-  /// Judged on the scale and regions of `keyframes` (a copy: taken before the map is locked).
-  explicit RepeatedViews(const AppearanceKeyframes& keyframes) : keyframes_(keyframes) {}
+  /// Judged on the regions and the scale of `keyframes` as they are now.
+  explicit RepeatedViews(const AppearanceKeyframes& keyframes);
 
   /// Whether the rule can judge: keyframes by appearance are on and their scale is known.
-  bool enabled() const;
+  bool enabled() const { return same_view_ > 0.0; }
   /// Whether more than half the judged keyframes of `sequence` repeat a view.
   bool mostlyRepeated(SequenceView sequence) const;
 
  private:
-  AppearanceKeyframes keyframes_;
+  std::shared_ptr<const DescriptorRegions> regions_;
+  /// Region difference below which two keyframes show one view (bytes); 0 when the rule is off.
+  double same_view_ = 0.0;
 };
 
 /// Takes back the acceptance of `match` when its test sequence mostly repeats a view, and says so

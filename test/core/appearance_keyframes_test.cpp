@@ -378,5 +378,30 @@ TEST(RepeatedViews, RefusesOnlyAnAcceptedAnswerAboutRepeatedViews) {
   EXPECT_FALSE(refused.repeated_view);  // not judged: nothing to take back
 }
 
+TEST(RepeatedViews, ContinuousModesQuestionAboutKeyframesOfOneViewIsNotAccepted) {
+  // A camera drives up to x = 2400 and stands there while its noise makes keyframes (every frame is
+  // kept), drives on, and the recording of the approach and the stop is played again: the newest 30
+  // keyframes are 12 of the approach and 18 of one view, and they match the older ones exactly.
+  RecognizerParams near_enough;
+  near_enough.recent_exclusion = 0;  // the map is small: every older keyframe is searched
+  PlaceRecognizer recognizer(Parameters{}, near_enough);
+  const DescriptorExtractor& extractor = recognizer.extractor();
+  cv::RNG rng(7);
+  const auto keep = [&](const std::vector<cv::Mat>& views) {
+    for (const cv::Mat& view : views) recognizer.addDescriptor(extractor.compute(view));
+  };
+  std::vector<cv::Mat> approach_and_stop = drive(2256.0, 12.0, 12, rng);
+  for (int i = 0; i < 18; ++i) approach_and_stop.push_back(viewAt(2400.0, 1.0, 6.0, rng));
+  keep(drive(0.0, 12.0, 188, rng));
+  keep(approach_and_stop);
+  keep(drive(2412.0, 12.0, 280, rng));
+  keep(approach_and_stop);
+  const PlaceAnswer answer = recognizer.matchRecent(30);
+  EXPECT_NEAR(answer.match.reference_index, 188 + 15, 2);  // the older copy's middle keyframe
+  EXPECT_GE(answer.match.confidence, 3.0F);  // distinct enough to pass the rest of the rule
+  EXPECT_TRUE(answer.match.repeated_view);
+  EXPECT_FALSE(answer.match.accepted);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

@@ -1,0 +1,34 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mrs_vpr/parameters.hpp"
+
+namespace mrs_vpr {
+
+/**
+ * The regions each front end normalises on its own (HOG's blocks, the thumbnail's patches), and how
+ * much two descriptors differ over them: the median region's mean absolute difference. A passer-by,
+ * or noise that block normalisation amplifies in a textureless patch such as the sky, changes a few
+ * regions, not the median one. Fixed by the front end's parameters, so copies share one.
+ */
+class DescriptorRegions {
+ public:
+  /// Throws std::invalid_argument when the front end's parameters are invalid.
+  explicit DescriptorRegions(const DescriptorParams& front_end);
+
+  /// The difference of descriptor `a` and a mean of descriptors `b` (descriptorSize() values each).
+  double difference(const std::uint8_t* a, const float* b) const;
+  /// The difference of two descriptors.
+  double difference(const std::uint8_t* a, const std::uint8_t* b) const;
+
+ private:
+  template <typename Value>
+  double medianRegionDifference(const std::uint8_t* a, const Value* b) const;
+
+  std::vector<int> region_of_;       ///< Per descriptor byte, its region.
+  std::vector<double> region_size_;  ///< Per region, its bytes.
+};
+
+}  // namespace mrs_vpr
