@@ -304,7 +304,8 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
 
   std::printf("\nCamera drives (make_drive --seed %llu and %llu): the map drive at %.0f Hz, the revisit at %.0f Hz, "
               "each with 8 stops of 30-90 frames (noise, vibration, gain, a passer-by) and a stretch at half and one "
-              "at double speed; one recognizer at the node's defaults (keyframes by appearance change %.2f), "
+              "at double speed; one recognizer at the node's defaults (keyframes by appearance change %.2f, accepted "
+              "at confidence %.1f), "
               "continuous mode every %.0f s. right = the localised keyframe's place within %d places of those the "
               "answer's keyframe stands for, where route frames at which the recorded train stood are one place "
               "(%d places in %d route frames; evaluation/route_places.hpp); wrong: by places, and in brackets were "
@@ -313,7 +314,7 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
               "others lie within a stop); restated = accepted closures restated for the stopped frames their "
               "keyframe stands for, one a period (node/standing_frames.hpp), right/wrong alike\n",
               static_cast<unsigned long long>(input.seed), static_cast<unsigned long long>(input.seed + 1), kMapRate,
-              kRevisitRate, input.min_appearance_change, kQueryPeriod, kRouteTolerance,
+              kRevisitRate, input.min_appearance_change, input.sequence.accept_threshold, kQueryPeriod, kRouteTolerance,
               places.back() + 1, route, kStretchFrames, kWarmUpFrames);
   for (const Drive* drive : {&map, &revisit}) {
     std::printf("  %-26s %5zu frames, %4d stopped; %d route frames at half speed from %d, %d at double speed from %d\n",

@@ -21,7 +21,7 @@
 //   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
 //                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
 //                          [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]
-//                          [--drive-alignment-slack S] [--diagnose] [--json FILE]
+//                          [--drive-alignment-slack S] [--drive-accept-threshold C] [--diagnose] [--json FILE]
 
 #include <algorithm>
 #include <chrono>
@@ -80,6 +80,7 @@ struct Options {
   bool drives = true;
   int drive_length = 0;
   int drive_alignment_slack = mrs_vpr::SequenceParams{}.alignment_slack;
+  double drive_accept_threshold = mrs_vpr::SequenceParams{}.accept_threshold;
   double drive_min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
   std::string drive_alignment = mrs_vpr::toString(mrs_vpr::SequenceParams{}.alignment);
   std::string drive_queries = "each";  // as the node asks
@@ -98,7 +99,8 @@ constexpr const char* kUsage =
     "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
     "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
-    "                              [--drive-alignment-slack S] [--drive-alignment causal|centred]\n"
+    "                              [--drive-alignment-slack S] [--drive-accept-threshold C]\n"
+    "                              [--drive-alignment causal|centred]\n"
     "                              [--drive-queries newest|each] [--drive-seeds K] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
@@ -138,6 +140,9 @@ std::optional<Options> parse(int argc, char** argv) {
        "keyframes per test sequence of the camera-drive rows; 0 = the node's default")
       ("drive-alignment-slack", po::value(&options.drive_alignment_slack)->default_value(options.drive_alignment_slack),
        "sequence/alignment_slack of the camera-drive rows")
+      ("drive-accept-threshold",
+       po::value(&options.drive_accept_threshold)->default_value(options.drive_accept_threshold),
+       "sequence/accept_threshold of the camera-drive rows (the confidence an accepted answer needs)")
       ("drive-min-appearance-change",
        po::value(&options.drive_min_appearance_change)->default_value(options.drive_min_appearance_change),
        "min_appearance_change of the camera-drive rows (keyframes by appearance change)")
@@ -797,6 +802,7 @@ int run(int argc, char** argv) {
     drives.descriptor = options.descriptor;
     if (options.drive_length > 0) drives.sequence.sequence_length = options.drive_length;
     drives.sequence.alignment_slack = options.drive_alignment_slack;
+    drives.sequence.accept_threshold = options.drive_accept_threshold;
     drives.min_appearance_change = options.drive_min_appearance_change;
     drives.sequence.alignment = mrs_vpr::parseWindowAlignment(options.drive_alignment);
     if (options.drive_queries != "newest" && options.drive_queries != "each") {

@@ -992,6 +992,22 @@ TEST_F(ToolsTest, TheRealDataBenchmarksDrivesKeyframeAtTheThresholdGiven) {
   }
 }
 
+TEST_F(ToolsTest, TheRealDataBenchmarksDrivesAcceptAtTheThresholdGiven) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_threshold.json");
+  // No confidence reaches 1000: nothing is accepted, on either drive.
+  const Result result = run(cameraDrivesCommand(data, " --drive-accept-threshold 1000", output));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.out.find("accepted at confidence 1000.0"), std::string::npos) << result.out;
+  const json rows = json::parse(readText(output)).at("rows");
+  ASSERT_EQ(rows.size(), 3U) << rows.dump();
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(rows[i].at("accepted"), 0) << rows[i].dump();
+  EXPECT_EQ(rows[2].at("summary").at("accepted"), 0) << rows[2].dump();
+  const Result refused = run(cameraDrivesCommand(data, " --drive-accept-threshold -1", output));
+  EXPECT_NE(refused.status, 0);
+  EXPECT_NE(refused.err.find("sequence/accept_threshold must be in 0..1000, got -1"), std::string::npos) << refused.err;
+}
+
 TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   const fs::path data = realDataLayout(path(""));
   const fs::path maps = path("maps");
