@@ -176,6 +176,9 @@ std::optional<Options> parse(int argc, char** argv) {
   if (options.part != "tune" && options.part != "check" && options.part != "all") {
     throw std::invalid_argument("--part must be tune, check or all");
   }
+  mrs_vpr::SequenceParams drive_sequence;  // Checked now, not after the frames are read.
+  drive_sequence.accept_threshold = options.drive_accept_threshold;
+  drive_sequence.validate();
   if (options.queries < 1 || options.threads < 1 || options.tolerance < 0) {
     throw std::invalid_argument("--queries and --threads must be >= 1, --tolerance >= 0");
   }

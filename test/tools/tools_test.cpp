@@ -1005,6 +1005,7 @@ TEST_F(ToolsTest, TheRealDataBenchmarksDrivesAcceptAtTheThresholdGiven) {
   EXPECT_EQ(rows[2].at("summary").at("accepted"), 0) << rows[2].dump();
   const Result refused = run(cameraDrivesCommand(data, " --drive-accept-threshold -1", output));
   EXPECT_NE(refused.status, 0);
+  EXPECT_EQ(refused.out.find("Camera drives"), std::string::npos) << "refused before any drive: " << refused.out;
   EXPECT_NE(refused.err.find("sequence/accept_threshold must be in 0..1000, got -1"), std::string::npos) << refused.err;
 }
 
