@@ -130,49 +130,12 @@ template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
   countMissingFrames(header.seq);
-  Stamp stamp;
-  try {
-    stamp = stampOf(header.stamp);  // Exact: a double cannot hold every ROS time.
-  } catch (const std::invalid_argument& error) {  // an unnormalised stamp beyond ROS's range
-    ++frames_failed_;
-    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s: header.stamp %u s + %u ns: %s",
-                      imageTopic().c_str(), header.stamp.sec, header.stamp.nsec, error.what());
-    return;
-  }
-  if (stamp.isZero()) {
-    stamp = stampOf(ros::Time::now());  // unstamped camera: the arrival time is the best we have
-  }
-  // The keyframe policy compares intervals, for which seconds in a double are precise enough.
-  const double seconds = stamp.seconds();
-  {
-    std::lock_guard<std::mutex> lock(state_mutex_);
-    if (!keyframe_policy_.wants(seconds)) {
-      keyframe_policy_.skip(seconds);
-      ++frames_skipped_;
-      return;
-    }
-  }
+  const std::optional<Stamp> stamp = frameStamp(header);
+  if (!stamp) return;
+  // The keyframe policies compare intervals, for which seconds in a double are precise enough.
+  const double seconds = stamp->seconds();
   std::optional<Eigen::Vector3d> position;
-  if (travel_policy_.enabled()) {
-    std::string error;
-    position = robotPosition(header.stamp, error);
-    bool travelled = false;
-    {
-      std::lock_guard<std::mutex> lock(state_mutex_);
-      travelled = position && travel_policy_.wants(*position);
-      if (!travelled) keyframe_policy_.skip(seconds);
-    }
-    if (!position) {
-      ++frames_without_pose_;
-      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: skipping a frame from %s: no pose of %s in %s at its stamp (%s)",
-                        imageTopic().c_str(), params_.base_frame.c_str(), params_.odom_frame.c_str(), error.c_str());
-      return;
-    }
-    if (!travelled) {
-      ++frames_skipped_;
-      return;
-    }
-  }
+  if (!wantedByPolicies(header, seconds, position)) return;
 
   // The expensive part runs without any lock.
   const auto start = std::chrono::steady_clock::now();
@@ -190,8 +153,68 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
                       summary().c_str(), error.what());
     return;
   }
+  if (!admit(descriptor, *stamp, header, seconds)) return;
 
-  // Keyframes by travel are chosen above; otherwise the recognizer keeps a frame whose view has changed.
+  ++map_version_;
+  std::lock_guard<std::mutex> lock(state_mutex_);
+  keyframe_policy_.keep(seconds);
+  standing_frames_.keyframe(*stamp);
+  if (position) travel_policy_.keep(*position);
+  camera_frame_id_ = header.frame_id;
+  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  frame_time_total_ms_ += elapsed_ms;
+  ++frames_timed_;
+  frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+}
+
+std::optional<Stamp> PlaceRecognitionNode::frameStamp(const std_msgs::Header& header) {
+  Stamp stamp;
+  try {
+    stamp = stampOf(header.stamp);  // Exact: a double cannot hold every ROS time.
+  } catch (const std::invalid_argument& error) {  // an unnormalised stamp beyond ROS's range
+    ++frames_failed_;
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s: header.stamp %u s + %u ns: %s",
+                      imageTopic().c_str(), header.stamp.sec, header.stamp.nsec, error.what());
+    return std::nullopt;
+  }
+  if (stamp.isZero()) {
+    stamp = stampOf(ros::Time::now());  // unstamped camera: the arrival time is the best we have
+  }
+  return stamp;
+}
+
+bool PlaceRecognitionNode::wantedByPolicies(const std_msgs::Header& header, double seconds,
+                                            std::optional<Eigen::Vector3d>& position) {
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!keyframe_policy_.wants(seconds)) {
+      keyframe_policy_.skip(seconds);
+      ++frames_skipped_;
+      return false;
+    }
+  }
+  if (!travel_policy_.enabled()) return true;
+  std::string error;
+  position = robotPosition(header.stamp, error);
+  bool travelled = false;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    travelled = position && travel_policy_.wants(*position);
+    if (!travelled) keyframe_policy_.skip(seconds);
+  }
+  if (!position) {
+    ++frames_without_pose_;
+    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: skipping a frame from %s: no pose of %s in %s at its stamp (%s)",
+                      imageTopic().c_str(), params_.base_frame.c_str(), params_.odom_frame.c_str(), error.c_str());
+    return false;
+  }
+  if (!travelled) ++frames_skipped_;
+  return travelled;
+}
+
+bool PlaceRecognitionNode::admit(const cv::Mat& descriptor, Stamp stamp, const std_msgs::Header& header,
+                                 double seconds) {
+  // Keyframes by travel are chosen before; otherwise the recognizer keeps a frame whose view has changed.
   const FrameAdmission admission = travel_policy_.enabled() ? map_->add(descriptor, stamp, header.frame_id, header.seq)
                                                             : map_->offer(descriptor, stamp, header.frame_id, header.seq);
   switch (admission) {
@@ -203,32 +226,23 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
       // Only the newest keyframe's own view stands at its place; one like an older keyframe, or one on its
       // way from the newest, may not.
       if (admission == FrameAdmission::kTooSimilar && recognizer_.lastFrameStood()) standing_frames_.tooSimilar(stamp);
-      return;
+      return false;
     }
     case FrameAdmission::kMapFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
                         params_.recognizer.max_frames);
-      return;
+      return false;
     case FrameAdmission::kPendingFull:
       ++frames_dropped_;
       ROS_WARN_THROTTLE(kWarningPeriod,
                         "mrs_vpr: %d keyframes wait for a long query (~max_pending_frames); dropping frames",
                         params_.recognizer.max_pending_frames);
-      return;
+      return false;
     case FrameAdmission::kAdmitted:
       break;
   }
-  ++map_version_;
-  std::lock_guard<std::mutex> lock(state_mutex_);
-  keyframe_policy_.keep(seconds);
-  standing_frames_.keyframe(stamp);
-  if (position) travel_policy_.keep(*position);
-  camera_frame_id_ = header.frame_id;
-  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  frame_time_total_ms_ += elapsed_ms;
-  ++frames_timed_;
-  frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+  return true;
 }
 
 std::string PlaceRecognitionNode::unknownTfFrame() const {

@@ -84,6 +84,16 @@ class PlaceRecognitionNode {
   /// description, admission and counters. `summary` describes the message for a warning.
   template <typename Convert, typename Summary>
   void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
+  /// The frame's exact stamp (its arrival time when the camera leaves it 0), or nothing when the stamp
+  /// lies beyond ROS's range (counted as failed and reported).
+  std::optional<Stamp> frameStamp(const std_msgs::Header& header);
+  /// Whether the keyframe policies (interval, stride, then travel by tf) want the frame taken at
+  /// `seconds`; `position` gets the robot's position when ~min_travel is set. What they refuse is
+  /// counted and reported.
+  bool wantedByPolicies(const std_msgs::Header& header, double seconds, std::optional<Eigen::Vector3d>& position);
+  /// Offers the frame's descriptor to the map (added when chosen by travel, else kept if its view has
+  /// changed); counts what is refused. Whether it became a keyframe.
+  bool admit(const cv::Mat& descriptor, Stamp stamp, const std_msgs::Header& header, double seconds);
   /// Where ~base_frame was in ~odom_frame at `stamp` (waiting up to ~tf_timeout for tf), or nothing
   /// with the reason in `error`. Fails at once, naming the frame, while ~odom_frame or ~base_frame
   /// is unknown to tf and a first wait for it has been in vain.
