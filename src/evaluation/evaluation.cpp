@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "mrs_vpr/median.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -159,8 +160,7 @@ double recallAtFullPrecision(const std::vector<PrPoint>& curve) {
 double median(std::vector<double> values) {
   if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
   const std::size_t middle = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle), values.end());
-  const double upper = values[middle];
+  const double upper = upperMedian(values);  // Leaves the lower half before `middle`.
   if (values.size() % 2 == 1) return upper;
   const double lower = *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(middle));
   return 0.5 * (lower + upper);
