@@ -226,6 +226,7 @@ class CoarseToFineSearch {
     return best;
   }
 
+  /// Drops the particles where no trajectory fits (infinite cost): they carry no weight.
   void dropInfeasible() {
     particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
                                     [](const Particle& p) { return !std::isfinite(p.cost); }),
@@ -266,9 +267,7 @@ class CoarseToFineSearch {
       particle.velocity = evaluation.velocity;
       if (finest && evaluation.cost < best_.cost) best_ = evaluation;
     }
-    particles_.erase(std::remove_if(particles_.begin(), particles_.end(),
-                                    [](const Particle& p) { return !std::isfinite(p.cost); }),
-                     particles_.end());
+    dropInfeasible();
     return moved;
   }
 
