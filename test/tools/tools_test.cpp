@@ -16,6 +16,7 @@
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -1007,6 +1008,38 @@ TEST_F(ToolsTest, TheRealDataBenchmarksDrivesAcceptAtTheThresholdGiven) {
   EXPECT_NE(refused.status, 0);
   EXPECT_EQ(refused.out.find("Camera drives"), std::string::npos) << "refused before any drive: " << refused.out;
   EXPECT_NE(refused.err.find("sequence/accept_threshold must be in 0..1000, got -1"), std::string::npos) << refused.err;
+}
+
+TEST_F(ToolsTest, TheRealDataBenchmarkRefusesBadDriveSettingsBeforeReadingFrames) {
+  // "nowhere" holds no frames: each refusal names the setting, not the missing data.
+  const std::string command = std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + path("nowhere");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {" --drive-queries all", "--drive-queries must be newest or each, got 'all'"},
+      {" --drive-seeds 0", "--drive-seeds must be >= 1, got 0"},
+      {" --drive-alignment ahead", "sequence/alignment must be one of causal, centred, got 'ahead'"},
+      {" --drive-length 1", "sequence/sequence_length"},
+      {" --drive-alignment-slack -1", "sequence/alignment_slack"}};
+  for (const auto& [options, message] : cases) {
+    const Result refused = run(command + options);
+    EXPECT_NE(refused.status, 0) << options;
+    EXPECT_NE(refused.err.find(message), std::string::npos) << options << ": " << refused.err;
+    EXPECT_EQ(refused.err.find("nowhere"), std::string::npos) << options << ": " << refused.err;
+  }
+}
+
+TEST_F(ToolsTest, TheRealDataBenchmarksDrivesLeaveOutTheFirstPassAlone) {
+  // mrs-first-pass is a search of the global and per-frame rows, not a method of the node: the drives
+  // run the other methods and say so, instead of failing after every other row.
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_first_pass.json");
+  const Result result = run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+                            " --part all --references 1.8k --methods seqslam,mrs-first-pass --skip-per-frame"
+                            " --skip-global --seed 5 --json " + output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.err.find("mrs-first-pass is not a method of the node"), std::string::npos) << result.err;
+  const json rows = json::parse(readText(output)).at("rows");
+  ASSERT_EQ(rows.size(), 3U) << rows.dump();
+  for (const json& row : rows) EXPECT_EQ(row.at("method"), "seqslam") << row.dump();
 }
 
 TEST_F(ToolsTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
