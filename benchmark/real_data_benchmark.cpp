@@ -53,23 +53,9 @@
 #include "real_report.hpp"
 #include "truth_diagnosis.hpp"
 
+namespace mrs_vpr {
+namespace benchmark {
 namespace {
-
-using mrs_vpr::DescriptorSequence;
-using mrs_vpr::QueryRecord;
-using mrs_vpr::benchmark::FirstPassMatcher;
-using mrs_vpr::benchmark::makeBenchMatcher;
-using mrs_vpr::benchmark::RealBenchmarkOptions;
-using mrs_vpr::benchmark::RealFrames;
-using mrs_vpr::benchmark::Reference;
-using mrs_vpr::benchmark::Report;
-using mrs_vpr::benchmark::TruthDiagnosis;
-using mrs_vpr::benchmark::buildReference;
-using mrs_vpr::benchmark::describe;
-using mrs_vpr::benchmark::loadRealFrames;
-using mrs_vpr::benchmark::parseRealBenchmarkOptions;
-using mrs_vpr::benchmark::stretchOf;
-using mrs_vpr::benchmark::truthOf;
 
 /// One method's answers to the test sequences of `length` frames of `query` that end at `ends`, in
 /// `map`; the sequence ending at frame e has the true places truth_of(e). With `diagnosis`, MRS's
@@ -315,7 +301,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
 /// one seed, the totals over them.
 void runDrives(const RealFrames& frames, const RealBenchmarkOptions& options, int route, int part_begin, int part_end,
                Report& report) {
-  mrs_vpr::benchmark::CameraDriveInput drives;
+  CameraDriveInput drives;
   drives.summer = &frames.summer;
   drives.winter = &frames.winter;
   drives.route_frames = route;
@@ -340,7 +326,7 @@ void runDrives(const RealFrames& frames, const RealBenchmarkOptions& options, in
   std::vector<nlohmann::json> continuous_rows;
   for (int k = 0; k < options.drive_seeds; ++k) {
     drives.seed = options.seed + static_cast<std::uint64_t>(k);
-    mrs_vpr::benchmark::runCameraDrives(
+    runCameraDrives(
         drives,
         [&](const std::vector<nlohmann::json>& rows) {
           for (nlohmann::json row : rows) {
@@ -354,7 +340,7 @@ void runDrives(const RealFrames& frames, const RealBenchmarkOptions& options, in
           report.row(setting, method, summary, {"per-frame", false, reference_frames, sequence_length});
         });
   }
-  if (options.drive_seeds > 1) mrs_vpr::benchmark::printDriveSeedSummary(continuous_rows);
+  if (options.drive_seeds > 1) printDriveSeedSummary(continuous_rows);
 }
 
 int run(int argc, char** argv) {
@@ -476,8 +462,10 @@ int run(int argc, char** argv) {
 }
 
 }  // namespace
+}  // namespace benchmark
+}  // namespace mrs_vpr
 
 int main(int argc, char** argv) {
   mrs_vpr::retainFreedMemory();  // As the node and the tools do.
-  return mrs_vpr::tools::runTool("mrs_vpr_real_benchmark", run, argc, argv);
+  return mrs_vpr::tools::runTool("mrs_vpr_real_benchmark", mrs_vpr::benchmark::run, argc, argv);
 }

@@ -1,9 +1,10 @@
 #include "real_report.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
+
+#include "tools/summary_json.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
@@ -19,24 +20,13 @@ void Report::row(const std::string& setting, const std::string& method, const Ev
               s.top1, s.recall_at_100_precision, s.pr_auc, s.accepted, s.accepted_precision, s.accepted_recall,
               s.median_time_ms);
   std::fflush(stdout);
-  // NaN (nothing accepted, nothing predicted) has no JSON spelling: null.
-  const auto number = [](double value) { return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(); };
   rows_.push_back({{"setting", setting},
                    {"method", method},
                    {"protocol", facts.protocol},
                    {"out_of_map", facts.out_of_map},
                    {"reference_frames", facts.reference_frames},
                    {"sequence_length", facts.sequence_length},
-                   {"summary",
-                    {{"queries", s.queries},
-                     {"top1", s.top1},
-                     {"recall_at_100_precision", s.recall_at_100_precision},
-                     {"pr_auc", s.pr_auc},
-                     {"accepted", s.accepted},
-                     {"accepted_precision", number(s.accepted_precision)},
-                     {"accepted_recall", s.accepted_recall},
-                     {"largest_wrong_accepted_error", number(s.largest_wrong_accepted_error)},
-                     {"median_time_ms", number(s.median_time_ms)}}}});
+                   {"summary", tools::summaryToJson(s)}});
 }
 
 void Report::add(const std::vector<nlohmann::json>& rows) { rows_.insert(rows_.end(), rows.begin(), rows.end()); }

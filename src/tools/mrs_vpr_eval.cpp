@@ -39,6 +39,7 @@
 #include "mrs_vpr/store/map_database.hpp"
 #include "evaluation_plots.hpp"
 #include "descriptor_options.hpp"
+#include "summary_json.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -94,9 +95,6 @@ void requireWritableFolder(const std::string& folder, const std::string& option)
 double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
-
-/// NaN has no JSON spelling; null says "undefined" (e.g. the median error when nothing was predicted).
-json number(double value) { return std::isfinite(value) ? json(value) : json(nullptr); }
 
 struct Options {
   std::string reference;
@@ -340,22 +338,6 @@ json parametersToJson(const Options& options, const mrs_vpr::Parameters& p) {
   };
 }
 
-json summaryToJson(const mrs_vpr::EvaluationSummary& summary) {
-  return {{"tolerance", summary.tolerance},
-          {"queries", summary.queries},
-          {"top1", summary.top1},
-          {"pr_auc", summary.pr_auc},
-          {"recall_at_100_precision", summary.recall_at_100_precision},
-          {"accepted", summary.accepted},
-          {"accepted_rate", summary.accepted_rate},
-          {"accepted_precision", number(summary.accepted_precision)},
-          {"accepted_recall", summary.accepted_recall},
-          {"largest_wrong_accepted_error", number(summary.largest_wrong_accepted_error)},
-          {"median_abs_error", number(summary.median_abs_error)},
-          {"median_time_ms", number(summary.median_time_ms)},
-          {"total_time_s", summary.total_time_s}};
-}
-
 json recordsToJson(const std::vector<mrs_vpr::QueryRecord>& records, int tolerance) {
   json list = json::array();
   for (const mrs_vpr::QueryRecord& record : records) {
@@ -493,7 +475,7 @@ int run(int argc, char** argv) {
         {"reference_keyframes", recognizer.size()},
         {"query_keyframes", query_descriptors.size()},
         {"parameters", parametersToJson(options, params)},
-        {"summary", summaryToJson(summary)},
+        {"summary", mrs_vpr::tools::summaryToJson(summary)},
         {"timing",
          {{"read_and_describe_s", describe_s},
           {"match_s", match_s},
@@ -515,7 +497,7 @@ int run(int argc, char** argv) {
       mrs_vpr::tools::runPlotTool({"eval", evaluation, "--directory", options.plots});
     }
   }
-  std::cout << json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}.dump(2)
+  std::cout << json{{"method", options.method}, {"protocol", options.protocol}, {"summary", mrs_vpr::tools::summaryToJson(summary)}}.dump(2)
             << std::endl;
   return 0;
 }
