@@ -25,9 +25,10 @@ const cv::Scalar kBackground(40, 40, 40);
 const cv::Scalar kAcceptedColour(80, 220, 80);
 const cv::Scalar kRejectedColour(60, 60, 255);
 
-std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
-  char text[128];
-  std::snprintf(text, sizeof text, pattern, a, b, c);
+/// `value` with two decimals, as the captions show confidences and velocities.
+std::string twoDecimals(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", value);
   return text;
 }
 
@@ -121,11 +122,11 @@ void drawVerdict(cv::Mat& image, const cv::Rect& area, const MatchExplanation& e
   const Match& match = answer.match;
   const std::string verdict = match.reference_index < 0 ? "no match" : match.accepted ? "ACCEPTED" : "not accepted";
   const std::string head = answer.method + "  reference " + std::to_string(match.reference_index) +
-                           format("  confidence %.2f  ", match.confidence) + verdict;
+                           "  confidence " + twoDecimals(match.confidence) + "  " + verdict;
   label(image, head, {area.x + 4, area.y + 15}, match.accepted ? kAcceptedColour : kRejectedColour, 1.1);
   label(image,
         std::to_string(explanation.query_frames) + " test frames, map " + std::to_string(explanation.reference_frames) +
-            format(" frames, velocity %.2f", explanation.velocity),
+            " frames, velocity " + twoDecimals(explanation.velocity),
         {area.x + 4, area.y + 33}, kDimText);
 }
 
