@@ -23,6 +23,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/match_explanation.hpp"
+#include "mrs_vpr/median.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
 #include "tools/descriptor_options.hpp"
@@ -108,10 +109,8 @@ double millisecondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+/// The upper median (median.hpp), as the figures in doc/debug_image.md were taken.
+double median(std::vector<double> values) { return mrs_vpr::upperMedian(values); }
 
 double maximum(const std::vector<double>& values) { return *std::max_element(values.begin(), values.end()); }
 
