@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
@@ -90,7 +91,51 @@ struct DriveCounts {
   int largest_wrong_route_frames = 0;
   std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
   std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
+  std::vector<std::string> stretch_answers;  ///< MRS_VPR_SHOW_MISSED: answerNote() of each answer about it.
 };
+
+/// One answer as MRS_VPR_SHOW_MISSED lists it: the localised route frame, the confidence, and A
+/// (accepted), x (wrong), b (at a velocity bound) or r (repeated view).
+std::string answerNote(int route_frame, const Match& match, bool right) {
+  char note[64];
+  std::snprintf(note, sizeof note, " %d:%.1f%s%s%s%s", route_frame, match.confidence, match.accepted ? "A" : "",
+                right ? "" : "x", match.at_velocity_bound ? "b" : "", match.repeated_view ? "r" : "");
+  return note;
+}
+
+/// Frames of `frames` whose route frame lies in [begin, begin + count): those of a stretch driven at
+/// another speed.
+long framesWithin(const std::vector<DriveFrame>& frames, int begin, int count) {
+  return static_cast<long>(std::count_if(frames.begin(), frames.end(), [&](const DriveFrame& frame) {
+    return begin >= 0 && frame.route_frame >= begin && frame.route_frame < begin + count;
+  }));
+}
+
+/// MRS_VPR_SHOW_MISSED: each stretch of the revisit that no accepted right answer confirmed, with its
+/// route frames; how many of its frames stood, were half-speed copies, were driven at double speed,
+/// or show route frames that the map drive drove at double or half speed; whether a keyframe came; and
+/// the answers about its keyframes. Stretches without a keyframe are confirmed only by a closure
+/// restated for their stop (standing_frames.hpp).
+void printMissedStretches(const Drive& map, const Drive& revisit, const DriveCounts& count) {
+  for (std::size_t stretch = 0; stretch < count.stretch_right.size(); ++stretch) {
+    if (count.stretch_right[stretch]) continue;
+    const auto first = revisit.frames.begin() + static_cast<std::ptrdiff_t>(kWarmUpFrames + stretch * kStretchFrames);
+    const std::vector<DriveFrame> frames(first, first + kStretchFrames);
+    const auto kindCount = [&](DriveFrameKind kind) {
+      return static_cast<long>(std::count_if(frames.begin(), frames.end(),
+                                             [&](const DriveFrame& frame) { return frame.kind == kind; }));
+    };
+    std::fprintf(stderr,
+                 "missed stretch: %s route frames %d..%d, stopped %ld, slow %ld, fast %ld, map fast %ld, map slow "
+                 "%ld, keyframed %d, answers:%s\n",
+                 revisit.name.c_str(), frames.front().route_frame, frames.back().route_frame,
+                 kindCount(DriveFrameKind::kStopped), kindCount(DriveFrameKind::kSlowCopy),
+                 framesWithin(frames, revisit.fast_begin, revisit.fast_frames),
+                 framesWithin(frames, map.fast_begin, map.fast_frames),
+                 framesWithin(frames, map.slow_begin, map.slow_frames), count.stretch_keyframed[stretch] ? 1 : 0,
+                 count.stretch_answers[stretch].c_str());
+  }
+}
 
 /**
  * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,
@@ -116,6 +161,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
   std::vector<Stamp> stamp_of_frame;  // the stamp of each frame of the whole replay
   // As the node restates a closure for the frames its keyframe stands for (standing_frames.hpp).
   node::StandingFrames standing(kQueryPeriod);
+  const bool show_missed = std::getenv("MRS_VPR_SHOW_MISSED") != nullptr;
   double clock = 1.0;  // [s]
   std::vector<DriveCounts> counts(drives.size());
   int asked_at_size = 0;
@@ -126,6 +172,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
     const int stretches = std::max(0, (static_cast<int>(drive.frames.size()) - kWarmUpFrames) / kStretchFrames);
     count.stretch_right.assign(static_cast<std::size_t>(stretches), false);
     count.stretch_keyframed.assign(static_cast<std::size_t>(stretches), false);
+    count.stretch_answers.assign(static_cast<std::size_t>(stretches), "");
     const auto stretchOf = [&](int i) { return i < kWarmUpFrames ? -1 : (i - kWarmUpFrames) / kStretchFrames; };
     const int drive_start = static_cast<int>(route_of_frame.size());  // the drive's first frame in the replay
     for (int i = 0; i < static_cast<int>(drive.frames.size()); ++i) {
@@ -158,8 +205,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
       for (const int end : ends) {
         const Match match = recognizer.matchRecent(recent, method, nullptr, end).match;
         ++count.queries;
-        if (!match.accepted) continue;
-        ++count.accepted;
+        if (match.reference_index < 0) continue;
         // The localised keyframe's place (the newest, or the middle one when centred) against the places
         // the answer's keyframe stands for; no place comes back during the first traversal.
         const int anchor = end - recent + wholeSequenceRows(recent, sequence.alignment).anchor;
@@ -189,6 +235,13 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
               std::max(count.largest_wrong_route_frames, distance(frame, route_frame_numbers));
         };
         const bool right = answerShows(localised_frame);
+        const int localised_stretch = stretchOf(localised_frame - drive_start);
+        if (show_missed && localised_stretch >= 0 && localised_stretch < stretches) {
+          count.stretch_answers[static_cast<std::size_t>(localised_stretch)] +=
+              answerNote(route_of_frame[static_cast<std::size_t>(localised_frame)], match, right);
+        }
+        if (!match.accepted) continue;
+        ++count.accepted;
         ++(right ? count.right : count.wrong);
         if (!right) noteWrong(localised_frame);
         if (!within(localised_frame, route_frame_numbers)) ++count.wrong_route_frames;
@@ -232,6 +285,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         }
       }
     }
+    if (show_missed && d > 0) printMissedStretches(*drives.front(), drive, count);
   }
   return counts;
 }

@@ -1010,6 +1010,32 @@ TEST_F(ToolsTest, TheRealDataBenchmarksDrivesAcceptAtTheThresholdGiven) {
   EXPECT_NE(refused.err.find("sequence/accept_threshold must be in 0..1000, got -1"), std::string::npos) << refused.err;
 }
 
+TEST_F(ToolsTest, TheRealDataBenchmarkListsTheStretchesNoClosureConfirmed) {
+  const fs::path data = realDataLayout(path(""));
+  const std::string output = path("real_benchmark_missed.json");
+  // Nothing is accepted at 1000: every stretch of the revisit is missed, and listed with its answers
+  // (every frame a keyframe, so that this short route is asked about).
+  const Result result = run("MRS_VPR_SHOW_MISSED=1 " +
+                            cameraDrivesCommand(data, " --drive-accept-threshold 1000 --drive-min-appearance-change 0",
+                                                output));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json revisit = json::parse(readText(output)).at("rows").at(1);
+  ASSERT_EQ(revisit.at("setting"), "camera drive continuous revisit");
+  int listed = 0;
+  int with_answers = 0;
+  std::istringstream lines(result.err);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("missed stretch: revisit", 0) != 0) continue;
+    ++listed;
+    // An answer: the localised route frame, its confidence, and x when it would have been wrong.
+    with_answers += line.find(":", line.find("answers:") + 8) != std::string::npos ? 1 : 0;
+  }
+  EXPECT_EQ(listed, revisit.at("stretches").get<int>()) << result.err;
+  ASSERT_GT(revisit.at("queries").get<int>(), 0) << revisit.dump();
+  EXPECT_GT(with_answers, 0) << result.err;
+  EXPECT_EQ(result.err.find("missed stretch: map drive"), std::string::npos) << "only revisits are listed";
+}
+
 TEST_F(ToolsTest, TheRealDataBenchmarkRefusesBadDriveSettingsBeforeReadingFrames) {
   // "nowhere" holds no frames: each refusal names the setting, not the missing data.
   const std::string command = std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + path("nowhere");
