@@ -17,143 +17,43 @@
 //                               [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2] [--threads 1]
 //                               [--periods 20] [--keyframes-per-period 3] [--seed 42]
 
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <functional>
 #include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
-#include <sys/stat.h>
-#include <sys/wait.h>
 #include <utility>
 #include <vector>
 
-#include <time.h>
-
-#include <boost/program_options.hpp>
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
-#include "mrs_vpr/median.hpp"
 #include "mrs_vpr/memory_reuse.hpp"
 #include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
-#include "tools/descriptor_options.hpp"
 #include "tools/tool_main.hpp"
-#include "list_option.hpp"
+#include "map_scale_options.hpp"
+#include "row_tally.hpp"
+#include "scale_map.hpp"
+#include "stopwatch.hpp"
 
-namespace po = boost::program_options;
-
+namespace mrs_vpr {
+namespace benchmark {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 constexpr double kPeriodSeconds = 1.0;  // launch/mrs_vpr.launch's auto_query_period
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-struct Options {
-  std::string data;
-  std::vector<long long> sizes = {10000, 100000, 1000000};
-  std::string dir = "/tmp/mrs_vpr_map_scale";
-  std::vector<int> lengths = {10, 50, 100, 300};
-  int queries = 5;
-  int brute_queries = 2;
-  int threads = 1;
-  int periods = 20;
-  int keyframes_per_period = 3;
-  std::uint64_t seed = 42;
-  // Internal: measure one map in this process (the parent runs one child per size).
-  std::string measure;
-  mrs_vpr::DescriptorParams descriptor;  ///< The front end of the maps written.
-  long long truth_offset = -1;
-};
-
-/// A map size as written on the command line: frames, or thousands ("10k") or millions ("1M").
-long long parseSize(const std::string& text) {
-  const std::invalid_argument bad("--sizes: bad size '" + text + "' (e.g. 10k, 1M; >= 2k)");
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::logic_error&) {  // No number at all, or out of range.
-    throw bad;
-  }
-  const std::string unit = text.substr(used);
-  const double scale = unit.empty() ? 1 : unit == "k" ? 1e3 : unit == "M" ? 1e6 : -1;
-  if (scale < 0 || !(value * scale >= 2000) || value * scale > 1e12) throw bad;
-  return static_cast<long long>(value * scale);
-}
-
-std::string sizeName(long long frames) {
-  if (frames % 1000000 == 0) return std::to_string(frames / 1000000) + "M";
-  if (frames % 1000 == 0) return std::to_string(frames / 1000) + "k";
-  return std::to_string(frames);
-}
-
-constexpr const char* kUsage =
-    "Usage: mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]\n"
-    "                                   [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2]\n"
-    "                                   [--threads 1] [--periods 20] [--keyframes-per-period 3] [--seed 42]\n"
-    "Writes map databases of real frames (DIR: the shared data folder) once, then loads each in a fresh\n"
-    "process and prints load time, resident bytes a frame and both methods' query times.\n";
-
-/// Parses the command line; returns nothing after printing the help.
-std::optional<Options> parse(int argc, char** argv) {
-  Options options;
-  std::vector<std::string> sizes;
-  for (const long long frames : options.sizes) sizes.push_back(sizeName(frames));
-  std::int64_t seed = static_cast<std::int64_t>(options.seed);  // Signed, so that a negative seed is refused.
-  po::options_description description("Options");
-  // clang-format off
-  description.add_options()
-      ("help,h", "print this help")
-      ("data", po::value(&options.data)->required(), "the shared data folder (nordland/, corridor/)")
-      ("sizes", mrs_vpr::benchmark::listValue(&sizes), "map sizes in frames, comma-separated (e.g. 10k, 1M; >= 2k)")
-      ("dir", po::value(&options.dir)->default_value(options.dir), "folder of the map databases, kept between runs")
-      ("lengths", mrs_vpr::benchmark::listValue(&options.lengths), "N: frames per test sequence, comma-separated")
-      ("queries", po::value(&options.queries)->default_value(options.queries), "queries per map and kind (mrs)")
-      ("brute-queries", po::value(&options.brute_queries)->default_value(options.brute_queries),
-       "how many of them brute force answers too")
-      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
-      ("periods", po::value(&options.periods)->default_value(options.periods),
-       "continuous mode: query periods timed (0 = no continuous-mode row)")
-      ("keyframes-per-period", po::value(&options.keyframes_per_period)->default_value(options.keyframes_per_period),
-       "continuous mode: keyframes joining the map between two queries")
-      ("seed", po::value(&seed)->default_value(seed), "seed of the maps and of the queries")
-      // The parent runs one child per map, with these two: the map to measure and where its true places are.
-      ("measure", po::value(&options.measure), "internal: measure this map database in this process")
-      ("truth-offset", po::value(&options.truth_offset)->default_value(options.truth_offset),
-       "internal: index of the measured map's first true place");
-  // clang-format on
-  mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
-  po::variables_map variables;
-  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
-  options.sizes.clear();
-  for (const std::string& size : sizes) options.sizes.push_back(parseSize(size));
-  if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
-  options.seed = static_cast<std::uint64_t>(seed);
-  const bool short_length = std::any_of(options.lengths.begin(), options.lengths.end(), [](int n) { return n < 10; });
-  if (short_length || options.queries < 1 || options.brute_queries < 0 || options.threads < 1 || options.periods < 0 ||
-      options.keyframes_per_period < 1) {
-    throw std::invalid_argument(
-        "--lengths each >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1, --periods >= 0, "
-        "--keyframes-per-period >= 1");
-  }
-  return options;
-}
 
 /// Resident and peak resident memory of this process [bytes], from /proc/self/status.
 std::pair<long long, long long> residentBytes() {
@@ -166,109 +66,6 @@ std::pair<long long, long long> residentBytes() {
   }
   return {rss, hwm};
 }
-
-/// A changed frame: turned (upside down, or by 180 degrees) or not, and moved by a shift, gain,
-/// offset and noise.
-class Augmenter {
- public:
-  explicit Augmenter(std::uint64_t seed) : rng_(seed) {}
-
-  struct Look {
-    int flip = 2;  ///< cv::flip's code (0 upside down, -1 both axes), or 2 for none.
-    double dx = 0, dy = 0, gain = 1, offset = 0;
-  };
-
-  Look nextLook(int flip) {
-    std::uniform_real_distribution<double> shift_x(-6.0, 6.0);
-    std::uniform_real_distribution<double> shift_y(-3.0, 3.0);
-    std::uniform_real_distribution<double> gain(0.7, 1.3);
-    std::uniform_real_distribution<double> offset(-30.0, 30.0);
-    return {flip, shift_x(rng_), shift_y(rng_), gain(rng_), offset(rng_)};
-  }
-
-  cv::Mat apply(const cv::Mat& image, const Look& look) {
-    cv::Mat source = image;  // Shares the pixels: flipped into a new image, never in place.
-    if (look.flip != 2) {
-      source = cv::Mat();
-      cv::flip(image, source, look.flip);
-    }
-    const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, look.dx, 0, 1, look.dy);
-    cv::Mat moved;
-    cv::warpAffine(source, moved, shift, source.size(), cv::INTER_LINEAR, cv::BORDER_REPLICATE);
-    cv::Mat noise(moved.size(), CV_MAKETYPE(CV_16S, moved.channels()));
-    cv::theRNG().state = rng_();
-    cv::randn(noise, 0, 3);
-    cv::Mat changed;
-    moved.convertTo(changed, CV_16S, look.gain, look.offset);
-    changed += noise;
-    changed.convertTo(moved, image.type());
-    return moved;
-  }
-
- private:
-  std::mt19937_64 rng_;
-};
-
-/// Writes the map of `frames` frames to `path`; returns the index of the first true place.
-long long writeMap(const std::string& path, long long frames, const Options& options) {
-  const mrs_vpr::DescriptorExtractor extractor(options.descriptor);
-  const std::vector<cv::Mat> summer = mrs_vpr::loadImageFolder(options.data + "/nordland/summer");
-  // Winter, the queries' season, is left out, and Nordland distractors are turned upside down (or by
-  // 180 degrees), so that no distractor shows a query's place, not even mirrored: the truth is never
-  // ambiguous, and a wrong answer is the search's fault.
-  std::vector<std::vector<cv::Mat>> sources = {summer, mrs_vpr::loadImageFolder(options.data + "/corridor/ref")};
-  for (const cv::Mat& image : mrs_vpr::loadImageFolder(options.data + "/corridor/query")) sources[1].push_back(image);
-  const long long route = static_cast<long long>(summer.size());
-  std::mt19937_64 rng(options.seed + static_cast<std::uint64_t>(frames));
-  const long long truth_offset = std::uniform_int_distribution<long long>(0, frames - route)(rng);
-  Augmenter augmenter(options.seed);
-
-  const std::string aside = path + ".part";
-  std::remove(aside.c_str());
-  mrs_vpr::MapDatabase map(aside, options.descriptor);
-  std::vector<mrs_vpr::StoredFrame> batch;
-  const auto start = Clock::now();
-  long long written = 0;
-  auto add = [&](const cv::Mat& image) {
-    mrs_vpr::StoredFrame frame;
-    frame.descriptor = extractor.compute(image);
-    frame.stamp = mrs_vpr::Stamp::fromNanoseconds(static_cast<std::int64_t>(written) * 100'000'000);
-    frame.sequence = written++;
-    batch.push_back(std::move(frame));
-    if (batch.size() == 10000) {
-      map.append(batch);
-      batch.clear();
-      std::fprintf(stderr, "\rwriting %s: %lld / %lld frames, %.0f frames/s ", path.c_str(), written, frames,
-                   written / secondsSince(start));
-    }
-  };
-  while (written < frames) {
-    if (written == truth_offset) {
-      for (const cv::Mat& image : summer) add(image);
-      continue;
-    }
-    // A distractor segment that stops at the true places or the end of the map.
-    const long long room = (written < truth_offset ? truth_offset : frames) - written;
-    const int source_index = std::uniform_int_distribution<int>(0, 1)(rng);
-    const auto& source = sources[static_cast<std::size_t>(source_index)];
-    const long long length = std::min<long long>(room, std::uniform_int_distribution<long long>(200, 800)(rng));
-    const long long begin = std::uniform_int_distribution<long long>(0, static_cast<long long>(source.size()) - 1)(rng);
-    const bool backwards = std::uniform_int_distribution<int>(0, 1)(rng) == 1;
-    const int flip = source_index == 0 ? (backwards ? -1 : 0) : 2;
-    const Augmenter::Look look = augmenter.nextLook(flip);
-    for (long long i = 0; i < length; ++i) {
-      const long long step = backwards ? -i : i;
-      const long long n = static_cast<long long>(source.size());
-      add(augmenter.apply(source[static_cast<std::size_t>(((begin + step) % n + n) % n)], look));
-    }
-  }
-  if (!batch.empty()) map.append(batch);
-  std::fprintf(stderr, "\rwrote %s: %lld frames in %.1f s%20s\n", path.c_str(), written, secondsSince(start), "");
-  return truth_offset;
-}
-
-/// The upper median (median.hpp), as the figures in the documentation were taken; 0 for no values.
-double median(std::vector<double> values) { return values.empty() ? 0.0 : mrs_vpr::upperMedian(values); }
 
 /// CPU time of this process (every thread) [s].
 double processCpuSeconds() {
@@ -288,71 +85,8 @@ mrs_vpr::Parameters paramsFor(int length, const mrs_vpr::DescriptorParams& descr
   return params;
 }
 
-/// One row's figures: mrs's answers and times, and the brute force's on the first of the same questions.
-struct RowTally {
-  std::vector<double> mrs_ms;
-  std::vector<double> brute_ms;
-  int mrs_right = 0;
-  int mrs_accepted = 0;
-  int mrs_accepted_wrong = 0;
-  int brute_right = 0;
-  int same_frame = 0;
-  int same_accepted = 0;
-  double confidence_gap = 0.0;
-
-  /// Times `ask` (a question to the method named) with mrs, and with the brute force too when
-  /// `with_brute`; `right` judges an answer. Returns the answers (the brute force's when asked).
-  std::pair<mrs_vpr::PlaceAnswer, std::optional<mrs_vpr::PlaceAnswer>> time(
-      const std::function<mrs_vpr::PlaceAnswer(const char* method)>& ask, bool with_brute,
-      const std::function<bool(const mrs_vpr::PlaceAnswer&)>& right) {
-    auto start = Clock::now();
-    const mrs_vpr::PlaceAnswer mrs = ask("mrs");
-    addMrs(mrs, secondsSince(start) * 1e3, right(mrs));
-    if (!with_brute) return {mrs, std::nullopt};
-    start = Clock::now();
-    const mrs_vpr::PlaceAnswer brute = ask("seqslam");
-    addBrute(mrs, brute, secondsSince(start) * 1e3, right(brute));
-    return {mrs, brute};
-  }
-
-  void addMrs(const mrs_vpr::PlaceAnswer& mrs, double ms, bool right) {
-    mrs_ms.push_back(ms);
-    mrs_right += right ? 1 : 0;
-    mrs_accepted += mrs.match.accepted ? 1 : 0;
-    mrs_accepted_wrong += mrs.match.accepted && !right ? 1 : 0;
-  }
-
-  void addBrute(const mrs_vpr::PlaceAnswer& mrs, const mrs_vpr::PlaceAnswer& brute, double ms, bool right) {
-    brute_ms.push_back(ms);
-    brute_right += right ? 1 : 0;
-    same_frame += mrs.match.reference_index == brute.match.reference_index ? 1 : 0;
-    same_accepted += mrs.match.accepted == brute.match.accepted ? 1 : 0;
-    confidence_gap =
-        std::max(confidence_gap, std::abs(static_cast<double>(mrs.match.confidence - brute.match.confidence)));
-  }
-
-  void print(const std::string& map, int length, const char* kind, double load_s, double rss_per_frame,
-             double peak_per_frame) const {
-    const double brute = median(brute_ms);
-    const double fast = median(mrs_ms);
-    char speed_up[32] = "-";
-    char same[32] = "-";
-    char gap[32] = "-";
-    if (!brute_ms.empty()) {
-      std::snprintf(speed_up, sizeof(speed_up), "%.1fx", brute / fast);
-      std::snprintf(same, sizeof(same), "%d/%d/%d", same_frame, same_accepted, static_cast<int>(brute_ms.size()));
-      std::snprintf(gap, sizeof(gap), "%.2f", confidence_gap);
-    }
-    std::printf("%9s %5d %8s %8.2f %9.0f %9.0f %8.1f %10.1f %6d/%-3d %8s %6d/%-3d %6d/%-3d %10s %6s\n", map.c_str(),
-                length, kind, load_s, rss_per_frame, peak_per_frame, fast, brute, mrs_right,
-                static_cast<int>(mrs_ms.size()), speed_up, brute_right, static_cast<int>(brute_ms.size()),
-                mrs_accepted_wrong, mrs_accepted, same, gap);
-    std::fflush(stdout);
-  }
-};
-
 /// One map's rows for test sequences of `length` frames.
-void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
+void measureLength(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
                    double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
                    const std::vector<cv::Mat>& summer) {
   const int frames = recognizer.size();
@@ -398,7 +132,7 @@ void measureLength(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
 /// the default length (sequence/sequence_length) ending at each new keyframe, within a fifth of the
 /// period by the last question's time. Prints the questions' CPU time per 1 s period and how many of
 /// the keyframes were localised, for both methods.
-void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recognizer,
+void measureContinuous(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& recognizer,
                        const std::vector<cv::Mat>& winter) {
   const int length = recognizer.parameters().sequence.sequence_length;
   const int needed = options.periods * options.keyframes_per_period + length;
@@ -443,7 +177,7 @@ void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recogni
                 "(%.1f%% over the last %d periods; median query %.1f ms), %zu of %d keyframes localised, %d accepted\n",
                 sizeName(base).c_str(), length, method.c_str(), options.keyframes_per_period, method.c_str(),
                 100.0 * cpu / options.periods, 100.0 * late_cpu / std::max(1, options.periods - late_from),
-                options.periods - late_from, median(wall_ms), wall_ms.size(), localisable, accepted);
+                options.periods - late_from, upperMedianOf(wall_ms), wall_ms.size(), localisable, accepted);
     std::fflush(stdout);
     // The next method starts from the same map: drop what was added by reloading is too slow, so the
     // second method's map is longer by these keyframes (a few dozen frames of a large map).
@@ -454,7 +188,7 @@ void measureContinuous(const Options& options, mrs_vpr::PlaceRecognizer& recogni
 constexpr int kRouteGap = 100;
 
 /// Frames of the route measureRecent adds for test sequences of `length` frames.
-int recentRouteFrames(const Options& options, int length) {
+int recentRouteFrames(const MapScaleOptions& options, int length) {
   return 2 * length + options.queries + options.brute_queries * length;
 }
 
@@ -465,7 +199,7 @@ int recentRouteFrames(const Options& options, int length) {
 /// (mrs/recent_rows.hpp); "recent=" asks again with no new keyframe, as of a loaded map that is not
 /// growing, so that MRS has every row; "recent*" asks after N new keyframes, none of whose rows it
 /// has, so that it searches as for any test sequence.
-void measureRecent(const Options& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
+void measureRecent(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& recognizer, int length, double load_s,
                    double rss_per_frame, double peak_per_frame, const std::vector<cv::Mat>& winter,
                    int& next_route_frame) {
   std::vector<int> route_frame_of;  // Of each map frame added here, from the map's size before.
@@ -533,12 +267,12 @@ void measureMapStream(const mrs_vpr::PlaceRecognizer& recognizer, int frames) {
   const double bytes = static_cast<double>(frames) * map.descriptorSize();
   std::printf("%9s  map stream: one keyframe against every map frame (a new keyframe's row), median of %zu: "
               "%.2f ms, %.1f GB/s of descriptors\n",
-              sizeName(frames).c_str(), ms.size(), median(ms), bytes / (median(ms) * 1e-3) / 1e9);
+              sizeName(frames).c_str(), ms.size(), upperMedianOf(ms), bytes / (upperMedianOf(ms) * 1e-3) / 1e9);
   std::fflush(stdout);
 }
 
 /// The child: loads one map and answers the queries; prints its rows.
-int measure(const Options& options) {
+int measure(const MapScaleOptions& options) {
   cv::setNumThreads(options.threads);
   const mrs_vpr::DescriptorParams descriptor =
       mrs_vpr::MapDatabase(options.measure, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
@@ -602,9 +336,9 @@ int measure(const Options& options) {
 }
 
 int run(int argc, char** argv) {
-  const std::optional<Options> parsed = parse(argc, argv);
+  const std::optional<MapScaleOptions> parsed = parseMapScaleOptions(argc, argv);
   if (!parsed) return 0;
-  const Options& options = *parsed;
+  const MapScaleOptions& options = *parsed;
   if (!options.measure.empty()) return measure(options);
 
   ::mkdir(options.dir.c_str(), 0755);
@@ -634,7 +368,7 @@ int run(int argc, char** argv) {
     std::ifstream known(offset_path);
     struct stat info {};
     if (!(known >> truth_offset) || ::stat(path.c_str(), &info) != 0) {
-      truth_offset = writeMap(path, frames, options);
+      truth_offset = writeScaleMap(path, frames, options);
       if (std::rename((path + ".part").c_str(), path.c_str()) != 0) throw std::runtime_error("cannot rename " + path);
       std::ofstream(offset_path) << truth_offset << "\n";
     }
@@ -663,8 +397,10 @@ int run(int argc, char** argv) {
 }
 
 }  // namespace
+}  // namespace benchmark
+}  // namespace mrs_vpr
 
 int main(int argc, char** argv) {
   mrs_vpr::retainFreedMemory();  // As the node and the tools do.
-  return mrs_vpr::tools::runTool("mrs_vpr_map_scale_benchmark", run, argc, argv);
+  return mrs_vpr::tools::runTool("mrs_vpr_map_scale_benchmark", mrs_vpr::benchmark::run, argc, argv);
 }
