@@ -9,6 +9,8 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
@@ -137,6 +139,77 @@ void printMissedStretches(const Drive& map, const Drive& revisit, const DriveCou
   }
 }
 
+/// The replay so far: the route frame and stamp of every frame of both drives, one after the other,
+/// and which of them became keyframes.
+class ReplayLog {
+ public:
+  /// Records the next frame; returns its index in the replay.
+  int add(int route_frame, Stamp stamp) {
+    route_of_frame_.push_back(route_frame);
+    stamp_of_frame_.push_back(stamp);
+    return frames() - 1;
+  }
+  void markKeyframe(int frame) { keyframe_frame_.push_back(frame); }
+
+  int frames() const { return static_cast<int>(route_of_frame_.size()); }
+  int routeFrame(int frame) const { return route_of_frame_.at(static_cast<std::size_t>(frame)); }
+  Stamp stamp(int frame) const { return stamp_of_frame_.at(static_cast<std::size_t>(frame)); }
+  /// The first frame stamped `stamp` or later.
+  int frameAt(Stamp stamp) const {
+    return static_cast<int>(std::lower_bound(stamp_of_frame_.begin(), stamp_of_frame_.end(), stamp) -
+                            stamp_of_frame_.begin());
+  }
+  int keyframes() const { return static_cast<int>(keyframe_frame_.size()); }
+  int keyframeFrame(int keyframe) const { return keyframe_frame_.at(static_cast<std::size_t>(keyframe)); }
+  int routeOfKeyframe(int keyframe) const { return routeFrame(keyframeFrame(keyframe)); }
+
+  /// The frames keyframe `keyframe` stands for: itself and those after it up to the next keyframe
+  /// (or the newest frame).
+  std::pair<int, int> framesOf(int keyframe) const {
+    const auto next = static_cast<std::size_t>(keyframe) + 1;
+    return {keyframeFrame(keyframe), (next < keyframe_frame_.size() ? keyframe_frame_[next] : frames()) - 1};
+  }
+
+  /// From `frame` to the nearest frame `keyframe` stands for, in the positions that
+  /// `position_of_route_frame` gives route frames (places, or the route frames themselves).
+  int distance(int frame, int keyframe, const std::vector<int>& position_of_route_frame) const {
+    const int position = position_of_route_frame.at(static_cast<std::size_t>(routeFrame(frame)));
+    const auto [first, last] = framesOf(keyframe);
+    int off = std::numeric_limits<int>::max();
+    for (int f = first; f <= last; ++f) {
+      off = std::min(off, std::abs(position_of_route_frame.at(static_cast<std::size_t>(routeFrame(f))) - position));
+    }
+    return off;
+  }
+
+ private:
+  std::vector<int> route_of_frame_;
+  std::vector<Stamp> stamp_of_frame_;
+  std::vector<int> keyframe_frame_;
+};
+
+/// MRS_VPR_SHOW_FALSE: a wrong closure, with the route frames of the test sequence's keyframes (* the
+/// localised one) and of the map's keyframes around the answer (* the answer): where their spacing
+/// differs, and how. The test sequence is keyframes [end - recent, end); `drive_frame` is the drive's
+/// frame at which it was asked.
+void printFalseClosure(const std::string& method, const std::string& drive, int drive_frame, const ReplayLog& log,
+                       const Match& match, int end, int recent, int anchor) {
+  const auto [first, last] = log.framesOf(match.reference_index);
+  std::fprintf(stderr,
+               "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
+               "frames %d..%d, confidence %.2f, velocity %.2f\n",
+               method.c_str(), drive.c_str(), drive_frame, log.routeOfKeyframe(anchor), match.reference_index,
+               log.routeFrame(first), log.routeFrame(last), match.confidence, match.velocity);
+  std::fprintf(stderr, "  test keyframes:");
+  for (int q = end - recent; q < end; ++q) std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == anchor ? "*" : "");
+  std::fprintf(stderr, "\n  map keyframes: ");
+  const int shown_end = std::min(log.keyframes(), match.reference_index + recent);
+  for (int q = std::max(0, match.reference_index - recent); q < shown_end; ++q) {
+    std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == match.reference_index ? "*" : "");
+  }
+  std::fprintf(stderr, "\n");
+}
+
 /**
  * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,
  * the sequence search and the keyframe threshold given, asked every period
@@ -156,9 +229,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
   *length = recent;
   std::vector<int> route_frame_numbers(route_places.size());  // each route frame a place of its own
   for (std::size_t i = 0; i < route_frame_numbers.size(); ++i) route_frame_numbers[i] = static_cast<int>(i);
-  std::vector<int> keyframe_frame;  // the frame of the whole replay each keyframe was
-  std::vector<int> route_of_frame;  // the route frame of each frame of the whole replay
-  std::vector<Stamp> stamp_of_frame;  // the stamp of each frame of the whole replay
+  ReplayLog log;
   // As the node restates a closure for the frames its keyframe stands for (standing_frames.hpp).
   node::StandingFrames standing(kQueryPeriod);
   const bool show_missed = std::getenv("MRS_VPR_SHOW_MISSED") != nullptr;
@@ -174,21 +245,19 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
     count.stretch_keyframed.assign(static_cast<std::size_t>(stretches), false);
     count.stretch_answers.assign(static_cast<std::size_t>(stretches), "");
     const auto stretchOf = [&](int i) { return i < kWarmUpFrames ? -1 : (i - kWarmUpFrames) / kStretchFrames; };
-    const int drive_start = static_cast<int>(route_of_frame.size());  // the drive's first frame in the replay
+    const int drive_start = log.frames();  // the drive's first frame in the replay
     for (int i = 0; i < static_cast<int>(drive.frames.size()); ++i) {
       const DriveFrame& frame = drive.frames[static_cast<std::size_t>(i)];
-      const int t = static_cast<int>(route_of_frame.size());
-      route_of_frame.push_back(frame.route_frame);
-      stamp_of_frame.push_back(Stamp::fromSeconds(clock));
+      const int t = log.add(frame.route_frame, Stamp::fromSeconds(clock));
       clock += 1.0 / drive.rate;
       const int stretch = stretchOf(i);
       const FrameAdmission admission = recognizer.addFrame(drive.images[static_cast<std::size_t>(i)]);
       if (admission == FrameAdmission::kTooSimilar && recognizer.lastFrameStood()) {
-        standing.tooSimilar(stamp_of_frame.back());
+        standing.tooSimilar(log.stamp(t));
       }
       if (admission == FrameAdmission::kAdmitted) {
-        standing.keyframe(stamp_of_frame.back());
-        keyframe_frame.push_back(t);
+        standing.keyframe(log.stamp(t));
+        log.markKeyframe(t);
         ++count.keyframes;
         count.stopped_keyframes += frame.kind == DriveFrameKind::kStopped ? 1 : 0;
         if (stretch >= 0 && stretch < stretches) count.stretch_keyframed[static_cast<std::size_t>(stretch)] = true;
@@ -209,19 +278,10 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         // The localised keyframe's place (the newest, or the middle one when centred) against the places
         // the answer's keyframe stands for; no place comes back during the first traversal.
         const int anchor = end - recent + wholeSequenceRows(recent, sequence.alignment).anchor;
-        const int localised_frame = keyframe_frame.at(static_cast<std::size_t>(anchor));
-        const auto k = static_cast<std::size_t>(match.reference_index);
-        const int first = keyframe_frame.at(k);
-        const int last = (k + 1 < keyframe_frame.size() ? keyframe_frame[k + 1] : t + 1) - 1;
+        const int localised_frame = log.keyframeFrame(anchor);
         // From `frame` to the nearest frame the answer's keyframe stands for, in places or in route frames.
         const auto distance = [&](int frame, const std::vector<int>& position_of_route_frame) {
-          const int position = position_of_route_frame.at(static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(frame)]));
-          int off = std::numeric_limits<int>::max();
-          for (int f = first; f <= last; ++f) {
-            const auto shown = static_cast<std::size_t>(route_of_frame[static_cast<std::size_t>(f)]);
-            off = std::min(off, std::abs(position_of_route_frame.at(shown) - position));
-          }
-          return off;
+          return log.distance(frame, match.reference_index, position_of_route_frame);
         };
         // Right: within kRouteTolerance of a frame the answer's keyframe stands for, on a revisit.
         const auto within = [&](int frame, const std::vector<int>& position_of_route_frame) {
@@ -238,7 +298,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         const int localised_stretch = stretchOf(localised_frame - drive_start);
         if (show_missed && localised_stretch >= 0 && localised_stretch < stretches) {
           count.stretch_answers[static_cast<std::size_t>(localised_stretch)] +=
-              answerNote(route_of_frame[static_cast<std::size_t>(localised_frame)], match, right);
+              answerNote(log.routeFrame(localised_frame), match, right);
         }
         if (!match.accepted) continue;
         ++count.accepted;
@@ -246,27 +306,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         if (!right) noteWrong(localised_frame);
         if (!within(localised_frame, route_frame_numbers)) ++count.wrong_route_frames;
         if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
-          std::fprintf(stderr,
-                       "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
-                       "frames %d..%d, confidence %.2f, velocity %.2f\n",
-                       method.c_str(), drive.name.c_str(), i, route_of_frame[static_cast<std::size_t>(localised_frame)],
-                       match.reference_index, route_of_frame[static_cast<std::size_t>(first)],
-                       route_of_frame[static_cast<std::size_t>(last)], match.confidence, match.velocity);
-          // The route frames of the test sequence's keyframes (* the localised one) and of the map's
-          // keyframes around the answer (* the answer): where their spacing differs, and how.
-          const auto route_of_keyframe = [&](int keyframe) {
-            return route_of_frame[static_cast<std::size_t>(keyframe_frame.at(static_cast<std::size_t>(keyframe)))];
-          };
-          std::fprintf(stderr, "  test keyframes:");
-          for (int q = end - recent; q < end; ++q) {
-            std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == anchor ? "*" : "");
-          }
-          std::fprintf(stderr, "\n  map keyframes: ");
-          const int shown_end = std::min(size, match.reference_index + recent);
-          for (int q = std::max(0, match.reference_index - recent); q < shown_end; ++q) {
-            std::fprintf(stderr, " %d%s", route_of_keyframe(q), q == match.reference_index ? "*" : "");
-          }
-          std::fprintf(stderr, "\n");
+          printFalseClosure(method, drive.name, i, log, match, end, recent, anchor);
         }
         // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
         const auto confirm = [&](int frame) {
@@ -275,9 +315,8 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         };
         if (right) confirm(localised_frame);
         // The same closure restated for the stopped frames the localised keyframe stands for.
-        for (const Stamp stood : standing.of(stamp_of_frame[static_cast<std::size_t>(localised_frame)])) {
-          const auto frame = static_cast<int>(std::lower_bound(stamp_of_frame.begin(), stamp_of_frame.end(), stood) -
-                                              stamp_of_frame.begin());
+        for (const Stamp stood : standing.of(log.stamp(localised_frame))) {
+          const int frame = log.frameAt(stood);
           const bool stood_right = answerShows(frame);
           ++(stood_right ? count.standing_right : count.standing_wrong);
           if (stood_right) confirm(frame);
