@@ -12,7 +12,7 @@
 namespace mrs_vpr {
 namespace benchmark {
 
-/// What to measure, and the settings to explore; every default is the core's.
+/// What to measure, and the settings to explore (the search and drive settings default to the core's).
 struct RealBenchmarkOptions {
   std::string data;
   std::string part = "check";
