@@ -1,23 +1,13 @@
 #include "first_pass_matcher.hpp"
 
-#include "mrs_vpr/acceptance.hpp"
-#include "mrs_vpr/mrs/short_sequence_search.hpp"
-#include "mrs_vpr/trajectory_search.hpp"
-
 namespace mrs_vpr {
 namespace benchmark {
 
 FirstPassMatcher::FirstPassMatcher(const Parameters& params)
-    : SequenceMatcher(params.sequence), compact_(makeCompactCells(params.descriptor)) {}
+    : SequenceMatcher(params.sequence), mrs_(params.sequence, params.mrs, params.descriptor) {}
 
 Match FirstPassMatcher::match(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
-  checkInputs(reference, query);
-  MrsLevelTrace level;
-  Match match = searchShortSequence(reference, query, sequence_, *compact_, kShortSearchHypotheses, &level);
-  if (trace != nullptr) trace->push_back(level);
-  placeAnswer(match, reference, query, wholeSequenceRows(query.count, sequence_.alignment));
-  applyAcceptance(match, sequence_);
-  return match;
+  return mrs_.matchByFirstPass(reference, query, trace);
 }
 
 std::unique_ptr<SequenceMatcher> makeBenchMatcher(const std::string& method, const Parameters& params) {

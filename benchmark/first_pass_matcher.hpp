@@ -6,17 +6,17 @@
 #include <string>
 #include <vector>
 
-#include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/mrs/level_trace.hpp"
+#include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
 
-/// MRS's search for short sequences (a first pass on compact cells at every end, the full descriptors
-/// at its distinct minima) on any map, where MrsMatcher takes it only on maps large enough for it to
-/// pay: its answers, confidences and acceptance can be compared with the brute force's on real frames.
+/// MRS's search for short sequences (MrsMatcher::matchByFirstPass) on any map, where MrsMatcher::match
+/// takes it only on maps large enough for it to pay: its answers, confidences and acceptance can be
+/// compared with the brute force's on real frames.
 class FirstPassMatcher : public SequenceMatcher {
  public:
   explicit FirstPassMatcher(const Parameters& params);
@@ -27,7 +27,7 @@ class FirstPassMatcher : public SequenceMatcher {
   std::string name() const override { return "mrs-first-pass"; }
 
  private:
-  std::shared_ptr<const CompactCells> compact_;
+  MrsMatcher mrs_;
 };
 
 /// The matcher of a --methods item: seqslam, mrs (makeMatcher) or mrs-first-pass.

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/mrs/level_trace.hpp"
@@ -29,6 +30,11 @@ class MrsMatcher : public SequenceMatcher {
    */
   Match matchMapFrames(SequenceView map, int reference_count, int first, int count, RecentRows& recent,
                        std::vector<MrsLevelTrace>* trace = nullptr) const;
+  /// The search for short sequences on large maps (mrs/short_sequence_search.hpp: a first pass on
+  /// compact cells at every end, the full descriptors at its distinct minima), placed and accepted as
+  /// match() does, on any map: match() takes it only where it pays (shortSearchPays). Records its one
+  /// level into `trace` when not null.
+  Match matchByFirstPass(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
   /// Per-frame protocol; with no coarser level for sequence_length frames, the brute force's shared
   /// difference matrix gives the same answers once for all frames.
   std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const override;
@@ -40,6 +46,9 @@ class MrsMatcher : public SequenceMatcher {
   int levelsFor(int query_length, int reference_count) const;
 
  private:
+  /// matchByFirstPass() once the inputs are checked.
+  Match firstPass(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const;
+
   MrsParams mrs_;
   std::shared_ptr<const CompactCells> compact_;
 };

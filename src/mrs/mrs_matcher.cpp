@@ -48,19 +48,29 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<
   checkInputs(reference, query);
   const int levels = levelsFor(query.count, reference.count);
   if (levels > 0) compact_->requireDescriptorsOf(reference);
-  const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
   if (levels == 0 && shortSearchPays(query.count, reference.count, sequence_, kShortSearchHypotheses) &&
       reference.descriptor_size == compact_->descriptorSize()) {
-    MrsLevelTrace level;
-    Match match = searchShortSequence(reference, query, sequence_, *compact_, kShortSearchHypotheses,
-                                      trace != nullptr ? &level : nullptr);
-    if (trace != nullptr) trace->push_back(std::move(level));
-    placeAnswer(match, reference, query, rows);
-    applyAcceptance(match, sequence_);
-    return match;
+    return firstPass(reference, query, trace);
   }
+  const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
   Match match = coarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_, trace);
   placeAnswer(match, reference, query, rows);  // As the brute force places its answer.
+  return match;
+}
+
+Match MrsMatcher::matchByFirstPass(SequenceView reference, SequenceView query,
+                                   std::vector<MrsLevelTrace>* trace) const {
+  checkInputs(reference, query);
+  return firstPass(reference, query, trace);
+}
+
+Match MrsMatcher::firstPass(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
+  MrsLevelTrace level;
+  Match match = searchShortSequence(reference, query, sequence_, *compact_, kShortSearchHypotheses,
+                                    trace != nullptr ? &level : nullptr);
+  if (trace != nullptr) trace->push_back(std::move(level));
+  placeAnswer(match, reference, query, wholeSequenceRows(query.count, sequence_.alignment));
+  applyAcceptance(match, sequence_);
   return match;
 }
 

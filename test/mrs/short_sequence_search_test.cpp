@@ -1,11 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/chosen_end_costs.hpp"
@@ -208,6 +210,34 @@ TEST(MrsMatcher, ShortSequencesOnALargeMapTakeTheFirstPass) {
   EXPECT_EQ(trace[0].table_minima.front(), 30009);  // The first pass's lowest minimum is the truth.
   // Compact cells count as their share of a descriptor comparison.
   EXPECT_LT(found.comparisons, expected.comparisons / 2);
+  // Where the first pass pays, match() is matchByFirstPass().
+  const Match first_pass = mrs.matchByFirstPass(map.view(), query.view(), nullptr);
+  EXPECT_EQ(first_pass.reference_index, found.reference_index);
+  EXPECT_EQ(first_pass.confidence, found.confidence);
+  EXPECT_EQ(first_pass.accepted, found.accepted);
+  EXPECT_EQ(first_pass.comparisons, found.comparisons);
+}
+
+// On a map too small for the first pass to pay, matchByFirstPass() still runs it: the search's own
+// answer, accepted by the core's rule, and its one level traced.
+TEST(MrsMatcher, MatchByFirstPassSearchesAnyMap) {
+  const Parameters params = routeParameters();
+  const SequenceView query = standardRoute().query.view(150, 175);
+  ASSERT_FALSE(shortSearchPays(query.count, keptMap().size(), params.sequence, kShortSearchHypotheses));
+  const MrsMatcher mrs(params.sequence, params.mrs, params.descriptor);
+  std::vector<MrsLevelTrace> trace;
+  const Match found = mrs.matchByFirstPass(keptMap().view(), query, &trace);
+  Match expected = searchShortSequence(keptMap().view(), query, params.sequence,
+                                       *makeCompactCells(params.descriptor), kShortSearchHypotheses);
+  applyAcceptance(expected, params.sequence);
+  EXPECT_EQ(found.reference_index, expected.reference_index);
+  EXPECT_EQ(found.confidence, expected.confidence);
+  EXPECT_EQ(found.accepted, expected.accepted);
+  ASSERT_EQ(trace.size(), 1U);
+  EXPECT_EQ(trace[0].stride, 1);
+  EXPECT_EQ(static_cast<int>(trace[0].candidates.size()), kShortSearchHypotheses);
+  // Its inputs are checked as match() checks them.
+  EXPECT_THROW(mrs.matchByFirstPass(query, keptMap().view(), nullptr), std::invalid_argument);
 }
 
 }  // namespace
