@@ -232,6 +232,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
   ReplayLog log;
   // As the node restates a closure for the frames its keyframe stands for (standing_frames.hpp).
   node::StandingFrames standing(kQueryPeriod);
+  const bool show_false = std::getenv("MRS_VPR_SHOW_FALSE") != nullptr;
   const bool show_missed = std::getenv("MRS_VPR_SHOW_MISSED") != nullptr;
   double clock = 1.0;  // [s]
   std::vector<DriveCounts> counts(drives.size());
@@ -305,7 +306,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
         ++(right ? count.right : count.wrong);
         if (!right) noteWrong(localised_frame);
         if (!within(localised_frame, route_frame_numbers)) ++count.wrong_route_frames;
-        if (!right && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+        if (!right && show_false) {
           printFalseClosure(method, drive.name, i, log, match, end, recent, anchor);
         }
         // A closure belongs to the stretch of the frame it localises (its header stamp in the node).
