@@ -28,6 +28,8 @@ class TemporaryFolder {
   TemporaryFolder(const TemporaryFolder&) = delete;
   TemporaryFolder& operator=(const TemporaryFolder&) = delete;
 
+  const std::filesystem::path& root() const { return root_; }
+
   /// The path of `name` in the folder.
   std::string path(const std::string& name) const { return (root_ / name).string(); }
 

@@ -3,9 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,19 +15,16 @@
 #include "mrs_vpr/evaluation/drive_file.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
+#include "support/command_run.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using mrs_vpr::testing_support::CommandResult;
 using mrs_vpr::testing_support::fileContents;
+using mrs_vpr::testing_support::runCommand;
 using mrs_vpr::testing_support::TemporaryFolder;
-
-struct Result {
-  int status = -1;
-  std::string err;
-  std::string out;
-};
 
 class MakeDriveTest : public ::testing::Test {
  protected:
@@ -52,17 +46,14 @@ class MakeDriveTest : public ::testing::Test {
 
   static std::string path(const std::string& name) { return folder_->path(name); }
 
-  static Result run(const std::string& program, const std::string& arguments) {
-    const std::string out = path("stdout.txt");
-    const std::string err = path("stderr.txt");
-    const int raw = std::system((program + " " + arguments + " >'" + out + "' 2>'" + err + "'").c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, fileContents(err), fileContents(out)};
+  static CommandResult run(const std::string& program, const std::string& arguments) {
+    return runCommand(program + " " + arguments, *folder_);
   }
-  static Result makeDrive(const std::string& arguments) { return run(MAKE_DRIVE_PATH, arguments); }
+  static CommandResult makeDrive(const std::string& arguments) { return run(MAKE_DRIVE_PATH, arguments); }
 
   /// Expects exit code 1 and one line "make_drive: error: ..." that contains `text`.
   static void expectError(const std::string& arguments, const std::string& text) {
-    const Result result = makeDrive(arguments);
+    const CommandResult result = makeDrive(arguments);
     EXPECT_EQ(result.status, 1) << arguments << "\n" << result.err;
     EXPECT_EQ(result.err.rfind("make_drive: error: ", 0), 0U) << result.err;
     EXPECT_NE(result.err.find(text), std::string::npos) << result.err;
@@ -83,11 +74,12 @@ class MakeDriveTest : public ::testing::Test {
 
 TemporaryFolder* MakeDriveTest::folder_ = nullptr;
 
-constexpr const char* kSmallDrive = " --stops 3 --stop-frames-min 20 --stop-frames-max 30 --slow-frames 30 --fast-frames 30";
+constexpr const char* kSmallDrive =
+    " --stops 3 --stop-frames-min 20 --stop-frames-max 30 --slow-frames 30 --fast-frames 30";
 
 TEST_F(MakeDriveTest, WritesTheDriveAsImagesWithTheRouteFrameOfEach) {
-  const Result result = makeDrive("--images " + path("summer") + " --begin 100 --end 300 --seed 4 --output " +
-                                  path("part") + kSmallDrive);
+  const CommandResult result = makeDrive("--images " + path("summer") + " --begin 100 --end 300 --seed 4 --output " +
+                                         path("part") + kSmallDrive);
   ASSERT_EQ(result.status, 0) << result.err;
   const std::vector<mrs_vpr::DriveFrame> frames = mrs_vpr::readDriveFile(path("part") + "/drive.csv");
   const std::vector<std::string> images = imagesIn(path("part"));
@@ -124,8 +116,8 @@ TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
                       kSmallDrive)
                 .status,
             0);
-  const Result truth = makeDrive("--ground-truth " + path("truth.csv") + " --reference " + path("map") + " --query " +
-                                 path("revisit"));
+  const CommandResult truth =
+      makeDrive("--ground-truth " + path("truth.csv") + " --reference " + path("map") + " --query " + path("revisit"));
   ASSERT_EQ(truth.status, 0) << truth.err;
 
   // Query frame i: the map's frames within 2 route frames of its own.
@@ -153,7 +145,7 @@ TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
   EXPECT_EQ(rows, static_cast<int>(revisit.size()));
 
   // The generated route's places stand out from one another over 20 keyframes, not over 10.
-  const Result evaluated =
+  const CommandResult evaluated =
       run(MRS_VPR_EVAL_PATH, "--reference " + path("map") + " --query " + path("revisit") + " --ground-truth " +
                                  path("truth.csv") + " --protocol per-frame --sequence-length 20");
   ASSERT_EQ(evaluated.status, 0) << evaluated.err;
@@ -184,8 +176,8 @@ TEST_F(MakeDriveTest, PlacesFromTheRouteMakeAStandingRecordingOnePlace) {
     mrs_vpr::writeDriveFile(path(name + "/drive.csv"), frames);
   }
   const auto truthOfFrame = [&](const std::string& extra, int query) {
-    const Result result = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
-                                    path("standing_map") + " --query " + path("standing_revisit") + extra);
+    const CommandResult result = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
+                                           path("standing_map") + " --query " + path("standing_revisit") + extra);
     EXPECT_EQ(result.status, 0) << result.err;
     std::ifstream file(path("standing.csv"));
     std::string line;
@@ -202,9 +194,9 @@ TEST_F(MakeDriveTest, PlacesFromTheRouteMakeAStandingRecordingOnePlace) {
   EXPECT_EQ(truthOfFrame(" --places-from " + path("standing_route") + "," + path("standing_route"), 30),
             (std::vector<int>{28, 29, 30, 31, 32}));
 
-  const Result mismatched = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
-                                      path("standing_map") + " --query " + path("standing_revisit") +
-                                      " --places-from " + path("standing_route") + "," + path("summer"));
+  const CommandResult mismatched = makeDrive("--ground-truth " + path("standing.csv") + " --force --reference " +
+                                             path("standing_map") + " --query " + path("standing_revisit") +
+                                             " --places-from " + path("standing_route") + "," + path("summer"));
   EXPECT_EQ(mismatched.status, 1);
   EXPECT_NE(mismatched.err.find("must show the same route frames"), std::string::npos) << mismatched.err;
 }

@@ -3,13 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -22,7 +18,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "mrs_vpr/synthetic_route.hpp"
-#include "route_folders.hpp"
+#include "route_tools_fixture.hpp"
 
 namespace {
 
@@ -56,55 +52,35 @@ void expectPng(const fs::path& file, int width, int height) {
   EXPECT_EQ(image.rows, height) << file;
 }
 
-class PlotsTest : public ::testing::Test {
+class PlotsTest : public mrs_vpr::testing_support::RouteToolsTest {
  protected:
-  static void SetUpTestSuite() {
-    root_ = fs::temp_directory_path() / ("mrs_vpr_plots_test_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
-    mrs_vpr::testing_support::writeRouteFolders(root_);
-  }
-  static void TearDownTestSuite() {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-
-  /// Runs `command` with stdout and stderr in files; returns the exit status.
-  static int run(const std::string& command, std::string* out = nullptr, std::string* err = nullptr) {
-    const fs::path out_file = root_ / "stdout.txt";
-    const fs::path err_file = root_ / "stderr.txt";
-    const int raw = std::system((command + " >'" + out_file.string() + "' 2>'" + err_file.string() + "'").c_str());
-    const auto read = [](const fs::path& path) {
-      std::ifstream file(path);
-      std::stringstream text;
-      text << file.rdbuf();
-      return text.str();
-    };
-    if (out != nullptr) *out = read(out_file);
-    if (err != nullptr) *err = read(err_file);
-    return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  /// Runs `command`; returns its exit status, and its stdout and stderr where asked.
+  static int exitStatus(const std::string& command, std::string* out = nullptr, std::string* err = nullptr) {
+    const mrs_vpr::testing_support::CommandResult result = run(command);
+    if (out != nullptr) *out = result.out;
+    if (err != nullptr) *err = result.err;
+    return result.status;
   }
 
   static std::string evaluate(const std::string& method, const fs::path& plots) {
-    return std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
-           (root_ / "query").string() + " --ground-truth " + (root_ / "truth.csv").string() + " --method " + method +
+    return std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root() / "reference").string() + " --query " +
+           (root() / "query").string() + " --ground-truth " + (root() / "truth.csv").string() + " --method " + method +
            // Every frame a keyframe, so that the pictures' sizes are the traversals' own.
-           " --protocol per-frame --sequence-length 10 --alignment causal --tolerance 2 --min-appearance-change 0 --plots " +
+           " --protocol per-frame --sequence-length 10 --alignment causal --tolerance 2 --min-appearance-change 0 "
+           "--plots " +
            plots.string();
   }
 
   /// The plotting tool, installed beside the evaluator.
   static std::string plotTool() { return (fs::path(MRS_VPR_EVAL_PATH).parent_path() / "mrs_vpr_plot").string(); }
 
-  static fs::path root_;
 };
 
-fs::path PlotsTest::root_;
-
 TEST_F(PlotsTest, EvalWritesEveryPlotAndTheDifferencePictures) {
-  const fs::path plots = root_ / "plots";
+  const fs::path plots = root() / "plots";
   std::string out;
   std::string err;
-  ASSERT_EQ(run(evaluate("seqslam", plots), &out, &err), 0) << err;
+  ASSERT_EQ(exitStatus(evaluate("seqslam", plots), &out, &err), 0) << err;
   // stdout stays the summary alone: the plotting tool's messages go to stderr.
   EXPECT_EQ(json::parse(out).at("summary").at("queries").get<int>(), 91);
   for (const char* name : {"pr_curve.png", "difference_matrix.png", "difference_band.png", "error_along_route.png"}) {
@@ -128,13 +104,14 @@ TEST_F(PlotsTest, EvalWritesEveryPlotAndTheDifferencePictures) {
 }
 
 TEST_F(PlotsTest, OutOfMapQueriesHaveNoBandAndNoErrorToDraw) {
-  const fs::path plots = root_ / "out_of_map";
+  const fs::path plots = root() / "out_of_map";
   std::string err;
-  ASSERT_EQ(run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root_ / "reference").string() + " --query " +
-                    (root_ / "query").string() +
-                    " --out-of-map --method mrs --protocol per-frame --sequence-length 10 --plots " + plots.string(),
-                nullptr, &err),
-            0)
+  ASSERT_EQ(
+      exitStatus(std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root() / "reference").string() + " --query " +
+                     (root() / "query").string() +
+                     " --out-of-map --method mrs --protocol per-frame --sequence-length 10 --plots " + plots.string(),
+                 nullptr, &err),
+      0)
       << err;
   expectPng(plots / "pr_curve.png", 640, 480);
   expectPng(plots / "difference_matrix.png", 640, 480);
@@ -145,21 +122,21 @@ TEST_F(PlotsTest, OutOfMapQueriesHaveNoBandAndNoErrorToDraw) {
 }
 
 TEST_F(PlotsTest, PlotToolDrawsTwoMethodsInOneFigureAtTheAskedSize) {
-  const fs::path mrs = root_ / "mrs";
-  const fs::path seqslam = root_ / "seqslam";
-  ASSERT_EQ(run(evaluate("mrs", mrs)), 0);
-  ASSERT_EQ(run(evaluate("seqslam", seqslam)), 0);
-  const fs::path both = root_ / "pr_both.png";
+  const fs::path mrs = root() / "mrs";
+  const fs::path seqslam = root() / "seqslam";
+  ASSERT_EQ(exitStatus(evaluate("mrs", mrs)), 0);
+  ASSERT_EQ(exitStatus(evaluate("seqslam", seqslam)), 0);
+  const fs::path both = root() / "pr_both.png";
   std::string err;
-  ASSERT_EQ(run(plotTool() + " pr " + (mrs / "evaluation.json").string() + " " +
+  ASSERT_EQ(exitStatus(plotTool() + " pr " + (mrs / "evaluation.json").string() + " " +
                     (seqslam / "evaluation.json").string() + " -o " + both.string() + " --dpi 50",
                 nullptr, &err),
             0)
       << err;
   expectPng(both, 320, 240);
   // Alone, with another size.
-  const fs::path error = root_ / "error_small.png";
-  ASSERT_EQ(run(plotTool() + " error " + (mrs / "evaluation.json").string() + " -o " + error.string() +
+  const fs::path error = root() / "error_small.png";
+  ASSERT_EQ(exitStatus(plotTool() + " error " + (mrs / "evaluation.json").string() + " -o " + error.string() +
                 " --size 5 3 --dpi 80"),
             0);
   expectPng(error, 400, 240);
@@ -184,22 +161,22 @@ TEST_F(PlotsTest, PlotToolDrawsTheBenchmarkCurves) {
   }
   const json bench = {{"part", "check"}, {"threads", 1}, {"tolerance", 5}, {"queries", 100}, {"seed", 42},
                       {"rows", rows}};
-  const fs::path folder = root_ / "bench";
+  const fs::path folder = root() / "bench";
   fs::create_directories(folder);
   std::ofstream(folder / "bench.json") << bench.dump();
   std::string err;
-  ASSERT_EQ(run(plotTool() + " benchmark " + (folder / "bench.json").string(), nullptr, &err), 0) << err;
+  ASSERT_EQ(exitStatus(plotTool() + " benchmark " + (folder / "bench.json").string(), nullptr, &err), 0) << err;
   expectPng(folder / "success_vs_n.png", 640, 480);
   expectPng(folder / "time_vs_m.png", 640, 480);
 }
 
 TEST_F(PlotsTest, PlotToolReportsBadInputInOneLine) {
-  const fs::path bad = root_ / "not_an_evaluation.json";
+  const fs::path bad = root() / "not_an_evaluation.json";
   std::ofstream(bad) << R"({"method": "mrs"})";
   std::string err;
-  EXPECT_EQ(run(plotTool() + " error " + bad.string() + " -o " + (root_ / "x.png").string(), nullptr, &err), 1);
+  EXPECT_EQ(exitStatus(plotTool() + " error " + bad.string() + " -o " + (root() / "x.png").string(), nullptr, &err), 1);
   EXPECT_EQ(err.rfind("mrs_vpr_plot: error: missing field", 0), 0U) << err;
-  EXPECT_FALSE(fs::exists(root_ / "x.png"));
+  EXPECT_FALSE(fs::exists(root() / "x.png"));
 }
 
 TEST_F(PlotsTest, PlotToolReportsJsonOfAnotherShapeInOneLine) {
@@ -220,39 +197,40 @@ TEST_F(PlotsTest, PlotToolReportsJsonOfAnotherShapeInOneLine) {
   int index = 0;
   for (const Case& bad : cases) {
     SCOPED_TRACE(bad.command + " " + bad.document);
-    const fs::path file = root_ / ("shape" + std::to_string(index++) + ".json");
+    const fs::path file = root() / ("shape" + std::to_string(index++) + ".json");
     std::ofstream(file) << bad.document;
     std::string err;
-    EXPECT_EQ(run(plotTool() + " " + bad.command + " " + file.string() +
-                      (bad.command == "benchmark" ? "" : " -o " + (root_ / "x.png").string()),
+    EXPECT_EQ(exitStatus(plotTool() + " " + bad.command + " " + file.string() +
+                      (bad.command == "benchmark" ? "" : " -o " + (root() / "x.png").string()),
                   nullptr, &err),
               1);
     EXPECT_EQ(err.rfind("mrs_vpr_plot: error: " + file.string(), 0), 0U) << err;
     EXPECT_NE(err.find(bad.problem), std::string::npos) << err;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   }
-  EXPECT_FALSE(fs::exists(root_ / "x.png"));
+  EXPECT_FALSE(fs::exists(root() / "x.png"));
 }
 
 TEST_F(PlotsTest, PlotToolWritesAndReportsTheFileItIsGiven) {
-  const fs::path evaluation = root_ / "named" / "evaluation.json";
-  ASSERT_EQ(run(evaluate("seqslam", evaluation.parent_path())), 0);
+  const fs::path evaluation = root() / "named" / "evaluation.json";
+  ASSERT_EQ(exitStatus(evaluate("seqslam", evaluation.parent_path())), 0);
   // Without an extension: NAME.png, as matplotlib writes it, and reported so.
   std::string out;
-  ASSERT_EQ(run(plotTool() + " pr " + evaluation.string() + " -o " + (root_ / "curve").string(), &out), 0);
-  EXPECT_EQ(out, "wrote " + (root_ / "curve.png").string() + "\n");
-  expectPng(root_ / "curve.png", 640, 480);
-  EXPECT_FALSE(fs::exists(root_ / "curve"));
+  ASSERT_EQ(exitStatus(plotTool() + " pr " + evaluation.string() + " -o " + (root() / "curve").string(), &out), 0);
+  EXPECT_EQ(out, "wrote " + (root() / "curve.png").string() + "\n");
+  expectPng(root() / "curve.png", 640, 480);
+  EXPECT_FALSE(fs::exists(root() / "curve"));
   // A folder: refused, rather than FOLDER.png written beside it.
-  fs::create_directories(root_ / "pictures");
+  fs::create_directories(root() / "pictures");
   std::string err;
-  EXPECT_EQ(run(plotTool() + " error " + evaluation.string() + " -o " + (root_ / "pictures").string(), &out, &err),
-            1);
-  EXPECT_EQ(err, "mrs_vpr_plot: error: -o " + (root_ / "pictures").string() +
-                     " is a folder: give the file to write, such as " + (root_ / "pictures" / "plot.png").string() +
+  EXPECT_EQ(
+      exitStatus(plotTool() + " error " + evaluation.string() + " -o " + (root() / "pictures").string(), &out, &err),
+      1);
+  EXPECT_EQ(err, "mrs_vpr_plot: error: -o " + (root() / "pictures").string() +
+                     " is a folder: give the file to write, such as " + (root() / "pictures" / "plot.png").string() +
                      "\n");
-  EXPECT_FALSE(fs::exists(root_ / "pictures.png"));
-  EXPECT_TRUE(fs::is_empty(root_ / "pictures"));
+  EXPECT_FALSE(fs::exists(root() / "pictures.png"));
+  EXPECT_TRUE(fs::is_empty(root() / "pictures"));
 }
 
 }  // namespace

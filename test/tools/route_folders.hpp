@@ -25,10 +25,7 @@ inline void writeImageFolder(const std::filesystem::path& folder, const std::vec
   }
 }
 
-/// A route of 150 reference and 100 query frames in `root`/reference and
-/// `root`/query, and its ground truth in `root`/truth.csv (mrs_vpr_eval's
-/// --ground-truth format).
-/// The route writeRouteFolders writes.
+/// The route writeRouteFolders writes: 150 reference and 100 query frames.
 inline const SyntheticRoute& routeOfFolders() {
   static const SyntheticRoute route = [] {
     SyntheticRouteParams params;
@@ -40,6 +37,8 @@ inline const SyntheticRoute& routeOfFolders() {
   return route;
 }
 
+/// The route in `root`/reference and `root`/query, and its ground truth in `root`/truth.csv
+/// (mrs_vpr_eval's --ground-truth format).
 inline void writeRouteFolders(const std::filesystem::path& root) {
   const SyntheticRoute& route = routeOfFolders();
   writeImageFolder(root / "reference", route.reference);

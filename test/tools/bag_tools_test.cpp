@@ -1,0 +1,398 @@
+// images_to_bag, build_map and query_bag run as a user runs them on a generated route: the bags and
+// maps they write, the evaluator reading bags, keyframes by appearance and by travel, and one-line
+// errors with exit code 1 on bad input that leave no partial output.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <rosbag/bag.h>
+
+#include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/stamp.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/synthetic_route.hpp"
+#include "route_tools_fixture.hpp"
+#include "support/travel_bag.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using mrs_vpr::testing_support::CommandResult;
+using mrs_vpr::testing_support::fileContents;
+
+class BagToolsTest : public mrs_vpr::testing_support::RouteToolsTest {};
+
+TEST_F(BagToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) {
+  for (const char* traversal : {"reference", "query"}) {
+    const CommandResult result =
+        run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path(traversal) + " --bag " +
+            path(std::string(traversal) + ".bag") + " --topic /camera/image_raw --rate 10 --start-time 1000");
+    ASSERT_EQ(result.status, 0) << result.err;
+  }
+  const auto images = mrs_vpr::bag::readImages(path("query.bag"), "/camera/image_raw", 0, 100);
+  ASSERT_EQ(images.size(), 100U);
+  EXPECT_EQ(images[0]->encoding, "bgr8");
+  EXPECT_EQ(images[0]->width, 128U);
+  EXPECT_DOUBLE_EQ(images[0]->header.stamp.toSec(), 1000.0);
+  for (std::size_t i = 1; i < images.size(); ++i) {
+    EXPECT_GT(images[i]->header.stamp, images[i - 1]->header.stamp);
+  }
+  EXPECT_NEAR(images[99]->header.stamp.toSec(), 1009.9, 1e-6);
+
+  // Same frames from bags as from folders: the same answers.
+  const std::string common = " --ground-truth " + path("truth.csv") +
+                             " --method seqslam --protocol per-frame --sequence-length 10 --output ";
+  ASSERT_EQ(run(eval("--reference " + path("reference") + " --query " + path("query") + common +
+                     path("folders.json")))
+                .status,
+            0);
+  const CommandResult from_bags = run(eval("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                                           " --topic /camera/image_raw" + common + path("bags.json")));
+  ASSERT_EQ(from_bags.status, 0) << from_bags.err;
+  const json folders = json::parse(fileContents(path("folders.json")));
+  const json bags = json::parse(fileContents(path("bags.json")));
+  ASSERT_EQ(folders["records"].size(), bags["records"].size());
+  for (std::size_t i = 0; i < folders["records"].size(); ++i) {
+    EXPECT_EQ(folders["records"][i]["predicted_index"], bags["records"][i]["predicted_index"]) << i;
+  }
+
+  expectError("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                  " --method seqslam --protocol per-frame --sequence-length 10",
+              "reading a bag needs --topic");
+  expectError("--reference " + path("reference.bag") + " --query " + path("query.bag") +
+                  " --topic /nothing --method seqslam --protocol per-frame --sequence-length 10",
+              "has no topic '/nothing' (it has: /camera/image_raw (sensor_msgs/Image))");
+}
+
+// rosbag (with roslib, rospack and Python) is a plugin loaded on the first bag read: a run that reads
+// no bag starts without it. LD_DEBUG=files makes the dynamic loader name every library it opens.
+TEST_F(BagToolsTest, TheEvaluatorLoadsTheBagReaderOnlyWhenItReadsABag) {
+  const CommandResult help = run("LD_DEBUG=files " + eval("--help"));
+  ASSERT_EQ(help.status, 0) << help.err;
+  ASSERT_NE(help.err.find("libmrs_vpr_core.so"), std::string::npos) << "LD_DEBUG gave no listing";
+  EXPECT_EQ(help.err.find("librosbag_storage"), std::string::npos);
+  EXPECT_EQ(help.err.find("libmrs_vpr_rosbag_reader"), std::string::npos);
+
+  const CommandResult written = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("reference") + " --bag " +
+                                    path("lazy.bag") + " --topic /camera/image_raw --rate 10");
+  ASSERT_EQ(written.status, 0) << written.err;
+  const std::string arguments = "--reference " + path("lazy.bag") + " --query " + path("query") +
+                                " --topic /camera/image_raw --ground-truth " + path("truth.csv") +
+                                " --method seqslam --protocol per-frame --sequence-length 10";
+  const CommandResult from_bag = run("LD_DEBUG=files " + eval(arguments));
+  ASSERT_EQ(from_bag.status, 0) << from_bag.err;
+  EXPECT_NE(from_bag.err.find("libmrs_vpr_rosbag_reader.so"), std::string::npos);
+  EXPECT_NE(from_bag.err.find("librosbag_storage"), std::string::npos);
+}
+
+TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
+  const CommandResult no_rate = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                    path("x.bag") + " --topic /t --rate 0");
+  EXPECT_EQ(no_rate.status, 1);
+  EXPECT_NE(no_rate.err.find("--rate must be > 0"), std::string::npos) << no_rate.err;
+  const CommandResult no_folder = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("nowhere") + " --bag " +
+                                      path("x.bag") + " --topic /t --rate 5");
+  EXPECT_EQ(no_folder.status, 1);
+  EXPECT_NE(no_folder.err.find("does not exist"), std::string::npos) << no_folder.err;
+  EXPECT_FALSE(fs::exists(path("x.bag")));  // Nothing written for a bad folder.
+  const CommandResult no_topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                     path("x.bag") + " --topic '' --rate 5");
+  EXPECT_EQ(no_topic.status, 1);
+  EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
+}
+
+TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChanged) {
+  // The reference route with a stop: frame 60 shown 40 times more, each time with sensor noise.
+  const mrs_vpr::SyntheticRoute& route = mrs_vpr::testing_support::routeOfFolders();
+  std::vector<cv::Mat> stopped;
+  cv::RNG rng(9);
+  for (int i = 0; i < static_cast<int>(route.reference.size()); ++i) {
+    stopped.push_back(route.reference[static_cast<std::size_t>(i)]);
+    for (int repeat = 0; i == 60 && repeat < 40; ++repeat) {
+      cv::Mat noise(route.reference[60].size(), CV_16SC3);
+      rng.fill(noise, cv::RNG::NORMAL, 0, 2);
+      cv::Mat noisy;
+      cv::add(route.reference[60], noise, noisy, cv::noArray(), CV_8UC3);
+      stopped.push_back(noisy);
+    }
+  }
+  mrs_vpr::testing_support::writeImageFolder(path("stopped"), stopped);
+  const CommandResult built =
+      run(std::string(BUILD_MAP_PATH) + " --images " + path("stopped") + " --output " + path("stopped.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  // Every stopped frame is too similar to the frame the robot stopped at; of the moving ones, a few.
+  const std::size_t too_similar = built.err.find(" frames too similar");
+  ASSERT_NE(too_similar, std::string::npos) << built.err;
+  const int skipped = std::stoi(built.err.substr(built.err.rfind(' ', too_similar - 1) + 1));
+  EXPECT_GE(skipped, 40) << built.err;
+  EXPECT_LT(skipped, 40 + 20) << built.err;
+
+  // The evaluator keeps the same keyframes of the reference, and names frames in its records.
+  const std::string output = path("stopped.json");
+  const CommandResult evaluated = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped") + " --query " +
+                                      path("query") + " --protocol per-frame --sequence-length 10 --output " + output);
+  ASSERT_EQ(evaluated.status, 0) << evaluated.err;
+  const json document = json::parse(fileContents(output));
+  EXPECT_EQ(document.at("reference_frames"), 190);
+  EXPECT_EQ(document.at("reference_keyframes"), 190 - skipped);
+  EXPECT_EQ(document.at("parameters").at("min_appearance_change"), mrs_vpr::RecognizerParams{}.min_appearance_change);
+  EXPECT_EQ(document.at("parameters").at("method"), mrs_vpr::RecognizerParams{}.default_method);
+  for (const json& record : document.at("records")) {
+    // The keyframe of the stop stands for all 41 frames of it.
+    if (record.at("predicted_index") == 60) EXPECT_EQ(record.at("predicted_last"), 100);
+    EXPECT_GE(record.at("predicted_last").get<int>(), record.at("predicted_index").get<int>());
+  }
+}
+
+TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
+  const std::string map = path("reference.db");
+  const std::string build = buildMap() + " --images " + path("reference") + " --output " + map;
+  const CommandResult built = run(build);
+  ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_NE(built.err.find("150 frames added to 0"), std::string::npos) << built.err;
+  EXPECT_FALSE(fs::exists(map + ".part"));
+
+  const std::string rest = " --query " + path("query") + " --ground-truth " + path("truth.csv") +
+                           " --method seqslam --protocol per-frame --sequence-length 10 --tolerance 2";
+  const CommandResult from_folder = run(eval("--reference " + path("reference") + rest));
+  const CommandResult from_map = run(eval("--reference " + map + rest));
+  ASSERT_EQ(from_folder.status, 0) << from_folder.err;
+  ASSERT_EQ(from_map.status, 0) << from_map.err;
+  const auto summary = [](const CommandResult& result) {
+    nlohmann::json document = nlohmann::json::parse(result.out).at("summary");
+    document.erase("median_time_ms");
+    document.erase("total_time_s");
+    return document;
+  };
+  EXPECT_EQ(summary(from_map), summary(from_folder));
+
+  // An existing map is neither replaced nor extended unless asked.
+  const CommandResult again = run(build);
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("exists; use --append to extend it or --force to replace it"), std::string::npos);
+  const CommandResult appended = run(build + " --append");
+  EXPECT_EQ(appended.status, 0) << appended.err;
+  EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
+}
+
+TEST_F(BagToolsTest, AMapIsReadAndExtendedWithTheFrontEndItRecords) {
+  // Without a front-end option the evaluator and build_map --append take the map's own front end;
+  // another one named is refused, naming the file and both front ends.
+  const std::string build_map = std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                                path("small.db");
+  const CommandResult other = run(build_map + " --descriptor thumbnail --image-width 32 --image-height 16");
+  ASSERT_EQ(other.status, 0) << other.err;
+  const std::string evaluate = std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("small.db") + " --query " +
+                               path("query") + " --ground-truth " + path("truth.csv") +
+                               " --protocol per-frame --sequence-length 10";
+  const CommandResult adopted = run(evaluate + " --output " + path("small.json"));
+  ASSERT_EQ(adopted.status, 0) << adopted.err;
+  EXPECT_NE(adopted.err.find("thumbnail (32 x 16, patches of 8 px)"), std::string::npos) << adopted.err;
+  const json parameters = json::parse(fileContents(path("small.json"))).at("parameters").at("descriptor");
+  EXPECT_EQ(parameters.at("type"), "thumbnail");
+  EXPECT_EQ(parameters.at("image_width"), 32);
+  const CommandResult refused = run(evaluate + " --descriptor hog");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find(path("small.db")), std::string::npos) << refused.err;
+  EXPECT_NE(refused.err.find("holds descriptors of the thumbnail (32 x 16, patches of 8 px) front end, not of the "
+                             "hog (128 x 64 window"),
+            std::string::npos)
+      << refused.err;
+  const CommandResult appended = run(build_map + " --append");
+  EXPECT_EQ(appended.status, 0) << appended.err;
+  const CommandResult mixed = run(build_map + " --append --descriptor hog");
+  EXPECT_EQ(mixed.status, 1);
+  EXPECT_NE(mixed.err.find("not of the hog"), std::string::npos) << mixed.err;
+}
+
+TEST_F(BagToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
+  // The robot drives 4 m, stands still for 30 frames and drives 2 m on (support/travel_bag.hpp).
+  const std::string bag = path("drive.bag");
+  mrs_vpr::testing_support::writeTravelBag(bag, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive());
+  const std::string build = buildMap() + " --bag " + bag + " --topic /camera/image_raw --output ";
+  const CommandResult every_frame = run(build + path("every_frame.db"));
+  ASSERT_EQ(every_frame.status, 0) << every_frame.err;
+  EXPECT_NE(every_frame.err.find("51 frames added to 0"), std::string::npos) << every_frame.err;
+
+  const CommandResult by_travel = run(build + path("by_travel.db") + " --min-travel 1");
+  ASSERT_EQ(by_travel.status, 0) << by_travel.err;
+  EXPECT_NE(by_travel.err.find("7 frames added to 0"), std::string::npos) << by_travel.err;
+  EXPECT_NE(by_travel.err.find("7 keyframes of 51 frames at min_travel 1 m (44 too near, 0 without a pose"),
+            std::string::npos)
+      << by_travel.err;
+
+  // Frames tf has no pose for are skipped, and the user is told why.
+  const CommandResult unknown_frame = run(build + path("gripper.db") + " --min-travel 1 --base-frame gripper");
+  ASSERT_EQ(unknown_frame.status, 0) << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("0 frames added to 0"), std::string::npos) << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("warning: the first frame without a pose"), std::string::npos) << unknown_frame.err;
+}
+
+TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
+  const std::string no_poses = path("no_poses.bag");
+  mrs_vpr::testing_support::writeTravelBag(no_poses, "/camera/image_raw", mrs_vpr::testing_support::driveStopDrive(),
+                                           false);
+  const CommandResult without_tf = run(buildMap() + " --bag " + no_poses +
+                                       " --topic /camera/image_raw --min-travel 1 --output " + path("no_poses.db"));
+  EXPECT_EQ(without_tf.status, 1);
+  EXPECT_NE(without_tf.err.find("has no /tf or /tf_static messages"), std::string::npos) << without_tf.err;
+  EXPECT_FALSE(fs::exists(path("no_poses.db")));
+  EXPECT_FALSE(fs::exists(path("no_poses.db.part")));
+
+  const CommandResult folder =
+      run(buildMap() + " --images " + path("reference") + " --min-travel 1" + " --output " + path("folder.db"));
+  EXPECT_EQ(folder.status, 1);
+  EXPECT_NE(folder.err.find("--min-travel needs --bag"), std::string::npos) << folder.err;
+  const CommandResult negative = run(buildMap() + " --bag " + no_poses +
+                                     " --topic /camera/image_raw --min-travel=-1 --output " + path("negative.db"));
+  EXPECT_EQ(negative.status, 1);
+  EXPECT_NE(negative.err.find("min_travel must be a finite number of metres >= 0"), std::string::npos) << negative.err;
+  const CommandResult recent = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --min-travel 1");
+  EXPECT_EQ(recent.status, 1);
+  EXPECT_NE(recent.err.find("--min-travel needs --bag, not --recent-frames"), std::string::npos) << recent.err;
+}
+
+TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
+  // No master is needed: the options are checked first. -1 used to wait for the service for ever.
+  for (const char* timeout : {"-1", "0", "1e9"}) {
+    const CommandResult result =
+        run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service /nope/query --timeout " + timeout);
+    EXPECT_EQ(result.status, 1) << timeout;
+    EXPECT_NE(result.err.find("--timeout must be in (0, 3600] s"), std::string::npos) << result.err;
+    EXPECT_TRUE(result.out.empty()) << "stdout holds only the JSON answer: " << result.out;
+  }
+}
+
+TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
+  const std::string bag = path("route.bag");
+  const std::string arguments = " --images " + path("query") + " --bag " + bag + " --topic /t --rate 5";
+  ASSERT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + arguments).status, 0);
+  const auto size = fs::file_size(bag);
+  // An existing bag is kept unless --force says otherwise.
+  const CommandResult again = run(std::string(IMAGES_TO_BAG_PATH) + arguments);
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("exists; use --force"), std::string::npos) << again.err;
+  EXPECT_EQ(fs::file_size(bag), size);
+  EXPECT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + arguments + " --force").status, 0);
+
+  // A truncated image half way: exit 1, and neither a bag nor its temporary file is left.
+  fs::create_directories(path("truncated"));
+  for (const auto& entry : fs::directory_iterator(path("query"))) {
+    fs::copy_file(entry.path(), fs::path(path("truncated")) / entry.path().filename());
+  }
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(path("truncated"))) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  fs::resize_file(files[files.size() / 2], 20);
+  const std::string broken = path("truncated.bag");
+  const CommandResult truncated = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("truncated") + " --bag " +
+                                      broken + " --topic /t --rate 5");
+  EXPECT_EQ(truncated.status, 1) << truncated.err;
+  EXPECT_FALSE(fs::exists(broken));
+  EXPECT_FALSE(fs::exists(broken + ".part"));
+}
+
+TEST_F(BagToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
+  // --force onto a folder used to describe every frame, then fail to rename and leave OUT.part.
+  fs::create_directories(path("a_folder"));
+  const CommandResult map =
+      run(buildMap() + " --images " + path("reference") + " --output " + path("a_folder") + " --force");
+  EXPECT_EQ(map.status, 1);
+  EXPECT_NE(map.err.find("build_map: error: '" + path("a_folder") + "' is a folder; --output names the map file"),
+            std::string::npos)
+      << map.err;
+  EXPECT_EQ(map.err.find("frames"), std::string::npos) << "work was done first: " << map.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  const CommandResult no_folder =
+      run(buildMap() + " --images " + path("reference") + " --output " + path("nowhere/map.db"));
+  EXPECT_EQ(no_folder.status, 1);
+  EXPECT_NE(no_folder.err.find("there is no folder " + path("nowhere")), std::string::npos) << no_folder.err;
+  EXPECT_EQ(no_folder.err.find("frames"), std::string::npos) << no_folder.err;
+
+  const CommandResult bag = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                path("a_folder") + " --topic /t --rate 5 --force");
+  EXPECT_EQ(bag.status, 1);
+  EXPECT_NE(bag.err.find("images_to_bag: error: '" + path("a_folder") + "' is a folder; --bag names the bag file"),
+            std::string::npos)
+      << bag.err;
+  EXPECT_EQ(bag.err.find("images in"), std::string::npos) << "work was done first: " << bag.err;
+  EXPECT_FALSE(fs::exists(path("a_folder.part")));
+  EXPECT_TRUE(fs::is_empty(path("a_folder")));
+}
+
+TEST_F(BagToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
+  // 100 frames at 10 Hz up to 9.9 s before the latest ROS time: through doubles, the stamps there
+  // are off by up to half a microsecond.
+  const std::string bag = path("late.bag");
+  const std::string images = " --images " + path("query") + " --topic /camera/image_raw";
+  const CommandResult late =
+      run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + bag + " --rate 10 --start-time 4294967286");
+  ASSERT_EQ(late.status, 0) << late.err;
+  const auto written = mrs_vpr::bag::readImages(bag, "/camera/image_raw", 0, 100);
+  for (std::uint32_t i = 0; i < 100; ++i) {
+    EXPECT_EQ(written[i]->header.stamp, ros::Time(4294967286U + i / 10, (i % 10) * 100000000U)) << i;
+  }
+  // Stamps beyond 4294967295.999999999 s: refused before anything is written.
+  for (const std::string& timing : {std::string(" --rate 1e-300 --start-time 1000"),
+                                    std::string(" --rate 10 --start-time 4294967290")}) {
+    SCOPED_TRACE(timing);
+    const CommandResult result = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + path("never.bag") + timing);
+    EXPECT_EQ(result.status, 1);
+    EXPECT_NE(result.err.find("images_to_bag: error: the images cannot all be stamped: frame "), std::string::npos)
+        << result.err;
+    EXPECT_NE(result.err.find("beyond the latest ROS time (4294967295.999999999 s); use a higher --rate or an "
+                              "earlier --start-time"),
+              std::string::npos)
+        << result.err;
+    EXPECT_FALSE(fs::exists(path("never.bag")));
+  }
+  const CommandResult topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                  path("never.bag") + " --topic 'bad topic!' --rate 10");
+  EXPECT_EQ(topic.status, 1);
+  EXPECT_NE(topic.err.find("--topic 'bad topic!' is not a valid ROS topic name: "), std::string::npos) << topic.err;
+  EXPECT_FALSE(fs::exists(path("never.bag")));
+}
+
+TEST_F(BagToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStampsExact) {
+  // A frame stamped at the latest ROS time, in a bag whose name does not end in .bag.
+  const std::string bag = path("latest.recording");
+  {
+    rosbag::Bag writer(bag, rosbag::bagmode::Write);
+    const cv::Mat image = cv::imread(path("reference/00000.png"));
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      const ros::Time stamp(4294967295U, 999999997U + i);
+      writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+    }
+  }
+  const CommandResult built =
+      run(buildMap() + " --bag " + bag + " --topic /camera/image_raw --output " + path("latest.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  std::vector<mrs_vpr::Stamp> stamps;
+  mrs_vpr::MapDatabase(path("latest.db"), mrs_vpr::MapAccess::kReadOnly)
+      .forEachFrame([&](const mrs_vpr::StoredFrame& frame) { stamps.push_back(frame.stamp); });
+  ASSERT_EQ(stamps.size(), 3U);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(stamps[i].nanoseconds(), mrs_vpr::Stamp::kMaxNanoseconds - 2 + i);
+
+  // A file that is no bag is named as such, not as a folder.
+  std::ofstream(path("garbage.db")) << "garbage";
+  const CommandResult garbage = run(buildMap() + " --bag " + path("garbage.db") +
+                                    " --topic /camera/image_raw --output " + path("garbage_map.db"));
+  EXPECT_EQ(garbage.status, 1);
+  EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
+      << garbage.err;
+  EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
+}
+
+}  // namespace

@@ -1,0 +1,306 @@
+// mrs_vpr_eval run as a user runs it on a generated route: its protocols, the records and summary it
+// writes, its acceptance options, and one-line errors with exit code 1 on bad input.
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/acceptance.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "route_tools_fixture.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using mrs_vpr::testing_support::CommandResult;
+using mrs_vpr::testing_support::fileContents;
+
+class EvaluatorTest : public mrs_vpr::testing_support::RouteToolsTest {};
+
+TEST_F(EvaluatorTest, PerFrameSeqSlamFindsThePlantedAlignment) {
+  const std::string output = path("per_frame.json");
+  const CommandResult result = run(
+      eval("--reference " + path("reference") + " --query " + path("query") + " --ground-truth " + path("truth.csv") +
+           " --method seqslam --protocol per-frame --sequence-length 10 --alignment causal --tolerance 2 --output " +
+           output));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json document = json::parse(fileContents(output));
+  const json& summary = document.at("summary");
+  for (const char* field : {"tolerance", "queries", "top1", "pr_auc", "recall_at_100_precision", "median_abs_error",
+                            "largest_wrong_accepted_error", "median_time_ms", "total_time_s"}) {
+    EXPECT_TRUE(summary.contains(field)) << field;
+  }
+  EXPECT_EQ(summary.at("queries").get<int>(), 91);  // Query frames 9..99 have 10 frames behind them.
+  EXPECT_EQ(summary.at("tolerance").get<int>(), 2);
+  EXPECT_GE(summary.at("top1").get<double>(), 0.9);
+  EXPECT_GE(summary.at("pr_auc").get<double>(), 0.9);
+  EXPECT_EQ(document.at("parameters").at("sequence").at("sequence_length").get<int>(), 10);
+  EXPECT_EQ(document.at("protocol"), "per-frame");
+  const json& record = document.at("records").at(0);
+  EXPECT_EQ(record.at("query_index").get<int>(), 9);
+  for (const char* field : {"query_index", "true_index", "predicted_index", "score", "confidence", "time_ms"}) {
+    EXPECT_TRUE(record.contains(field)) << field;
+  }
+  // The summary also goes to stdout.
+  EXPECT_EQ(json::parse(result.out).at("summary").at("queries").get<int>(), 91);
+}
+
+TEST_F(EvaluatorTest, GlobalProtocolIsSeededAndUsesKSequences) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") +
+                                " --method seqslam --protocol global --sequence-length 40 --alignment causal " +
+                                "--queries 12 --tolerance 5 --seed 3 --output ";
+  ASSERT_EQ(run(eval(arguments + path("global_a.json"))).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("global_b.json"))).status, 0);
+  const json a = json::parse(fileContents(path("global_a.json")));
+  const json b = json::parse(fileContents(path("global_b.json")));
+  ASSERT_EQ(a.at("records").size(), 12U);
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_EQ(a["records"][i]["query_index"], b["records"][i]["query_index"]);
+    EXPECT_GE(a["records"][i]["query_index"].get<int>(), 39);
+  }
+  EXPECT_GE(a.at("summary").at("top1").get<double>(), 0.9);
+}
+
+TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query");
+  expectError("--reference " + path("nowhere") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 10",
+              "image folder '" + path("nowhere") + "' does not exist");
+  expectError(folders + " --method fastest --protocol per-frame --sequence-length 10", "unknown method 'fastest'");
+  expectError(folders + " --method mrs --protocol sideways --sequence-length 10", "unknown protocol 'sideways'");
+  expectError(folders + " --method seqslam --protocol global --sequence-length 151",
+              "sequence length 151 is larger than the reference of 150 keyframes");
+  expectError(folders + " --method seqslam --sequence-length 10", "protocol");  // Missing flag.
+  // A word of no option (e.g. a second value) is refused, not silently dropped.
+  expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 20", "unexpected argument '20'");
+
+  // An unreadable image, named.
+  fs::create_directories(path("broken"));
+  fs::copy_file(path("reference/00000.png"), path("broken/00000.png"), fs::copy_options::overwrite_existing);
+  std::ofstream(path("broken/00001.png")) << "not a png";
+  expectError("--reference " + path("broken") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "cannot read image '" + path("broken/00001.png") + "'");
+
+  // Different sizes within a folder and between folders.
+  fs::create_directories(path("mixed"));
+  fs::copy_file(path("reference/00000.png"), path("mixed/00000.png"), fs::copy_options::overwrite_existing);
+  cv::imwrite(path("mixed/00001.png"), cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(9)));
+  expectError("--reference " + path("mixed") + " --query " + path("query") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "00001.png' is 10x10 but");
+  fs::create_directories(path("small"));
+  for (int i = 0; i < 3; ++i) {
+    cv::imwrite(path("small/" + std::to_string(i) + ".png"), cv::Mat(10, 10, CV_8UC3, cv::Scalar::all(i)));
+  }
+  expectError(folders.substr(0, folders.find(" --query")) + " --query " + path("small") +
+                  " --method seqslam --protocol per-frame --sequence-length 2",
+              "query images are 10x10 but reference images are 128x64");
+}
+
+/// Records of `records` whose boolean `field` is true.
+int countTrue(const json& records, const char* field) {
+  int count = 0;
+  for (const json& record : records) count += record.at(field).get<bool>() ? 1 : 0;
+  return count;
+}
+
+TEST_F(EvaluatorTest, RecordsCarryTheAcceptanceRuleAndTheSummaryCountsIt) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 20 " +
+                                "--tolerance 2 --accept-threshold 2.5 --output ";
+  ASSERT_EQ(run(eval(arguments + path("accept_rule.json"))).status, 0);
+  const json document = json::parse(fileContents(path("accept_rule.json")));
+  // The fixture's map holds a few dozen places, where 3 would become 3.4: a lower threshold lets
+  // some answers through, so that the rule is seen at work.
+  EXPECT_DOUBLE_EQ(document.at("parameters").at("sequence").at("accept_threshold").get<double>(), 2.5);
+  mrs_vpr::SequenceParams rule;
+  rule.accept_threshold = 2.5;
+  const json& records = document.at("records");
+  const json& summary = document.at("summary");
+  for (const char* field : {"accepted", "accepted_rate", "accepted_precision", "accepted_recall"}) {
+    EXPECT_TRUE(summary.contains(field)) << field;
+  }
+  int accepted = 0;
+  int accepted_correct = 0;
+  for (const json& record : records) {
+    ASSERT_TRUE(record.at("accepted").is_boolean()) << record;
+    // The core's rule, the same for every method: found, confidence >= the threshold (raised among
+    // fewer than 100 places), a trajectory inside the velocity bounds and a test sequence of distinct views.
+    const double required = mrs_vpr::requiredConfidence(record.at("rival_places").get<int>(), rule);
+    EXPECT_GE(required, 2.5);
+    const bool expected = record.at("predicted_index").get<int>() >= 0 &&
+                          record.at("confidence").get<double>() >= required &&
+                          !record.at("at_velocity_bound").get<bool>() && !record.at("repeated_view").get<bool>();
+    EXPECT_EQ(record.at("accepted").get<bool>(), expected) << record;
+    accepted += expected ? 1 : 0;
+    accepted_correct += expected && record.at("correct").get<bool>() ? 1 : 0;
+  }
+  const int queries = summary.at("queries").get<int>();
+  ASSERT_EQ(queries, static_cast<int>(records.size()));
+  EXPECT_EQ(summary.at("accepted").get<int>(), accepted);
+  EXPECT_GT(accepted, 0);  // 20 frames of the route stand out of the noise often enough.
+  EXPECT_LT(accepted, queries);
+  EXPECT_DOUBLE_EQ(summary.at("accepted_rate").get<double>(), static_cast<double>(accepted) / queries);
+  EXPECT_DOUBLE_EQ(summary.at("accepted_precision").get<double>(), static_cast<double>(accepted_correct) / accepted);
+  EXPECT_DOUBLE_EQ(summary.at("accepted_recall").get<double>(), static_cast<double>(accepted_correct) / queries);
+}
+
+TEST_F(EvaluatorTest, AcceptThresholdZeroAcceptsEveryAnswerAndAThousandNone) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 " +
+                                "--tolerance 2 --output ";
+  ASSERT_EQ(run(eval(arguments + path("accept_all.json") + " --accept-threshold 0")).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("accept_none.json") + " --accept-threshold 1000")).status, 0);
+  const json all = json::parse(fileContents(path("accept_all.json")));
+  const json none = json::parse(fileContents(path("accept_none.json")));
+  EXPECT_DOUBLE_EQ(all.at("parameters").at("sequence").at("accept_threshold").get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(none.at("parameters").at("sequence").at("accept_threshold").get<double>(), 1000.0);
+
+  // Threshold 0: every found answer is accepted (every complete sequence has one here).
+  const json& every = all.at("records");
+  ASSERT_EQ(every.size(), 91U);
+  for (const json& record : every) {
+    ASSERT_GE(record.at("predicted_index").get<int>(), 0) << record;
+    EXPECT_TRUE(record.at("accepted").get<bool>()) << record;
+  }
+  const json& summary_all = all.at("summary");
+  EXPECT_EQ(summary_all.at("accepted").get<int>(), 91);
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_rate").get<double>(), 1.0);
+  // Accepting everything, precision and recall are the top-1 rate.
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_precision").get<double>(), summary_all.at("top1").get<double>());
+  EXPECT_DOUBLE_EQ(summary_all.at("accepted_recall").get<double>(), summary_all.at("top1").get<double>());
+
+  // Threshold 1000: nothing is accepted; precision is undefined (null), not 0 or 1.
+  EXPECT_EQ(countTrue(none.at("records"), "accepted"), 0);
+  const json& summary_none = none.at("summary");
+  EXPECT_EQ(summary_none.at("accepted").get<int>(), 0);
+  EXPECT_DOUBLE_EQ(summary_none.at("accepted_rate").get<double>(), 0.0);
+  EXPECT_TRUE(summary_none.at("accepted_precision").is_null()) << summary_none;
+  EXPECT_DOUBLE_EQ(summary_none.at("accepted_recall").get<double>(), 0.0);
+  // The threshold decides acceptance only: the answers themselves are the same.
+  ASSERT_EQ(none.at("records").size(), every.size());
+  for (std::size_t i = 0; i < every.size(); ++i) {
+    EXPECT_EQ(none["records"][i]["predicted_index"], every[i]["predicted_index"]) << i;
+    EXPECT_EQ(none["records"][i]["confidence"], every[i]["confidence"]) << i;
+  }
+}
+
+TEST_F(EvaluatorTest, OutOfMapQueriesHaveNoTrueIndexAndEveryAcceptedAnswerIsFalse) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") +
+                                " --out-of-map --method seqslam --protocol per-frame --sequence-length 20 --output ";
+  // At the default threshold, and at 0 where every answer is accepted (the route's query is in fact
+  // in the map, so only --out-of-map makes them false).
+  for (const std::string threshold : {"3", "0"}) {
+    const std::string output = path("out_of_map_" + threshold + ".json");
+    const CommandResult result = run(eval(arguments + output + " --accept-threshold " + threshold));
+    ASSERT_EQ(result.status, 0) << result.err;
+    const json document = json::parse(fileContents(output));
+    EXPECT_TRUE(document.at("parameters").at("out_of_map").get<bool>());
+    const json& records = document.at("records");
+    const json& summary = document.at("summary");
+    EXPECT_EQ(summary.at("queries").get<int>(), 81) << threshold;  // Every frame 19..99 is a query.
+    ASSERT_EQ(records.size(), 81U);
+    for (const json& record : records) {
+      EXPECT_TRUE(record.at("true_index").is_null()) << record;
+      EXPECT_TRUE(record.at("true_indices").empty()) << record;
+      EXPECT_FALSE(record.at("correct").get<bool>()) << record;
+      EXPECT_TRUE(record.at("accepted").is_boolean()) << record;
+    }
+    const int accepted = countTrue(records, "accepted");
+    EXPECT_EQ(summary.at("accepted").get<int>(), accepted) << threshold;
+    // The false loop-closure rate.
+    EXPECT_DOUBLE_EQ(summary.at("accepted_rate").get<double>(), static_cast<double>(accepted) / 81) << threshold;
+    EXPECT_DOUBLE_EQ(summary.at("accepted_recall").get<double>(), 0.0) << threshold;
+    EXPECT_DOUBLE_EQ(summary.at("top1").get<double>(), 0.0) << threshold;
+    if (accepted == 0) {
+      EXPECT_TRUE(summary.at("accepted_precision").is_null()) << summary;
+    } else {
+      EXPECT_DOUBLE_EQ(summary.at("accepted_precision").get<double>(), 0.0) << summary;
+    }
+    if (threshold == "0") EXPECT_EQ(accepted, 81);
+  }
+}
+
+TEST_F(EvaluatorTest, AcceptanceOptionsAreChecked) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query") +
+                              " --method seqslam --protocol per-frame --sequence-length 10";
+  // A query cannot be both outside the map and have a true place in it.
+  expectError(folders + " --out-of-map --ground-truth " + path("truth.csv"),
+              "--out-of-map and --ground-truth exclude each other");
+  expectError(folders + " --threads -1", "--threads must be >= 0");
+  expectError(folders + " --queries 1000000", "--queries must be in 1..100000");
+  expectError(folders + " --accept-threshold -1", "sequence/accept_threshold");
+  expectError(folders + " --accept-threshold 1001", "sequence/accept_threshold");
+  // Nothing is written for rejected options.
+  EXPECT_FALSE(fs::exists(path("rejected.json")));
+  expectError(folders + " --threads -1 --output " + path("rejected.json"), "--threads must be >= 0");
+  EXPECT_FALSE(fs::exists(path("rejected.json")));
+}
+
+TEST_F(EvaluatorTest, BadSeedAndGroundTruthOfOtherTraversalsAreRefused) {
+  const std::string folders = "--reference " + path("reference") + " --query " + path("query") +
+                              " --method seqslam --protocol global --sequence-length 10";
+  // A negative seed used to wrap silently to 2^64 - 1.
+  expectError(folders + " --seed -1", "--seed must be >= 0");
+  // Reference frames beyond the reference (a file for other traversals) used to give a summary.
+  {
+    std::ofstream beyond(path("beyond.csv"));
+    beyond << "query_index,matching_ref_indices\n0,0\n1,1000 1001\n";
+  }
+  expectError(folders + " --ground-truth " + path("beyond.csv"), "query frame 1 lists reference frame 1000");
+  {
+    std::ofstream huge(path("huge.csv"));
+    huge << "query_index,matching_ref_indices\n0,999999999\n";
+  }
+  expectError(folders + " --ground-truth " + path("huge.csv"), "reference frame 999999999");
+}
+
+TEST_F(EvaluatorTest, ThreadCountDoesNotChangeTheAnswers) {
+  const std::string arguments = "--reference " + path("reference") + " --query " + path("query") + " --ground-truth " +
+                                path("truth.csv") + " --method mrs --protocol global --sequence-length 64 " +
+                                "--queries 6 --seed 5 --output ";
+  ASSERT_EQ(run(eval(arguments + path("threads_1.json") + " --threads 1")).status, 0);
+  ASSERT_EQ(run(eval(arguments + path("threads_2.json") + " --threads 2")).status, 0);
+  const json one = json::parse(fileContents(path("threads_1.json")));
+  const json two = json::parse(fileContents(path("threads_2.json")));
+  EXPECT_EQ(one.at("parameters").at("threads").get<int>(), 1);
+  EXPECT_EQ(two.at("parameters").at("threads").get<int>(), 2);
+  ASSERT_EQ(one.at("records").size(), 6U);
+  ASSERT_EQ(two.at("records").size(), 6U);
+  for (std::size_t i = 0; i < 6; ++i) {
+    for (const char* field : {"query_index", "predicted_index", "confidence", "accepted"}) {
+      EXPECT_EQ(one["records"][i][field], two["records"][i][field]) << i << " " << field;
+    }
+  }
+}
+
+TEST_F(EvaluatorTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
+  std::ofstream(path("plain_file")) << "x";
+  const std::string evaluation = "--reference " + path("reference") + " --query " + path("query") +
+                                 " --method seqslam --protocol per-frame --sequence-length 10";
+  const CommandResult plots = run(eval(evaluation + " --plots " + path("plain_file/plots")));
+  EXPECT_EQ(plots.status, 1);
+  EXPECT_NE(plots.err.find("mrs_vpr_eval: error: --plots '" + path("plain_file/plots") + "': cannot create the folder"),
+            std::string::npos)
+      << plots.err;
+  EXPECT_EQ(plots.err.find("matching"), std::string::npos) << "the evaluation ran first: " << plots.err;
+  const CommandResult output = run(eval(evaluation + " --output " + path("nowhere/evaluation.json")));
+  EXPECT_EQ(output.status, 1);
+  EXPECT_NE(
+      output.err.find("--output '" + path("nowhere/evaluation.json") + "': there is no folder " + path("nowhere")),
+      std::string::npos)
+      << output.err;
+  EXPECT_EQ(output.err.find("matching"), std::string::npos) << output.err;
+}
+
+}  // namespace
