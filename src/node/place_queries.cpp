@@ -1,0 +1,197 @@
+// The node's answers: ~query, and continuous mode's loop closures (with the closures restated for a
+// stop), published on ~loop_closure and ~loop_closure_stamps.
+
+#include <chrono>
+#include <cstddef>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/acceptance.hpp"
+#include "mrs_vpr/node/continuous_queries.hpp"
+#include "mrs_vpr/node/image_conversion.hpp"
+#include "mrs_vpr/node/loop_closure_stamps.hpp"
+#include "mrs_vpr/node/place_recognition_node.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
+#include "node_warnings.hpp"
+
+namespace mrs_vpr {
+namespace node {
+
+bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QuerySequence::Response& response) {
+  const auto start = std::chrono::steady_clock::now();
+  response.success = false;
+  response.reference_index = -1;
+  QueryInput input;
+  input.method = request.method;  // Empty: the recognizer's default method.
+  PlaceAnswer answered;
+  try {
+    if (!request.images.empty()) {
+      if (request.recent_frames > 0) {
+        throw std::invalid_argument("give either images or recent_frames, not both (got " +
+                                    std::to_string(request.images.size()) + " images and recent_frames " +
+                                    std::to_string(request.recent_frames) + ")");
+      }
+      if (request.images.size() < 2) {
+        throw std::invalid_argument("a test sequence needs at least 2 images, got 1");
+      }
+      input.images = std::make_unique<DescriptorSequence>(recognizer_.extractor().size());
+      input.images->reserve(static_cast<int>(request.images.size()));
+      for (std::size_t i = 0; i < request.images.size(); ++i) {
+        const sensor_msgs::Image& image = request.images[i];
+        try {
+          input.images->append(describeImage(recognizer_.extractor(), image), stampOf(image.header.stamp));
+        } catch (const std::exception& error) {
+          throw std::invalid_argument("images[" + std::to_string(i) + "] (" + std::to_string(image.width) +
+                                      " x " + std::to_string(image.height) + ", encoding " +
+                                      inQuotes(image.encoding) + "): " + error.what());
+        }
+      }
+      for (const sensor_msgs::Image& image : request.images) input.image_headers.push_back(image.header);
+    } else if (request.recent_frames == 0) {
+      throw std::invalid_argument(
+          "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
+          "newest map frames");
+    } else {
+      input.recent_frames = request.recent_frames;
+    }
+    answered = answer(input, response);
+    response.success = true;
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.message = error.what();
+    response.reference_index = -1;
+    response.accepted = false;
+  }
+  response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (response.success) {
+    const std::string unpublished = publishLoopClosure(input.header, answered, response, input.header.stamp);
+    if (!unpublished.empty()) response.message += "; " + unpublished;
+    if (!input.images) publishStandingClosures(input.header, answered, response);
+    ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
+              answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
+  } else {
+    ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
+  }
+  return true;  // failures are reported in the response, never as "service call failed"
+}
+
+PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {
+  // The search may take a while; frames arriving meanwhile wait in the recognizer's pending buffer.
+  // The answer is explained (for ~debug_image) only while someone watches.
+  MatchExplanation explanation;
+  MatchExplanation* const explain = debug_image_->wanted() ? &explanation : nullptr;
+  // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were
+  // (with keyframes by travel, the images are taken as keyframes already).
+  PlaceAnswer answered =
+      !input.images               ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
+      : travel_policy_.enabled()  ? recognizer_.match(*input.images, input.method, explain)
+                                  : recognizer_.matchKeyframesOf(*input.images, input.method, explain);
+  if (input.images) {
+    input.header = input.image_headers.at(static_cast<std::size_t>(answered.localised_row));
+  } else {
+    input.header.stamp = rosTimeOf(answered.localised_stamp);
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    input.header.frame_id = camera_frame_id_;
+  }
+  if (explain != nullptr) {
+    // What keyframing left out, so that a stop shows as frames skipped rather than as missing answers.
+    const std::string map_status = std::to_string(frames_too_similar_.load()) +
+                                   " frames skipped as too similar to the last keyframe; " +
+                                   std::to_string(frames_skipped_.load()) + " skipped by the keyframe policy";
+    debug_image_->publish(input.header, answered, explanation, map_status);
+  }
+  const Match& match = answered.match;
+  response.reference_index = match.reference_index;
+  response.score = match.score;
+  response.confidence = match.confidence;
+  response.reference_stamp = rosTimeOf(answered.reference_stamp);
+  response.localised_stamp = input.header.stamp;
+  response.accepted = match.accepted;
+  response.message = acceptanceVerdict(match, params_.core.sequence);
+  return answered;
+}
+
+std::string PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                                     const QuerySequence::Response& response,
+                                                     const ros::Time& localised_keyframe_stamp) {
+  LoopClosure message;
+  message.header = header;
+  message.localised_keyframe_stamp = localised_keyframe_stamp;
+  message.reference_index = response.reference_index;
+  message.reference_stamp = response.reference_stamp;
+  message.query_length = static_cast<std::uint32_t>(answer.query_length);
+  message.score = response.score;
+  message.confidence = response.confidence;
+  message.accepted = response.accepted;
+  message.method = answer.method;
+  loop_closure_pub_.publish(message);
+
+  std::string why;
+  if (const auto stamps = loopClosureStamps(message, why)) {
+    loop_closure_stamps_pub_.publish(*stamps);
+    return "";
+  }
+  if (why.empty()) return "";  // not accepted: nothing to publish
+  const std::string unpublished = "not published on " + loop_closure_stamps_pub_.getTopic() + ": " + why;
+  ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: an accepted loop closure was %s", unpublished.c_str());
+  return unpublished;
+}
+
+void PlaceRecognitionNode::publishStandingClosures(const std_msgs::Header& header, const PlaceAnswer& answer,
+                                                   const QuerySequence::Response& response) {
+  if (!response.accepted || params_.auto_query_period <= 0.0) return;
+  std::vector<Stamp> standing;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    standing = standing_frames_.of(answer.localised_stamp);
+  }
+  for (const Stamp stamp : standing) {
+    std_msgs::Header restated = header;
+    restated.stamp = rosTimeOf(stamp);
+    publishLoopClosure(restated, answer, response, header.stamp);
+  }
+}
+
+void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
+  recognizer_.flush();
+  const std::uint64_t version = map_version_.load();
+  if (version == auto_query_version_) {
+    return;  // nothing new since the last answer
+  }
+  const int recent = params_.autoQueryFrames();
+  const int first_size = 2 * recent + params_.recognizer.recent_exclusion;
+  const int size = recognizer_.size();
+  if (size < first_size) {
+    return;  // too early: not enough older frames to search yet
+  }
+  auto_query_version_ = version;
+  // Each keyframe since the last question is localised once (continuous_queries.hpp), within
+  // kContinuousShare of the period by the last question's time.
+  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, first_size,
+                                                    affordableQueries(params_.auto_query_period, auto_query_ms_));
+  auto_query_size_ = size;
+  for (const int end : ends) {
+    QueryInput input;
+    input.recent_frames = recent;
+    input.end = end;
+    QuerySequence::Response response;
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      const PlaceAnswer answered = answer(input, response);
+      publishLoopClosure(input.header, answered, response, input.header.stamp);  // warns itself when stamps cannot go out
+      publishStandingClosures(input.header, answered, response);
+    } catch (const std::exception& error) {
+      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
+      return;
+    }
+    auto_query_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+}
+
+}  // namespace node
+}  // namespace mrs_vpr
