@@ -1,20 +1,19 @@
 #include "mrs_vpr/store/map_database.hpp"
 
 #include <sqlite3.h>
-#include <unistd.h>
 
-#include <climits>
 #include <ctime>
 #include <filesystem>
-#include <iomanip>
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "front_end_metadata.hpp"
+#include "map_path.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -30,40 +29,11 @@ std::string lastProblem(sqlite3* db) {
   return message;
 }
 
-/// The longest suffix SQLite and this class add to a map's name for the files beside it.
-constexpr std::size_t kDatabaseSuffix = sizeof("-journal") - 1;
-/// ... and to a saved map's: PersistentMap writes `path`.build, whose journal is `path`.build-journal.
-constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
-
-/**
- * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
- * it), in a user's words; empty when it can. A file that exists must be a regular file; otherwise its
- * folder must exist and the file system must allow its name. SQLite itself would say only "unable to
- * open database file" for each of these.
- */
-std::string pathProblem(const std::string& path, std::size_t suffix) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  if (path.empty()) return "no path given";
-  const fs::file_status status = fs::status(path, error);
-  if (fs::is_directory(status)) return "it is a folder, not a map file (give the path of a file)";
-  if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
-  if (path.size() + suffix >= PATH_MAX) {
-    return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
-           std::to_string(PATH_MAX - 1 - suffix) + ")";
-  }
-  const fs::path absolute = fs::absolute(path, error);
-  const fs::path folder = absolute.parent_path();
-  if (!fs::is_directory(folder, error)) return "there is no folder " + folder.string();
-  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
-  const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
-  const std::size_t name = absolute.filename().string().size();
-  if (name + suffix > longest) {
-    return "its file name is " + std::to_string(name) + " bytes long, too long for this file system: at most " +
-           std::to_string(longest - suffix) + " (" + std::to_string(longest) + " less the " + std::to_string(suffix) +
-           " of the files written beside it)";
-  }
-  return "";
+/// Rows of the metadata table as SQL values, each followed by a comma.
+std::string metadataRows(const std::vector<std::pair<std::string, std::string>>& rows) {
+  std::string sql;
+  for (const auto& [key, value] : rows) sql += " ('" + key + "', '" + value + "'),";
+  return sql;
 }
 
 std::string utcNow() {
@@ -71,78 +41,6 @@ std::string utcNow() {
   char text[32];
   std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
   return text;
-}
-
-
-/// A front-end parameter as the metadata table keeps it: integers as integers, fractions in full.
-std::string metadataValue(double value) {
-  std::ostringstream text;
-  text << std::setprecision(17) << value;
-  return text.str();
-}
-
-/// The metadata rows that record the front end of `params` (SQL values, each followed by a comma).
-std::string frontEndRows(const DescriptorParams& params) {
-  std::vector<std::pair<std::string, std::string>> rows = {{"descriptor_type", params.type}};
-  if (params.isHog()) {
-    rows.insert(rows.end(), {{"hog_window_width", metadataValue(params.hog_window_width)},
-                             {"hog_window_height", metadataValue(params.hog_window_height)},
-                             {"hog_cell_size", metadataValue(params.hog_cell_size)},
-                             {"hog_bins", metadataValue(params.hog_bins)},
-                             {"hog_blur", metadataValue(params.hog_blur)}});
-  } else {
-    rows.insert(rows.end(), {{"image_width", metadataValue(params.image_width)},
-                             {"image_height", metadataValue(params.image_height)},
-                             {"patch_size", metadataValue(params.patch_size)}});
-  }
-  std::string sql;
-  for (const auto& [key, value] : rows) sql += " ('" + key + "', '" + value + "'),";
-  return sql;
-}
-
-/// `text` as a number of type T, when the whole of it is one.
-template <typename T>
-std::optional<T> numberIn(const std::string& text) {
-  try {
-    std::size_t used = 0;
-    const double value = std::stod(text, &used);
-    if (used != text.size()) return std::nullopt;
-    return static_cast<T>(value);
-  } catch (const std::exception&) {  // empty, or not a number
-    return std::nullopt;
-  }
-}
-
-/// The front end a map's metadata records; none when a value is missing or not a number. Maps
-/// written before there was a choice of front end record no type: they hold thumbnails.
-std::optional<DescriptorParams> storedFrontEnd(const std::map<std::string, std::string>& stored) {
-  const auto value = [&](const std::string& key) {
-    const auto found = stored.find(key);
-    return found == stored.end() ? std::string() : found->second;
-  };
-  DescriptorParams params;
-  params.type = stored.count("descriptor_type") != 0 ? value("descriptor_type") : kThumbnailFrontEnd;
-  bool complete = true;
-  const auto read = [&](const std::string& key, auto& field) {
-    const auto number = numberIn<std::decay_t<decltype(field)>>(value(key));
-    complete = complete && number.has_value();
-    if (number) field = *number;
-  };
-  if (params.type == kHogFrontEnd) {
-    read("hog_window_width", params.hog_window_width);
-    read("hog_window_height", params.hog_window_height);
-    read("hog_cell_size", params.hog_cell_size);
-    read("hog_bins", params.hog_bins);
-    read("hog_blur", params.hog_blur);
-  } else if (params.type == kThumbnailFrontEnd) {
-    read("image_width", params.image_width);
-    read("image_height", params.image_height);
-    read("patch_size", params.patch_size);
-  } else {
-    complete = false;
-  }
-  if (!complete) return std::nullopt;
-  return params;
 }
 
 }  // namespace
@@ -160,7 +58,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const bool read_only = access == MapAccess::kReadOnly;
   std::error_code ignored;
   if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
-  const std::string path_problem = pathProblem(path, kDatabaseSuffix);
+  const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
   if (!path_problem.empty()) fail(path_problem);
   const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
@@ -243,7 +141,7 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
       "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
       " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
       "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "')," +
-      frontEndRows(params) +
+      metadataRows(frontEndMetadata(params)) +
       " ('descriptor_bytes', '" + std::to_string(descriptor_bytes_) + "'),"
       " ('created', '" + utcNow() + "'),"
       " ('package_version', '" MRS_VPR_PACKAGE_VERSION "');"
@@ -272,7 +170,7 @@ void MapDatabase::checkMetadata(bool params_given) {
     fail("its format version is '" + stored["format_version"] + "', this package reads " +
          std::to_string(kOldestFormatVersion) + " to " + std::to_string(kFormatVersion));
   }
-  const std::optional<DescriptorParams> written = storedFrontEnd(stored);
+  const std::optional<DescriptorParams> written = frontEndOfMetadata(stored);
   if (!written) fail("its descriptor type or the parameters of its front end are missing or not numbers");
   if (!params_given) {
     try {
@@ -479,7 +377,7 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
   if (std::filesystem::exists(path, error)) {
     refuseSave(path, "the file exists (a map is never overwritten: remove it or choose another name)");
   }
-  const std::string problem = pathProblem(path, kSaveSuffix);
+  const std::string problem = mapPathProblem(path, kSaveSuffix);
   if (!problem.empty()) refuseSave(path, problem);
 }
 

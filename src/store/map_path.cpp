@@ -1,0 +1,36 @@
+#include "map_path.hpp"
+
+#include <unistd.h>
+
+#include <climits>
+#include <filesystem>
+#include <string>
+
+namespace mrs_vpr {
+
+std::string mapPathProblem(const std::string& path, std::size_t suffix) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (path.empty()) return "no path given";
+  const fs::file_status status = fs::status(path, error);
+  if (fs::is_directory(status)) return "it is a folder, not a map file (give the path of a file)";
+  if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
+  if (path.size() + suffix >= PATH_MAX) {
+    return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
+           std::to_string(PATH_MAX - 1 - suffix) + ")";
+  }
+  const fs::path absolute = fs::absolute(path, error);
+  const fs::path folder = absolute.parent_path();
+  if (!fs::is_directory(folder, error)) return "there is no folder " + folder.string();
+  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
+  const std::size_t name = absolute.filename().string().size();
+  if (name + suffix > longest) {
+    return "its file name is " + std::to_string(name) + " bytes long, too long for this file system: at most " +
+           std::to_string(longest - suffix) + " (" + std::to_string(longest) + " less the " + std::to_string(suffix) +
+           " of the files written beside it)";
+  }
+  return "";
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,23 @@
+#pragma once
+
+// Whether a path can name a map file, said in a user's words before SQLite tries it (SQLite itself
+// would say only "unable to open database file").
+
+#include <cstddef>
+#include <string>
+
+namespace mrs_vpr {
+
+/// The longest suffix SQLite and MapDatabase add to a map's name for the files beside it.
+constexpr std::size_t kDatabaseSuffix = sizeof("-journal") - 1;
+/// ... and to a saved map's: PersistentMap writes `path`.build, whose journal is `path`.build-journal.
+constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
+
+/**
+ * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
+ * it); empty when it can. A file that exists must be a regular file; otherwise its folder must exist
+ * and the file system must allow its name.
+ */
+std::string mapPathProblem(const std::string& path, std::size_t suffix);
+
+}  // namespace mrs_vpr
