@@ -5,13 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <limits>
-#include <map>
 #include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "drive_listings.hpp"
 #include "mrs_vpr/evaluation/camera_drive.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
@@ -19,6 +17,7 @@
 #include "mrs_vpr/node/standing_frames.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
+#include "replayed_drive.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
@@ -31,184 +30,8 @@ constexpr double kQueryPeriod = 1.0;   // [s] launch/mrs_vpr.launch's auto_query
 /// answer's keyframe stands for (evaluation/route_places.hpp: route frames where the recording camera
 /// stood are one place).
 constexpr int kRouteTolerance = 2;
-/// The share of stretches is counted after the revisit's first frames (the map must reach back).
-constexpr int kWarmUpFrames = 100;
-constexpr int kStretchFrames = 20;
 /// mrs_vpr_eval's --tolerance default [frames].
 constexpr int kEvaluatorTolerance = 2;
-
-/// A drive of real frames: its images and the route frame and kind of each.
-struct Drive {
-  std::string name;
-  double rate = 0.0;
-  std::vector<cv::Mat> images;
-  std::vector<DriveFrame> frames;  ///< route_frame numbered as the season's frames.
-  int slow_frames = 0;
-  int slow_begin = -1;
-  int fast_frames = 0;
-  int fast_begin = -1;
-};
-
-Drive makeDrive(const std::string& name, double rate, const std::vector<cv::Mat>& season, int begin, int end,
-                std::uint64_t seed) {
-  CameraDriveSettings settings;
-  settings.seed = seed;
-  // A short route (a test's) keeps room for the stops beside the stretches.
-  settings.slow_frames = std::min(settings.slow_frames, (end - begin) / 4);
-  settings.fast_frames = std::min(settings.fast_frames, (end - begin) / 4);
-  const CameraDrive plan(end - begin, settings);
-  const std::vector<cv::Mat> route(season.begin() + begin, season.begin() + end);
-  Drive drive{name,
-              rate,
-              renderDrive(plan, route),
-              plan.frames(),
-              settings.slow_frames,
-              plan.slowBegin() < 0 ? -1 : begin + plan.slowBegin(),
-              settings.fast_frames,
-              plan.fastBegin() < 0 ? -1 : begin + plan.fastBegin()};
-  for (DriveFrame& frame : drive.frames) frame.route_frame += begin;
-  return drive;
-}
-
-int stoppedFrames(const Drive& drive) {
-  return static_cast<int>(std::count_if(drive.frames.begin(), drive.frames.end(),
-                                        [](const DriveFrame& f) { return f.kind == DriveFrameKind::kStopped; }));
-}
-
-/// What one method did on one drive in continuous mode.
-struct DriveCounts {
-  int keyframes = 0;
-  int stopped_keyframes = 0;  ///< Keyframes among the stopped frames.
-  int queries = 0;
-  int accepted = 0;
-  int right = 0;
-  int wrong = 0;
-  int wrong_route_frames = 0;  ///< Accepted answers wrong were each route frame a place of its own.
-  int standing_right = 0;  ///< Closures restated for the stopped frames a localised keyframe stands for.
-  int standing_wrong = 0;
-  /// The farthest a wrong closure (accepted or restated) lies from what its answer's keyframe stands
-  /// for: how wrong the wrong ones are (0 when there are none). In places (the judge's unit: route
-  /// frames where the recording stood count as one) and in route frames.
-  int largest_wrong_places = 0;
-  int largest_wrong_route_frames = 0;
-  std::vector<bool> stretch_right;       ///< Per 20-frame stretch after the warm-up: an accepted right answer.
-  std::vector<bool> stretch_keyframed;   ///< ... and whether a keyframe came in it (else no question is asked).
-  std::vector<std::string> stretch_answers;  ///< MRS_VPR_SHOW_MISSED: answerNote() of each answer about it.
-};
-
-/// One answer as MRS_VPR_SHOW_MISSED lists it: the localised route frame, the confidence, and A
-/// (accepted), x (wrong), b (at a velocity bound) or r (repeated view).
-std::string answerNote(int route_frame, const Match& match, bool right) {
-  char note[64];
-  std::snprintf(note, sizeof note, " %d:%.1f%s%s%s%s", route_frame, match.confidence, match.accepted ? "A" : "",
-                right ? "" : "x", match.at_velocity_bound ? "b" : "", match.repeated_view ? "r" : "");
-  return note;
-}
-
-/// Frames of `frames` whose route frame lies in [begin, begin + count): those of a stretch driven at
-/// another speed.
-long framesWithin(const std::vector<DriveFrame>& frames, int begin, int count) {
-  return static_cast<long>(std::count_if(frames.begin(), frames.end(), [&](const DriveFrame& frame) {
-    return begin >= 0 && frame.route_frame >= begin && frame.route_frame < begin + count;
-  }));
-}
-
-/// MRS_VPR_SHOW_MISSED: each stretch of the revisit that no accepted right answer confirmed, with its
-/// route frames; how many of its frames stood, were half-speed copies, were driven at double speed,
-/// or show route frames that the map drive drove at double or half speed; whether a keyframe came; and
-/// the answers about its keyframes. Stretches without a keyframe are confirmed only by a closure
-/// restated for their stop (standing_frames.hpp).
-void printMissedStretches(const Drive& map, const Drive& revisit, const DriveCounts& count) {
-  for (std::size_t stretch = 0; stretch < count.stretch_right.size(); ++stretch) {
-    if (count.stretch_right[stretch]) continue;
-    const auto first = revisit.frames.begin() + static_cast<std::ptrdiff_t>(kWarmUpFrames + stretch * kStretchFrames);
-    const std::vector<DriveFrame> frames(first, first + kStretchFrames);
-    const auto kindCount = [&](DriveFrameKind kind) {
-      return static_cast<long>(std::count_if(frames.begin(), frames.end(),
-                                             [&](const DriveFrame& frame) { return frame.kind == kind; }));
-    };
-    std::fprintf(stderr,
-                 "missed stretch: %s route frames %d..%d, stopped %ld, slow %ld, fast %ld, map fast %ld, map slow "
-                 "%ld, keyframed %d, answers:%s\n",
-                 revisit.name.c_str(), frames.front().route_frame, frames.back().route_frame,
-                 kindCount(DriveFrameKind::kStopped), kindCount(DriveFrameKind::kSlowCopy),
-                 framesWithin(frames, revisit.fast_begin, revisit.fast_frames),
-                 framesWithin(frames, map.fast_begin, map.fast_frames),
-                 framesWithin(frames, map.slow_begin, map.slow_frames), count.stretch_keyframed[stretch] ? 1 : 0,
-                 count.stretch_answers[stretch].c_str());
-  }
-}
-
-/// The replay so far: the route frame and stamp of every frame of both drives, one after the other,
-/// and which of them became keyframes.
-class ReplayLog {
- public:
-  /// Records the next frame; returns its index in the replay.
-  int add(int route_frame, Stamp stamp) {
-    route_of_frame_.push_back(route_frame);
-    stamp_of_frame_.push_back(stamp);
-    return frames() - 1;
-  }
-  void markKeyframe(int frame) { keyframe_frame_.push_back(frame); }
-
-  int frames() const { return static_cast<int>(route_of_frame_.size()); }
-  int routeFrame(int frame) const { return route_of_frame_.at(static_cast<std::size_t>(frame)); }
-  Stamp stamp(int frame) const { return stamp_of_frame_.at(static_cast<std::size_t>(frame)); }
-  /// The first frame stamped `stamp` or later.
-  int frameAt(Stamp stamp) const {
-    return static_cast<int>(std::lower_bound(stamp_of_frame_.begin(), stamp_of_frame_.end(), stamp) -
-                            stamp_of_frame_.begin());
-  }
-  int keyframes() const { return static_cast<int>(keyframe_frame_.size()); }
-  int keyframeFrame(int keyframe) const { return keyframe_frame_.at(static_cast<std::size_t>(keyframe)); }
-  int routeOfKeyframe(int keyframe) const { return routeFrame(keyframeFrame(keyframe)); }
-
-  /// The frames keyframe `keyframe` stands for: itself and those after it up to the next keyframe
-  /// (or the newest frame).
-  std::pair<int, int> framesOf(int keyframe) const {
-    const auto next = static_cast<std::size_t>(keyframe) + 1;
-    return {keyframeFrame(keyframe), (next < keyframe_frame_.size() ? keyframe_frame_[next] : frames()) - 1};
-  }
-
-  /// From `frame` to the nearest frame `keyframe` stands for, in the positions that
-  /// `position_of_route_frame` gives route frames (places, or the route frames themselves).
-  int distance(int frame, int keyframe, const std::vector<int>& position_of_route_frame) const {
-    const int position = position_of_route_frame.at(static_cast<std::size_t>(routeFrame(frame)));
-    const auto [first, last] = framesOf(keyframe);
-    int off = std::numeric_limits<int>::max();
-    for (int f = first; f <= last; ++f) {
-      off = std::min(off, std::abs(position_of_route_frame.at(static_cast<std::size_t>(routeFrame(f))) - position));
-    }
-    return off;
-  }
-
- private:
-  std::vector<int> route_of_frame_;
-  std::vector<Stamp> stamp_of_frame_;
-  std::vector<int> keyframe_frame_;
-};
-
-/// MRS_VPR_SHOW_FALSE: a wrong closure, with the route frames of the test sequence's keyframes (* the
-/// localised one) and of the map's keyframes around the answer (* the answer): where their spacing
-/// differs, and how. The test sequence is keyframes [end - recent, end); `drive_frame` is the drive's
-/// frame at which it was asked.
-void printFalseClosure(const std::string& method, const std::string& drive, int drive_frame, const ReplayLog& log,
-                       const Match& match, int end, int recent, int anchor) {
-  const auto [first, last] = log.framesOf(match.reference_index);
-  std::fprintf(stderr,
-               "false closure: %s %s frame %d, localised keyframe at route frame %d -> keyframe %d, route "
-               "frames %d..%d, confidence %.2f, velocity %.2f\n",
-               method.c_str(), drive.c_str(), drive_frame, log.routeOfKeyframe(anchor), match.reference_index,
-               log.routeFrame(first), log.routeFrame(last), match.confidence, match.velocity);
-  std::fprintf(stderr, "  test keyframes:");
-  for (int q = end - recent; q < end; ++q) std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == anchor ? "*" : "");
-  std::fprintf(stderr, "\n  map keyframes: ");
-  const int shown_end = std::min(log.keyframes(), match.reference_index + recent);
-  for (int q = std::max(0, match.reference_index - recent); q < shown_end; ++q) {
-    std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == match.reference_index ? "*" : "");
-  }
-  std::fprintf(stderr, "\n");
-}
 
 /**
  * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,
@@ -476,58 +299,6 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
                          &reference_keyframes);
     per_frame("camera drives per-frame (mrs_vpr_eval)", method, summary, reference_keyframes,
               input.sequence.sequence_length);
-  }
-}
-
-void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
-  // The target for a revisit: accepted right closures in this share of its stretches.
-  constexpr double kStretchTarget = 0.7;
-  struct Totals {
-    int revisits = 0;
-    int wrong = 0;
-    int wrong_route_frames = 0;
-    int restated_wrong = 0;
-    int largest_wrong_places = 0;  ///< Over the revisits.
-    int largest_wrong_route_frames = 0;
-    int accepted = 0;
-    double share_sum = 0.0;
-    int reaching_target = 0;
-    int without_wrong = 0;
-    int map_accepted = 0;
-    int map_queries = 0;
-  };
-  std::map<std::string, Totals> by_method;
-  for (const nlohmann::json& row : continuous_rows) {
-    Totals& totals = by_method[row.at("method").get<std::string>()];
-    if (row.at("out_of_map").get<bool>()) {
-      totals.map_accepted += row.at("accepted").get<int>();
-      totals.map_queries += row.at("queries").get<int>();
-      continue;
-    }
-    ++totals.revisits;
-    const int wrong = row.at("accepted_wrong").get<int>();
-    const int restated_wrong = row.at("restated_wrong").get<int>();
-    totals.wrong += wrong;
-    totals.wrong_route_frames += row.at("accepted_wrong_by_route_frame").get<int>();
-    totals.restated_wrong += restated_wrong;
-    totals.largest_wrong_places = std::max(totals.largest_wrong_places, row.at("largest_wrong_error_places").get<int>());
-    totals.largest_wrong_route_frames =
-        std::max(totals.largest_wrong_route_frames, row.at("largest_wrong_error_route_frames").get<int>());
-    totals.accepted += row.at("accepted").get<int>();
-    const double share = row.at("stretch_share").is_null() ? 0.0 : row.at("stretch_share").get<double>();
-    totals.share_sum += share;
-    totals.reaching_target += share >= kStretchTarget ? 1 : 0;
-    totals.without_wrong += wrong + restated_wrong == 0 ? 1 : 0;
-  }
-  for (const auto& [method, t] : by_method) {
-    std::printf("drives of %d seeds, %s: revisits accepted %d, wrong %d (by route frame %d), restated wrong %d, "
-                "wrong by up to %d places (%d route frames); "
-                "stretches confirmed %.3f on average, %d of %d revisits at %.0f%% or more, %d without a wrong "
-                "closure; map drives accepted %d of %d answers\n",
-                t.revisits, method.c_str(), t.accepted, t.wrong, t.wrong_route_frames, t.restated_wrong,
-                t.largest_wrong_places, t.largest_wrong_route_frames,
-                t.revisits > 0 ? t.share_sum / t.revisits : std::nan(""), t.reaching_target, t.revisits,
-                100.0 * kStretchTarget, t.without_wrong, t.map_accepted, t.map_queries);
   }
 }
 

@@ -54,13 +54,5 @@ using PerFrameRow = std::function<void(const std::string& setting, const std::st
 void runCameraDrives(const CameraDriveInput& input, const std::function<void(const std::vector<nlohmann::json>&)>& add,
                      const PerFrameRow& per_frame);
 
-/**
- * Totals over the drives of several seeds, per method, from runCameraDrives' continuous-mode rows:
- * the revisits' wrong closures (by places and by route frames), restated wrong ones, the mean share of
- * stretches confirmed, the revisits that reach 70% and those without a wrong closure, and what the
- * map drives accepted (all of it wrong).
- */
-void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows);
-
 }  // namespace benchmark
 }  // namespace mrs_vpr

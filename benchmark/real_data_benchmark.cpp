@@ -47,6 +47,7 @@
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "tools/tool_main.hpp"
 #include "camera_drive_rows.hpp"
+#include "drive_seed_summary.hpp"
 #include "first_pass_matcher.hpp"
 #include "real_benchmark_options.hpp"
 #include "real_references.hpp"
