@@ -1,6 +1,6 @@
 // The metadata rows that record a map's front end, read back as the front end they were written of.
 
-#include "front_end_metadata.hpp"
+#include "store/front_end_metadata.hpp"
 
 #include <gtest/gtest.h>
 
