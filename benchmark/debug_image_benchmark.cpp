@@ -27,10 +27,12 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/visualization/match_image.hpp"
 #include "tools/descriptor_options.hpp"
+#include "tools/stopwatch.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
 namespace po = boost::program_options;
+using mrs_vpr::tools::secondsSince;
 
 namespace {
 
@@ -105,10 +107,6 @@ std::optional<Options> parse(int argc, char** argv) {
   return options;
 }
 
-double millisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// The upper median (median.hpp), as the figures in doc/debug_image.md were taken.
 double median(std::vector<double> values) { return mrs_vpr::upperMedian(values); }
 
@@ -162,18 +160,18 @@ void run(const Options& options) {
         for (int run = 0; run < options.runs; ++run) {
           auto start = std::chrono::steady_clock::now();
           answer = recognizer.match(test, method);
-          plain_ms = std::min(plain_ms, millisecondsSince(start));
+          plain_ms = std::min(plain_ms, 1e3 * secondsSince(start));
           mrs_vpr::MatchExplanation explanation;
           start = std::chrono::steady_clock::now();
           explained_answer = recognizer.match(test, method, &explanation);
-          explained_ms = std::min(explained_ms, millisecondsSince(start));
+          explained_ms = std::min(explained_ms, 1e3 * secondsSince(start));
           start = std::chrono::steady_clock::now();
           mrs_vpr::visualization::renderMatchImage(explanation, explained_answer, picture);
-          drawn_ms = std::min(drawn_ms, millisecondsSince(start));
+          drawn_ms = std::min(drawn_ms, 1e3 * secondsSince(start));
           start = std::chrono::steady_clock::now();
           mrs_vpr::explainMatch(reference.view(), test, explained_answer.match, recognizer.parameters().sequence,
                                 recognizer.parameters().descriptor);
-          explain_ms = std::min(explain_ms, millisecondsSince(start));
+          explain_ms = std::min(explain_ms, 1e3 * secondsSince(start));
         }
         plain.push_back(plain_ms);
         explained.push_back(explained_ms);

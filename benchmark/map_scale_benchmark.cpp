@@ -47,10 +47,13 @@
 #include "map_scale_options.hpp"
 #include "row_tally.hpp"
 #include "scale_map.hpp"
-#include "stopwatch.hpp"
+#include "tools/stopwatch.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
+
+using tools::Clock;
+using tools::secondsSince;
 namespace {
 
 constexpr double kPeriodSeconds = 1.0;  // launch/mrs_vpr.launch's auto_query_period

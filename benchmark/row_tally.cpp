@@ -5,10 +5,13 @@
 #include <cstdio>
 
 #include "mrs_vpr/median.hpp"
-#include "stopwatch.hpp"
+#include "tools/stopwatch.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
+
+using tools::Clock;
+using tools::secondsSince;
 
 double upperMedianOf(std::vector<double> values) { return values.empty() ? 0.0 : upperMedian(values); }
 

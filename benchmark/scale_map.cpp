@@ -10,10 +10,13 @@
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/store/map_database.hpp"
-#include "stopwatch.hpp"
+#include "tools/stopwatch.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
+
+using tools::Clock;
+using tools::secondsSince;
 
 Augmenter::Look Augmenter::nextLook(int flip) {
   std::uniform_real_distribution<double> shift_x(-6.0, 6.0);

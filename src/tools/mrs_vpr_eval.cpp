@@ -1,7 +1,6 @@
 // mrs_vpr_eval: offline evaluation of `seqslam` and `mrs` on two traversals (image folders or bags)
 // with either protocol of the paper notes: per-frame (SeqSLAM style) or global localisation.
 
-#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -24,18 +23,16 @@
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "stopwatch.hpp"
 #include "summary_json.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
-using Clock = std::chrono::steady_clock;
 
 namespace mrs_vpr {
 namespace tools {
 namespace {
-
-double secondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 
 /// The keyframes of both traversals: the records name frames, the search sees keyframes.
 struct Keyframed {

@@ -1,11 +1,11 @@
 #pragma once
 
-// Wall time for the map-scale benchmark's figures.
+// Wall time for the figures the tools and the benchmarks print.
 
 #include <chrono>
 
 namespace mrs_vpr {
-namespace benchmark {
+namespace tools {
 
 using Clock = std::chrono::steady_clock;
 
@@ -14,5 +14,5 @@ inline double secondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-}  // namespace benchmark
+}  // namespace tools
 }  // namespace mrs_vpr
