@@ -28,11 +28,11 @@
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
-using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
-
 namespace mrs_vpr {
 namespace tools {
 namespace {
+
+using json = OrderedJson;
 
 /// The keyframes of both traversals: the records name frames, the search sees keyframes.
 struct Keyframed {
