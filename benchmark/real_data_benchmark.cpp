@@ -24,10 +24,7 @@
 //                          [--drive-alignment-slack S] [--drive-accept-threshold C] [--diagnose] [--json FILE]
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <functional>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -42,261 +39,21 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/memory_reuse.hpp"
-#include "mrs_vpr/mrs_matcher.hpp"
-#include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "tools/tool_main.hpp"
 #include "camera_drive_rows.hpp"
 #include "drive_seed_summary.hpp"
 #include "first_pass_matcher.hpp"
+#include "query_records.hpp"
 #include "real_benchmark_options.hpp"
 #include "real_references.hpp"
 #include "real_report.hpp"
+#include "robustness_rows.hpp"
 #include "truth_diagnosis.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
 namespace {
-
-/// One method's answers to the test sequences of `length` frames of `query` that end at `ends`, in
-/// `map`; the sequence ending at frame e has the true places truth_of(e). With `diagnosis`, MRS's
-/// levels are traced into it.
-std::vector<QueryRecord> globalRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
-                                       const DescriptorSequence& query, const std::vector<int>& ends, int length,
-                                       const std::function<std::vector<int>(int)>& truth_of, TruthDiagnosis* diagnosis,
-                                       int tolerance, double accept_threshold) {
-  std::vector<QueryRecord> records;
-  const auto* mrs = dynamic_cast<const mrs_vpr::MrsMatcher*>(&matcher);
-  const auto* first_pass = dynamic_cast<const FirstPassMatcher*>(&matcher);
-  for (int end : ends) {
-    const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
-    std::vector<mrs_vpr::MrsLevelTrace> trace;
-    const auto start = std::chrono::steady_clock::now();
-    const mrs_vpr::Match match = diagnosis == nullptr ? matcher.match(map, test)
-                                 : mrs != nullptr     ? mrs->match(map, test, &trace)
-                                 : first_pass != nullptr ? first_pass->match(map, test, &trace)
-                                                         : matcher.match(map, test);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    const QueryRecord& record = records.emplace_back(mrs_vpr::queryRecordOf(end, truth_of(end), match, ms));
-    if (diagnosis != nullptr) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
-  }
-  return records;
-}
-
-/// Runs one method on test sequences ending at the given frames of the route, in `reference`.
-std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
-                                   const DescriptorSequence& query, const std::vector<int>& ends, int length,
-                                   bool out_of_map, TruthDiagnosis* diagnosis, int tolerance, double accept_threshold) {
-  const auto records = globalRecords(
-      matcher, reference.descriptors.view(), query, ends, length,
-      [&](int end) { return out_of_map ? std::vector<int>{} : truthOf(reference, end); },
-      out_of_map ? nullptr : diagnosis, tolerance, accept_threshold);
-  if (out_of_map && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
-    for (const QueryRecord& record : records) {
-      if (!record.accepted) continue;
-      std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
-                   matcher.name().c_str(), length, record.query_index, record.predicted_index,
-                   reference.route_frame[static_cast<std::size_t>(record.predicted_index)], record.confidence);
-    }
-  }
-  return records;
-}
-
-/// `params` for the per-frame rows: sequences of `length` frames at OpenSeqSLAM's velocity step 0.1,
-/// enough for short sequences.
-mrs_vpr::Parameters perFrameParams(const mrs_vpr::Parameters& params, int length) {
-  mrs_vpr::Parameters per_frame = params;
-  per_frame.sequence.sequence_length = length;
-  per_frame.sequence.velocity_step = 0.1;
-  return per_frame;
-}
-
-/// The answers to every frame of `query` with a full sequence, in `map`; frame i's true places are
-/// `truth_of(i)`.
-std::vector<QueryRecord> perFrameRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
-                                         mrs_vpr::SequenceView query,
-                                         const std::function<std::vector<int>(int)>& truth_of) {
-  const auto start = std::chrono::steady_clock::now();
-  const std::vector<mrs_vpr::Match> matches = matcher.matchEveryFrame(map, query);
-  const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  std::vector<QueryRecord> records;
-  for (int i = 0; i < query.count; ++i) {
-    const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
-    if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
-    records.push_back(mrs_vpr::queryRecordOf(i, truth_of(i), match, total_ms / query.count));
-  }
-  return records;
-}
-
-std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
-                                     const DescriptorSequence& query, int first, int last, bool out_of_map) {
-  auto records = perFrameRecords(matcher, reference.descriptors.view(), query.view(first, last), [&](int i) {
-    return out_of_map ? std::vector<int>{} : truthOf(reference, first + i);
-  });
-  for (QueryRecord& record : records) record.query_index += first;
-  return records;
-}
-
-/// Out-of-map queries from another world: the corridor's frames against a map of the Nordland summer
-/// frames, and Nordland winter frames of the reported part against a map of the corridor.
-void runOtherWorld(const RealFrames& frames, const DescriptorSequence& summer, const DescriptorSequence& winter,
-                   const mrs_vpr::DescriptorExtractor& extractor, const mrs_vpr::Parameters& params,
-                   const RealBenchmarkOptions& options, int part_begin, int part_end, Report& report) {
-  const Reference nordland = stretchOf(summer, 0, summer.size());
-  Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
-  corridor.route_frame.assign(static_cast<std::size_t>(corridor.descriptors.size()), -1);
-  for (int length : {10, 50}) {
-    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
-    for (const std::string& method : options.methods) {
-      const auto matcher = makeBenchMatcher(method, per_frame);
-      const int corridor_frames = corridor.descriptors.size();
-      report.row("corridor in Nordland map ds=" + std::to_string(length), method,
-                 mrs_vpr::summarise(runPerFrame(*matcher, nordland, corridor.descriptors, 0, corridor_frames, true), 2),
-                 {"per-frame", true, nordland.descriptors.size(), length});
-      report.row("Nordland in corridor map ds=" + std::to_string(length), method,
-                 mrs_vpr::summarise(runPerFrame(*matcher, corridor, winter, part_begin, part_end, true), 2),
-                 {"per-frame", true, corridor_frames, length});
-    }
-  }
-}
-
-/// Maps of a few to a few hundred frames: kStretches stretches of the summer frames of each size.
-/// Known ground: stretches of the reported part, queried by the same stretch's winter frames. Out of
-/// the map: stretches of the other part, queried by the whole reported part.
-void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
-                  const RealBenchmarkOptions& options, int part_begin, int part_end, int other_begin, int other_end,
-                  bool out_of_map, Report& report) {
-  constexpr int kStretches = 3;
-  const auto stretchBegin = [](int low, int high, int size, int i) {
-    return low + i * (high - low - size) / (kStretches - 1);
-  };
-  for (int length : {10, 50}) {
-    const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
-    for (int size : {20, 50, 100, 150, 200, 300}) {
-      if (size <= length) continue;
-      const std::string setting = " M=" + std::to_string(size) + " ds=" + std::to_string(length);
-      for (const std::string& method : options.methods) {
-        const auto matcher = makeBenchMatcher(method, per_frame);
-        std::vector<QueryRecord> known;
-        std::vector<QueryRecord> unknown;
-        for (int i = 0; i < kStretches; ++i) {
-          const int begin = stretchBegin(part_begin, part_end, size, i);
-          const auto records =
-              runPerFrame(*matcher, stretchOf(summer, begin, begin + size), winter, begin, begin + size, false);
-          known.insert(known.end(), records.begin(), records.end());
-          if (!out_of_map) continue;
-          const int other = stretchBegin(other_begin, other_end, size, i);
-          const auto wrong =
-              runPerFrame(*matcher, stretchOf(summer, other, other + size), winter, part_begin, part_end, true);
-          unknown.insert(unknown.end(), wrong.begin(), wrong.end());
-        }
-        report.row("small maps" + setting, method, mrs_vpr::summarise(known, 2), {"per-frame", false, size, length});
-        if (!out_of_map) continue;
-        report.row("out-of-map small maps" + setting, method, mrs_vpr::summarise(unknown, 2),
-                   {"per-frame", true, size, length});
-      }
-    }
-  }
-}
-
-/// Seeded ends of test sequences of `length` frames that lie wholly inside frames [low, high], so that
-/// out-of-map queries share no frame with the other part's reference.
-std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
-  const int first_end = low + length - 1;
-  const std::vector<mrs_vpr::TestSequence> tests =
-      mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
-  std::vector<int> ends;
-  for (const mrs_vpr::TestSequence& test : tests) ends.push_back(first_end + test.start);
-  return ends;
-}
-
-/// The reported part's winter frames replayed at speeds the route was not driven at, against the
-/// summer frames of the whole route: backwards, at twice the speed (every other frame), at half
-/// (every frame twice), and stopping for kStopFrames frames (one second at 30 Hz) after every
-/// kStopEvery. Every place is in the map, but the default velocities (0.8 to 1.2 map frames a query
-/// frame) fit none of these, or a stop only in part. Per-frame rows at ds = 10 and 50, global rows
-/// at the benchmark's lengths, scored against the true places: an accepted answer must still be right.
-void runReplays(const DescriptorSequence& summer, const DescriptorSequence& winter, const mrs_vpr::Parameters& params,
-                const RealBenchmarkOptions& options, int part_begin, int part_end, Report& report) {
-  struct Replay {
-    std::string name;
-    std::vector<int> frames;  ///< The winter frame of each replayed frame.
-  };
-  constexpr int kStopEvery = 100;
-  constexpr int kStopFrames = 30;
-  std::vector<Replay> replays{
-      {"backwards", {}}, {"at twice the speed", {}}, {"at half the speed", {}}, {"with stops", {}}};
-  for (int frame = part_end - 1; frame >= part_begin; --frame) replays[0].frames.push_back(frame);
-  for (int frame = part_begin; frame < part_end; frame += 2) replays[1].frames.push_back(frame);
-  for (int frame = part_begin; frame < part_end; ++frame) {
-    replays[2].frames.insert(replays[2].frames.end(), 2, frame);
-    const bool stop = (frame - part_begin) % kStopEvery == kStopEvery - 1;
-    replays[3].frames.insert(replays[3].frames.end(), stop ? 1 + kStopFrames : 1, frame);
-  }
-  for (const Replay& replay : replays) {
-    DescriptorSequence query(winter.descriptorSize());
-    for (const int frame : replay.frames) query.append(winter.descriptorRow(frame));
-    const auto truth_of = [&](int i) { return std::vector<int>{replay.frames[static_cast<std::size_t>(i)]}; };
-    // Global queries, as a robot's ~query of N frames: the same seeded ends for both methods.
-    for (int length : options.global ? options.lengths : std::vector<int>{}) {
-      const std::vector<int> ends = queryEnds(0, query.size() - 1, length, options.queries, options.seed);
-      for (const std::string& method : options.methods) {
-        const auto matcher = makeBenchMatcher(method, params);
-        const auto records = globalRecords(*matcher, summer.view(), query, ends, length, truth_of, nullptr,
-                                           options.tolerance, params.sequence.accept_threshold);
-        report.row("global winter " + replay.name + " N=" + std::to_string(length) + " M=" +
-                       std::to_string(summer.size()),
-                   method, mrs_vpr::summarise(records, options.tolerance), {"global", false, summer.size(), length});
-      }
-    }
-    for (int length : options.per_frame ? std::vector<int>{10, 50} : std::vector<int>{}) {
-      const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
-      for (const std::string& method : options.methods) {
-        const auto matcher = makeBenchMatcher(method, per_frame);
-        const auto records = perFrameRecords(*matcher, summer.view(), query.view(), truth_of);
-        report.row("winter " + replay.name + " M=" + std::to_string(summer.size()) + " ds=" + std::to_string(length),
-                   method, mrs_vpr::summarise(records, 2), {"per-frame", false, summer.size(), length});
-      }
-    }
-  }
-}
-
-/// The node's continuous mode on one traversal: a robot drives the whole route in summer, then the
-/// reported part again in winter, and after every frame asks where its newest `length` frames lie
-/// among the older ones (PlaceRecognizer::matchRecent, the node's default recent_exclusion). On the
-/// first traversal no place comes back, so every accepted answer is a false loop closure; on the
-/// second, the summer frame of the same place is the truth. The map starts empty and grows.
-void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& winter,
-                   const mrs_vpr::Parameters& params, const RealBenchmarkOptions& options, int part_begin, int part_end,
-                   Report& report) {
-  constexpr int kLength = 10;  // The node's auto_query_frames default: sequence/sequence_length.
-  const mrs_vpr::Parameters continuous = perFrameParams(params, kLength);
-  const int route = summer.size();
-  for (const std::string& method : options.methods) {
-    if (method == "mrs-first-pass") continue;  // Not a method of PlaceRecognizer, whose mrs takes it where it pays.
-    mrs_vpr::PlaceRecognizer recognizer(continuous);
-    const int first_query = 2 * kLength + recognizer.recognizerParameters().recent_exclusion;
-    std::vector<QueryRecord> first_traversal;
-    std::vector<QueryRecord> revisit;
-    const int frames = route + part_end - part_begin;
-    for (int t = 0; t < frames; ++t) {
-      const bool second = t >= route;
-      const int route_frame = second ? part_begin + t - route : t;
-      recognizer.addDescriptor((second ? winter : summer).descriptorRow(route_frame));
-      if (t + 1 < first_query) continue;
-      const auto start = std::chrono::steady_clock::now();
-      const mrs_vpr::Match match = recognizer.matchRecent(kLength, method).match;
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      // The summer frame of a place has the place's route index in the map.
-      (second ? revisit : first_traversal)
-          .push_back(mrs_vpr::queryRecordOf(t, second ? std::vector<int>{route_frame} : std::vector<int>{}, match, ms));
-    }
-    report.row("continuous, first traversal ds=10", method, mrs_vpr::summarise(first_traversal, 2),
-               {"continuous", true, route, kLength});
-    report.row("continuous, revisit in winter ds=10", method, mrs_vpr::summarise(revisit, 2),
-               {"continuous", false, route, kLength});
-  }
-}
 
 /// The camera drives (camera_drive_rows.hpp) of --drive-seeds seeds from --seed, then, for more than
 /// one seed, the totals over them.

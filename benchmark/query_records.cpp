@@ -1,0 +1,95 @@
+#include "query_records.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+
+#include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/mrs_matcher.hpp"
+#include "first_pass_matcher.hpp"
+
+namespace mrs_vpr {
+namespace benchmark {
+
+std::vector<QueryRecord> globalRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
+                                       const DescriptorSequence& query, const std::vector<int>& ends, int length,
+                                       const std::function<std::vector<int>(int)>& truth_of, TruthDiagnosis* diagnosis,
+                                       int tolerance, double accept_threshold) {
+  std::vector<QueryRecord> records;
+  const auto* mrs = dynamic_cast<const mrs_vpr::MrsMatcher*>(&matcher);
+  const auto* first_pass = dynamic_cast<const FirstPassMatcher*>(&matcher);
+  for (int end : ends) {
+    const mrs_vpr::SequenceView test = query.view(end - length + 1, end + 1);
+    std::vector<mrs_vpr::MrsLevelTrace> trace;
+    const auto start = std::chrono::steady_clock::now();
+    const mrs_vpr::Match match = diagnosis == nullptr ? matcher.match(map, test)
+                                 : mrs != nullptr     ? mrs->match(map, test, &trace)
+                                 : first_pass != nullptr ? first_pass->match(map, test, &trace)
+                                                         : matcher.match(map, test);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const QueryRecord& record = records.emplace_back(mrs_vpr::queryRecordOf(end, truth_of(end), match, ms));
+    if (diagnosis != nullptr) diagnosis->add(trace, record.true_indices, tolerance, accept_threshold);
+  }
+  return records;
+}
+
+std::vector<QueryRecord> runGlobal(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                   const DescriptorSequence& query, const std::vector<int>& ends, int length,
+                                   bool out_of_map, TruthDiagnosis* diagnosis, int tolerance, double accept_threshold) {
+  const auto records = globalRecords(
+      matcher, reference.descriptors.view(), query, ends, length,
+      [&](int end) { return out_of_map ? std::vector<int>{} : truthOf(reference, end); },
+      out_of_map ? nullptr : diagnosis, tolerance, accept_threshold);
+  if (out_of_map && std::getenv("MRS_VPR_SHOW_FALSE") != nullptr) {
+    for (const QueryRecord& record : records) {
+      if (!record.accepted) continue;
+      std::fprintf(stderr, "false closure: %s N=%d query end %d -> reference %d (route frame %d), confidence %.2f\n",
+                   matcher.name().c_str(), length, record.query_index, record.predicted_index,
+                   reference.route_frame[static_cast<std::size_t>(record.predicted_index)], record.confidence);
+    }
+  }
+  return records;
+}
+
+mrs_vpr::Parameters perFrameParams(const mrs_vpr::Parameters& params, int length) {
+  mrs_vpr::Parameters per_frame = params;
+  per_frame.sequence.sequence_length = length;
+  per_frame.sequence.velocity_step = 0.1;
+  return per_frame;
+}
+
+std::vector<QueryRecord> perFrameRecords(const mrs_vpr::SequenceMatcher& matcher, mrs_vpr::SequenceView map,
+                                         mrs_vpr::SequenceView query,
+                                         const std::function<std::vector<int>(int)>& truth_of) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<mrs_vpr::Match> matches = matcher.matchEveryFrame(map, query);
+  const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  std::vector<QueryRecord> records;
+  for (int i = 0; i < query.count; ++i) {
+    const mrs_vpr::Match& match = matches[static_cast<std::size_t>(i)];
+    if (match.reference_index < 0 && match.comparisons == 0) continue;  // No full sequence.
+    records.push_back(mrs_vpr::queryRecordOf(i, truth_of(i), match, total_ms / query.count));
+  }
+  return records;
+}
+
+std::vector<QueryRecord> runPerFrame(const mrs_vpr::SequenceMatcher& matcher, const Reference& reference,
+                                     const DescriptorSequence& query, int first, int last, bool out_of_map) {
+  auto records = perFrameRecords(matcher, reference.descriptors.view(), query.view(first, last), [&](int i) {
+    return out_of_map ? std::vector<int>{} : truthOf(reference, first + i);
+  });
+  for (QueryRecord& record : records) record.query_index += first;
+  return records;
+}
+
+std::vector<int> queryEnds(int low, int high, int length, int count, std::uint64_t seed) {
+  const int first_end = low + length - 1;
+  const std::vector<mrs_vpr::TestSequence> tests =
+      mrs_vpr::globalQueries(high - first_end + 1, 1, count, seed);  // Positions in [0, span).
+  std::vector<int> ends;
+  for (const mrs_vpr::TestSequence& test : tests) ends.push_back(first_end + test.start);
+  return ends;
+}
+
+}  // namespace benchmark
+}  // namespace mrs_vpr
