@@ -1,0 +1,17 @@
+#pragma once
+
+// What this process uses of the machine: resident memory and CPU time, as the benchmarks report them.
+
+#include <utility>
+
+namespace mrs_vpr {
+namespace benchmark {
+
+/// Resident and peak resident memory of this process [bytes], from /proc/self/status.
+std::pair<long long, long long> residentBytes();
+
+/// CPU time of this process (every thread) [s].
+double processCpuSeconds();
+
+}  // namespace benchmark
+}  // namespace mrs_vpr
