@@ -1,5 +1,6 @@
 // build_map: a map database from an image folder or a bag, for the node or mrs_vpr_eval to use.
 
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -30,9 +31,10 @@ constexpr const char* kUsage =
     "                 [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
-    "with their stamps, in the SQLite map database MAP.db. A new map is written to MAP.db.part and\n"
-    "renamed only when complete; an existing MAP.db is extended with --append (with the front end it\n"
-    "records, unless one is given) or replaced with --force.\n"
+    "with their stamps and their frame's index in DIR or on T (the frame numbers of mrs_vpr_eval's\n"
+    "ground truth; with --append, numbered on from the map's last frame), in the SQLite map database\n"
+    "MAP.db. A new map is written to MAP.db.part and renamed only when complete; an existing MAP.db is\n"
+    "extended with --append (with the front end it records, unless one is given) or replaced with --force.\n"
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
     "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n"
     "Otherwise a frame is kept once its view has changed by C of the difference between unrelated\n"
@@ -118,7 +120,13 @@ int run(int argc, char** argv) {
     // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
     // on from an appended map's last keyframes.
     mrs_vpr::AppearanceKeyframes appearance(params, keyframes ? 0.0 : min_appearance_change);
-    if (appearance.enabled()) map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { appearance.keep(frame.descriptor); });
+    // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
+    // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame.
+    std::int64_t next_index = 0;
+    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+      if (appearance.enabled()) appearance.keep(frame.descriptor);
+      next_index = frame.sequence + 1;
+    });
     int too_similar = 0;
     std::vector<mrs_vpr::StoredFrame> batch;
     const auto flush = [&] {
@@ -129,6 +137,7 @@ int run(int argc, char** argv) {
     mrs_vpr::tools::readTraversal(
         images.empty() ? bag_path : images, topic, "map", extractor,
         [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+          const std::int64_t index = next_index++;
           if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
           if (!appearance.wants(descriptor)) {
             appearance.skip(descriptor);
@@ -136,7 +145,7 @@ int run(int argc, char** argv) {
             return;
           }
           appearance.keep(descriptor);
-          batch.push_back({descriptor.clone(), stamp, "", -1});
+          batch.push_back({descriptor.clone(), stamp, "", index});
           if (batch.size() >= kBatch) flush();
         },
         images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -103,6 +104,21 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
 /// A reference given as a map database (*.db) rather than as images.
 bool isMapDatabase(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".db") == 0; }
 
+/// A map database's keyframes as frames of the traversal they were taken from, by the number each
+/// stores (build_map stores the frame's index in its folder or bag), so that the ground truth names
+/// the traversal's frames as it does for the folder itself; nullopt when a keyframe has no number or
+/// the numbers do not increase.
+std::optional<Keyframes> storedFrameNumbers(const std::vector<std::int64_t>& numbers) {
+  Keyframes keyframes;
+  for (const std::int64_t number : numbers) {
+    const bool increasing = keyframes.frames.empty() || number > keyframes.frames.back();
+    if (number < 0 || number >= std::numeric_limits<int>::max() || !increasing) return std::nullopt;
+    keyframes.frames.push_back(static_cast<int>(number));
+  }
+  keyframes.total = keyframes.frames.empty() ? 0 : keyframes.frames.back() + 1;
+  return keyframes;
+}
+
 int run(int argc, char** argv) {
   const Clock::time_point start = Clock::now();
   const std::optional<EvalOptions> parsed = parseEvalOptions(argc, argv);
@@ -152,9 +168,30 @@ int run(int argc, char** argv) {
   };
   Traversal reference;
   if (map) {
-    map->forEachFrame([&](const StoredFrame& frame) { add_to_map(frame.descriptor.clone(), frame.stamp); });
-    reference.frames = recognizer.size();
-    std::cerr << "  reference: " << reference.frames << " frames from the map database " << options.reference << "\n";
+    std::vector<std::int64_t> stored_numbers;
+    map->forEachFrame([&](const StoredFrame& frame) {
+      const std::size_t kept = keyframes.reference.frames.size();
+      add_to_map(frame.descriptor.clone(), frame.stamp);
+      if (keyframes.reference.frames.size() > kept) stored_numbers.push_back(frame.sequence);
+    });
+    if (recognizer.size() == 0) {
+      throw std::invalid_argument("the map database " + options.reference + " holds no frame");
+    }
+    std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
+    if (const std::optional<Keyframes> numbered = storedFrameNumbers(stored_numbers)) {
+      keyframes.reference = *numbered;
+      std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back()
+                << " of its traversal by the numbers it stores\n";
+    } else {
+      std::cerr << ", numbered 0 to " << recognizer.size() - 1 << " in order: it stores no increasing frame numbers"
+                << " (build_map's maps do), so frame i of the ground truth is its i-th keyframe\n";
+    }
+    reference.frames = keyframes.reference.total;
+    if (!options.plots.empty() && plotted_reference.size() != reference.frames) {
+      throw std::invalid_argument("--plots draws every frame of the reference, and the map database " +
+                                  options.reference + " holds " + std::to_string(plotted_reference.size()) + " of " +
+                                  std::to_string(reference.frames) + ": give its image folder or bag instead");
+    }
   } else {
     reference = readTraversal(options.reference, options.topic, "reference", extractor, add_to_map);
     std::cerr << "  reference: " << recognizer.size() << " keyframes of " << reference.frames << " frames\n";

@@ -154,6 +154,28 @@ TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChan
     if (record.at("predicted_index") == 60) EXPECT_EQ(record.at("predicted_last"), 100);
     EXPECT_GE(record.at("predicted_last").get<int>(), record.at("predicted_index").get<int>());
   }
+
+  // The map keeps each keyframe's index in the folder, so that the evaluator judges it by the folder's
+  // frames and gives the folder's figures.
+  const std::string rest = " --query " + path("query") + " --protocol per-frame --sequence-length 10";
+  const CommandResult from_map = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped.db") + rest);
+  ASSERT_EQ(from_map.status, 0) << from_map.err;
+  EXPECT_NE(from_map.err.find("frames 0 to 189 of its traversal by the numbers it stores"), std::string::npos)
+      << from_map.err;
+  const auto summary = [](const json& document) {
+    json figures = document.at("summary");
+    figures.erase("median_time_ms");
+    figures.erase("total_time_s");
+    return figures;
+  };
+  EXPECT_EQ(summary(json::parse(from_map.out)), summary(document));
+  // The plots draw every frame of the reference, which the map does not hold.
+  const CommandResult plots = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped.db") + rest +
+                                  " --plots " + path("stopped_plots"));
+  EXPECT_EQ(plots.status, 1);
+  EXPECT_NE(plots.err.find("holds " + std::to_string(190 - skipped) + " of 190: give its image folder or bag instead"),
+            std::string::npos)
+      << plots.err;
 }
 
 TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {

@@ -33,7 +33,9 @@ struct StoredFrame {
   cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
   Stamp stamp;               ///< Exact, as the camera gave it.
   std::string frame_id;      ///< Camera frame, empty when unknown.
-  std::int64_t sequence = -1;  ///< Camera sequence number, -1 when unknown.
+  /// The image's number: the camera's header.seq for the node, the frame's index in its folder or on
+  /// its bag topic for build_map; -1 when unknown.
+  std::int64_t sequence = -1;
 };
 
 /**
