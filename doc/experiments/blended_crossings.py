@@ -21,9 +21,9 @@ the C++ benchmarks; its unit tests are not updated).
 Needs python3-numpy and python3-opencv. Takes about five minutes.
 """
 
+import argparse
 import csv
 import os
-import sys
 
 import numpy as np
 
@@ -76,9 +76,10 @@ def answers(differences, is_correct, length, blended):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    data = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("data", help="the shared data folder")
+    args = parser.parse_args()
+    data = args.data
     nordland = pipeline.difference_matrix(os.path.join(data, "nordland/winter"),
                                           os.path.join(data, "nordland/summer"), "*.png")
     corridor = pipeline.difference_matrix(os.path.join(data, "corridor/query"),

@@ -8,8 +8,8 @@ accepted answers over every record, and with SPLIT also over the records whose q
 SPLIT ("tune") and from SPLIT on ("check"). For the Nordland halves the split is 891. Needs python3-numpy.
 """
 
+import argparse
 import json
-import sys
 
 import numpy as np
 
@@ -42,13 +42,15 @@ def summary(records):
 
 
 def main():
-    if len(sys.argv) not in (2, 3):
-        sys.exit(__doc__)
-    with open(sys.argv[1], encoding="utf-8") as file:
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("evaluation", type=argparse.FileType("r", encoding="utf-8"), help="an mrs_vpr_eval JSON (--output)")
+    parser.add_argument("split", type=int, nargs="?", help="the first query_index of the check part")
+    args = parser.parse_args()
+    with args.evaluation as file:
         records = json.load(file)["records"]
     print(f"all    {summary(records)}")
-    if len(sys.argv) == 3:
-        split = int(sys.argv[2])
+    if args.split is not None:
+        split = args.split
         print(f"tune   {summary([r for r in records if r['query_index'] < split])}")
         print(f"check  {summary([r for r in records if r['query_index'] >= split])}")
 

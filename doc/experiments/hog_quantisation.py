@@ -14,10 +14,10 @@ velocity-bound rule and 100-rival minimum: both rows share it, so their differen
 Needs python3-numpy and python3-opencv. Takes a few minutes.
 """
 
+import argparse
 import csv
 import glob
 import os
-import sys
 
 import cv2
 import numpy as np
@@ -41,9 +41,10 @@ def differences(query_dir, reference_dir, pattern, quantised):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    data = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("data", help="the shared data folder")
+    args = parser.parse_args()
+    data = args.data
     with open(os.path.join(data, "corridor/ground_truth.csv"), encoding="utf-8") as file:
         truth = {int(row["query_index"]): [int(i) for i in row["matching_ref_indices"].split()]
                  for row in csv.DictReader(file)}

@@ -18,9 +18,9 @@ map's speed) and by the best that was said about it:
   doc/experiments/missed_stretches.py missed.txt
 """
 
+import argparse
 import collections
 import re
-import sys
 
 LINE = re.compile(r"missed stretch: .* route frames (\d+)\.\.(\d+), stopped (\d+), slow (\d+), fast (\d+), "
                   r"map fast (\d+), map slow (\d+), keyframed (\d), answers:(.*)")
@@ -47,11 +47,12 @@ def verdict(answers):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("listing", type=argparse.FileType("r", encoding="utf-8"), help="the benchmark's stderr with MRS_VPR_SHOW_MISSED=1")
+    args = parser.parse_args()
     counts = collections.Counter()
     total = 0
-    with open(sys.argv[1], encoding="utf-8") as lines:
+    with args.listing as lines:
         for line in lines:
             match = LINE.search(line)
             if not match:

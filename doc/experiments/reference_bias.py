@@ -22,10 +22,10 @@ minimum, so its corridor figures rank confidences that the core reports as 0 in 
 Needs python3-numpy and python3-opencv. Takes about two minutes.
 """
 
+import argparse
 import csv
 import glob
 import os
-import sys
 
 import cv2
 import numpy as np
@@ -154,9 +154,10 @@ def summary(correct, confidence):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    data = sys.argv[1]
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("data", help="the shared data folder")
+    args = parser.parse_args()
+    data = args.data
     methods = ("none", "sequence", "history", "history50")
 
     nordland = difference_matrix(os.path.join(data, "nordland/winter"), os.path.join(data, "nordland/summer"), "*.png")
