@@ -7,6 +7,7 @@
 
 #include "list_option.hpp"
 #include "tools/descriptor_options.hpp"
+#include "tools/double_option.hpp"
 #include "tools/tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -62,10 +63,10 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
       ("drive-alignment-slack", po::value(&options.drive_alignment_slack)->default_value(options.drive_alignment_slack),
        "sequence/alignment_slack of the camera-drive rows")
       ("drive-accept-threshold",
-       po::value(&options.drive_accept_threshold)->default_value(options.drive_accept_threshold),
+       tools::doubleOption(&options.drive_accept_threshold),
        "sequence/accept_threshold of the camera-drive rows (the confidence an accepted answer needs)")
       ("drive-min-appearance-change",
-       po::value(&options.drive_min_appearance_change)->default_value(options.drive_min_appearance_change),
+       tools::doubleOption(&options.drive_min_appearance_change),
        "min_appearance_change of the camera-drive rows (keyframes by appearance change)")
       ("drive-alignment", po::value(&options.drive_alignment)->default_value(options.drive_alignment),
        "sequence/alignment of the camera-drive rows: the keyframe an answer localises")
@@ -79,9 +80,9 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
        "mrs: hypotheses carried down from the coarsest level")
       ("min-coarse-frames", po::value(&options.min_coarse_frames)->default_value(options.min_coarse_frames),
        "mrs: fewest rows of a coarse level")
-      ("velocity-min", po::value(&options.velocity_min)->default_value(options.velocity_min),
+      ("velocity-min", tools::doubleOption(&options.velocity_min),
        "slowest reference frames per query frame, every row")
-      ("velocity-max", po::value(&options.velocity_max)->default_value(options.velocity_max),
+      ("velocity-max", tools::doubleOption(&options.velocity_max),
        "fastest reference frames per query frame, every row")
       ("methods", listValue(&options.methods), "seqslam and/or mrs, comma-separated")
       ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");

@@ -31,6 +31,7 @@
 #include "mrs_vpr/synthetic_route.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 #include "tools/descriptor_options.hpp"
+#include "tools/double_option.hpp"
 #include "tools/tool_main.hpp"
 #include "list_option.hpp"
 
@@ -79,7 +80,7 @@ std::optional<Options> parse(int argc, char** argv) {
       ("sequence-length", po::value(&options.sequence_length)->default_value(options.sequence_length),
        "N: frames per test sequence")
       ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences")
-      ("velocity-step", po::value(&options.velocity_step)->default_value(options.velocity_step),
+      ("velocity-step", mrs_vpr::tools::doubleOption(&options.velocity_step),
        "step between the velocities tried, both methods")
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
        "frames of error still counted a success")

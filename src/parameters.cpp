@@ -1,21 +1,12 @@
 #include "mrs_vpr/parameters.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
+
+#include "mrs_vpr/number_text.hpp"
 
 namespace mrs_vpr {
 namespace {
-
-/// Whole numbers as integers (1000000, not 1e+06), others as the stream writes them (1e-10, 0.5).
-std::string formatNumber(double value) {
-  if (std::isfinite(value) && value == std::floor(value) && std::fabs(value) < 1e15) {
-    return std::to_string(static_cast<long long>(value));
-  }
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 std::string join(const std::vector<std::string>& words) {
   std::string text;
@@ -171,12 +162,12 @@ std::string Range::text() const {
     text = zero_means.empty() ? "0 or " : "0 (" + zero_means + ") or ";
   }
   if (high == kNone) {
-    return text + (low_open ? "> " : ">= ") + formatNumber(low);
+    return text + (low_open ? "> " : ">= ") + numberText(low);
   }
   if (!low_open && !high_open) {
-    return text + formatNumber(low) + ".." + formatNumber(high);
+    return text + numberText(low) + ".." + numberText(high);
   }
-  return text + (low_open ? "(" : "[") + formatNumber(low) + ", " + formatNumber(high) + (high_open ? ")" : "]");
+  return text + (low_open ? "(" : "[") + numberText(low) + ", " + numberText(high) + (high_open ? ")" : "]");
 }
 
 std::string ParameterInfo::allowed() const {
@@ -199,7 +190,7 @@ std::string ParameterInfo::rejection(const std::string& value, const std::string
 
 void ParameterInfo::require(double value) const {
   if (!range.contains(value)) {
-    throw std::invalid_argument(rejection(formatNumber(value)));
+    throw std::invalid_argument(rejection(numberText(value)));
   }
 }
 
@@ -251,7 +242,7 @@ std::string DescriptorParams::describe() const {
   if (isHog()) {
     return std::string(kHogFrontEnd) + " (" + std::to_string(hog_window_width) + " x " +
            std::to_string(hog_window_height) + " window, cells of " + std::to_string(hog_cell_size) + " px, " +
-           std::to_string(hog_bins) + " bins" + (hog_blur > 0.0 ? ", blur " + formatNumber(hog_blur) + " px" : "") + ")";
+           std::to_string(hog_bins) + " bins" + (hog_blur > 0.0 ? ", blur " + numberText(hog_blur) + " px" : "") + ")";
   }
   return std::string(kThumbnailFrontEnd) + " (" + std::to_string(image_width) + " x " + std::to_string(image_height) +
          ", patches of " + std::to_string(patch_size) + " px)";
@@ -270,16 +261,16 @@ void SequenceParams::validate() const {
   requireInRange(sequenceParameters(), *this);
   if (velocity_max < velocity_min) {
     throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_max")
-                                    .rejection(formatNumber(velocity_max),
-                                               "velocity_min " + formatNumber(velocity_min)));
+                                    .rejection(numberText(velocity_max),
+                                               "velocity_min " + numberText(velocity_min)));
   }
   const double velocity_count = std::floor((velocity_max - velocity_min) / velocity_step + 1e-9) + 1.0;
   if (velocity_count > kMaxVelocities) {
     throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_step")
-                                    .rejection(formatNumber(velocity_step),
-                                               formatNumber(velocity_count) + " velocities from velocity_min " +
-                                                   formatNumber(velocity_min) + " to velocity_max " +
-                                                   formatNumber(velocity_max)));
+                                    .rejection(numberText(velocity_step),
+                                               numberText(velocity_count) + " velocities from velocity_min " +
+                                                   numberText(velocity_min) + " to velocity_max " +
+                                                   numberText(velocity_max)));
   }
 }
 

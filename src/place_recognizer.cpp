@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mrs_vpr/mrs_matcher.hpp"
+#include "mrs_vpr/number_text.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -255,7 +256,7 @@ PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, 
   if (frames.size() >= 2 && keyframes.size() < 2) {
     throw std::invalid_argument("the test sequence's " + std::to_string(frames.size()) +
                                 " images hold fewer than 2 keyframes: the view hardly changes across them "
-                                "(min_appearance_change " + std::to_string(recognizer_.min_appearance_change) + ")");
+                                "(min_appearance_change " + numberText(recognizer_.min_appearance_change) + ")");
   }
   PlaceAnswer answer = match(keyframes, method, explanation);
   if (answer.localised_row >= 0) answer.localised_row = kept.at(static_cast<std::size_t>(answer.localised_row));

@@ -18,6 +18,7 @@
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "descriptor_options.hpp"
+#include "double_option.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -67,7 +68,7 @@ int run(int argc, char** argv) {
        "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
       ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
-      ("min-appearance-change", po::value(&min_appearance_change)->default_value(min_appearance_change),
+      ("min-appearance-change", mrs_vpr::tools::doubleOption(&min_appearance_change),
        "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
        "0 = every frame");
   // clang-format on

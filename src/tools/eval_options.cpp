@@ -12,6 +12,7 @@
 #include <boost/program_options.hpp>
 
 #include "descriptor_options.hpp"
+#include "double_option.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "tool_main.hpp"
 
@@ -83,7 +84,7 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
       ("protocol", po::value(&options.protocol)->required(), "per-frame | global")
       ("sequence-length", po::value(&params.sequence.sequence_length)->default_value(params.sequence.sequence_length),
        "N: keyframes per test sequence (ds of the per-frame protocol; default: the node's continuous mode)")
-      ("min-appearance-change", po::value(&options.min_appearance_change)->default_value(options.min_appearance_change),
+      ("min-appearance-change", doubleOption(&options.min_appearance_change),
        "keyframes by appearance change, as the node's ~min_appearance_change; 0 = every frame")
       ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of the global protocol")
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
@@ -95,11 +96,11 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
       ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
       ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods; 0 = OpenCV's default")
       ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
-      ("velocity-min", po::value(&params.sequence.velocity_min)->default_value(params.sequence.velocity_min),
+      ("velocity-min", doubleOption(&params.sequence.velocity_min),
        "slowest reference keyframes per test keyframe")
-      ("velocity-max", po::value(&params.sequence.velocity_max)->default_value(params.sequence.velocity_max),
+      ("velocity-max", doubleOption(&params.sequence.velocity_max),
        "fastest reference keyframes per test keyframe")
-      ("velocity-step", po::value(&params.sequence.velocity_step)->default_value(params.sequence.velocity_step),
+      ("velocity-step", doubleOption(&params.sequence.velocity_step),
        "step between the velocities tried (0.02 for sequences in the hundreds)")
       ("alignment-slack", po::value(&params.sequence.alignment_slack)->default_value(params.sequence.alignment_slack),
        "frames the path that places an answer may stray from the best straight trajectory; 0 = its end")

@@ -16,10 +16,12 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/appearance_keyframes.hpp"
 #include "mrs_vpr/descriptor.hpp"
+#include "mrs_vpr/number_text.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "descriptor_options.hpp"
+#include "double_option.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -76,7 +78,7 @@ int run(int argc, char** argv) {
        "metres between the sequence's frames, by the bag's /tf (0: consecutive frames)")
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
       ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
-      ("min-appearance-change", po::value(&min_appearance_change)->default_value(min_appearance_change),
+      ("min-appearance-change", mrs_vpr::tools::doubleOption(&min_appearance_change),
        "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
        "~min_appearance_change keeps them (with the node's front end); 0 = consecutive frames")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
@@ -92,7 +94,7 @@ int run(int argc, char** argv) {
   keyframing.validate();
   // A negative duration would make roscpp wait for the service for ever.
   if (!(timeout > 0.0 && timeout <= 3600.0)) {
-    throw std::invalid_argument("--timeout must be in (0, 3600] s, got " + std::to_string(timeout));
+    throw std::invalid_argument("--timeout must be in (0, 3600] s, got " + mrs_vpr::numberText(timeout));
   }
 
   mrs_vpr::QuerySequence query;
@@ -133,7 +135,7 @@ int run(int argc, char** argv) {
             return true;
           },
           [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
-                       std::to_string(min_appearance_change); });
+                       mrs_vpr::numberText(min_appearance_change); });
       request["min_appearance_change"] = min_appearance_change;
       request["frames_read"] = offered;
     } else if (travel.min_travel == 0.0) {
@@ -152,7 +154,7 @@ int run(int argc, char** argv) {
   }
 
   if (!ros::service::waitForService(service, ros::Duration(timeout))) {
-    throw std::runtime_error("service " + service + " is not available after " + std::to_string(timeout) +
+    throw std::runtime_error("service " + service + " is not available after " + mrs_vpr::numberText(timeout) +
                              " s (is the mrs_vpr node running? ROS_MASTER_URI=" + ros::master::getURI() + ")");
   }
   const auto sent = std::chrono::steady_clock::now();

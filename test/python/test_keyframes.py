@@ -51,7 +51,7 @@ def test_a_test_sequence_with_one_keyframe_is_refused(route, mapped):
     with pytest.raises(ValueError) as error:
         mapped.match(repeated(route["query"][FIRST:FIRST + 1], 20))
     assert str(error.value) == ("the test sequence's 20 images hold fewer than 2 keyframes: the view hardly "
-                                "changes across them (min_appearance_change 0.400000)")
+                                "changes across them (min_appearance_change 0.4)")
 
 
 def test_keyframing_the_test_sequence_leaves_the_map_as_it_was(route, mapped):
