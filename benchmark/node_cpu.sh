@@ -25,6 +25,7 @@ while [[ $# -gt 0 ]]; do
     --width) width=$2; shift 2 ;;
     --height) height=$2; shift 2 ;;
     --node) nodes+=("$2"); shift 2 ;;
+    -h | --help) sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
     *) echo "node_cpu: unknown argument $1 (see the usage at the top of $0)" >&2; exit 2 ;;
   esac
 done
