@@ -33,9 +33,12 @@ long long RecentRows::extend(SequenceView map, const std::vector<std::pair<int, 
   const auto frames = static_cast<std::size_t>(map.count);
   // Rows final up to the same cell need the same raw columns: one difference matrix each, so that the
   // map streams through the cache once for all of them, as in the brute force.
+  // A map of at most half a contrast window has no final cell, yet a row must cover every frame: there
+  // the rows are sized and given their first difference as the map grows.
   std::map<int, std::vector<std::pair<int, Row*>>> by_final_end;
   for (const auto& entry : rows) {
-    if (entry.second->final_end < final_end) by_final_end[entry.second->final_end].push_back(entry);
+    const Row& row = *entry.second;
+    if (row.final_end < final_end || row.values.size() < frames) by_final_end[row.final_end].push_back(entry);
   }
   long long comparisons = 0;
   for (const auto& entry : by_final_end) {

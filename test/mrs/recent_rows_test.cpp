@@ -75,6 +75,22 @@ TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
   EXPECT_GE(recent.memoryBytes(), 20 * map.size() * sizeof(float));
 }
 
+// A map of at most half a contrast window has no final cell: the rows still cover every frame and give
+// the brute force's costs as the map grows past it (a null row was read there before).
+TEST(RecentRows, AMapSmallerThanHalfAContrastWindowGivesTheBruteForceCosts) {
+  cv::RNG rng(13);
+  DescriptorSequence map = randomMap(2, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  const SequenceRows rows{0, 1, 1};
+  AnchorCosts kept;
+  for (int frames = 2; frames <= kWindow + 2; ++frames) {
+    const int first = map.size() - 2;
+    recent.costs(map.view(), first, 2, map.size(), rows, kVelocities, kept);
+    expectSameCosts(kept, bruteForceCosts(map.view(), first, 2, map.size(), rows), "map " + std::to_string(frames));
+    appendRandomFrames(map, 1, 64, rng);
+  }
+}
+
 TEST(RecentRows, AMapEmptiedAndFilledAgainIsNotReadFromOldRows) {
   cv::RNG rng(5);
   DescriptorSequence map = randomMap(400, rng);
