@@ -31,7 +31,7 @@ const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters() {
        &P::image_width},
       {{"descriptor/image_height", Range::closed(4, 1024), {}, "", "Thumbnail: height the image is resized to [px]."},
        &P::image_height},
-      {{"descriptor/patch_size", Range::closed(1, 1024), {}, "dividing image_width and image_height",
+      {{"descriptor/patch_size", Range::closed(2, 1024), {}, "dividing image_width and image_height",
         "Thumbnail: side of the patch-normalisation patches [px]."},
        &P::patch_size},
       {{"descriptor/hog/window_width", Range::closed(8, 1024), {}, "", "HOG: width the image is resized to [px]."},

@@ -66,6 +66,8 @@ TEST(DescriptorParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("descriptor/image_width", [](Parameters& p) { p.descriptor.image_width = 1025; });
   EXPECT_REJECTED("descriptor/image_height", [](Parameters& p) { p.descriptor.image_height = 0; });
   EXPECT_REJECTED("descriptor/patch_size", [](Parameters& p) { p.descriptor.patch_size = 0; });
+  // A patch of one pixel has no spread to normalise by: every descriptor would be the same.
+  EXPECT_REJECTED("descriptor/patch_size", [](Parameters& p) { p.descriptor.patch_size = 1; });
   EXPECT_REJECTED("descriptor/patch_size", [](Parameters& p) { p.descriptor.patch_size = 64; });
   // 6 divides neither 64 nor 32.
   const std::string message = rejection([](Parameters& p) { p.descriptor.patch_size = 6; });

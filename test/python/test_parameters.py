@@ -55,7 +55,7 @@ def test_numpy_numbers_are_numbers():
         ({"seed": -1}, "mrs/seed must be >= 0, got -1"),
         ({"velocity_min": 1.5, "velocity_max": 1.2},
          "sequence/velocity_max must be in (0, 10], >= velocity_min, got 1.2 (velocity_min 1.5)"),
-        ({"descriptor_type": "thumbnail", "patch_size": 5}, "descriptor/patch_size must be in 1..1024"),
+        ({"descriptor_type": "thumbnail", "patch_size": 5}, "descriptor/patch_size must be in 2..1024"),
     ],
 )
 def test_a_value_out_of_range_raises_the_cores_message(parameters, message):
