@@ -139,7 +139,11 @@ Range Range::openClosed(double low, double high) {
   return range;
 }
 
-Range Range::atLeast(double low) { return closed(low, kNone); }
+Range Range::atLeast(double low) {
+  Range range = closed(low, kNone);
+  range.high_open = true;  // Infinity itself is not a value: a period or a distance must be finite.
+  return range;
+}
 
 Range Range::orZero(std::string meaning) const {
   Range range = *this;

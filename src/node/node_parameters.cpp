@@ -19,7 +19,7 @@ namespace node {
 const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
   using P = NodeParameters;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"min_frame_interval", Range::atLeast(0), {}, "",
+      {{"min_frame_interval", Range::closed(0, 86400), {}, "",
         "Seconds (by header stamp) between keyframes; 0 = no limit."},
        &P::min_frame_interval},
       {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
@@ -35,14 +35,14 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
        &P::tf_timeout},
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
-      {{"auto_query_period", Range::atLeast(0), {}, "",
+      {{"auto_query_period", Range::closed(0, 86400), {}, "",
         "Continuous mode: every this many seconds, localise each keyframe that came since the last time "
         "(within a fifth of the period); 0 = off."},
        &P::auto_query_period},
       {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
        &P::auto_query_frames},
-      {{"map_info_rate", Range::openClosed(0, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
+      {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
        &P::map_info_rate},
       {{"database", Range{}, {}, "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -57,6 +58,26 @@ TEST(NodeParameters, ErrorsNameTheParameterAndRange) {
   const std::string core = errorOf(params);
   EXPECT_NE(core.find("descriptor/image_width"), std::string::npos) << core;
   EXPECT_NE(core.find("4"), std::string::npos) << core;  // the range
+}
+
+// Periods and rates that ROS timers cannot hold, and distances of no finite size, are refused with the
+// parameter's name instead of stopping the node in ros::Duration or keeping one keyframe for ever.
+TEST(NodeParameters, PeriodsRatesAndDistancesMustBeFinite) {
+  const double infinity = std::numeric_limits<double>::infinity();
+  NodeParameters params;
+  params.auto_query_period = 3e9;
+  EXPECT_EQ(errorOf(params), "~auto_query_period must be in 0..86400, got 3000000000");
+  params = NodeParameters{};
+  params.map_info_rate = 1e-10;
+  EXPECT_EQ(errorOf(params), "~map_info_rate must be in 0.001..1000, got 1e-10");
+  params = NodeParameters{};
+  params.min_frame_interval = infinity;
+  EXPECT_EQ(errorOf(params), "~min_frame_interval must be in 0..86400, got inf");
+  params = NodeParameters{};
+  params.min_travel = infinity;
+  EXPECT_EQ(errorOf(params), "~min_travel must be >= 0, got inf");
+  params.min_travel = 1e6;
+  EXPECT_EQ(errorOf(params), "");
 }
 
 TEST(NodeParameters, AutoQueryFramesDefaultsToSequenceLength) {
