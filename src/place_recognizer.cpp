@@ -1,6 +1,7 @@
 #include "mrs_vpr/place_recognizer.hpp"
 
 #include <algorithm>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -138,8 +139,12 @@ void PlaceRecognizer::reserveAhead() {
   if (recognizer_.max_frames > 0) target = std::min(target, recognizer_.max_frames);
   if (target <= reserved_frames_) return;
   // Copying a large map takes a while; meanwhile addFrame parks frames in the pending buffer.
-  map_.reserve(target);
-  reserved_frames_ = target;
+  try {
+    map_.reserve(target);
+    reserved_frames_ = target;
+  } catch (const std::bad_alloc&) {
+    // Twice the map may not fit where the map still grows by a frame at a time.
+  }
 }
 
 void PlaceRecognizer::reserve(int frames) {

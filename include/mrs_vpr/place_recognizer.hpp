@@ -145,7 +145,8 @@ class PlaceRecognizer {
 
   /// Moves pending frames into the map, waiting for running queries.
   void flush();
-  /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation.
+  /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation. Only an
+  /// optimisation: when the memory cannot be had, the map stays as it was and frames are added as before.
   void reserveAhead();
   /// Grows the map's storage to hold `frames` frames (at most max_frames) at once, so that loading a
   /// map of known size copies nothing and holds no spare capacity.

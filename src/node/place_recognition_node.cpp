@@ -11,6 +11,7 @@
 
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/node/ros_stamp.hpp"
+#include "node_warnings.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -153,8 +154,12 @@ void PlaceRecognitionNode::publishMapInfoIfChanged() {
 }
 
 void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
-  recognizer_.flush();  // frames parked during a query show up even when no new image arrives
-  recognizer_.reserveAhead();
+  try {
+    recognizer_.flush();  // frames parked during a query show up even when no new image arrives
+    recognizer_.reserveAhead();
+  } catch (const std::exception& error) {  // std::bad_alloc: roscpp would end the node
+    ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not move waiting keyframes into the map: %s", error.what());
+  }
   publishMapInfoIfChanged();
   reportWriteErrors();
 }
