@@ -92,7 +92,4 @@ class DescriptorSequence {
   void appendCoarseCells(int last);
 };
 
-/// The reference map is a descriptor sequence that only grows (or is reset).
-using ReferenceMap = DescriptorSequence;
-
 }  // namespace mrs_vpr

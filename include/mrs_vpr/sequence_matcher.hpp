@@ -31,7 +31,6 @@ class SequenceMatcher {
   virtual std::vector<Match> matchEveryFrame(SequenceView reference, SequenceView query) const;
 
   virtual std::string name() const = 0;
-  const SequenceParams& sequenceParams() const { return sequence_; }
 
  protected:
   explicit SequenceMatcher(const SequenceParams& sequence);

@@ -122,7 +122,8 @@ void bindRecognizer(py::module_& m) {
           },
           py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
           "Where the test sequence (images, oldest first) ends in the map. Its images are keyframed as the map's "
-          "frames are (keyframes_of) and the answer localises the last keyframe; at least 2 are needed. method: "
+          "frames are (keyframes_of) and the answer localises the middle keyframe (sequence alignment 'centred', the "
+          "default) or the last ('causal'); at least 2 are needed. method: "
           "'mrs', 'seqslam' or '' (default_method).")
       .def(
           "match_recent",

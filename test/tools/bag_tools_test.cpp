@@ -284,6 +284,10 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   const CommandResult recent = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --min-travel 1");
   EXPECT_EQ(recent.status, 1);
   EXPECT_NE(recent.err.find("--min-travel needs --bag, not --recent-frames"), std::string::npos) << recent.err;
+  // Checked before the service is asked: a sequence of one frame is no sequence.
+  const CommandResult one = run(std::string(QUERY_BAG_PATH) + " --recent-frames 1 --service /nope/query");
+  EXPECT_EQ(one.status, 1);
+  EXPECT_NE(one.err.find("--recent-frames must be >= 2"), std::string::npos) << one.err;
 }
 
 TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {

@@ -21,7 +21,7 @@ int countImages(const std::string& bag_path, const std::string& topic);
 /**
  * Hands the image messages of `topic` to `visit` in bag order (index counted from 0 over the topic),
  * starting at message `start` and stopping after `count` messages (count < 0: to the end).
- * sensor_msgs/CompressedImage messages are decoded to bgr8 or mono8 first. A header stamp of zero is
+ * sensor_msgs/CompressedImage messages are decoded to mono8, mono16, bgr8 or bgra8 first. A header stamp of zero is
  * replaced by the time the message was recorded.
  * Throws std::runtime_error naming the bag and topic when the bag cannot be opened, the topic holds
  * no image messages, or a compressed image cannot be decoded.

@@ -27,7 +27,7 @@ class DebugImagePublisher {
   /// Whether someone subscribes, so that the next answer should be explained and drawn.
   bool wanted() const { return publisher_.getNumSubscribers() > 0; }
 
-  /// Draws the answer, with `map_status` on its last line, and publishes it with `header` (the newest
+  /// Draws the answer, with `map_status` on its last line, and publishes it with `header` (the localised
   /// test frame's).
   void publish(const std_msgs::Header& header, const PlaceAnswer& answer, const MatchExplanation& explanation,
                const std::string& map_status);
