@@ -1,8 +1,10 @@
 #include "front_end_metadata.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <exception>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -16,13 +18,20 @@ std::string metadataValue(double value) {
   return text.str();
 }
 
-/// `text` as a number of type T, when the whole of it is one.
+/// `text` as a number of type T, when the whole of it is one (for an integral T, a whole number that T
+/// holds: a corrupt map's "1e20" must not overflow the conversion).
 template <typename T>
 std::optional<T> numberIn(const std::string& text) {
   try {
     std::size_t used = 0;
     const double value = std::stod(text, &used);
     if (used != text.size()) return std::nullopt;
+    if constexpr (std::is_integral_v<T>) {
+      const bool whole = value == std::floor(value);
+      if (!whole || value < std::numeric_limits<T>::min() || value > std::numeric_limits<T>::max()) {
+        return std::nullopt;
+      }
+    }
     return static_cast<T>(value);
   } catch (const std::exception&) {  // empty, or not a number
     return std::nullopt;

@@ -51,7 +51,8 @@ TEST(FrontEndMetadata, AMissingOrMalformedValueReadsAsNoFrontEnd) {
   std::map<std::string, std::string> missing = asTable(hog);
   missing.erase("hog_bins");
   EXPECT_FALSE(frontEndOfMetadata(missing).has_value());
-  for (const char* bad : {"", "9 bins", "nine"}) {
+  // A fraction or a number no int holds (a corrupt map) is no value either, not a rounded or overflowed one.
+  for (const char* bad : {"", "9 bins", "nine", "8.5", "1e20", "-1e20", "nan"}) {
     std::map<std::string, std::string> malformed = asTable(hog);
     malformed["hog_bins"] = bad;
     EXPECT_FALSE(frontEndOfMetadata(malformed).has_value()) << "'" << bad << "'";
