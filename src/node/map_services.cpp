@@ -1,6 +1,7 @@
 // The node's map and its database: opening ~database at start-up, ~reset, ~save_map, ~load_map.
 
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "mrs_vpr/node/place_recognition_node.hpp"
@@ -10,6 +11,13 @@ namespace node {
 namespace {
 
 constexpr double kWriteErrorPeriod = 10.0;  // [s] between repeated errors about failing commits
+
+/// `path` from the root: a relative one is the node's working directory's (~/.ros under roslaunch).
+std::string absolutePath(const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ignored);
+  return absolute.empty() ? path : absolute.lexically_normal().string();
+}
 
 }  // namespace
 
@@ -54,7 +62,7 @@ bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::R
   try {
     response.frames = static_cast<std::uint64_t>(map_->save(request.path));
     response.success = true;
-    response.message = "saved " + std::to_string(response.frames) + " frames to '" + request.path + "'";
+    response.message = "saved " + std::to_string(response.frames) + " frames to '" + absolutePath(request.path) + "'";
     ROS_INFO("mrs_vpr: %s", response.message.c_str());
   } catch (const std::exception& error) {
     response.success = false;
@@ -77,7 +85,7 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
     ++map_version_;
     response.frames = static_cast<std::uint64_t>(loaded);
     response.success = true;
-    response.message = "loaded " + std::to_string(loaded) + " frames from '" + request.path + "'" +
+    response.message = "loaded " + std::to_string(loaded) + " frames from '" + absolutePath(request.path) + "'" +
                        (map_->persistent() ? "; the database '" + map_->databasePath() + "' now holds them too"
                                            : "");
     ROS_INFO("mrs_vpr: %s", response.message.c_str());

@@ -88,7 +88,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
     tables.reset();
     // Nothing is written to a file that is not an empty new one or a map of these descriptors.
     const bool create = names.empty();
-    if (create && read_only) fail("it holds no map (an empty database)");
+    if (create && read_only) fail("it holds no map (an empty file or database)");
     if (create && !params_given) fail("it holds no map yet, and no front end was given for a new one");
     if (!create && (names.count("metadata") == 0 || names.count("frames") == 0)) {
       fail("it is an SQLite database of another kind (no mrs_vpr metadata and frames tables)");

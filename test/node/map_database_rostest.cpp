@@ -289,6 +289,16 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   EXPECT_NE(save.response.message.find(path("snapshot.db")), std::string::npos) << save.response.message;
   EXPECT_NE(save.response.message.find("exists"), std::string::npos) << save.response.message;
   EXPECT_EQ(fileContents(path("snapshot.db")), snapshot);
+  // A relative path is the node's working directory's: the message names the file from the root.
+  save.request.path = "mrs_vpr_relative_snapshot_" + std::to_string(::getpid()) + ".db";
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
+  ASSERT_TRUE(save.response.success) << save.response.message;
+  const std::size_t quote = save.response.message.find("'/");
+  ASSERT_NE(quote, std::string::npos) << save.response.message;
+  const std::string written = save.response.message.substr(quote + 1, save.response.message.size() - quote - 2);
+  EXPECT_EQ(fs::path(written).filename(), save.request.path) << save.response.message;
+  EXPECT_TRUE(fs::exists(written)) << written;
+  fs::remove(written);
 
   // A file that is not a map: refused, naming it, and the map is kept.
   {
