@@ -193,6 +193,9 @@ TEST_F(PlotsTest, PlotToolReportsJsonOfAnotherShapeInOneLine) {
       {R"({"records": 5, "summary": {"tolerance": 2}})", "error", other_shape},
       {R"({"records": [1, 2], "summary": {"tolerance": 2}})", "error", other_shape},
       {"[]", "benchmark", "holds a JSON list"},
+      // What --output writes: records and a summary, but no difference pictures.
+      {R"({"records": [], "summary": {"tolerance": 2}})", "matrix", "writes them with --plots DIR"},
+      {R"({"records": [], "summary": {"tolerance": 2}})", "band", "writes them with --plots DIR"},
   };
   int index = 0;
   for (const Case& bad : cases) {
