@@ -49,7 +49,8 @@ constexpr const char* kUsage =
     "With --places-from (the route's image folders, e.g. both seasons), route frames where the recording\n"
     "camera stood in every folder count as one place, and T counts places: a station where the recording\n"
     "stood still is one place, not dozens of frames apart.\n"
-    "Then: mrs_vpr_eval --reference DRIVE_A --query DRIVE_B --ground-truth FILE.csv --protocol per-frame\n";
+    "Then: rosrun mrs_vpr mrs_vpr_eval --reference DRIVE_A --query DRIVE_B --ground-truth FILE.csv\n"
+    "      --protocol per-frame\n";
 
 struct Options {
   std::string images;
@@ -137,10 +138,13 @@ void writeDrive(const Options& options) {
 
   int stopped = 0;
   for (const mrs_vpr::DriveFrame& frame : drive.frames()) stopped += frame.kind == mrs_vpr::DriveFrameKind::kStopped;
+  const auto stretch = [&](const char* speed, int begin) {
+    return begin < 0 ? std::string(", no ") + speed + " stretch"
+                     : std::string(", ") + speed + " from route frame " + std::to_string(options.begin + begin);
+  };
   std::cerr << "make_drive: " << drive.size() << " frames of route frames " << options.begin << ".." << end - 1 << " in "
-            << options.output << ": " << options.drive.stops << " stops (" << stopped << " frames), half speed from "
-            << (drive.slowBegin() < 0 ? -1 : options.begin + drive.slowBegin()) << ", double speed from "
-            << (drive.fastBegin() < 0 ? -1 : options.begin + drive.fastBegin()) << "\n";
+            << options.output << ": " << options.drive.stops << " stops (" << stopped << " frames)"
+            << stretch("half speed", drive.slowBegin()) << stretch("double speed", drive.fastBegin()) << "\n";
 }
 
 /// Every image of `folder` (file-name order) in grey, at most kPlacesWidth pixels wide: the steps of
