@@ -1,6 +1,7 @@
 #include "map_scale_options.hpp"
 
 #include <algorithm>
+#include <filesystem>
 #include <stdexcept>
 
 #include <boost/program_options.hpp>
@@ -86,6 +87,13 @@ std::optional<MapScaleOptions> parseMapScaleOptions(int argc, char** argv) {
     throw std::invalid_argument(
         "--lengths each >= 10, --queries >= 1, --brute-queries >= 0, --threads >= 1, --periods >= 0, "
         "--keyframes-per-period >= 1");
+  }
+  // The options first, then the folder: checked before any map is written or any row printed.
+  for (const char* folder : {"nordland/summer", "nordland/winter", "corridor"}) {
+    if (!std::filesystem::is_directory(std::filesystem::path(options.data) / folder)) {
+      throw std::invalid_argument("--data " + options.data + " has no folder " + folder +
+                                  " (the shared data folder holds nordland/ and corridor/)");
+    }
   }
   return options;
 }

@@ -100,6 +100,8 @@ TEST_F(BenchmarksTest, BenchmarksRefuseBadOptionsInOneLineNamingThem) {
   const Benchmark scale = benchmarks()[2];
   expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 10k,lots"), "bad size 'lots'");
   expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 1k"), "bad size '1k'");
+  // Before any table header: a folder without the shared data is no data.
+  expectBenchmarkError(scale, run(scale.path + " --data nowhere"), "--data nowhere has no folder nordland/summer");
   const Benchmark debug = benchmarks()[3];
   expectBenchmarkError(debug, run(debug.path + " --reference nowhere"), "the option '--query' is required but missing");
   expectBenchmarkError(debug, run(debug.path + " --reference a --query b --picture-method best"),
