@@ -296,6 +296,7 @@ class CoarseToFineSearch {
         particles_.push_back(particle);
       }
     } else {
+      if (particles_.empty()) return;  // The run's loop ends there; no winner to take down.
       const auto winner = std::min_element(particles_.begin(), particles_.end(),
                                            [](const Particle& a, const Particle& b) { return a.cost < b.cost; });
       particles_ = {*winner};
