@@ -53,6 +53,14 @@ void expectSameCosts(const AnchorCosts& kept, const AnchorCosts& brute, const st
   }
 }
 
+/// The kept rows' costs for map frames [first, first + count) against [0, columns) are the brute force's.
+void expectBruteForceCosts(RecentRows& recent, SequenceView map, int first, int count, int columns,
+                           const SequenceRows& rows, const std::string& where) {
+  AnchorCosts kept;
+  recent.costs(map, first, count, columns, rows, kVelocities, kept);
+  expectSameCosts(kept, bruteForceCosts(map, first, count, columns, rows), where);
+}
+
 // A map growing by a few frames between questions about its newest 20, each question's reference
 // ending at a different distance before them: the kept rows give the brute force's cost for every end.
 TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
@@ -60,15 +68,13 @@ TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
   DescriptorSequence map = randomMap(300, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
   const SequenceRows rows{0, 19, 10};
-  AnchorCosts kept;
   for (int step = 0; step < 12; ++step) {
     appendRandomFrames(map, 1 + step % 4, 64, rng);
     const int first = map.size() - 20;
     for (const int gap : {30, 3, 100}) {  // A shorter reference after a longer one: tails put back.
       const int columns = first - gap;
-      recent.costs(map.view(), first, 20, columns, rows, kVelocities, kept);
-      expectSameCosts(kept, bruteForceCosts(map.view(), first, 20, columns, rows),
-                      "map " + std::to_string(map.size()) + ", reference " + std::to_string(columns));
+      expectBruteForceCosts(recent, map.view(), first, 20, columns, rows,
+                            "map " + std::to_string(map.size()) + ", reference " + std::to_string(columns));
     }
   }
   EXPECT_EQ(recent.rowCount(), 20);  // Rows of frames that left the test sequence were dropped.
@@ -81,12 +87,9 @@ TEST(RecentRows, AMapSmallerThanHalfAContrastWindowGivesTheBruteForceCosts) {
   cv::RNG rng(13);
   DescriptorSequence map = randomMap(2, rng);
   RecentRows recent(kWindow, kMaxRecentRows);
-  const SequenceRows rows{0, 1, 1};
-  AnchorCosts kept;
   for (int frames = 2; frames <= kWindow + 2; ++frames) {
-    const int first = map.size() - 2;
-    recent.costs(map.view(), first, 2, map.size(), rows, kVelocities, kept);
-    expectSameCosts(kept, bruteForceCosts(map.view(), first, 2, map.size(), rows), "map " + std::to_string(frames));
+    expectBruteForceCosts(recent, map.view(), map.size() - 2, 2, map.size(), SequenceRows{0, 1, 1},
+                          "map " + std::to_string(frames));
     appendRandomFrames(map, 1, 64, rng);
   }
 }
