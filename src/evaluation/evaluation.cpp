@@ -114,7 +114,13 @@ std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& record
   checkTolerance(tolerance);
   std::vector<const QueryRecord*> predicted;
   for (const QueryRecord& record : records) {
-    if (record.predicted_index >= 0) predicted.push_back(&record);
+    if (record.predicted_index < 0) continue;
+    // No threshold is equal to NaN: the curve would never pass it (and the ranking would be no order).
+    if (std::isnan(record.confidence)) {
+      throw std::invalid_argument("the record of query " + std::to_string(record.query_index) +
+                                  " has a confidence that is not a number");
+    }
+    predicted.push_back(&record);
   }
   std::sort(predicted.begin(), predicted.end(),
             [](const QueryRecord* a, const QueryRecord* b) { return a->confidence > b->confidence; });

@@ -147,6 +147,18 @@ TEST(Evaluation, EqualConfidencesAreAcceptedTogether) {
   EXPECT_DOUBLE_EQ(recallAtFullPrecision(curve), 0.0);
 }
 
+TEST(Evaluation, AConfidenceThatIsNotANumberIsRefused) {
+  // Before, the curve's loop never passed it and grew until memory ran out.
+  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.5F), record(7, {1}, 1, std::nanf(""))};
+  try {
+    precisionRecallCurve(records, 0);
+    ADD_FAILURE() << "a NaN confidence was taken";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "the record of query 7 has a confidence that is not a number");
+  }
+  EXPECT_THROW(summarise(records, 0), std::invalid_argument);
+}
+
 TEST(Evaluation, PerfectRankingHasUnitAreaAndFullRecall) {
   const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 1, 0.3F),
                                             record(2, {2}, 2, 0.2F)};
