@@ -35,7 +35,7 @@ void Report::write(const std::string& path, nlohmann::json settings) const {
   if (path.empty()) return;
   settings["rows"] = rows_;
   std::ofstream file(path);
-  file << settings.dump(2) << "\n";
+  file << settings.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";  // Any bytes of a path.
   if (!file) throw std::runtime_error("cannot write '" + path + "'");
   std::fprintf(stderr, "wrote %s\n", path.c_str());
 }

@@ -1,5 +1,6 @@
 #include "evaluation_json.hpp"
 
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
@@ -95,11 +96,26 @@ json recordsToJson(const std::vector<QueryRecord>& records, int tolerance) {
   return list;
 }
 
+std::string jsonText(const json& document, int indent) {
+  return document.dump(indent, ' ', false, json::error_handler_t::replace);
+}
+
 void writeJson(const json& document, const std::string& path) {
-  std::ofstream file(path);
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
-  file << document.dump(2) << "\n";
-  if (!file) throw std::runtime_error("cannot write '" + path + "'");
+  const std::string text = jsonText(document, 2);
+  const std::string part = path + ".part";
+  {
+    std::ofstream file(part);
+    if (!file) throw std::runtime_error("cannot write '" + path + "'");
+    file << text << "\n";
+    if (!file.flush()) {
+      std::remove(part.c_str());
+      throw std::runtime_error("cannot write '" + path + "'");
+    }
+  }
+  if (std::rename(part.c_str(), path.c_str()) != 0) {
+    std::remove(part.c_str());
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
   std::cerr << "  wrote " << path << "\n";
 }
 

@@ -22,7 +22,13 @@ OrderedJson parametersToJson(const EvalOptions& options, const Parameters& p);
 /// Each record as the evaluation JSON lists it, judged correct within `tolerance` frames.
 OrderedJson recordsToJson(const std::vector<QueryRecord>& records, int tolerance);
 
-/// Writes `document` to `path`, indented, and says so on stderr; throws std::runtime_error when it cannot.
+/// `document` as text (indented when `indent` >= 0). A path or name that is not UTF-8 is written with
+/// U+FFFD for its stray bytes rather than failing after all the work.
+std::string jsonText(const OrderedJson& document, int indent = -1);
+
+/// Writes `document` to `path`, indented, and says so on stderr: to `path`.part first, renamed when
+/// complete, so that a failure never leaves an existing file emptied. Throws std::runtime_error when
+/// it cannot.
 void writeJson(const OrderedJson& document, const std::string& path);
 
 }  // namespace tools

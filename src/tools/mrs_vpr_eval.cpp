@@ -271,7 +271,7 @@ int run(int argc, char** argv) {
     }
   }
   std::cout
-      << json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}.dump(2)
+      << jsonText(json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}, 2)
       << std::endl;
   return 0;
 }

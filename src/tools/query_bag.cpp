@@ -182,7 +182,7 @@ int run(int argc, char** argv) {
                        {"elapsed_ms", response.elapsed_ms},
                        {"round_trip_ms", round_trip_ms},
                        {"request", request}};
-  std::cout << answer.dump() << std::endl;
+  std::cout << answer.dump(-1, ' ', false, json::error_handler_t::replace) << std::endl;  // Any bytes of a path.
   return response.success ? 0 : 1;
 }
 

@@ -303,4 +303,19 @@ TEST_F(EvaluatorTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
   EXPECT_EQ(output.err.find("matching"), std::string::npos) << output.err;
 }
 
+TEST_F(EvaluatorTest, APathThatIsNotUtf8IsWrittenAndAnExistingOutputIsKeptUntilTheNewOneIsComplete) {
+  // A folder named in Latin-1, as older cameras and file systems name them: byte 0xE9 is no UTF-8.
+  const std::string latin = path("caf\xe9");
+  fs::copy(path("query"), latin);
+  const std::string output = path("latin.json");
+  std::ofstream(output) << "{\"earlier\": true}\n";
+  const CommandResult result = run(eval("--reference " + path("reference") + " --query '" + latin +
+                                        "' --method seqslam --protocol per-frame --sequence-length 10 --output " +
+                                        output));
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json document = json::parse(fileContents(output));
+  EXPECT_EQ(document.at("summary").at("queries").get<int>(), 91);
+  EXPECT_FALSE(fs::exists(output + ".part"));
+}
+
 }  // namespace
