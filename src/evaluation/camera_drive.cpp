@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <iterator>
+#include <limits>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include <opencv2/imgproc.hpp>
+
+#include "mrs_vpr/number_text.hpp"
 
 namespace mrs_vpr {
 namespace {
@@ -25,9 +27,7 @@ std::uint64_t mixed(std::uint64_t value) {
 }
 
 std::string settingError(const std::string& name, const std::string& allowed, double value) {
-  std::ostringstream message;
-  message << "camera drive: " << name << " must be " << allowed << ", got " << value;
-  return message.str();
+  return "camera drive: " + name + " must be " + allowed + ", got " + numberText(value);
 }
 
 /// Draws a dark upright figure (a body and a head) whose feet are at (x, foot) into `mask` as
@@ -50,11 +50,19 @@ void drawFigure(cv::Mat& mask, double x, double foot, double width, double heigh
 }  // namespace
 
 void CameraDriveSettings::validate() const {
-  if (stops < 0) throw std::invalid_argument(settingError("stops", ">= 0", stops));
+  // A drive is held in memory and written as images: an hour's stop at 30 Hz is plenty.
+  constexpr int kMostStops = 1000;
+  constexpr int kMostStopFrames = 100000;
+  if (stops < 0 || stops > kMostStops) {
+    throw std::invalid_argument(settingError("stops", "in 0.." + std::to_string(kMostStops), stops));
+  }
   if (stops > 0 && stop_frames_min < 1) throw std::invalid_argument(settingError("stop_frames_min", ">= 1", stop_frames_min));
   if (stop_frames_max < stop_frames_min) {
     throw std::invalid_argument(settingError("stop_frames_max", ">= stop_frames_min (" + std::to_string(stop_frames_min) + ")",
                                              stop_frames_max));
+  }
+  if (stop_frames_max > kMostStopFrames) {
+    throw std::invalid_argument(settingError("stop_frames_max", "<= " + std::to_string(kMostStopFrames), stop_frames_max));
   }
   if (slow_frames < 0) throw std::invalid_argument(settingError("slow_frames", ">= 0", slow_frames));
   if (fast_frames < 0) throw std::invalid_argument(settingError("fast_frames", ">= 0", fast_frames));
@@ -232,8 +240,10 @@ GroundTruth driveGroundTruth(const std::vector<int>& reference_route_frames, con
   GroundTruth truth;
   for (std::size_t i = 0; i < query_route_frames.size(); ++i) {
     std::vector<int>& frames = truth[static_cast<int>(i)];
-    const int route_frame = query_route_frames[i];
-    for (auto it = frames_of_route_frame.lower_bound(route_frame - route_tolerance);
+    // In 64 bits: a tolerance near INT_MAX must not wrap round.
+    const long long route_frame = query_route_frames[i];
+    const auto lowest = static_cast<int>(std::max<long long>(std::numeric_limits<int>::min(), route_frame - route_tolerance));
+    for (auto it = frames_of_route_frame.lower_bound(lowest);
          it != frames_of_route_frame.end() && it->first <= route_frame + route_tolerance; ++it) {
       frames.insert(frames.end(), it->second.begin(), it->second.end());
     }

@@ -16,6 +16,7 @@
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -30,26 +31,6 @@ constexpr const char* kUsage =
     "1/HZ seconds from --start-time (Unix time; default: now). Header stamp and bag time are equal.\n"
     "The bag appears only once every image is in it: a bad image leaves no partial bag. An existing\n"
     "OUT.bag is replaced only with --force.\n";
-
-/// A file written under a temporary name and renamed to its own on commit(); removed otherwise, so
-/// that a failed run never leaves a file that looks complete.
-class FileInProgress {
- public:
-  explicit FileInProgress(std::string path) : path_(std::move(path)), temporary_(path_ + ".part") {}
-  ~FileInProgress() {
-    if (!committed_) std::remove(temporary_.c_str());
-  }
-  const std::string& temporary() const { return temporary_; }
-  void commit() {
-    std::filesystem::rename(temporary_, path_);
-    committed_ = true;
-  }
-
- private:
-  std::string path_;
-  std::string temporary_;
-  bool committed_ = false;
-};
 
 int run(int argc, char** argv) {
   std::string images;
@@ -82,6 +63,7 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name: " + why);
   }
   // Checked before any work: a folder would be found only when the finished bag is renamed.
+  if (bag_path.empty()) throw std::invalid_argument("--bag must not be empty");
   if (std::filesystem::is_directory(bag_path)) {
     throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");
   }
@@ -104,7 +86,7 @@ int run(int argc, char** argv) {
     throw std::invalid_argument(std::string("the images cannot all be stamped: ") + error.what() +
                                 "; use a higher --rate or an earlier --start-time");
   }
-  FileInProgress output(bag_path);
+  mrs_vpr::tools::OutputInProgress output(bag_path);
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
   int written = 0;

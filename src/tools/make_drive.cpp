@@ -22,6 +22,7 @@
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/image_codecs.hpp"
+#include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -101,7 +102,8 @@ void writeDrive(const Options& options) {
   checkOutputFolder(options.output, options.force);
   const mrs_vpr::CameraDrive drive(end - options.begin, options.drive);
 
-  const fs::path part = options.output + ".part";
+  mrs_vpr::tools::OutputInProgress output(options.output);  // Removed on an error: no half-written drive.
+  const fs::path part = output.temporary();
   fs::remove_all(part);
   fs::create_directories(part);
   mrs_vpr::ProgressLine progress = mrs_vpr::ProgressLine::onStderr("  " + options.output, "frames", drive.size());
@@ -134,7 +136,7 @@ void writeDrive(const Options& options) {
   progress.finish();
   mrs_vpr::writeDriveFile((part / mrs_vpr::kDriveFileName).string(), drive.frames(), options.begin);
   fs::remove_all(options.output);  // checkOutputFolder allowed it: empty, or a drive and --force.
-  fs::rename(part, options.output);
+  output.commit();
 
   int stopped = 0;
   for (const mrs_vpr::DriveFrame& frame : drive.frames()) stopped += frame.kind == mrs_vpr::DriveFrameKind::kStopped;

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -253,6 +254,16 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   settings.noise_std = 0.0;
   EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("noise_std must be in (0, 100], got 0"),
             std::string::npos);
+  // A drive is held in memory: a stop of 10^8 frames grew to 15 GB before it was refused.
+  settings = CameraDriveSettings{};
+  settings.stop_frames_max = 100000000;
+  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); })
+                .find("stop_frames_max must be <= 100000, got 100000000"),
+            std::string::npos);
+  settings = CameraDriveSettings{};
+  settings.stops = 5000;
+  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("stops must be in 0..1000, got 5000"),
+            std::string::npos);
   settings = CameraDriveSettings{};
   settings.vibration = 2.0;
   EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("vibration"), std::string::npos);
@@ -286,6 +297,9 @@ TEST(DriveGroundTruth, AQueryFrameMatchesTheReferenceFramesOfItsRouteFrameWithin
   EXPECT_EQ(near.at(2), (std::vector<int>{5, 6}));
   EXPECT_EQ(near.at(3), (std::vector<int>{6, 7}));
   EXPECT_EQ(near.size(), query.size());
+  // The largest tolerance takes in every reference frame (it wrapped round before).
+  const GroundTruth everything = driveGroundTruth(reference, query, std::numeric_limits<int>::max());
+  for (const auto& [frame, matches] : everything) EXPECT_EQ(matches.size(), reference.size()) << frame;
   EXPECT_THROW(driveGroundTruth(reference, query, -1), std::invalid_argument);
 }
 

@@ -111,6 +111,10 @@ TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
                                      path("x.bag") + " --topic '' --rate 5");
   EXPECT_EQ(no_topic.status, 1);
   EXPECT_NE(no_topic.err.find("--topic must not be empty"), std::string::npos) << no_topic.err;
+  const CommandResult no_bag =
+      run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag '' --topic /t --rate 5");
+  EXPECT_EQ(no_bag.status, 1);
+  EXPECT_NE(no_bag.err.find("--bag must not be empty"), std::string::npos) << no_bag.err;
 }
 
 TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChanged) {

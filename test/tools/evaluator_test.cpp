@@ -237,13 +237,14 @@ TEST_F(EvaluatorTest, AcceptanceOptionsAreChecked) {
   // A query cannot be both outside the map and have a true place in it.
   expectError(folders + " --out-of-map --ground-truth " + path("truth.csv"),
               "--out-of-map and --ground-truth exclude each other");
-  expectError(folders + " --threads -1", "--threads must be >= 0");
+  expectError(folders + " --threads -1", "--threads must be in 0..1024");
+  expectError(folders + " --threads 100000", "--threads must be in 0..1024");  // Crashed at exit before.
   expectError(folders + " --queries 1000000", "--queries must be in 1..100000");
   expectError(folders + " --accept-threshold -1", "sequence/accept_threshold");
   expectError(folders + " --accept-threshold 1001", "sequence/accept_threshold");
   // Nothing is written for rejected options.
   EXPECT_FALSE(fs::exists(path("rejected.json")));
-  expectError(folders + " --threads -1 --output " + path("rejected.json"), "--threads must be >= 0");
+  expectError(folders + " --threads -1 --output " + path("rejected.json"), "--threads must be in 0..1024");
   EXPECT_FALSE(fs::exists(path("rejected.json")));
 }
 

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include "mrs_vpr/evaluation/drive_file.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
@@ -221,6 +222,12 @@ TEST_F(MakeDriveTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer"),
               "the ground truth needs --ground-truth, --reference and --query");
   EXPECT_FALSE(fs::exists(path("x")));
+  // An image of another size met half-way: the one-line error, and nothing half-written left behind.
+  fs::copy(path("summer"), path("mixed"));
+  cv::imwrite(path("mixed/00300.png"), cv::Mat(16, 16, CV_8UC3, cv::Scalar::all(90)));
+  expectError("--images " + path("mixed") + " --output " + path("x"), "all images of a route must have one size");
+  EXPECT_FALSE(fs::exists(path("x")));
+  EXPECT_FALSE(fs::exists(path("x.part")));
 }
 
 }  // namespace

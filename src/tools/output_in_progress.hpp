@@ -1,0 +1,38 @@
+#pragma once
+
+// An output written under a temporary name and renamed to its own when complete, so that a failed or
+// interrupted run never leaves a file or folder that looks complete.
+
+#include <filesystem>
+#include <string>
+#include <system_error>
+#include <utility>
+
+namespace mrs_vpr {
+namespace tools {
+
+/// `path`.part while it is written; removed (file or folder) unless commit() renamed it to `path`.
+class OutputInProgress {
+ public:
+  explicit OutputInProgress(std::string path) : path_(std::move(path)), temporary_(path_ + ".part") {}
+  OutputInProgress(const OutputInProgress&) = delete;
+  OutputInProgress& operator=(const OutputInProgress&) = delete;
+  ~OutputInProgress() {
+    std::error_code ignored;
+    if (!committed_) std::filesystem::remove_all(temporary_, ignored);
+  }
+
+  const std::string& temporary() const { return temporary_; }
+  void commit() {
+    std::filesystem::rename(temporary_, path_);
+    committed_ = true;
+  }
+
+ private:
+  std::string path_;
+  std::string temporary_;
+  bool committed_ = false;
+};
+
+}  // namespace tools
+}  // namespace mrs_vpr
