@@ -57,6 +57,8 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const std::string& path = path_;
   const bool read_only = access == MapAccess::kReadOnly;
   std::error_code ignored;
+  const std::string nul = nulByteProblem(path);
+  if (!nul.empty()) throw MapDatabaseError(nul);
   if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
   const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
   if (!path_problem.empty()) fail(path_problem);
@@ -369,6 +371,8 @@ namespace {
 
 void MapDatabase::checkSaveTarget(const std::string& path) {
   std::error_code error;
+  const std::string nul = nulByteProblem(path);
+  if (!nul.empty()) throw MapDatabaseError("cannot save the map: " + nul);
   if (path.empty()) refuseSave(path, "no path given");
   if (std::filesystem::is_directory(path, error)) {
     refuseSave(path, "it is a folder (give the path of a new file in it, such as " +

@@ -8,6 +8,13 @@
 
 namespace mrs_vpr {
 
+std::string nulByteProblem(const std::string& path) {
+  const std::size_t nul = path.find('\0');
+  if (nul == std::string::npos) return "";
+  return "map path '" + path.substr(0, nul) + "' is followed by a NUL byte (at byte " + std::to_string(nul) +
+         "), which would end it there: no file name holds one";
+}
+
 std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   namespace fs = std::filesystem;
   std::error_code error;

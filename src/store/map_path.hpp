@@ -20,4 +20,11 @@ constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
  */
 std::string mapPathProblem(const std::string& path, std::size_t suffix);
 
+/**
+ * Empty, or a whole message when `path` holds a NUL byte: every system call would read the path only
+ * up to it, and so open another file. The message quotes the path up to that byte only, since a
+ * message is itself cut there on its way to the user.
+ */
+std::string nulByteProblem(const std::string& path);
+
 }  // namespace mrs_vpr

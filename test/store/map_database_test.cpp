@@ -105,6 +105,20 @@ TEST_F(MapDatabaseTest, FramesComeBackBitForBitInOrderAfterReopening) {
   EXPECT_EQ(i, written.size());
 }
 
+TEST_F(MapDatabaseTest, APathWithANulByteIsRefusedRatherThanCutShort) {
+  // The system would open "map.db" for "map.db\0junk": the map beside it, or a new file of that name.
+  { MapDatabase existing(path("map.db"), thumbnailParams()); }
+  const std::string cut = path("map.db") + std::string(1, '\0') + "junk";
+  const std::string message = openingError(cut);
+  EXPECT_NE(message.find("map path '" + path("map.db") + "' is followed by a NUL byte"), std::string::npos) << message;
+  try {
+    MapDatabase::checkSaveTarget(path("new.db") + std::string(1, '\0') + ".db");
+    ADD_FAILURE() << "a path with a NUL byte was taken";
+  } catch (const MapDatabaseError& error) {
+    EXPECT_NE(std::string(error.what()).find("cannot save the map: map path"), std::string::npos) << error.what();
+  }
+}
+
 TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
   // With SQLite's default 4 KiB pages each 2 KiB descriptor took a page of its own.
   {
