@@ -185,6 +185,35 @@ int PlaceRecognizer::reset() {
   return cleared;
 }
 
+void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
+  if (descriptors.size() != stamps.size()) {
+    throw std::invalid_argument(std::to_string(stamps.size()) + " stamps for " + std::to_string(descriptors.size()) +
+                                " descriptors");
+  }
+  const auto count = static_cast<int>(descriptors.size());
+  if (recognizer_.max_frames > 0 && count > recognizer_.max_frames) {
+    throw std::invalid_argument(std::to_string(count) + " frames exceed max_frames (" +
+                                std::to_string(recognizer_.max_frames) + ")");
+  }
+  for (const cv::Mat& descriptor : descriptors) requireDescriptor(descriptor, extractor_.size());
+  // Every lock for the whole exchange, in reset's order: queries wait for it rather than see it half done.
+  std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  keyframes_.reset();
+  pending_.clear();
+  map_.clear();
+  recent_rows_->clear();
+  map_.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    map_.append(descriptors[static_cast<std::size_t>(i)], stamps[static_cast<std::size_t>(i)]);
+    keyframes_.keep(descriptors[static_cast<std::size_t>(i)]);
+  }
+  map_frames_ = map_.size();
+  frames_admitted_ = map_.size();
+  reserved_frames_ = count;
+}
+
 PlaceRecognizer::MapState PlaceRecognizer::state() const {
   MapState state;
   {

@@ -138,6 +138,13 @@ class PlaceRecognizer {
   int pending() const;
   /// Removes every frame; returns how many there were (pending ones included).
   int reset();
+  /**
+   * Replaces the whole map with `descriptors` (keyframes already, as a map database holds them) and
+   * their `stamps`, in one step: a query running meanwhile answers from the old map or the new one,
+   * never from a part of it. Throws std::invalid_argument, leaving the map as it was, when a
+   * descriptor is not of this front end, the counts differ, or the frames exceed max_frames.
+   */
+  void replace(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps);
 
   /// Calls `visit` with the descriptor (a view, valid during the call) and stamp of map frames
   /// [begin, end), in order, under the map's shared lock: queries go on, new frames wait as pending.

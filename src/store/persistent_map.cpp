@@ -112,15 +112,17 @@ int PersistentMap::load(const std::string& path) {
   std::lock_guard<std::mutex> lock(add_mutex_);
   // The database first, in one transaction: on failure the old map stays in both.
   if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
-  recognizer_.reset();
-  admitAll(frames);
+  // Then the recognizer, in one step: a query meanwhile answers from the old map or the new one.
+  std::vector<cv::Mat> descriptors;
+  std::vector<Stamp> stamps;
+  descriptors.reserve(frames.size());
+  stamps.reserve(frames.size());
+  for (const StoredFrame& frame : frames) {
+    descriptors.push_back(frame.descriptor);
+    stamps.push_back(frame.stamp);
+  }
+  recognizer_.replace(descriptors, stamps);
   return static_cast<int>(frames.size());
-}
-
-void PersistentMap::admitAll(const std::vector<StoredFrame>& frames) {
-  recognizer_.reserve(static_cast<int>(frames.size()));
-  for (const StoredFrame& frame : frames) admit(recognizer_, frame.descriptor, frame.stamp);
-  recognizer_.flush();
 }
 
 std::int64_t PersistentMap::save(const std::string& path) {

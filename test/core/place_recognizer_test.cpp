@@ -228,6 +228,48 @@ TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
   EXPECT_EQ(recognizer.addFrame(route().reference[0]), FrameAdmission::kAdmitted);
 }
 
+// A map loaded while queries run: each query sees the old map or the new one, never a part of either.
+TEST(PlaceRecognizer, ReplaceExchangesTheWholeMapInOneStep) {
+  PlaceRecognizer recognizer(routeParameters());
+  mapReference(recognizer);
+  const int whole = recognizer.size();
+  std::vector<cv::Mat> all;
+  std::vector<Stamp> stamps;
+  recognizer.visitFrames(0, whole, [&](const cv::Mat& descriptor, Stamp stamp) {
+    all.push_back(descriptor.clone());
+    stamps.push_back(stamp);
+  });
+  const std::vector<cv::Mat> part(all.begin(), all.begin() + 200);
+  const std::vector<Stamp> part_stamps(stamps.begin(), stamps.begin() + 200);
+  // A bad frame, or one stamp short: refused, and the map is as it was.
+  std::vector<cv::Mat> bad = part;
+  bad[100] = cv::Mat(1, 3, CV_8UC1);
+  EXPECT_NE(errorOf([&] { recognizer.replace(bad, part_stamps); }).find("descriptor"), std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.replace(part, stamps); }).find(std::to_string(whole) + " stamps for 200"),
+            std::string::npos);
+  EXPECT_EQ(recognizer.size(), whole);
+
+  std::atomic<bool> done{false};
+  std::atomic<int> partial{0};
+  std::thread reader([&] {
+    while (!done) {
+      const int size = recognizer.state().frames;
+      if (size != whole && size != 200) ++partial;
+    }
+  });
+  for (int round = 0; round < 20; ++round) {
+    recognizer.replace(part, part_stamps);
+    recognizer.replace(all, stamps);
+  }
+  done = true;
+  reader.join();
+  EXPECT_EQ(partial, 0);
+  // The map answers as the one built frame by frame.
+  const PlaceAnswer answer = recognizer.match(queryImages(150, 30));
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[150 + answer.localised_row], 3))
+      << answer.match.reference_index;
+}
+
 TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
   RecognizerParams limits;
   limits.max_frames = 300;

@@ -76,8 +76,6 @@ class PersistentMap {
  private:
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
                        bool offered);
-  /// Appends `frames` to the recognizer (empty or just reset); the caller holds add_mutex_.
-  void admitAll(const std::vector<StoredFrame>& frames);
   std::int64_t saveFromMemory(const std::string& path);
 
   PlaceRecognizer& recognizer_;
