@@ -34,8 +34,9 @@ constexpr const char* kUsage =
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps and their frame's index in DIR or on T (the frame numbers of mrs_vpr_eval's\n"
     "ground truth; with --append, numbered on from the map's last frame), in the SQLite map database\n"
-    "MAP.db. A new map is written to MAP.db.part and renamed only when complete; an existing MAP.db is\n"
-    "extended with --append (with the front end it records, unless one is given) or replaced with --force.\n"
+    "MAP.db. The map is written to MAP.db.part and renamed only when complete; an existing MAP.db is\n"
+    "extended with --append (a copy of it, with the front end it records unless one is given) or replaced\n"
+    "with --force. A failure leaves MAP.db as it was.\n"
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
     "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n"
     "Otherwise a frame is kept once its view has changed by C of the difference between unrelated\n"
@@ -104,18 +105,24 @@ int run(int argc, char** argv) {
   std::optional<mrs_vpr::bag::BagKeyframes> keyframes;
   if (travel.min_travel != 0.0) keyframes.emplace(bag_path, travel);
 
-  // A new map is built aside and renamed when complete; an appended one commits batch by batch.
-  const bool in_place = exists && append;
-  const std::string target = in_place ? output : output + ".part";
+  // Every map is built aside and renamed when complete; an extended one starts as a copy of the map,
+  // which is held meanwhile so that no node writes to it. A failure leaves the map as it was.
+  const bool extend = exists && append;
+  const std::string target = output + ".part";
   const auto removePart = [&] {
     std::error_code ignored;
-    for (const char* leftover : {".part", ".part-wal", ".part-shm"}) {
+    for (const char* leftover : {".part", ".part-wal", ".part-shm", ".part-journal", ".part.part"}) {
       std::filesystem::remove(output + leftover, ignored);
     }
   };
   removePart();
+  std::optional<mrs_vpr::MapDatabase> original;
   int stored = 0;
   try {
+    if (extend) {
+      original.emplace(output, params);
+      original->backupTo(target);
+    }
     mrs_vpr::MapDatabase map(target, params);
     const std::int64_t before = map.size();
     // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
@@ -163,16 +170,15 @@ int run(int argc, char** argv) {
       }
     }
   } catch (...) {
-    if (!in_place) removePart();
+    removePart();
     throw;
   }
-  if (!in_place) {
-    std::error_code error;
-    std::filesystem::rename(target, output, error);
-    if (error) {
-      removePart();
-      throw std::runtime_error("cannot replace '" + output + "' by the new map: " + error.message());
-    }
+  original.reset();  // Its connection closed before its file is replaced.
+  std::error_code error;
+  std::filesystem::rename(target, output, error);
+  if (error) {
+    removePart();
+    throw std::runtime_error("cannot replace '" + output + "' by the new map: " + error.message());
   }
   return 0;
 }

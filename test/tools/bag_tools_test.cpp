@@ -211,6 +211,21 @@ TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   const CommandResult appended = run(build + " --append");
   EXPECT_EQ(appended.status, 0) << appended.err;
   EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
+
+  // An extension that fails after a first batch of 1000 frames leaves the map as it was (it kept that
+  // batch before, and a second run after the image was mended would have stored it twice).
+  fs::create_directories(path("long"));
+  std::vector<fs::path> images;
+  for (const auto& entry : fs::directory_iterator(path("reference"))) images.push_back(entry.path());
+  for (std::size_t i = 0; i < 1050; ++i) {
+    fs::create_symlink(images[i % images.size()], fs::path(path("long")) / (std::to_string(10000 + i) + ".png"));
+  }
+  std::ofstream(path("long/99999.png")) << "not an image";
+  const CommandResult failed = run(buildMap() + " --images " + path("long") + " --output " + map + " --append");
+  EXPECT_EQ(failed.status, 1) << failed.err;
+  EXPECT_NE(failed.err.find("99999.png"), std::string::npos) << failed.err;
+  EXPECT_EQ(mrs_vpr::MapDatabase(map, mrs_vpr::MapAccess::kReadOnly).size(), 300);
+  EXPECT_FALSE(fs::exists(map + ".part"));
 }
 
 TEST_F(BagToolsTest, AMapIsReadAndExtendedWithTheFrontEndItRecords) {
