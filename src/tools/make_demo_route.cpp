@@ -1,6 +1,8 @@
 // make_demo_route: a generated route (two traversals with known alignment) as reference.bag,
 // query.bag and ground_truth.csv, optionally also as image folders for mrs_vpr_eval.
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -10,12 +12,14 @@
 #include <string>
 
 #include <boost/program_options.hpp>
+#include <ros/names.h>
 #include <ros/time.h>
 #include <rosbag/bag.h>
 
 #include "mrs_vpr/image_codecs.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -33,15 +37,18 @@ constexpr const char* kUsage =
     "matching_ref_indices). Reference frame i is stamped start-time + i / rate; the query traversal\n"
     "starts one hour later. --images also writes DIR/reference/ and DIR/query/ as PNG folders.\n";
 
+/// The bag appears under `path` only once complete: a failure or Ctrl-C leaves no bag that looks whole.
 void writeBag(const std::string& path, const std::string& topic, const std::vector<cv::Mat>& frames, double start,
               double rate) {
+  mrs_vpr::tools::OutputInProgress output(path);
   rosbag::Bag bag;
-  bag.open(path, rosbag::bagmode::Write);
+  bag.open(output.temporary(), rosbag::bagmode::Write);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start, static_cast<long long>(i), rate);
     bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera"));
   }
   bag.close();
+  output.commit();
 }
 
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
@@ -63,6 +70,7 @@ int run(int argc, char** argv) {
   std::string topic = "/camera/image_raw";
   double rate = 20.0;
   double start_time = 1.7e9;  // A fixed, plausible epoch time: same route, same bags.
+  long long seed = static_cast<long long>(route_params.seed);
   po::options_description description("Options");
   // clang-format off
   description.add_options()
@@ -75,25 +83,42 @@ int run(int argc, char** argv) {
       ("topic", po::value(&topic)->default_value(topic), "image topic in the bags")
       ("rate", po::value(&rate)->default_value(rate), "frame rate of the stamps [Hz]")
       ("start-time", po::value(&start_time)->default_value(start_time), "stamp of the first reference frame [s]")
-      ("seed", po::value(&route_params.seed)->default_value(route_params.seed), "seed of the route")
+      ("seed", po::value(&seed)->default_value(seed), "seed of the route, >= 0")
       ("images", "also write the traversals as PNG folders");
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
-  if (!(rate > 0.0)) throw std::invalid_argument("--rate must be > 0 Hz");
+  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s");
+  if (seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(seed));
+  route_params.seed = static_cast<std::uint64_t>(seed);
+  std::string why;
+  if (topic.empty() || !ros::names::validate(topic, why)) {
+    throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name" + (why.empty() ? "" : ": " + why));
+  }
+  // Both traversals' last stamps, before anything is written: the query one starts an hour later.
+  try {
+    mrs_vpr::bag::frameStamp(start_time, route_params.reference_frames - 1, rate);
+    mrs_vpr::bag::frameStamp(start_time + 3600.0, route_params.query_frames - 1, rate);
+  } catch (const std::invalid_argument& error) {
+    throw std::invalid_argument(std::string("the traversals cannot all be stamped: ") + error.what());
+  }
 
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   const fs::path folder(output);
   fs::create_directories(folder);
   writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
   writeBag((folder / "query.bag").string(), topic, route.query, start_time + 3600.0, rate);
-  std::ofstream truth(folder / "ground_truth.csv");
-  truth << "query_index,matching_ref_indices\n";
-  for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
-    truth << i << "," << route.query_to_reference[i] << "\n";
+  mrs_vpr::tools::OutputInProgress truth_file((folder / "ground_truth.csv").string());
+  {
+    std::ofstream truth(truth_file.temporary());
+    truth << "query_index,matching_ref_indices\n";
+    for (std::size_t i = 0; i < route.query_to_reference.size(); ++i) {
+      truth << i << "," << route.query_to_reference[i] << "\n";
+    }
+    if (!truth.flush()) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
   }
-  if (!truth) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
+  truth_file.commit();
   if (variables.count("images") > 0) {
     writeFolder(folder / "reference", route.reference);
     writeFolder(folder / "query", route.query);

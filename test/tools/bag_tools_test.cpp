@@ -320,6 +320,27 @@ TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
   }
 }
 
+TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
+  const std::string tool = std::string(MAKE_DEMO_ROUTE_PATH) + " --output " + path("demo");
+  for (const auto& [options, problem] :
+       std::vector<std::pair<std::string, std::string>>{{" --rate inf", "--rate must be > 0 Hz"},
+                                                        {" --seed -1", "--seed must be >= 0, got -1"},
+                                                        {" --topic 'bad topic'", "is not a valid ROS topic name"},
+                                                        // The query traversal, an hour later, would not fit.
+                                                        {" --start-time 4294966000", "cannot all be stamped"}}) {
+    const CommandResult refused = run(tool + options);
+    EXPECT_EQ(refused.status, 1) << options;
+    EXPECT_NE(refused.err.find(problem), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(path("demo/reference.bag"))) << options;  // Before, a partial bag was left.
+  }
+  const CommandResult written = run(tool + " --reference-frames 30 --query-frames 20");
+  ASSERT_EQ(written.status, 0) << written.err;
+  for (const char* file : {"reference.bag", "query.bag", "ground_truth.csv"}) {
+    EXPECT_TRUE(fs::exists(path("demo/") + file)) << file;
+    EXPECT_FALSE(fs::exists(path("demo/") + file + ".part")) << file;
+  }
+}
+
 TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
   const std::string bag = path("route.bag");
   const std::string arguments = " --images " + path("query") + " --bag " + bag + " --topic /t --rate 5";
