@@ -94,7 +94,8 @@ int run(int argc, char** argv) {
   route_params.seed = static_cast<std::uint64_t>(seed);
   std::string why;
   if (topic.empty() || !ros::names::validate(topic, why)) {
-    throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name" + (why.empty() ? "" : ": " + why));
+    throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name" +
+                                (why.empty() ? "" : ": " + why));
   }
   // Both traversals' last stamps, before anything is written: the query one starts an hour later.
   try {
