@@ -40,6 +40,21 @@ TEST(SequenceGaps, AGapAcrossTheWrapIsCounted) {
   EXPECT_EQ(gaps.record(4U), 9U);  // 4294967291 .. 4294967295 and 0 .. 3
 }
 
+TEST(SequenceGaps, TwoPublishersAtOnceLoseNothingBetweenThem) {
+  // A bag numbered from 300 played while the camera, numbered from 5, runs: they alternate.
+  SequenceGaps gaps;
+  EXPECT_EQ(gaps.record(5), 0U);
+  // The first jump ahead looks like a gap: nothing yet tells a second publisher. Only that one counts.
+  EXPECT_EQ(gaps.record(300), 294U);
+  EXPECT_EQ(gaps.record(6), 0U);
+  for (std::uint32_t i = 1; i < 100; ++i) {
+    EXPECT_EQ(gaps.record(300 + i), 0U) << i;  // before, each of these counted 294 lost frames
+    EXPECT_EQ(gaps.record(6 + i), 0U) << i;
+  }
+  EXPECT_EQ(gaps.record(403), 3U);  // a real gap in one of them is still counted: 400 .. 402
+  EXPECT_EQ(gaps.record(106), 0U);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

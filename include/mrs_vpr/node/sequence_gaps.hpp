@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 namespace mrs_vpr {
@@ -14,24 +15,65 @@ namespace node {
  * their sender set) restarts the count without a gap. Seqs are compared as 32-bit serial numbers
  * (RFC 1982): 4294967295 is just before 0, so a counter that wraps around loses nothing, and a jump
  * back that wraps below 0 (4001, then 4294967295) is a restarted sender, not 4.29 billion lost
- * frames. No ROS inside.
+ * frames.
+ *
+ * Two publishers at once (a bag played while the camera runs) interleave two numberings, and image
+ * callbacks do not say which publisher sent a message. So a few numberings are followed, and each seq
+ * continues the one it is the shortest step ahead of; a step of more than kInterleavedStep ahead of
+ * one that is not the newest is a numbering of its own. Only the first jump from one numbering to
+ * the other, which nothing yet tells from a gap, is counted. No ROS inside.
  */
 class SequenceGaps {
  public:
+  /// The most numberings followed at once; the one seen least recently makes room for a new one.
+  static constexpr int kStreams = 8;
+  /// The longest step a seq may take ahead of a numbering other than the newest and still continue it.
+  static constexpr std::uint32_t kInterleavedStep = 1000;
+
   /// Records the seq of a message that arrived; returns how many are missing just before it.
   std::uint64_t record(std::uint32_t seq) {
-    // The distance forward modulo 2^32: a step of 2^31 or more forward is a step backward.
-    const std::uint32_t step = seq - last_seq_;
-    const bool forward = has_seq_ && step != 0 && step < 0x80000000U;
-    const std::uint64_t missing = forward ? step - 1 : 0;
-    has_seq_ = true;
-    last_seq_ = seq;
+    ++clock_;
+    int chosen = -1;
+    std::uint32_t shortest = 0;
+    for (int i = 0; i < count_; ++i) {
+      // The distance forward modulo 2^32: a step of 2^31 or more forward is a step backward.
+      const std::uint32_t step = seq - streams_[i].last_seq;
+      const bool forward = step < 0x80000000U;
+      if (!forward || (i != newest_ && step > kInterleavedStep)) continue;
+      if (chosen < 0 || step < shortest) {
+        chosen = i;
+        shortest = step;
+      }
+    }
+    std::uint64_t missing = 0;
+    if (chosen >= 0) {
+      missing = shortest == 0 ? 0 : shortest - 1;
+    } else {
+      chosen = count_ < kStreams ? count_++ : leastRecent();
+    }
+    streams_[chosen] = {seq, clock_};
+    newest_ = chosen;
     return missing;
   }
 
  private:
-  bool has_seq_ = false;
-  std::uint32_t last_seq_ = 0;
+  struct Stream {
+    std::uint32_t last_seq = 0;
+    std::uint64_t seen = 0;  ///< clock_ when its last seq came
+  };
+
+  int leastRecent() const {
+    int oldest = 0;
+    for (int i = 1; i < count_; ++i) {
+      if (streams_[i].seen < streams_[oldest].seen) oldest = i;
+    }
+    return oldest;
+  }
+
+  std::array<Stream, kStreams> streams_{};
+  int count_ = 0;
+  int newest_ = -1;
+  std::uint64_t clock_ = 0;
 };
 
 }  // namespace node
