@@ -26,10 +26,11 @@ void bindEvaluation(py::module_& m) {
   m.def(
       "per_frame_queries",
       [](int query_frames, int sequence_length, const std::string& alignment) {
-        SequenceParams params;
-        params.sequence_length = sequence_length;
-        params.alignment = parseWindowAlignment(alignment);
-        return perFrameQueries(query_frames, params);
+        Parameters params;  // Checked by the core's rule: "sequence/sequence_length must be in 2..10000".
+        params.sequence.sequence_length = sequence_length;
+        params.sequence.alignment = parseWindowAlignment(alignment);
+        params.validate();
+        return perFrameQueries(query_frames, params.sequence);
       },
       py::arg("query_frames"), py::arg("sequence_length"), py::arg("alignment"),
       "Query frames with a full test sequence in the per-frame protocol.");

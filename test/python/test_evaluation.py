@@ -78,3 +78,11 @@ def test_bad_evaluation_input_raises_value_error(route, short_sequences):
     with pytest.raises(ValueError) as error:
         mrs_vpr.evaluation.summarise([{"query_index": "one"}], 2)
     assert str(error.value) == "a query record holds a value of the wrong type: {'query_index': 'one'}"
+    record = {"query_index": 0, "true_indices": [0], "predicted_index": 0, "score": 0.5, "accepted": True,
+              "at_velocity_bound": False, "time_ms": 1.0}
+    with pytest.raises(ValueError) as error:  # Before, the curve grew until memory ran out.
+        mrs_vpr.evaluation.summarise([dict(record, confidence=float("nan")), dict(record, confidence=1.0)], 2)
+    assert str(error.value) == "the record of query 0 has a confidence that is not a number"
+    with pytest.raises(ValueError) as error:
+        mrs_vpr._bindings.per_frame_queries(100, 0, "causal")
+    assert "sequence/sequence_length must be in 2..10000, got 0" in str(error.value)
