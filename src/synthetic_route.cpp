@@ -78,8 +78,15 @@ class SmoothSignal {
 }  // namespace
 
 SyntheticRoute generateSyntheticRoute(const SyntheticRouteParams& params) {
-  if (params.reference_frames < 2 || params.query_frames < 1 || params.image_width < 8 || params.image_height < 8) {
-    throw std::invalid_argument("synthetic route needs >= 2 reference frames, >= 1 query frame, images >= 8 x 8");
+  // Upper bounds too: the route's world is one image some 8 px a reference frame wide.
+  constexpr int kMostFrames = 1000000;
+  constexpr int kLargestSide = 4096;
+  const auto inside = [](int value, int low, int high) { return value >= low && value <= high; };
+  if (!inside(params.reference_frames, 2, kMostFrames) || !inside(params.query_frames, 1, kMostFrames) ||
+      !inside(params.image_width, 8, kLargestSide) || !inside(params.image_height, 8, kLargestSide)) {
+    throw std::invalid_argument("a synthetic route needs 2.." + std::to_string(kMostFrames) + " reference frames, 1.." +
+                                std::to_string(kMostFrames) + " query frames and images of 8.." +
+                                std::to_string(kLargestSide) + " px a side");
   }
   if (!(params.speed_min > 0.0 && params.speed_min <= params.speed_max)) {
     throw std::invalid_argument("synthetic route speeds must satisfy 0 < speed_min <= speed_max");

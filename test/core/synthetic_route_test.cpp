@@ -123,6 +123,9 @@ TEST(SyntheticRoute, InvalidSizesAndSpeedsThrow) {
   params.image_width = 4;
   EXPECT_THROW(generateSyntheticRoute(params), std::invalid_argument);
   params = smallRoute();
+  params.image_width = 2147483647;  // The world's width overflowed an int and OpenCV asserted.
+  EXPECT_THROW(generateSyntheticRoute(params), std::invalid_argument);
+  params = smallRoute();
   params.speed_min = 1.3;
   EXPECT_THROW(generateSyntheticRoute(params), std::invalid_argument);
   params = smallRoute();
