@@ -1,11 +1,13 @@
 #include "evaluation_json.hpp"
 
-#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <stdexcept>
 #include <type_traits>
 #include <variant>
+
+#include "output_in_progress.hpp"
 
 namespace mrs_vpr {
 namespace tools {
@@ -102,19 +104,16 @@ std::string jsonText(const json& document, int indent) {
 
 void writeJson(const json& document, const std::string& path) {
   const std::string text = jsonText(document, 2);
-  const std::string part = path + ".part";
+  OutputInProgress output(path);  // Removed unless renamed into place: an existing file is never emptied.
+  const auto cannot = [&] { return std::runtime_error("cannot write '" + path + "'"); };
   {
-    std::ofstream file(part);
-    if (!file) throw std::runtime_error("cannot write '" + path + "'");
-    file << text << "\n";
-    if (!file.flush()) {
-      std::remove(part.c_str());
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
+    std::ofstream file(output.temporary());
+    if (!(file << text << "\n").flush()) throw cannot();
   }
-  if (std::rename(part.c_str(), path.c_str()) != 0) {
-    std::remove(part.c_str());
-    throw std::runtime_error("cannot write '" + path + "'");
+  try {
+    output.commit();
+  } catch (const std::filesystem::filesystem_error&) {
+    throw cannot();
   }
   std::cerr << "  wrote " << path << "\n";
 }
