@@ -170,20 +170,7 @@ int PlaceRecognizer::pending() const {
   return static_cast<int>(pending_.size());
 }
 
-int PlaceRecognizer::reset() {
-  std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);  // First, as offerDescriptor takes it.
-  keyframes_.reset();
-  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-  std::lock_guard<std::mutex> lock(pending_mutex_);
-  const int cleared = map_.size() + static_cast<int>(pending_.size());
-  pending_.clear();
-  map_.clear();
-  recent_rows_->clear();
-  map_frames_ = 0;
-  frames_admitted_ = 0;
-  reserved_frames_ = 0;
-  return cleared;
-}
+int PlaceRecognizer::reset() { return exchange({}, {}); }
 
 void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
   if (descriptors.size() != stamps.size()) {
@@ -196,15 +183,22 @@ void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std
                                 std::to_string(recognizer_.max_frames) + ")");
   }
   for (const cv::Mat& descriptor : descriptors) requireDescriptor(descriptor, extractor_.size());
-  // Every lock for the whole exchange, in reset's order: queries wait for it rather than see it half done.
+  exchange(descriptors, stamps);
+}
+
+int PlaceRecognizer::exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
+  // Every lock for the whole exchange, the keyframe rule's first as offerDescriptor takes it: queries
+  // wait for it rather than see it half done.
   std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
   std::lock_guard<std::mutex> lock(pending_mutex_);
+  const int cleared = map_.size() + static_cast<int>(pending_.size());
   keyframes_.reset();
   pending_.clear();
   map_.clear();
   recent_rows_->clear();
-  map_.reserve(count);
+  const auto count = static_cast<int>(descriptors.size());
+  if (count > 0) map_.reserve(count);
   for (int i = 0; i < count; ++i) {
     map_.append(descriptors[static_cast<std::size_t>(i)], stamps[static_cast<std::size_t>(i)]);
     keyframes_.keep(descriptors[static_cast<std::size_t>(i)]);
@@ -212,6 +206,7 @@ void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = count;
+  return cleared;
 }
 
 PlaceRecognizer::MapState PlaceRecognizer::state() const {

@@ -195,6 +195,9 @@ class PlaceRecognizer {
                      MatchExplanation* explanation, const MapFrames* map_frames = nullptr) const;
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
   void flushLocked();
+  /// Replaces the map, the pending frames, the kept rows and the keyframe rule's history by
+  /// `descriptors` (checked by the caller) under every lock at once; returns the frames it cleared.
+  int exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps);
   /// addDescriptor without the keyframe bookkeeping.
   FrameAdmission append(const cv::Mat& descriptor, Stamp stamp);
 
