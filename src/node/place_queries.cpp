@@ -158,12 +158,7 @@ void PlaceRecognitionNode::publishStandingClosures(const std_msgs::Header& heade
 }
 
 void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
-  try {
-    recognizer_.flush();
-  } catch (const std::exception& error) {  // std::bad_alloc: roscpp would end the node
-    ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not move waiting keyframes into the map: %s", error.what());
-    return;
-  }
+  if (!flushWaitingKeyframes()) return;
   const std::uint64_t version = map_version_.load();
   if (version == auto_query_version_) {
     return;  // nothing new since the last answer

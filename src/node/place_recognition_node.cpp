@@ -153,13 +153,20 @@ void PlaceRecognitionNode::publishMapInfoIfChanged() {
   frame_time_max_ms_ = 0.0;
 }
 
-void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
+bool PlaceRecognitionNode::flushWaitingKeyframes() {
   try {
-    recognizer_.flush();  // frames parked during a query show up even when no new image arrives
-    recognizer_.reserveAhead();
-  } catch (const std::exception& error) {  // std::bad_alloc: roscpp would end the node
+    recognizer_.flush();
+    return true;
+  } catch (const std::exception& error) {  // std::bad_alloc
     ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not move waiting keyframes into the map: %s", error.what());
+    return false;
   }
+}
+
+void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
+  // Frames parked during a query show up even when no new image arrives; reserveAhead gives up by itself
+  // when memory runs out.
+  if (flushWaitingKeyframes()) recognizer_.reserveAhead();
   publishMapInfoIfChanged();
   reportWriteErrors();
 }

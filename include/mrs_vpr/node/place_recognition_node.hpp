@@ -115,6 +115,9 @@ class PlaceRecognitionNode {
   void reportWriteErrors();
   void autoQueryCallback(const ros::TimerEvent& event);
   void mapInfoCallback(const ros::TimerEvent& event);
+  /// Moves the keyframes parked during a query into the map; false, logged, when memory ran out (a
+  /// timer callback must not throw: roscpp would end the node).
+  bool flushWaitingKeyframes();
 
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
   PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
