@@ -62,7 +62,8 @@ void CameraDriveSettings::validate() const {
                                              stop_frames_max));
   }
   if (stop_frames_max > kMostStopFrames) {
-    throw std::invalid_argument(settingError("stop_frames_max", "<= " + std::to_string(kMostStopFrames), stop_frames_max));
+    throw std::invalid_argument(
+        settingError("stop_frames_max", "<= " + std::to_string(kMostStopFrames), stop_frames_max));
   }
   if (slow_frames < 0) throw std::invalid_argument(settingError("slow_frames", ">= 0", slow_frames));
   if (fast_frames < 0) throw std::invalid_argument(settingError("fast_frames", ">= 0", fast_frames));
@@ -242,7 +243,8 @@ GroundTruth driveGroundTruth(const std::vector<int>& reference_route_frames, con
     std::vector<int>& frames = truth[static_cast<int>(i)];
     // In 64 bits: a tolerance near INT_MAX must not wrap round.
     const long long route_frame = query_route_frames[i];
-    const auto lowest = static_cast<int>(std::max<long long>(std::numeric_limits<int>::min(), route_frame - route_tolerance));
+    const auto lowest =
+        static_cast<int>(std::max<long long>(std::numeric_limits<int>::min(), route_frame - route_tolerance));
     for (auto it = frames_of_route_frame.lower_bound(lowest);
          it != frames_of_route_frame.end() && it->first <= route_frame + route_tolerance; ++it) {
       frames.insert(frames.end(), it->second.begin(), it->second.end());

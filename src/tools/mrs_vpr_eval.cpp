@@ -271,7 +271,8 @@ int run(int argc, char** argv) {
     }
   }
   std::cout
-      << jsonText(json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}, 2)
+      << jsonText(
+             json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}, 2)
       << std::endl;
   return 0;
 }
