@@ -54,9 +54,24 @@ void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
                                 cv::typeToString(descriptor.type()) + " with " +
                                 std::to_string(descriptor.total()) + " elements");
   }
-  data_.insert(data_.end(), descriptor.data, descriptor.data + descriptor_size_);
-  stamps_.push_back(stamp);
-  appendCoarseCells(size() - 1);
+  // A failed allocation part-way through leaves every array as it was, not one frame longer than another.
+  const std::size_t data_size = data_.size();
+  const std::size_t stamp_count = stamps_.size();
+  const std::size_t frame_cells = coarse_.frames.size();
+  std::vector<std::size_t> level_cells;
+  level_cells.reserve(coarse_.levels.size());
+  for (const std::vector<std::uint8_t>& cells : coarse_.levels) level_cells.push_back(cells.size());
+  try {
+    data_.insert(data_.end(), descriptor.data, descriptor.data + descriptor_size_);
+    stamps_.push_back(stamp);
+    appendCoarseCells(size() - 1);
+  } catch (...) {
+    data_.resize(data_size);
+    stamps_.resize(stamp_count);
+    coarse_.frames.resize(frame_cells);
+    for (std::size_t level = 0; level < level_cells.size(); ++level) coarse_.levels[level].resize(level_cells[level]);
+    throw;
+  }
 }
 
 void DescriptorSequence::appendCoarseCells(int last) {
@@ -76,8 +91,9 @@ void DescriptorSequence::appendCoarseCells(int last) {
 void DescriptorSequence::keepCoarseCells(int levels, const DescriptorParams& geometry) {
   auto kind = makeCompactCells(geometry);
   if (kind->descriptorSize() != descriptor_size_) {
-    throw std::invalid_argument("coarse cells of the " + geometry.describe() + " front end cannot be kept for descriptors of " +
-                                std::to_string(descriptor_size_) + " bytes");
+    throw std::invalid_argument("coarse cells of the " + geometry.describe() +
+                                " front end cannot be kept for descriptors of " + std::to_string(descriptor_size_) +
+                                " bytes");
   }
   coarse_.kind = std::move(kind);
   coarse_.levels.assign(static_cast<std::size_t>(std::max(0, levels)), {});

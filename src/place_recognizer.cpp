@@ -76,18 +76,28 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
   }
   const FrameAdmission admission = append(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted) {
-    keyframes_.keep(descriptor);
+    keepKeyframeLocked(descriptor);
   } else {
     keyframes_.skip(descriptor);
   }
   return admission;
 }
 
+void PlaceRecognizer::keepKeyframeLocked(const cv::Mat& descriptor) {
+  try {
+    keyframes_.keep(descriptor);
+  } catch (const std::bad_alloc&) {
+    // The frame is in the map already: the rule starts over, as after a reset, rather than the caller
+    // being told that an admitted frame failed.
+    keyframes_.reset();
+  }
+}
+
 FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, Stamp stamp) {
   requireDescriptor(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   const FrameAdmission admission = append(descriptor, stamp);
-  if (admission == FrameAdmission::kAdmitted) keyframes_.keep(descriptor);
+  if (admission == FrameAdmission::kAdmitted) keepKeyframeLocked(descriptor);
   return admission;
 }
 
@@ -110,18 +120,44 @@ FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
     ++frames_admitted_;
   }
   // Never wait for a query: if one holds the map, the frame stays pending until the map is free.
+  // Nor for memory: when the map cannot grow now, the frame stays pending for the next flush, and
+  // once the pending buffer is full, frames are refused as kPendingFull.
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_, std::try_to_lock);
-  if (map_lock.owns_lock()) flushLocked();
+  if (map_lock.owns_lock()) {
+    try {
+      flushLocked();
+    } catch (const std::bad_alloc&) {
+    }
+  }
   return FrameAdmission::kAdmitted;
 }
 
 void PlaceRecognizer::flushLocked() {
-  std::vector<PendingFrame> frames;
+  // A frame leaves the pending buffer only once the map holds it, so that a failed allocation loses
+  // none: the frames not yet stored wait for the next flush. New frames may arrive meanwhile, behind.
+  std::size_t stored = 0;
+  try {
+    for (;; ++stored) {
+      PendingFrame frame;
+      {
+        std::lock_guard<std::mutex> lock(pending_mutex_);
+        if (stored == pending_.size()) break;
+        frame = pending_[stored];
+      }
+      map_.append(frame.descriptor, frame.stamp);
+    }
+  } catch (...) {
+    forgetStored(stored);
+    throw;
+  }
+  forgetStored(stored);
+}
+
+void PlaceRecognizer::forgetStored(std::size_t stored) {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
-    frames.swap(pending_);
+    pending_.erase(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(stored));
   }
-  for (const PendingFrame& frame : frames) map_.append(frame.descriptor, frame.stamp);
   map_frames_ = map_.size();
 }
 
@@ -187,22 +223,27 @@ void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std
 }
 
 int PlaceRecognizer::exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
-  // Every lock for the whole exchange, the keyframe rule's first as offerDescriptor takes it: queries
+  // The new map and keyframe history are built aside, so that a failed allocation leaves the old ones
+  // whole, and queries do not wait while a large map is copied.
+  const auto count = static_cast<int>(descriptors.size());
+  DescriptorSequence map(extractor_.size());
+  map.keepCoarseCells(params_.mrs.levels, params_.descriptor);
+  AppearanceKeyframes keyframes(params_.descriptor, recognizer_.min_appearance_change);
+  if (count > 0) map.reserve(count);
+  for (int i = 0; i < count; ++i) {
+    map.append(descriptors[static_cast<std::size_t>(i)], stamps[static_cast<std::size_t>(i)]);
+    keyframes.keep(descriptors[static_cast<std::size_t>(i)]);
+  }
+  // Every lock for the exchange itself, the keyframe rule's first as offerDescriptor takes it: queries
   // wait for it rather than see it half done.
   std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
   std::lock_guard<std::mutex> lock(pending_mutex_);
   const int cleared = map_.size() + static_cast<int>(pending_.size());
-  keyframes_.reset();
+  keyframes_ = std::move(keyframes);
+  map_ = std::move(map);
   pending_.clear();
-  map_.clear();
   recent_rows_->clear();
-  const auto count = static_cast<int>(descriptors.size());
-  if (count > 0) map_.reserve(count);
-  for (int i = 0; i < count; ++i) {
-    map_.append(descriptors[static_cast<std::size_t>(i)], stamps[static_cast<std::size_t>(i)]);
-    keyframes_.keep(descriptors[static_cast<std::size_t>(i)]);
-  }
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = count;

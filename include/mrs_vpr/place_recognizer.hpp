@@ -193,10 +193,16 @@ class PlaceRecognizer {
   };
   PlaceAnswer answer(SequenceView reference, SequenceView query, const std::string& method,
                      MatchExplanation* explanation, const MapFrames* map_frames = nullptr) const;
-  /// Moves pending frames into the map; the caller holds map_mutex_ exclusively.
+  /// Moves pending frames into the map; the caller holds map_mutex_ exclusively. When an append
+  /// throws, the frames not yet in the map stay pending.
   void flushLocked();
+  /// keyframes_.keep() of an admitted frame; the caller holds keyframes_mutex_.
+  void keepKeyframeLocked(const cv::Mat& descriptor);
+  /// Drops the first `stored` pending frames, which the map now holds.
+  void forgetStored(std::size_t stored);
   /// Replaces the map, the pending frames, the kept rows and the keyframe rule's history by
   /// `descriptors` (checked by the caller) under every lock at once; returns the frames it cleared.
+  /// When it throws, nothing has changed.
   int exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps);
   /// addDescriptor without the keyframe bookkeeping.
   FrameAdmission append(const cv::Mat& descriptor, Stamp stamp);

@@ -158,7 +158,8 @@ bool PlaceRecognitionNode::flushWaitingKeyframes() {
     recognizer_.flush();
     return true;
   } catch (const std::exception& error) {  // std::bad_alloc
-    ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not move waiting keyframes into the map: %s", error.what());
+    ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not move waiting keyframes into the map (they wait): %s",
+                       error.what());
     return false;
   }
 }

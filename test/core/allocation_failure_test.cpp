@@ -1,0 +1,199 @@
+// Failed allocations while the map grows: every allocation through operator new is made to fail in
+// turn, and the map must be left whole each time. This binary replaces the global allocation
+// functions, so it holds these tests alone.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_recognizer.hpp"
+
+namespace {
+
+/// Allocations left before one fails; negative: none fails.
+std::atomic<long> allocations_before_failure{-1};
+
+void* allocate(std::size_t size) {
+  if (allocations_before_failure.load() >= 0 && allocations_before_failure.fetch_sub(1) == 0) throw std::bad_alloc();
+  if (void* memory = std::malloc(size == 0 ? 1 : size)) return memory;
+  throw std::bad_alloc();
+}
+
+}  // namespace
+
+void* operator new(std::size_t size) { return allocate(size); }
+void* operator new[](std::size_t size) { return allocate(size); }
+void operator delete(void* memory) noexcept { std::free(memory); }
+void operator delete[](void* memory) noexcept { std::free(memory); }
+void operator delete(void* memory, std::size_t) noexcept { std::free(memory); }
+void operator delete[](void* memory, std::size_t) noexcept { std::free(memory); }
+
+namespace mrs_vpr {
+namespace {
+
+/// Fails the `allocation`-th allocation from now (0: the next one) until disarmed.
+class FailingAllocation {
+ public:
+  explicit FailingAllocation(long allocation) { allocations_before_failure = allocation; }
+  ~FailingAllocation() { allocations_before_failure = -1; }
+  FailingAllocation(const FailingAllocation&) = delete;
+  FailingAllocation& operator=(const FailingAllocation&) = delete;
+};
+
+/// More attempts than any one call makes allocations: a call that still fails after it is a defect.
+constexpr long kMaxAllocations = 64;
+
+cv::Mat randomDescriptor(int size, cv::RNG& random) {
+  cv::Mat descriptor(1, size, CV_8UC1);
+  random.fill(descriptor, cv::RNG::UNIFORM, 0, 256);
+  return descriptor;
+}
+
+/// Every byte a sequence holds: descriptors, stamps and the coarse cells of each stride kept.
+std::vector<std::int64_t> contentsOf(const DescriptorSequence& sequence, const DescriptorParams& geometry) {
+  std::vector<std::int64_t> contents{sequence.size()};
+  for (int frame = 0; frame < sequence.size(); ++frame) {
+    const std::uint8_t* bytes = sequence.descriptor(frame);
+    contents.insert(contents.end(), bytes, bytes + sequence.descriptorSize());
+    contents.push_back(sequence.stamp(frame).nanoseconds());
+  }
+  for (int stride = 1; stride <= 16; stride *= 2) {
+    const SequenceView cells = sequence.view().coarseCells(stride, geometry);
+    contents.push_back(cells.count);
+    contents.insert(contents.end(), cells.data,
+                    cells.data + static_cast<std::ptrdiff_t>(cells.count) * cells.descriptor_size);
+  }
+  return contents;
+}
+
+TEST(AllocationFailure, AFailedAppendLeavesTheSequenceAsItWas) {
+  const DescriptorParams geometry = Parameters{}.descriptor;
+  const int size = geometry.descriptorSize();
+  DescriptorSequence sequence(size);
+  sequence.keepCoarseCells(3, geometry);
+  DescriptorSequence undisturbed(size);
+  undisturbed.keepCoarseCells(3, geometry);
+  cv::RNG random(7);
+  int failures = 0;
+  for (int frame = 0; frame < 40; ++frame) {
+    const cv::Mat descriptor = randomDescriptor(size, random);
+    const Stamp stamp = Stamp::fromNanoseconds(1000LL * frame);
+    undisturbed.append(descriptor, stamp);
+    const std::vector<std::int64_t> before = contentsOf(sequence, geometry);
+    bool appended = false;
+    for (long allocation = 0; allocation < kMaxAllocations && !appended; ++allocation) {
+      try {
+        FailingAllocation failing(allocation);
+        sequence.append(descriptor, stamp);
+        appended = true;
+      } catch (const std::bad_alloc&) {
+        ++failures;
+        ASSERT_EQ(contentsOf(sequence, geometry), before) << "frame " << frame << ", allocation " << allocation;
+      }
+    }
+    ASSERT_TRUE(appended) << "frame " << frame;
+  }
+  EXPECT_EQ(contentsOf(sequence, geometry), contentsOf(undisturbed, geometry));
+  EXPECT_GT(failures, 40);  // every append allocates at least once while the arrays grow
+}
+
+TEST(AllocationFailure, EveryFrameThePlaceRecognizerAdmittedReachesTheMapInOrder) {
+  // Keyframes by appearance, so that the keyframe rule's own allocations fail too.
+  PlaceRecognizer recognizer;
+  const int size = recognizer.extractor().size();
+  cv::RNG random(11);
+  std::vector<cv::Mat> admitted;
+  int failures = 0;
+  for (int frame = 0; frame < 60; ++frame) {
+    const cv::Mat descriptor = randomDescriptor(size, random);
+    const Stamp stamp = Stamp::fromNanoseconds(1000LL * frame);
+    bool answered = false;
+    for (long allocation = 0; allocation < kMaxAllocations && !answered; ++allocation) {
+      FrameAdmission admission = FrameAdmission::kMapFull;
+      try {
+        FailingAllocation failing(allocation);
+        admission = frame % 2 == 0 ? recognizer.offerDescriptor(descriptor, stamp)
+                                   : recognizer.addDescriptor(descriptor, stamp);
+        answered = true;
+      } catch (const std::bad_alloc&) {
+        ++failures;  // nothing admitted: the next attempt offers the same frame again
+      }
+      if (answered && admission == FrameAdmission::kAdmitted) admitted.push_back(descriptor);
+      ASSERT_EQ(recognizer.size() + recognizer.pending(), static_cast<int>(admitted.size()))
+          << "frame " << frame << ", allocation " << allocation;
+    }
+    ASSERT_TRUE(answered) << "frame " << frame;
+    // A flush that fails keeps the frames waiting.
+    for (long allocation = 0; allocation < kMaxAllocations; ++allocation) {
+      try {
+        FailingAllocation failing(allocation);
+        recognizer.flush();
+        break;
+      } catch (const std::bad_alloc&) {
+        ++failures;
+        ASSERT_EQ(recognizer.size() + recognizer.pending(), static_cast<int>(admitted.size()));
+      }
+    }
+  }
+  recognizer.flush();
+  EXPECT_GT(failures, 60);
+  EXPECT_GT(admitted.size(), 30U);  // random views are unrelated: most are keyframes
+  ASSERT_EQ(recognizer.size(), static_cast<int>(admitted.size()));
+  int frame = 0;
+  recognizer.visitFrames(0, recognizer.size(), [&](const cv::Mat& descriptor, Stamp) {
+    EXPECT_EQ(cv::norm(descriptor, admitted[static_cast<std::size_t>(frame)], cv::NORM_INF), 0.0) << "frame " << frame;
+    ++frame;
+  });
+}
+
+TEST(AllocationFailure, AFailedReplaceKeepsTheOldMap) {
+  RecognizerParams every_frame;
+  every_frame.min_appearance_change = 0.0;
+  PlaceRecognizer recognizer(Parameters{}, every_frame);
+  const int size = recognizer.extractor().size();
+  cv::RNG random(13);
+  std::vector<cv::Mat> old_map;
+  std::vector<cv::Mat> new_map;
+  for (int frame = 0; frame < 30; ++frame) old_map.push_back(randomDescriptor(size, random));
+  for (int frame = 0; frame < 45; ++frame) new_map.push_back(randomDescriptor(size, random));
+  recognizer.replace(old_map, std::vector<Stamp>(old_map.size()));
+  const auto frames = [&] {
+    std::vector<cv::Mat> held;
+    recognizer.visitFrames(0, recognizer.size(),
+                           [&](const cv::Mat& descriptor, Stamp) { held.push_back(descriptor.clone()); });
+    return held;
+  };
+  const auto same = [](const std::vector<cv::Mat>& a, const std::vector<cv::Mat>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (cv::norm(a[i], b[i], cv::NORM_INF) != 0.0) return false;
+    }
+    return true;
+  };
+  const std::vector<Stamp> new_stamps(new_map.size());
+  int failures = 0;
+  bool replaced = false;
+  for (long allocation = 0; allocation < 4 * kMaxAllocations && !replaced; ++allocation) {
+    try {
+      FailingAllocation failing(allocation);
+      recognizer.replace(new_map, new_stamps);
+      replaced = true;
+    } catch (const std::bad_alloc&) {
+      ++failures;
+      ASSERT_TRUE(same(frames(), old_map)) << "allocation " << allocation;
+    }
+  }
+  ASSERT_TRUE(replaced);
+  EXPECT_GT(failures, 5);
+  EXPECT_TRUE(same(frames(), new_map));
+}
+
+}  // namespace
+}  // namespace mrs_vpr
