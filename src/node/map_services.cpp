@@ -36,13 +36,7 @@ void PlaceRecognitionNode::openMap() {
 bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
     const int cleared = map_->reset();
-    {
-      std::lock_guard<std::mutex> lock(state_mutex_);
-      keyframe_policy_.reset();
-      travel_policy_.reset();
-      standing_frames_.clear();
-    }
-    ++map_version_;
+    startOverOnNewMap();
     response.success = true;
     response.message = map_->persistent() ? "cleared " + std::to_string(cleared) +
                                                 " frames from the map and from the database '" +
@@ -56,6 +50,20 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
   }
   publishMapInfoIfChanged();
   return true;  // Failures are reported in the response.
+}
+
+void PlaceRecognitionNode::startOverOnNewMap() {
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    keyframe_policy_.reset();
+    travel_policy_.reset();
+    standing_frames_.clear();
+  }
+  ++map_version_;
+  // Continuous mode's test sequences end in keyframes the camera adds from now on, not in a loaded
+  // map's own. The services and continuous mode run on the query thread.
+  auto_query_size_ = recognizer_.size();
+  auto_query_version_ = map_version_;
 }
 
 bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::Response& response) {
@@ -76,13 +84,7 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
   try {
     if (request.path.empty()) throw std::invalid_argument("load_map needs a path");
     const int loaded = map_->load(request.path);
-    {
-      std::lock_guard<std::mutex> lock(state_mutex_);
-      keyframe_policy_.reset();
-      travel_policy_.reset();
-      standing_frames_.clear();
-    }
-    ++map_version_;
+    startOverOnNewMap();
     response.frames = static_cast<std::uint64_t>(loaded);
     response.success = true;
     response.message = "loaded " + std::to_string(loaded) + " frames from '" + absolutePath(request.path) + "'" +

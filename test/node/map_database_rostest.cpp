@@ -26,6 +26,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "mrs_vpr/LoadMap.h"
+#include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/SaveMap.h"
@@ -39,6 +40,7 @@
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/temporary_folder.hpp"
+#include "support/topic_inbox.hpp"
 
 namespace {
 
@@ -126,6 +128,7 @@ class NodeProcess {
 
 using mrs_vpr::testing_support::fileContents;
 using mrs_vpr::testing_support::MapInfoWatch;
+using mrs_vpr::testing_support::TopicInbox;
 
 
 class MapDatabaseNodeTest : public ::testing::Test {
@@ -335,6 +338,45 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   for (std::size_t i = 0; i < frames.size(); ++i) {
     EXPECT_EQ(frames[i].stamp, referenceStamp(static_cast<int>(i))) << i;
   }
+}
+
+TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
+  {
+    auto mapper = startNode("mapper", path("map.db"));
+    MapInfoWatch info(nh_, "/" + mapper->name());
+    publishReference(0, 200);
+    waitPersisted(info, 200);
+    EXPECT_EQ(mapper->stop(), 0);
+  }
+  // A node in continuous mode that has mapped 100 frames of its own, and asked about them.
+  auto node = startNode("watcher", path("watcher.db"), {"auto_query_period:=0.2"});
+  MapInfoWatch info(nh_, "/" + node->name());
+  TopicInbox<mrs_vpr::LoopClosure> closures(nh_, "/" + node->name() + "/loop_closure");
+  ASSERT_TRUE(closures.waitConnected());
+  publishReference(0, 100);
+  waitPersisted(info, 100);
+  ASSERT_FALSE(closures.waitForCount(1).empty());
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));  // the questions about those frames end
+
+  // The loaded map's keyframes came from the file, not from the camera: no closure is published for them.
+  closures.clear();
+  mrs_vpr::LoadMap load;
+  load.request.path = path("map.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
+  ASSERT_TRUE(load.response.success) << load.response.message;
+  waitPersisted(info, 200);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // five periods
+  EXPECT_TRUE(closures.received().empty()) << closures.received().size() << " closures, the first about "
+                                           << closures.received().front().localised_keyframe_stamp;
+  // The camera's next keyframes are asked about (causal alignment: each localises its newest frame).
+  publishReference(200, 220);
+  waitPersisted(info, 220);
+  const auto published = closures.waitForCount(1);
+  ASSERT_FALSE(published.empty());
+  for (const mrs_vpr::LoopClosure& closure : published) {
+    EXPECT_GE(closure.localised_keyframe_stamp.toSec(), kReferenceStart + 200 * kFramePeriod - 1e-6);
+  }
+  EXPECT_EQ(node->stop(), 0);
 }
 
 TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {

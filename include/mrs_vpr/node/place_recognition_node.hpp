@@ -111,6 +111,8 @@ class PlaceRecognitionNode {
   bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
   bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);
+  /// After ~reset or ~load_map: the keyframe policies, the standing frames and continuous mode start over.
+  void startOverOnNewMap();
   /// Logs (throttled) why commits to ~database fail, while they do.
   void reportWriteErrors();
   void autoQueryCallback(const ros::TimerEvent& event);
