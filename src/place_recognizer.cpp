@@ -206,9 +206,14 @@ int PlaceRecognizer::pending() const {
   return static_cast<int>(pending_.size());
 }
 
-int PlaceRecognizer::reset() { return exchange({}, {}); }
+int PlaceRecognizer::reset() { return install(prepareMap({}, {})); }
 
 void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
+  install(prepareMap(descriptors, stamps));
+}
+
+PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::Mat>& descriptors,
+                                                         const std::vector<Stamp>& stamps) const {
   if (descriptors.size() != stamps.size()) {
     throw std::invalid_argument(std::to_string(stamps.size()) + " stamps for " + std::to_string(descriptors.size()) +
                                 " descriptors");
@@ -219,34 +224,43 @@ void PlaceRecognizer::replace(const std::vector<cv::Mat>& descriptors, const std
                                 std::to_string(recognizer_.max_frames) + ")");
   }
   for (const cv::Mat& descriptor : descriptors) requireDescriptor(descriptor, extractor_.size());
-  exchange(descriptors, stamps);
+  // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
+  PreparedMap prepared(params_, recognizer_, extractor_.size());
+  if (count > 0) prepared.map_.reserve(count);
+  for (std::size_t i = 0; i < descriptors.size(); ++i) {
+    prepared.map_.append(descriptors[i], stamps[i]);
+    prepared.keyframes_.keep(descriptors[i]);
+  }
+  return prepared;
 }
 
-int PlaceRecognizer::exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) {
-  // The new map and keyframe history are built aside, so that a failed allocation leaves the old ones
-  // whole, and queries do not wait while a large map is copied.
-  const auto count = static_cast<int>(descriptors.size());
-  DescriptorSequence map(extractor_.size());
-  map.keepCoarseCells(params_.mrs.levels, params_.descriptor);
-  AppearanceKeyframes keyframes(params_.descriptor, recognizer_.min_appearance_change);
-  if (count > 0) map.reserve(count);
-  for (int i = 0; i < count; ++i) {
-    map.append(descriptors[static_cast<std::size_t>(i)], stamps[static_cast<std::size_t>(i)]);
-    keyframes.keep(descriptors[static_cast<std::size_t>(i)]);
+PlaceRecognizer::PreparedMap::PreparedMap(const Parameters& params, const RecognizerParams& recognizer,
+                                          int descriptor_size)
+    : descriptor_(params.descriptor),
+      map_(descriptor_size),
+      keyframes_(params.descriptor, recognizer.min_appearance_change) {
+  map_.keepCoarseCells(params.mrs.levels, params.descriptor);
+}
+
+int PlaceRecognizer::install(PreparedMap&& prepared) {
+  if (!prepared.descriptor_.sameFrontEnd(params_.descriptor)) {
+    throw std::invalid_argument("a map prepared for the " + prepared.descriptor_.describe() +
+                                " front end cannot replace one of the " + params_.descriptor.describe() + " front end");
   }
-  // Every lock for the exchange itself, the keyframe rule's first as offerDescriptor takes it: queries
-  // wait for it rather than see it half done.
-  std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);
+  // Every lock for the exchange, which only moves what was built, so that queries never see it half
+  // done. The map's first: waiting for a running query must not hold the keyframe rule's lock, or a
+  // camera frame would wait for the query too. offerDescriptor holds that lock only to try the map's.
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  std::lock_guard<std::mutex> keyframes_lock(keyframes_mutex_);
   std::lock_guard<std::mutex> lock(pending_mutex_);
   const int cleared = map_.size() + static_cast<int>(pending_.size());
-  keyframes_ = std::move(keyframes);
-  map_ = std::move(map);
+  keyframes_ = std::move(prepared.keyframes_);
+  map_ = std::move(prepared.map_);
   pending_.clear();
   recent_rows_->clear();
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
-  reserved_frames_ = count;
+  reserved_frames_ = map_.size();
   return cleared;
 }
 

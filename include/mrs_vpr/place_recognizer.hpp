@@ -146,6 +146,25 @@ class PlaceRecognizer {
    */
   void replace(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps);
 
+  /// A whole map built by prepareMap(), for install() to put in place at once.
+  class PreparedMap {
+   public:
+    int size() const { return map_.size(); }
+
+   private:
+    friend class PlaceRecognizer;
+    PreparedMap(const Parameters& params, const RecognizerParams& recognizer, int descriptor_size);
+    DescriptorParams descriptor_;
+    DescriptorSequence map_;
+    AppearanceKeyframes keyframes_;
+  };
+  /// replace() in two steps, for a caller with its own step in between (a database to rewrite): builds
+  /// the map aside, with no lock held and nothing changed, and throws as replace() does ...
+  PreparedMap prepareMap(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) const;
+  /// ... then puts it in place by moving it, which cannot fail for want of memory. Returns the frames
+  /// it cleared (pending ones included). Throws std::invalid_argument for another front end's map.
+  int install(PreparedMap&& prepared);
+
   /// Calls `visit` with the descriptor (a view, valid during the call) and stamp of map frames
   /// [begin, end), in order, under the map's shared lock: queries go on, new frames wait as pending.
   void visitFrames(int begin, int end, const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& visit) const;
@@ -181,8 +200,8 @@ class PlaceRecognizer {
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;
-  /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock before the
-  /// map's (the order offerDescriptor and reset take them in).
+  /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock, before and
+  /// apart from the map's.
   RepeatedViews repeatedViews() const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;
@@ -200,10 +219,6 @@ class PlaceRecognizer {
   void keepKeyframeLocked(const cv::Mat& descriptor);
   /// Drops the first `stored` pending frames, which the map now holds.
   void forgetStored(std::size_t stored);
-  /// Replaces the map, the pending frames, the kept rows and the keyframe rule's history by
-  /// `descriptors` (checked by the caller) under every lock at once; returns the frames it cleared.
-  /// When it throws, nothing has changed.
-  int exchange(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps);
   /// addDescriptor without the keyframe bookkeeping.
   FrameAdmission append(const cv::Mat& descriptor, Stamp stamp);
 

@@ -109,10 +109,7 @@ int PersistentMap::load(const std::string& path) {
       frames.push_back({frame.descriptor.clone(), frame.stamp, frame.frame_id, frame.sequence});
     });
   }
-  std::lock_guard<std::mutex> lock(add_mutex_);
-  // The database first, in one transaction: on failure the old map stays in both.
-  if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
-  // Then the recognizer, in one step: a query meanwhile answers from the old map or the new one.
+  // The recognizer's new map is built aside, before anything changes ...
   std::vector<cv::Mat> descriptors;
   std::vector<Stamp> stamps;
   descriptors.reserve(frames.size());
@@ -121,7 +118,13 @@ int PersistentMap::load(const std::string& path) {
     descriptors.push_back(frame.descriptor);
     stamps.push_back(frame.stamp);
   }
-  recognizer_.replace(descriptors, stamps);
+  PlaceRecognizer::PreparedMap prepared = recognizer_.prepareMap(descriptors, stamps);
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  // ... then the database, in one transaction: on failure the old map stays in both ...
+  if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
+  // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
+  // the new one.
+  recognizer_.install(std::move(prepared));
   return static_cast<int>(frames.size());
 }
 

@@ -1,4 +1,4 @@
-// Failed allocations while the map grows: every allocation through operator new is made to fail in
+// Failed allocations while the map grows or is loaded: every allocation through operator new is made to fail in
 // turn, and the map must be left whole each time. This binary replaces the global allocation
 // functions, so it holds these tests alone.
 #include <gtest/gtest.h>
@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <new>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -14,6 +15,8 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/persistent_map.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace {
 
@@ -193,6 +196,47 @@ TEST(AllocationFailure, AFailedReplaceKeepsTheOldMap) {
   ASSERT_TRUE(replaced);
   EXPECT_GT(failures, 5);
   EXPECT_TRUE(same(frames(), new_map));
+}
+
+TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
+  const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
+  RecognizerParams every_frame;
+  every_frame.min_appearance_change = 0.0;
+  cv::RNG random(17);
+  const auto mapOf = [&](PlaceRecognizer& recognizer, PersistentMap& map, int frames) {
+    for (int frame = 0; frame < frames; ++frame) {
+      map.add(randomDescriptor(recognizer.extractor().size(), random), Stamp::fromNanoseconds(frame));
+    }
+    map.commit();
+  };
+  {
+    PlaceRecognizer recognizer(Parameters{}, every_frame);
+    PersistentMap saved(recognizer, folder.path("saved.db"), CommitPolicy{});
+    mapOf(recognizer, saved, 45);
+  }
+  PlaceRecognizer recognizer(Parameters{}, every_frame);
+  PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{});
+  mapOf(recognizer, map, 30);
+  // The node's database is open for writing: its frames are counted by a copy of it.
+  int copies = 0;
+  const auto databaseFrames = [&] { return map.save(folder.path("copy" + std::to_string(++copies) + ".db")); };
+  int failures = 0;
+  bool loaded = false;
+  for (long allocation = 0; allocation < 2000 && !loaded; ++allocation) {  // a load makes about 300
+    try {
+      FailingAllocation failing(allocation);
+      map.load(folder.path("saved.db"));
+      loaded = true;
+    } catch (const std::bad_alloc&) {
+      ++failures;
+      ASSERT_EQ(recognizer.size(), 30) << "allocation " << allocation;
+      ASSERT_EQ(databaseFrames(), 30) << "allocation " << allocation;
+    }
+  }
+  ASSERT_TRUE(loaded);
+  EXPECT_GT(failures, 5);
+  EXPECT_EQ(recognizer.size(), 45);
+  EXPECT_EQ(databaseFrames(), 45);
 }
 
 }  // namespace
