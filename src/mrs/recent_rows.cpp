@@ -152,7 +152,19 @@ long long RecentRows::costs(SequenceView map, int first, int count, int columns,
   }
   requireInside(map, first, count, columns);  // The columns too: lockFresh checks the frames only.
   const auto lock = lockFresh(map, first, count);
+  try {
+    return costsLocked(map, first, count, columns, rows, velocities, costs);
+  } catch (...) {
+    // A row left part-extended, or holding this query's tail, would give wrong costs to every later
+    // question: the rows are only a cache, so they are all computed again.
+    rows_.clear();
+    countBytesLocked();
+    throw;
+  }
+}
 
+long long RecentRows::costsLocked(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
+                                  const std::vector<double>& velocities, AnchorCosts& costs) {
   std::vector<std::pair<int, Row*>> test_rows;
   for (int frame = first; frame < first + count; ++frame) test_rows.emplace_back(frame, &rows_[frame]);
   // Continuous mode asks about each keyframe since its last question, oldest first, and every later

@@ -11,11 +11,16 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/core/utility.hpp>
 
+#include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
+#include "mrs_vpr/trajectory_search.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
@@ -196,6 +201,45 @@ TEST(AllocationFailure, AFailedReplaceKeepsTheOldMap) {
   ASSERT_TRUE(replaced);
   EXPECT_GT(failures, 5);
   EXPECT_TRUE(same(frames(), new_map));
+}
+
+TEST(AllocationFailure, AQuestionThatFailedLeavesNoKeptRowWrong) {
+  // One thread: the allocations counted are this thread's, in the same order at every run.
+  const int threads = cv::getNumThreads();
+  cv::setNumThreads(1);
+  constexpr int kWindow = 10;
+  const std::vector<double> velocities{0.8, 0.9, 1.0, 1.1, 1.2};
+  const SequenceRows rows{0, 19, 10};
+  DescriptorSequence map(64);
+  cv::RNG random(19);
+  for (int frame = 0; frame < 300; ++frame) map.append(randomDescriptor(64, random));
+  RecentRows recent(kWindow, kMaxRecentRows);
+  int failures = 0;
+  for (int question = 0; question < 8; ++question) {
+    for (int frame = 0; frame < 1 + question % 3; ++frame) map.append(randomDescriptor(64, random));
+    const int first = map.size() - 20;
+    const int columns = first - 30;
+    const AnchorCosts brute = costsByAnchor(
+        enhanceContrast(computeDifferenceMatrix(map.view(first, first + 20), map.view(0, columns)), kWindow), rows,
+        velocities);
+    AnchorCosts kept;
+    bool answered = false;
+    for (long allocation = 0; allocation < 1000 && !answered; ++allocation) {  // a question makes about 100
+      try {
+        FailingAllocation failing(allocation);
+        recent.costs(map.view(), first, 20, columns, rows, velocities, kept);
+        answered = true;
+      } catch (const std::bad_alloc&) {
+        ++failures;
+      }
+    }
+    ASSERT_TRUE(answered) << "question " << question;
+    // To the bit, as the kept rows promise: none was left part-extended by a failed attempt.
+    ASSERT_EQ(kept.cost, brute.cost) << "question " << question;
+    ASSERT_EQ(kept.velocity, brute.velocity) << "question " << question;
+  }
+  cv::setNumThreads(threads);
+  EXPECT_GT(failures, 8);
 }
 
 TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {

@@ -46,7 +46,8 @@ class RecentRows {
    * rows of frames it no longer holds are dropped. The rows of up to count / kMissingRowsShare map
    * frames after the test frames are computed in the same pass over the map: the next questions of
    * continuous mode, which asks about each new keyframe in turn, read them. Returns the descriptor
-   * comparisons made. Throws std::invalid_argument when the frames or columns lie outside `map`.
+   * comparisons made. Throws std::invalid_argument when the frames or columns lie outside `map`; when
+   * anything else throws (std::bad_alloc), every row is forgotten, so that none stays half computed.
    */
   long long costs(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
                   const std::vector<double>& velocities, AnchorCosts& costs);
@@ -100,6 +101,9 @@ class RecentRows {
   /// missingRows and keepsPace once stale rows are dropped; the caller holds mutex_.
   int missingRowsLocked(int first, int count) const;
   bool keepsPaceLocked(int first, int count) const;
+  /// costs() once the rows are fresh; the caller holds mutex_. May leave rows part-extended when it throws.
+  long long costsLocked(SequenceView map, int first, int count, int columns, const SequenceRows& rows,
+                        const std::vector<double>& velocities, AnchorCosts& costs);
   /// Sets bytes_; the caller holds mutex_.
   void countBytesLocked();
   /// Extends `rows` (map frame, row) to finalEnd(map.count); returns the comparisons made.
