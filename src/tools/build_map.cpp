@@ -17,6 +17,7 @@
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "tool_main.hpp"
@@ -79,6 +80,7 @@ int run(int argc, char** argv) {
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  mrs_vpr::tools::requireApartFromInputs({"--output", output}, {{"--images", images}, {"--bag", bag_path}});
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = min_appearance_change;
   keyframing.validate();

@@ -7,10 +7,12 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <vector>
 #include <system_error>
 
 #include <boost/program_options.hpp>
 
+#include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
@@ -52,8 +54,15 @@ constexpr const char* kUsage =
  * system, a file in the way). Throws std::runtime_error naming `option`, the folder and the reason.
  */
 void requireWritableFolder(const std::string& folder, const std::string& option) {
+  // Only the folder itself is created: a typo in its parent would otherwise make a tree of folders.
+  std::filesystem::path created = std::filesystem::path(folder).lexically_normal();
+  if (created.filename().empty()) created = created.parent_path();  // a trailing '/'
+  const std::filesystem::path parent = created.parent_path();
+  if (!parent.empty() && !std::filesystem::exists(parent)) {
+    throw std::invalid_argument(option + " '" + folder + "': there is no folder " + parent.string());
+  }
   std::error_code error;
-  std::filesystem::create_directories(folder, error);
+  std::filesystem::create_directory(created, error);
   if (error) throw std::runtime_error(option + " '" + folder + "': cannot create the folder: " + error.message());
   std::string probe = (std::filesystem::path(folder) / ".mrs_vpr_eval_probe.XXXXXX").string();
   const int file = ::mkstemp(probe.data());
@@ -137,6 +146,11 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
   RecognizerParams keyframing;
   keyframing.min_appearance_change = options.min_appearance_change;
   keyframing.validate();
+  // Written over neither input nor ground truth, nor into an image folder that a later run would read.
+  const std::vector<NamedPath> inputs = {
+      {"--reference", options.reference}, {"--query", options.query}, {"--ground-truth", options.ground_truth}};
+  requireApartFromInputs({"--output", options.output}, inputs);
+  requireApartFromInputs({"--plots", options.plots}, inputs);
   if (!options.plots.empty()) requireWritableFolder(options.plots, "--plots");
   if (!options.output.empty()) {
     if (std::filesystem::is_directory(options.output)) {

@@ -16,6 +16,7 @@
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "apart_from_inputs.hpp"
 #include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
@@ -64,6 +65,7 @@ int run(int argc, char** argv) {
   }
   // Checked before any work: a folder would be found only when the finished bag is renamed.
   if (bag_path.empty()) throw std::invalid_argument("--bag must not be empty");
+  mrs_vpr::tools::requireApartFromInputs({"--bag", bag_path}, {{"--images", images}});
   if (std::filesystem::is_directory(bag_path)) {
     throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");
   }

@@ -22,6 +22,7 @@
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/image_codecs.hpp"
+#include "apart_from_inputs.hpp"
 #include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
@@ -79,7 +80,16 @@ std::string frameName(int index, int count) {
 /// Refuses an output that exists unless --force allows replacing it, and never replaces a folder that
 /// is not a drive (one without drive.csv).
 void checkOutputFolder(const std::string& output, bool force) {
-  if (!fs::exists(output)) return;
+  if (!fs::exists(output)) {
+    // Only the drive's own folder is created: a typo in its parent would otherwise make a tree of folders.
+    fs::path created = fs::path(output).lexically_normal();
+    if (created.filename().empty()) created = created.parent_path();  // a trailing '/'
+    const fs::path parent = created.parent_path();
+    if (!parent.empty() && !fs::exists(parent)) {
+      throw std::invalid_argument("--output '" + output + "': there is no folder " + parent.string());
+    }
+    return;
+  }
   if (!fs::is_directory(output)) throw std::invalid_argument("'" + output + "' is a file; --output names a folder");
   if (fs::is_empty(output)) return;
   if (!force) throw std::invalid_argument("'" + output + "' exists and is not empty; use --force to replace a drive");
@@ -91,6 +101,8 @@ void checkOutputFolder(const std::string& output, bool force) {
 
 /// The drive of the route into OUTPUT.part, renamed to OUTPUT once complete.
 void writeDrive(const Options& options) {
+  mrs_vpr::tools::requireApartFromInputs({"--output", options.output}, {{"--images", options.images}});
+  mrs_vpr::tools::requireNoInputInside({"--output", options.output}, {{"--images", options.images}});
   const std::vector<std::string> files = mrs_vpr::listImageFiles(options.images);
   const int available = static_cast<int>(files.size());
   const int end = options.end < 0 ? available : options.end;
@@ -186,6 +198,8 @@ std::vector<int> routePlacesOf(const std::string& folders) {
 
 /// The ground truth of two drives, as mrs_vpr_eval reads it.
 void writeGroundTruth(const Options& options) {
+  mrs_vpr::tools::requireApartFromInputs({"--ground-truth", options.ground_truth},
+                                         {{"--reference", options.reference}, {"--query", options.query}});
   if (fs::is_directory(options.ground_truth)) {
     throw std::invalid_argument("'" + options.ground_truth + "' is a folder; --ground-truth names the CSV file to write");
   }

@@ -17,6 +17,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <rosbag/bag.h>
 
+#include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/stamp.hpp"
@@ -396,6 +397,42 @@ TEST_F(BagToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
   EXPECT_EQ(bag.err.find("images in"), std::string::npos) << "work was done first: " << bag.err;
   EXPECT_FALSE(fs::exists(path("a_folder.part")));
   EXPECT_TRUE(fs::is_empty(path("a_folder")));
+}
+
+TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {
+  const std::string bag = path("own_input.bag");
+  ASSERT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " + bag +
+                " --topic /t --rate 5").status,
+            0);
+  const std::string bag_bytes = fileContents(bag);
+  const std::string first_image = mrs_vpr::listImageFiles(path("reference")).front();
+  const std::string image_bytes = fileContents(first_image);
+  const auto refused = [](const CommandResult& result, const std::string& text) {
+    EXPECT_EQ(result.status, 1) << result.err;
+    EXPECT_NE(result.err.find(text), std::string::npos) << result.err;
+  };
+  refused(run(buildMap() + " --bag " + bag + " --topic /t --output " + bag + " --force"),
+          "build_map: error: --output '" + bag + "' is what --bag reads: write it elsewhere");
+  refused(run(buildMap() + " --images " + path("reference") + " --output " + path("reference/map.db")),
+          "--output '" + path("reference/map.db") + "' lies inside the folder '" + path("reference") +
+              "' that --images reads");
+  refused(run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("reference") + " --bag " + first_image +
+              " --topic /t --rate 5 --force"),
+          "images_to_bag: error: --bag '" + first_image + "' lies inside the folder");
+  refused(run(eval("--reference " + bag + " --query " + path("query") + " --topic /t --protocol per-frame --output " +
+                   bag)),
+          "mrs_vpr_eval: error: --output '" + bag + "' is what --reference reads");
+  refused(run(eval("--reference " + path("reference") + " --query " + path("query") + " --protocol per-frame --plots " +
+                   path("query/plots"))),
+          "--plots '" + path("query/plots") + "' lies inside the folder '" + path("query") + "' that --query reads");
+  refused(run(std::string(MAKE_DRIVE_PATH) + " --images " + path("reference") + " --output " +
+              path("reference/drive")),
+          "make_drive: error: --output '" + path("reference/drive") + "' lies inside the folder");
+  EXPECT_EQ(fileContents(bag), bag_bytes);
+  EXPECT_EQ(fileContents(first_image), image_bytes);
+  EXPECT_FALSE(fs::exists(path("reference/map.db")));
+  EXPECT_FALSE(fs::exists(path("query/plots")));
+  EXPECT_FALSE(fs::exists(path("reference/drive")));
 }
 
 TEST_F(BagToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {

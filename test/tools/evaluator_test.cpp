@@ -302,6 +302,13 @@ TEST_F(EvaluatorTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
       std::string::npos)
       << output.err;
   EXPECT_EQ(output.err.find("matching"), std::string::npos) << output.err;
+  // Only the plots' own folder is created: a typo in its parent is an error, not a tree of folders.
+  const CommandResult deep = run(eval(evaluation + " --plots " + path("nowhere/deep/plots")));
+  EXPECT_EQ(deep.status, 1);
+  EXPECT_NE(deep.err.find("--plots '" + path("nowhere/deep/plots") + "': there is no folder " + path("nowhere/deep")),
+            std::string::npos)
+      << deep.err;
+  EXPECT_FALSE(fs::exists(path("nowhere")));
 }
 
 TEST_F(EvaluatorTest, APathThatIsNotUtf8IsWrittenAndAnExistingOutputIsKeptUntilTheNewOneIsComplete) {

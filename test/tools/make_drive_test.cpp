@@ -222,6 +222,14 @@ TEST_F(MakeDriveTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer"),
               "the ground truth needs --ground-truth, --reference and --query");
   EXPECT_FALSE(fs::exists(path("x")));
+  // Only the drive's own folder is created: a typo in its parent is an error, not a tree of folders.
+  expectError("--images " + path("summer") + " --output " + path("nowhere/deep/x"),
+              "--output '" + path("nowhere/deep/x") + "': there is no folder " + path("nowhere/deep"));
+  EXPECT_FALSE(fs::exists(path("nowhere")));
+  // A ground truth written into a drive it reads would be read as the drive's file next time.
+  expectError("--ground-truth " + path("summer/t.csv") + " --reference " + path("summer") + " --query " +
+                  path("winter"),
+              "--ground-truth '" + path("summer/t.csv") + "' lies inside the folder '" + path("summer") + "'");
   // An image of another size met half-way: the one-line error, and nothing half-written left behind.
   fs::copy(path("summer"), path("mixed"));
   cv::imwrite(path("mixed/00300.png"), cv::Mat(16, 16, CV_8UC3, cv::Scalar::all(90)));

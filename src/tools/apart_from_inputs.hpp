@@ -1,0 +1,84 @@
+#pragma once
+
+// A tool's outputs kept apart from what it reads, so that no run writes over its own input: a bag,
+// a map, an image of a folder, or new files in an image folder that the next run would read as frames.
+
+#include <algorithm>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+namespace mrs_vpr {
+namespace tools {
+
+/// A path a tool reads or writes, with the option that named it (for messages).
+struct NamedPath {
+  std::string option;  ///< e.g. "--images"
+  std::string path;    ///< empty: not given
+};
+
+/// `path` with every symbolic link and dot resolved, as far as it exists; empty when it cannot be.
+inline std::filesystem::path resolved(const std::string& path) {
+  std::error_code error;
+  std::filesystem::path absolute = std::filesystem::weakly_canonical(path, error);
+  return error ? std::filesystem::path() : absolute;
+}
+
+/// Where a file written at `path` lands: its folder resolved, its own name kept, since writing replaces
+/// a symbolic link there rather than its target.
+inline std::filesystem::path writtenAt(const std::string& path) {
+  std::filesystem::path name = std::filesystem::path(path).lexically_normal();
+  if (name.filename().empty()) name = name.parent_path();  // a trailing '/'
+  const std::filesystem::path folder = resolved(name.parent_path().empty() ? "." : name.parent_path().string());
+  return folder.empty() ? folder : folder / name.filename();
+}
+
+/// Whether `inner` lies inside the folder `outer` (both resolved).
+inline bool liesInside(const std::filesystem::path& inner, const std::filesystem::path& outer) {
+  const auto outer_parts = std::distance(outer.begin(), outer.end());
+  const auto inner_parts = std::distance(inner.begin(), inner.end());
+  return inner_parts > outer_parts && std::equal(outer.begin(), outer.end(), inner.begin());
+}
+
+/**
+ * Throws std::invalid_argument, naming both options, when `output` is one of `inputs` or lies inside
+ * an input folder. Called before any work, so that the inputs stay as they were.
+ */
+inline void requireApartFromInputs(const NamedPath& output, const std::vector<NamedPath>& inputs) {
+  if (output.path.empty()) return;
+  const std::filesystem::path written = writtenAt(output.path);
+  if (written.empty()) return;  // The output's own checks name what is wrong with it.
+  for (const NamedPath& input : inputs) {
+    if (input.path.empty()) continue;
+    const std::filesystem::path read = resolved(input.path);
+    if (read.empty()) continue;
+    if (written == read || written == writtenAt(input.path)) {
+      throw std::invalid_argument(output.option + " '" + output.path + "' is what " + input.option +
+                                  " reads: write it elsewhere");
+    }
+    std::error_code ignored;
+    if (std::filesystem::is_directory(read, ignored) && liesInside(written, read)) {
+      throw std::invalid_argument(output.option + " '" + output.path + "' lies inside the folder '" + input.path +
+                                  "' that " + input.option + " reads: write it elsewhere");
+    }
+  }
+}
+
+/// Throws std::invalid_argument when an input lies inside the folder `output`, which the tool replaces
+/// as a whole (make_drive --force).
+inline void requireNoInputInside(const NamedPath& output, const std::vector<NamedPath>& inputs) {
+  const std::filesystem::path replaced = resolved(output.path);
+  if (output.path.empty() || replaced.empty()) return;
+  for (const NamedPath& input : inputs) {
+    const std::filesystem::path read = resolved(input.path);
+    if (!input.path.empty() && !read.empty() && liesInside(read, replaced)) {
+      throw std::invalid_argument(input.option + " '" + input.path + "' lies inside the folder '" + output.path +
+                                  "' that " + output.option + " replaces: write it elsewhere");
+    }
+  }
+}
+
+}  // namespace tools
+}  // namespace mrs_vpr
