@@ -3,7 +3,12 @@ figures mrs_vpr_eval prints, from NumPy images.
 """
 
 import collections
+import collections.abc
+import operator
+import reprlib
 import time
+
+import numpy as np
 
 from mrs_vpr import _bindings
 
@@ -17,12 +22,61 @@ summarise = _bindings.summarise
 precision_recall_curve = _bindings.precision_recall_curve
 
 
-def _ground_truth_dict(ground_truth):
+#: The range of the core's int (tolerance, map frames) and of the global protocol's std::uint64_t seed.
+_INT_MAX = 2**31 - 1
+_SEED_MAX = 2**64 - 1
+#: As mrs_vpr_eval --queries: each test sequence keeps a record; a million of them took 1.7 GB.
+_QUERIES_MAX = 100000
+_METHODS = ("mrs", "seqslam", "")
+_PROTOCOLS = ("per-frame", "global")
+_CHANNEL_ORDERS = ("bgr", "rgb")
+
+
+def _is_integer(value):
+    """An int or a NumPy integer, but not a bool; a float is not one, even 2.0 (the parameters' rule)."""
+    return not isinstance(value, (bool, np.bool_)) and hasattr(type(value), "__index__")
+
+
+def _whole_number(name, value, low, high):
+    """`value` as an int in low..high, or ValueError naming `name` and the range."""
+    if not _is_integer(value):
+        raise ValueError("%s must be in %d..%d, got %s (not an integer)" % (name, low, high, reprlib.repr(value)))
+    number = operator.index(value)
+    if not low <= number <= high:
+        raise ValueError("%s must be in %d..%d, got %d" % (name, low, high, number))
+    return number
+
+
+def _one_of(name, value, allowed):
+    """ValueError naming `name` unless `value` is one of the strings `allowed`."""
+    if not isinstance(value, str) or value not in allowed:
+        raise ValueError("%s must be %s, got %s" % (name, " or ".join(map(repr, allowed)), reprlib.repr(value)))
+
+
+def _ground_truth_dict(ground_truth, reference_frames):
     """None, a dict {query frame: [map frames]} or a sequence of one map frame per query frame (< 0:
-    none) as the core's ground truth."""
+    none) as the core's ground truth. Anything else raises ValueError naming the bad entry (the core
+    checks a dict's entries and the range of every frame)."""
     if ground_truth is None or isinstance(ground_truth, dict):
         return ground_truth
-    return {query: [int(reference)] if reference >= 0 else [] for query, reference in enumerate(ground_truth)}
+    if isinstance(ground_truth, np.ndarray) and ground_truth.ndim != 1:
+        raise ValueError("ground_truth as an array must have one dimension (one map frame per query frame), got "
+                         "shape %s" % (ground_truth.shape,))
+    if not isinstance(ground_truth, (collections.abc.Sequence, np.ndarray)) or isinstance(
+            ground_truth, (str, bytes, bytearray)):
+        raise ValueError("ground_truth must be None, a dict {query frame: [map frames]} or a sequence of one map "
+                         "frame per query frame, got %s" % type(ground_truth).__name__)
+    truth = {}
+    for query, reference in enumerate(ground_truth):
+        if not _is_integer(reference):
+            raise ValueError("a ground truth sequence holds one map frame per query frame, an integer (< 0: none); "
+                             "got %s for query frame %d" % (reprlib.repr(reference), query))
+        reference = operator.index(reference)
+        if reference >= reference_frames:  # The core's message, before a number beyond its int is narrowed.
+            raise ValueError("ground truth row of query frame %d lists reference frame %d, but the reference has %d "
+                             "frames" % (query, reference, reference_frames))
+        truth[query] = [reference] if reference >= 0 else []
+    return truth
 
 
 def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol="per-frame", method="",
@@ -36,12 +90,29 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     (its keyframes; build the map with min_appearance_change=0 to keep every frame). The per-frame
     protocol matches every query frame; a global test sequence is keyframed by match(). An answer is
     correct within `tolerance` frames of a true one. Returns an Evaluation (records, summary, pr_curve).
+
+    Every argument is checked before any query is matched: a bad one raises ValueError naming it and
+    what it may be (tolerance 0..2147483647, queries 1..100000 and seed 0..2**64-1 whole numbers, as
+    mrs_vpr_eval takes them).
     """
+    if not isinstance(recognizer, _bindings.PlaceRecognizer):
+        raise ValueError("recognizer must be a mrs_vpr.PlaceRecognizer, got %s" % type(recognizer).__name__)
+    if isinstance(query_images, (str, bytes, bytearray)) or not hasattr(query_images, "__len__"):
+        raise ValueError("query_images must be a sequence of images (a list, or an N x H x W or N x H x W x C "
+                         "array), got %s" % type(query_images).__name__)
+    tolerance = _whole_number("tolerance", tolerance, 0, _INT_MAX)
+    _one_of("protocol", protocol, _PROTOCOLS)
+    if not isinstance(method, str) or method not in _METHODS:
+        raise ValueError("method must be 'mrs', 'seqslam' or '' (the recognizer's default_method), got %s"
+                         % reprlib.repr(method))
+    queries = _whole_number("queries", queries, 1, _QUERIES_MAX)
+    seed = _whole_number("seed", seed, 0, _SEED_MAX)
+    _one_of("channel_order", channel_order, _CHANNEL_ORDERS)
     parameters = recognizer.parameters
     length = parameters["sequence/sequence_length"]
     alignment = parameters["sequence/alignment"]
     frames = len(query_images)
-    truths = _bindings.truths(_ground_truth_dict(ground_truth), frames, len(recognizer))
+    truths = _bindings.truths(_ground_truth_dict(ground_truth, len(recognizer)), frames, len(recognizer))
     records = []
     if protocol == "per-frame":
         evaluated = _bindings.per_frame_queries(frames, length, alignment)
@@ -51,7 +122,7 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
         for query in evaluated:
             if truths[query] is not None:
                 records.append(_bindings.query_record(query, truths[query], matches[query], per_query_ms))
-    elif protocol == "global":
+    else:  # "global"
         for first, count, query in _bindings.global_queries(frames, length, queries, seed, alignment):
             if truths[query] is None:
                 continue
@@ -59,6 +130,4 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
             answer = recognizer.match(query_images[first:first + count], method, channel_order)
             elapsed_ms = 1000.0 * (time.perf_counter() - start)
             records.append(_bindings.query_record(query, truths[query], answer.match, elapsed_ms))
-    else:
-        raise ValueError("protocol must be 'per-frame' or 'global', got '%s'" % protocol)
     return Evaluation(records, summarise(records, tolerance), precision_recall_curve(records, tolerance))

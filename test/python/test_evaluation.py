@@ -8,6 +8,15 @@ import mrs_vpr.evaluation
 from conftest import ROUTE_PARAMETERS
 
 
+class MatchesNothing(mrs_vpr.PlaceRecognizer):
+    """Fails the test when evaluate() matches a query: a bad argument must be refused before that."""
+
+    def match(self, *args, **kwargs):
+        raise AssertionError("evaluate() matched a query before it checked its arguments")
+
+    match_every_frame = match
+
+
 @pytest.fixture
 def short_sequences(route):
     recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
@@ -86,3 +95,92 @@ def test_bad_evaluation_input_raises_value_error(route, short_sequences):
     with pytest.raises(ValueError) as error:
         mrs_vpr._bindings.per_frame_queries(100, 0, "causal")
     assert "sequence/sequence_length must be in 2..10000, got 0" in str(error.value)
+
+
+@pytest.mark.parametrize(
+    "keywords, message",
+    [
+        # Before, every query was matched and summarise() then raised a TypeError dumping every record.
+        ({"tolerance": 2.5}, "tolerance must be in 0..2147483647, got 2.5 (not an integer)"),
+        ({"tolerance": float("nan")}, "tolerance must be in 0..2147483647, got nan (not an integer)"),
+        ({"tolerance": "2"}, "tolerance must be in 0..2147483647, got '2' (not an integer)"),
+        ({"tolerance": True}, "tolerance must be in 0..2147483647, got True (not an integer)"),
+        ({"tolerance": -1}, "tolerance must be in 0..2147483647, got -1"),
+        ({"tolerance": 2**31}, "tolerance must be in 0..2147483647, got 2147483648"),
+        # As mrs_vpr_eval's --seed and --queries; before, a TypeError of global_queries().
+        ({"protocol": "global", "seed": -1}, "seed must be in 0..18446744073709551615, got -1"),
+        ({"protocol": "global", "seed": 2**64}, "seed must be in 0..18446744073709551615, got 18446744073709551616"),
+        ({"protocol": "global", "seed": 1.0}, "seed must be in 0..18446744073709551615, got 1.0 (not an integer)"),
+        ({"protocol": "global", "queries": 10**12}, "queries must be in 1..100000, got 1000000000000"),
+        ({"protocol": "global", "queries": 0}, "queries must be in 1..100000, got 0"),
+        ({"queries": "10"}, "queries must be in 1..100000, got '10' (not an integer)"),
+        ({"protocol": None}, "protocol must be 'per-frame' or 'global', got None"),
+        ({"method": "fast"}, "method must be 'mrs', 'seqslam' or '' (the recognizer's default_method), got 'fast'"),
+        ({"protocol": "global", "method": 5},
+         "method must be 'mrs', 'seqslam' or '' (the recognizer's default_method), got 5"),
+        ({"channel_order": "hsv"}, "channel_order must be 'bgr' or 'rgb', got 'hsv'"),
+        ({"protocol": "global", "channel_order": None}, "channel_order must be 'bgr' or 'rgb', got None"),
+    ],
+)
+def test_a_bad_argument_is_refused_before_any_query_is_matched(route, keywords, message):
+    recognizer = MatchesNothing(sequence_length=20, **ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"][:100])
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(recognizer, route["query"][:100], **keywords)
+    assert str(error.value) == message
+
+
+@pytest.mark.parametrize(
+    "ground_truth, message",
+    [
+        # Before, TypeError: '>=' not supported between instances of 'list' and 'int'.
+        ([[i] for i in range(100)],
+         "a ground truth sequence holds one map frame per query frame, an integer (< 0: none); got [0] for query "
+         "frame 0"),
+        ([None] * 100,
+         "a ground truth sequence holds one map frame per query frame, an integer (< 0: none); got None for query "
+         "frame 0"),
+        ([0, 1, 2.5, 3],  # Before, int() truncated it to map frame 2.
+         "a ground truth sequence holds one map frame per query frame, an integer (< 0: none); got 2.5 for query "
+         "frame 2"),
+        (np.arange(100.0),
+         "a ground truth sequence holds one map frame per query frame, an integer (< 0: none); got 0.0 for query "
+         "frame 0"),
+        ([0, 1, 2**40], "ground truth row of query frame 2 lists reference frame 1099511627776, but the reference has "
+                        "100 frames"),
+        (np.zeros((100, 2), int),
+         "ground_truth as an array must have one dimension (one map frame per query frame), got shape (100, 2)"),
+        ("0123", "ground_truth must be None, a dict {query frame: [map frames]} or a sequence of one map frame per "
+                 "query frame, got str"),
+        ({1, 2}, "ground_truth must be None, a dict {query frame: [map frames]} or a sequence of one map frame per "
+                 "query frame, got set"),
+        ({5: 3}, "ground truth maps a query frame to a list of map frames, all integers; got 5: 3"),
+    ],
+)
+def test_ground_truth_of_another_shape_is_refused_naming_the_entry(route, ground_truth, message):
+    recognizer = MatchesNothing(sequence_length=20, **ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"][:100])
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(recognizer, route["query"][:100], ground_truth=ground_truth)
+    assert str(error.value) == message
+
+
+def test_a_recognizer_and_images_are_checked_first(route, short_sequences):
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(None, route["query"])
+    assert str(error.value) == "recognizer must be a mrs_vpr.PlaceRecognizer, got NoneType"
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(short_sequences, 5, protocol="global")
+    assert str(error.value) == (
+        "query_images must be a sequence of images (a list, or an N x H x W or N x H x W x C array), got int")
+
+
+def test_arguments_at_the_ends_of_their_ranges_evaluate(route, short_sequences):
+    truth = [int(frame) for frame in route["query_to_reference"]]
+    truth[:200] = [-1] * 200  # < 0: a query frame outside the map
+    evaluation = mrs_vpr.evaluate(short_sequences, route["query"], ground_truth=np.array(truth, np.int16),
+                                  tolerance=np.int64(0), protocol="global", queries=np.int32(3), seed=2**64 - 1)
+    assert len(evaluation.records) == 3
+    assert evaluation.summary["tolerance"] == 0
+    for record in evaluation.records:
+        assert record["true_indices"] == ([] if record["query_index"] < 200 else [truth[record["query_index"]]])

@@ -1,0 +1,113 @@
+"""scripts/mrs_vpr_plot on input files that are not what mrs_vpr_eval writes: one line that names the file
+(doc/robustness.md), never a traceback. Its drawings are tested with mrs_vpr_eval in test/tools/plots_test.cpp."""
+
+import importlib.machinery
+import importlib.util
+import json
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+pytest.importorskip("matplotlib")
+pytest.importorskip("PIL")
+
+SCRIPT = pathlib.Path(__file__).resolve().parents[2] / "scripts" / "mrs_vpr_plot"
+
+#: What mrs_vpr_eval --output writes, cut to the fields the PR curve reads.
+EVALUATION = {"method": "mrs", "protocol": "per-frame", "reference_frames": 100,
+              "parameters": {"sequence_length": 10},
+              "summary": {"tolerance": 2, "pr_auc": 1.0, "recall_at_100_precision": 1.0},
+              "pr_curve": [{"threshold": 1.0, "precision": 1.0, "recall": 1.0}], "records": []}
+
+
+@pytest.fixture(scope="module")
+def plot_tool():
+    """The script as a module (it has no .py name), run in this process: fast, and an exception that
+    escapes main() fails the test as its traceback would have been printed."""
+    loader = importlib.machinery.SourceFileLoader("mrs_vpr_plot", str(SCRIPT))
+    spec = importlib.util.spec_from_loader("mrs_vpr_plot", loader)
+    module = importlib.util.module_from_spec(spec)
+    loader.exec_module(module)
+    return module
+
+
+def error_of(plot_tool, capsys, argv):
+    """What main(argv) prints on stderr; it must fail."""
+    assert plot_tool.main(argv) == 1
+    captured = capsys.readouterr()
+    assert captured.out == ""
+    return captured.err
+
+
+@pytest.mark.parametrize(
+    "content, problem",
+    [
+        # Before: a RecursionError's traceback.
+        ("[" * 100000 + "]" * 100000, " is not JSON this tool reads: its arrays or objects nest too deeply"),
+        ('{"summary": ' * 100000 + "1" + "}" * 100000,
+         " is not JSON this tool reads: its arrays or objects nest too deeply"),
+        # Before, none of these named the file.
+        ("", " is empty, not the JSON that mrs_vpr_eval --output or mrs_vpr_real_benchmark --json writes"),
+        ("not json", " is not JSON: Expecting value: line 1 column 1 (char 0)"),
+        ('{"summary": ', " is not JSON: Expecting value: line 1 column 13 (char 12)"),
+        (b"\xff\xfe{}", " is not JSON: not UTF-8 text ('utf-8' codec can't decode byte 0xff in position 0: "
+                        "invalid start byte)"),
+        ('{"summary": %s}' % ("1" * 5000), " is not JSON this tool reads: Exceeds the limit (4300 digits)"),
+    ],
+    ids=["deep arrays", "deep objects", "empty", "not JSON", "cut short", "not UTF-8", "a 5000-digit number"],
+)
+def test_a_file_that_is_not_json_is_one_line_naming_it(plot_tool, capsys, tmp_path, content, problem):
+    path = tmp_path / "evaluation.json"
+    if isinstance(content, bytes):
+        path.write_bytes(content)
+    else:
+        path.write_text(content)
+    for argv in (["pr", str(path), "-o", str(tmp_path / "x.png")], ["error", str(path), "-o", str(tmp_path / "x.png")],
+                 ["eval", str(path)], ["benchmark", str(path)]):
+        err = error_of(plot_tool, capsys, argv)
+        assert err.startswith("mrs_vpr_plot: error: %s%s" % (path, problem)), err
+        assert err.count("\n") == 1, err
+    assert not (tmp_path / "x.png").exists()
+
+
+def test_a_missing_field_names_the_file(plot_tool, capsys, tmp_path):
+    path = tmp_path / "evaluation.json"
+    path.write_text("{}")
+    err = error_of(plot_tool, capsys, ["pr", str(path), "-o", str(tmp_path / "x.png")])
+    assert err == "mrs_vpr_plot: error: missing field 'summary' in %s\n" % path
+
+
+def test_of_several_files_the_error_names_the_bad_one(plot_tool, capsys, tmp_path):
+    good, bad = tmp_path / "good.json", tmp_path / "bad.json"
+    good.write_text(json.dumps(EVALUATION))
+    bad.write_text(json.dumps(dict(EVALUATION, parameters=[])))
+    err = error_of(plot_tool, capsys, ["pr", str(good), str(bad), "-o", str(tmp_path / "x.png")])
+    assert err.startswith("mrs_vpr_plot: error: %s: not the JSON that mrs_vpr_eval or mrs_vpr_real_benchmark writes "
+                          "(TypeError: " % bad), err
+    assert err.count("\n") == 1, err
+    assert not (tmp_path / "x.png").exists()
+    assert plot_tool.main(["pr", str(good), "-o", str(tmp_path / "x.png")]) == 0
+    assert capsys.readouterr().out == "wrote %s\n" % (tmp_path / "x.png")
+
+
+def test_an_output_matplotlib_cannot_write_is_not_blamed_on_the_input(plot_tool, capsys, tmp_path):
+    path = tmp_path / "evaluation.json"
+    path.write_text(json.dumps(EVALUATION))
+    err = error_of(plot_tool, capsys, ["pr", str(path), "-o", str(tmp_path / "x.foo")])
+    assert err.startswith("mrs_vpr_plot: error: -o %s: matplotlib writes no .foo files (it writes " % (
+        tmp_path / "x.foo")), err
+    assert err.count("\n") == 1
+
+
+def test_the_tool_prints_no_traceback_for_deeply_nested_json(tmp_path):
+    # The audit's case, as a user runs it.
+    path = tmp_path / "deep.json"
+    path.write_text("[" * 100000 + "]" * 100000)
+    result = subprocess.run([sys.executable, str(SCRIPT), "pr", str(path), "-o", str(tmp_path / "x.png")],
+                            capture_output=True, text=True, timeout=120, check=False)
+    assert result.returncode == 1
+    assert result.stderr == ("mrs_vpr_plot: error: %s is not JSON this tool reads: its arrays or objects nest too "
+                             "deeply\n" % path)
+    assert not (tmp_path / "x.png").exists()
