@@ -79,7 +79,8 @@ struct SequenceParams {
   /// evidence lies on both sides. At the causal end a trajectory a few keyframes too fast or slow (a
   /// stop's stray keyframes, a change of speed) lands off the place: on camera drives (tune half) 7 of
   /// 78 accepted closures were 3-24 route frames off, against 0 of 80 centred. A closure therefore
-  /// names a keyframe sequence_length / 2 keyframes back (its stamp says which).
+  /// names the keyframe at index sequence_length / 2 counted from the oldest: the 11th of 20, 9 before
+  /// the newest (its stamp says which).
   WindowAlignment alignment = WindowAlignment::kCentred;
   /// Frames the path that places an answer may stray from the best straight trajectory, which found the
   /// place (flexible_alignment.hpp); 0 = the straight trajectory's end. Off by default: on camera

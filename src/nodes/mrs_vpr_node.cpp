@@ -23,7 +23,9 @@ void printHelp() {
       "Publishes:   ~loop_closure (mrs_vpr/LoopClosure), ~map_info (mrs_vpr/MapInfo, latched),\n"
       "             ~loop_closure_stamps (std_msgs/Float64MultiArray, accepted closures only: [stamp of\n"
       "             the localised test frame, stamp of the reference frame] in seconds, as LIO-SAM's\n"
-      "             lio_loop/loop_closure_detection takes them)\n"
+      "             lio_loop/loop_closure_detection takes them),\n"
+      "             ~debug_image (sensor_msgs/Image, bgr8: the picture of each answer, drawn only while\n"
+      "             someone subscribes)\n"
       "Services:    ~query (mrs_vpr/QuerySequence), ~reset (std_srvs/Trigger),\n"
       "             ~save_map (mrs_vpr/SaveMap), ~load_map (mrs_vpr/LoadMap)\n\n"
       "Parameters (private):\n");
