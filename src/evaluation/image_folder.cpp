@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -27,10 +29,12 @@ std::string extensionOf(const fs::path& path) {
   return extension;
 }
 
+/// Named as an image. GIF is among them although OpenCV 4.6 reads none: such a file is refused by name
+/// rather than left out, which would shift the frames after it.
 bool isImageFile(const fs::path& path) {
   const std::string extension = extensionOf(path);
-  static const char* const kExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif",
-                                            ".tiff", ".pgm", ".ppm", ".pnm"};
+  static const char* const kExtensions[] = {".png", ".jpg",  ".jpeg", ".bmp", ".tif", ".tiff", ".pgm",
+                                            ".ppm", ".pnm", ".pbm",  ".webp", ".jp2", ".gif"};
   return std::any_of(std::begin(kExtensions), std::end(kExtensions),
                      [&extension](const char* known) { return extension == known; });
 }
@@ -46,6 +50,15 @@ std::string trim(const std::string& text) {
   return text.substr(first, last - first + 1);
 }
 
+/// Why OpenCV read no image from `path`, for the error message.
+std::string whyUnreadable(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return std::strerror(errno);
+  std::error_code error;
+  if (fs::file_size(path, error) == 0 && !error) return "the file is empty";
+  return "no image decoder of OpenCV reads it (a corrupt file, or a format this build of OpenCV lacks)";
+}
+
 using evaluation_detail::parseIndex;
 
 }  // namespace
@@ -56,7 +69,17 @@ std::vector<std::string> listImageFiles(const std::string& folder) {
   if (!fs::is_directory(folder, error)) throw std::runtime_error("'" + folder + "' is not a folder");
   std::vector<std::string> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    if (entry.is_regular_file() && isImageFile(entry.path())) files.push_back(entry.path().string());
+    if (!isImageFile(entry.path()) || entry.is_directory(error)) continue;
+    // An image that cannot be read is an error, not left out: every later frame would be numbered one
+    // too low, and the evaluation's ground truth would be wrong without a word.
+    if (entry.is_symlink(error) && !entry.exists(error)) {
+      throw std::runtime_error("image '" + entry.path().string() + "' is a broken symbolic link (to '" +
+                               fs::read_symlink(entry.path(), error).string() + "')");
+    }
+    if (!entry.is_regular_file(error)) {
+      throw std::runtime_error("image '" + entry.path().string() + "' is not a regular file");
+    }
+    files.push_back(entry.path().string());
   }
   if (files.empty()) throw std::runtime_error("image folder '" + folder + "' holds no image files");
   std::sort(files.begin(), files.end());
@@ -65,7 +88,7 @@ std::vector<std::string> listImageFiles(const std::string& folder) {
 
 cv::Mat loadImage(const std::string& path) {
   cv::Mat image = image_codecs::read(path, cv::IMREAD_UNCHANGED);
-  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "'");
+  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
   // libjpeg reads a JPEG file cut short with a warning only, grey where it is cut.
   if (extensionOf(path) == ".jpg" || extensionOf(path) == ".jpeg") {
     std::ifstream file(path, std::ios::binary);

@@ -316,6 +316,24 @@ TEST(ImageFolder, ListsImagesInFileNameOrder) {
   EXPECT_EQ(fs::path(files[2]).filename(), "c.JPG");
 }
 
+// An image left out would shift the number of every later frame, and with it the ground truth.
+TEST(ImageFolder, AnImageThatCannotBeListedIsAnErrorNotLeftOut) {
+  TempFolder folder;
+  cv::imwrite(folder.path("0.png"), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
+  cv::imwrite(folder.path("1.webp"), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
+  fs::create_symlink(folder.path("unmounted/2.png"), folder.path("2.png"));
+  EXPECT_EQ(errorOf([&] { listImageFiles(folder.path()); }),
+            "image '" + folder.path("2.png") + "' is a broken symbolic link (to '" + folder.path("unmounted/2.png") +
+                "')");
+  fs::remove(folder.path("2.png"));
+  std::ofstream(folder.path("2.gif")) << "GIF89a";
+  const std::vector<std::string> files = listImageFiles(folder.path());
+  ASSERT_EQ(files.size(), 3U);
+  EXPECT_EQ(loadImage(files[1]).size(), cv::Size(6, 4));  // WebP, read by OpenCV
+  EXPECT_NE(errorOf([&] { loadImage(files[2]); }).find("2.gif': no image decoder of OpenCV reads it"),
+            std::string::npos);
+}
+
 TEST(ImageFolder, LoadsImagesUnchanged) {
   TempFolder folder;
   cv::Mat gray16(5, 7, CV_16UC1, cv::Scalar(1000));
@@ -346,7 +364,11 @@ TEST(ImageFolder, ClearErrors) {
   fs::create_directories(broken);
   cv::imwrite(broken + "/0.png", cv::Mat(4, 4, CV_8UC1, cv::Scalar(0)));
   std::ofstream(broken + "/1.png") << "not a png";
-  EXPECT_EQ(errorOf([&] { loadImageFolder(broken); }), "cannot read image '" + broken + "/1.png'");
+  EXPECT_EQ(errorOf([&] { loadImageFolder(broken); }),
+            "cannot read image '" + broken + "/1.png': no image decoder of OpenCV reads it (a corrupt file, or a "
+            "format this build of OpenCV lacks)");
+  std::ofstream(broken + "/1.png", std::ios::trunc).close();
+  EXPECT_EQ(errorOf([&] { loadImageFolder(broken); }), "cannot read image '" + broken + "/1.png': the file is empty");
 
   const std::string mixed = folder.path("mixed");
   fs::create_directories(mixed);
