@@ -53,13 +53,15 @@ void checkTopic(const rosbag::Bag& bag, const std::string& path, const std::stri
 }
 
 /// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8.
-sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed, const std::string& path) {
+/// The caller names the message in the error.
+sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed) {
   const std::vector<std::uint8_t>& data = compressed->data;
+  if (data.empty()) throw std::runtime_error("the compressed image holds no data (0 bytes)");
   // libjpeg would decode a truncated stream, grey where it is cut: such a frame is refused, as the node does.
   if (data.size() >= 2 && data[0] == 0xFF && data[1] == 0xD8 &&
       !image_codecs::jpegReachesEndOfImage(data.data(), data.size())) {
-    throw std::runtime_error("a compressed image of bag '" + path + "' is a truncated JPEG stream (" +
-                             std::to_string(data.size()) + " bytes, no end-of-image marker)");
+    throw std::runtime_error("the compressed image is a truncated JPEG stream (" + std::to_string(data.size()) +
+                             " bytes, no end-of-image marker)");
   }
   cv::Mat image;
   try {
@@ -67,9 +69,13 @@ sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compres
                          const_cast<std::uint8_t*>(compressed->data.data()));
     image = image_codecs::decode(buffer, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& error) {
-    throw std::runtime_error("cannot decode a compressed image of bag '" + path + "': " + error.what());
+    throw std::runtime_error("cannot decode the compressed image (format '" + compressed->format + "'): " +
+                             error.err);
   }
-  if (image.empty()) throw std::runtime_error("cannot decode a compressed image of bag '" + path + "'");
+  if (image.empty()) {
+    throw std::runtime_error("cannot decode the compressed image (format '" + compressed->format + "', " +
+                             std::to_string(data.size()) + " bytes): not an image OpenCV reads");
+  }
   switch (image.type()) {
     case CV_8UC1:
       return imageMessageOf(image, sensor_msgs::image_encodings::MONO8, compressed->header);
@@ -80,7 +86,7 @@ sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compres
     case CV_8UC4:
       return imageMessageOf(image, sensor_msgs::image_encodings::BGRA8, compressed->header);
     default:
-      throw std::runtime_error("a compressed image of bag '" + path + "' decodes to " + cv::typeToString(image.type()) +
+      throw std::runtime_error("the compressed image decodes to " + cv::typeToString(image.type()) +
                                ", which is not an image encoding read here");
   }
 }
@@ -103,12 +109,19 @@ void forEachImageWithRosbag(const std::string& bag_path, const std::string& topi
     if (count >= 0 && index >= start + count) break;
     if (index++ < start) continue;
     sensor_msgs::ImagePtr image;
-    if (instance.getDataType() == kImageType) {
-      image = instance.instantiate<sensor_msgs::Image>();
-    } else {
-      image = decode(instance.instantiate<sensor_msgs::CompressedImage>(), bag_path);
+    const auto where = [&] {
+      return "message " + std::to_string(index - 1) + " of topic '" + topic + "' in bag '" + bag_path + "'";
+    };
+    try {
+      if (instance.getDataType() == kImageType) {
+        image = instance.instantiate<sensor_msgs::Image>();
+      } else {
+        image = decode(instance.instantiate<sensor_msgs::CompressedImage>());
+      }
+    } catch (const std::exception& error) {  // ros::serialization's "Buffer Overrun" names nothing
+      throw std::runtime_error(where() + " cannot be read: " + error.what());
     }
-    if (!image) throw std::runtime_error("cannot read message " + std::to_string(index - 1) + " of '" + topic + "'");
+    if (!image) throw std::runtime_error(where() + " cannot be read as " + instance.getDataType());
     if (image->header.stamp.isZero()) image->header.stamp = instance.getTime();
     visit(index - 1, image);
   }
@@ -122,7 +135,13 @@ void forEachTransformWithRosbag(const std::string& bag_path, const TransformVisi
     throw std::runtime_error("bag '" + bag_path + "' has no /tf or /tf_static messages: the robot's poses are needed");
   }
   for (const rosbag::MessageInstance& instance : view) {
-    const tf2_msgs::TFMessage::ConstPtr message = instance.instantiate<tf2_msgs::TFMessage>();
+    tf2_msgs::TFMessage::ConstPtr message;
+    try {
+      message = instance.instantiate<tf2_msgs::TFMessage>();
+    } catch (const std::exception& error) {  // ros::serialization's "Buffer Overrun" names nothing
+      throw std::runtime_error("a message of topic '" + instance.getTopic() + "' in bag '" + bag_path +
+                               "' cannot be read: " + error.what());
+    }
     if (!message) {
       throw std::runtime_error("topic '" + instance.getTopic() + "' of bag '" + bag_path + "' carries " +
                                instance.getDataType() + ", not tf2_msgs/TFMessage");

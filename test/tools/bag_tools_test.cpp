@@ -16,6 +16,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <rosbag/bag.h>
+#include <sensor_msgs/CompressedImage.h>
+#include <sensor_msgs/Image.h>
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
@@ -25,6 +27,45 @@
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_tools_fixture.hpp"
 #include "support/travel_bag.hpp"
+
+/// A message filed in a bag as a sensor_msgs/Image but holding only `bytes`: a corrupt recording.
+struct CorruptImage {
+  std::vector<std::uint8_t> bytes;
+};
+
+namespace ros {
+namespace message_traits {
+template <>
+struct MD5Sum<CorruptImage> {
+  static const char* value() { return MD5Sum<sensor_msgs::Image>::value(); }
+  static const char* value(const CorruptImage&) { return value(); }
+};
+template <>
+struct DataType<CorruptImage> {
+  static const char* value() { return DataType<sensor_msgs::Image>::value(); }
+  static const char* value(const CorruptImage&) { return value(); }
+};
+template <>
+struct Definition<CorruptImage> {
+  static const char* value() { return Definition<sensor_msgs::Image>::value(); }
+  static const char* value(const CorruptImage&) { return value(); }
+};
+}  // namespace message_traits
+namespace serialization {
+template <>
+struct Serializer<CorruptImage> {
+  template <typename Stream>
+  static void write(Stream& stream, const CorruptImage& message) {
+    for (const std::uint8_t byte : message.bytes) stream.next(byte);
+  }
+  template <typename Stream>
+  static void read(Stream&, CorruptImage&) {}
+  static std::uint32_t serializedLength(const CorruptImage& message) {
+    return static_cast<std::uint32_t>(message.bytes.size());
+  }
+};
+}  // namespace serialization
+}  // namespace ros
 
 namespace {
 
@@ -496,6 +537,42 @@ TEST_F(BagToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStamp
   EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
       << garbage.err;
   EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
+}
+
+TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
+  const cv::Mat image = cv::imread(path("reference/00000.png"));
+  const std::string corrupt = path("corrupt.bag");
+  {
+    rosbag::Bag writer(corrupt, rosbag::bagmode::Write);
+    const ros::Time stamp(100, 0);
+    writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+    writer.write("/camera/image_raw", stamp + ros::Duration(0.1), CorruptImage{{1, 2, 3, 4, 5, 6, 7}});
+  }
+  const CommandResult cut = run(buildMap() + " --bag " + corrupt + " --topic /camera/image_raw --output " +
+                                path("corrupt.db"));
+  EXPECT_EQ(cut.status, 1);
+  EXPECT_NE(cut.err.find("build_map: error: message 1 of topic '/camera/image_raw' in bag '" + corrupt +
+                         "' cannot be read: "),
+            std::string::npos)
+      << cut.err;
+  EXPECT_FALSE(fs::exists(path("corrupt.db")));
+
+  const std::string empty = path("empty_compressed.bag");
+  {
+    rosbag::Bag writer(empty, rosbag::bagmode::Write);
+    sensor_msgs::CompressedImage compressed;
+    compressed.header.stamp = ros::Time(100, 0);
+    compressed.format = "jpeg";
+    writer.write("/camera/image_raw/compressed", compressed.header.stamp, compressed);
+  }
+  const CommandResult nothing = run(buildMap() + " --bag " + empty + " --topic /camera/image_raw/compressed --output " +
+                                    path("empty.db"));
+  EXPECT_EQ(nothing.status, 1);
+  EXPECT_NE(nothing.err.find("message 0 of topic '/camera/image_raw/compressed' in bag '" + empty +
+                             "' cannot be read: the compressed image holds no data (0 bytes)"),
+            std::string::npos)
+      << nothing.err;
+  EXPECT_EQ(nothing.err.find("OpenCV("), std::string::npos) << nothing.err;
 }
 
 }  // namespace
