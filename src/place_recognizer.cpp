@@ -421,6 +421,10 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     const int frames_in_map = framesToSearchLocked();
+    if (end < -1) {
+      throw std::invalid_argument("a test sequence cannot end at frame " + std::to_string(end) +
+                                  " (-1: after the newest frame)");
+    }
     if (end > frames_in_map) {
       throw std::invalid_argument("a test sequence cannot end at frame " + std::to_string(end) + ": the map holds " +
                                   std::to_string(frames_in_map) + " frames");

@@ -127,7 +127,8 @@ class PlaceRecognizer {
    * [0, size - frames - recent_exclusion) are searched, so that the answer is a loop closure and not
    * the place just passed. `explanation` as for match(). With `end` >= 0 the test sequence is the
    * `frames` frames before map frame `end` instead of the newest ones (and the searched frames end as
-   * much earlier): continuous mode localises each keyframe that came since its last question.
+   * much earlier): continuous mode localises each keyframe that came since its last question. `end`
+   * below -1 throws std::invalid_argument.
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);

@@ -50,6 +50,7 @@ Image imageFrom(const py::handle& object) {
     throw std::invalid_argument("unsupported image dtype " + py::str(array.dtype()).cast<std::string>() +
                                 " (supported: uint8 grey, BGR or BGRA; uint16 grey)");
   }
+  if (array.size() == 0) throw std::invalid_argument("image is empty: an array of shape " + shapeText(array));
   const auto channels = array.ndim() == 3 ? array.shape(2) : 1;
   if (channels < 1 || channels > CV_CN_MAX || array.shape(0) > INT_MAX || array.shape(1) > INT_MAX) {
     throw std::invalid_argument("unsupported image shape " + shapeText(array));

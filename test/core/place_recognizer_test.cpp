@@ -102,6 +102,9 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(100, "seqslam", nullptr, 60); }).find("before frame 60"),
             std::string::npos);
+  // -1 is the newest frame; any other negative end is a mistake, not the newest frame too.
+  EXPECT_EQ(errorOf([&] { recognizer.matchRecent(100, "seqslam", nullptr, -5); }),
+            "a test sequence cannot end at frame -5 (-1: after the newest frame)");
 }
 
 // Questions about the newest frames after each new one, as continuous mode asks: once MRS has kept
