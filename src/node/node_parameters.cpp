@@ -1,6 +1,7 @@
 #include "mrs_vpr/node/node_parameters.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <iterator>
@@ -12,6 +13,7 @@
 #include <ros/param.h>
 
 #include "mrs_vpr/node/travel_policy.hpp"
+#include "mrs_vpr/number_text.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -129,8 +131,21 @@ bool lookup(const ros::NodeHandle& nh, const std::string& name, XmlRpc::XmlRpcVa
   throw std::invalid_argument("~" + std::string(error.what()));
 }
 
+/// A whole number beyond 32 bits reaches the node as a double: it is out of the integer's range, which
+/// the message says, rather than of another type.
+void refuseWholeNumberBeyondInt(const ros::NodeHandle& nh, const ParameterInfo& info) {
+  XmlRpc::XmlRpcValue value;
+  if (!nh.getParam(info.name, value) || value.getType() != XmlRpc::XmlRpcValue::TypeDouble) return;
+  const double number = static_cast<double>(value);
+  if (std::isfinite(number) && number == std::floor(number) && std::abs(number) > 2147483647.0) {
+    throwPrivate(
+        std::invalid_argument(info.rejection(numberText(number), "a ROS parameter holds integers of 32 bits")));
+  }
+}
+
 void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) {
   XmlRpc::XmlRpcValue value;
+  refuseWholeNumberBeyondInt(nh, info);
   if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
     field = static_cast<int>(value);
   }
@@ -153,6 +168,7 @@ void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::string& fie
 
 void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::uint64_t& field) {
   XmlRpc::XmlRpcValue value;
+  refuseWholeNumberBeyondInt(nh, info);
   if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
     const int seed = static_cast<int>(value);
     try {

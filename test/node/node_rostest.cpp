@@ -343,6 +343,12 @@ TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
   output.clear();
   EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_stride _frame_stride:=0", output), 0);
   EXPECT_NE(output.find("~frame_stride must be in 1..10000, got 0"), std::string::npos) << output;
+
+  // Beyond 32 bits, a whole number reaches the node as a double: out of range, not "a number".
+  output.clear();
+  EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_capacity _max_frames:=99999999999", output), 0);
+  EXPECT_NE(output.find("~max_frames must be "), std::string::npos) << output;
+  EXPECT_NE(output.find(", got 99999999999"), std::string::npos) << output;
 }
 
 }  // namespace
