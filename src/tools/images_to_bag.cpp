@@ -72,6 +72,10 @@ int run(int argc, char** argv) {
   if (std::filesystem::exists(bag_path) && !force) {
     throw std::invalid_argument("'" + bag_path + "' exists; use --force to replace it");
   }
+  const std::filesystem::path folder = std::filesystem::path(bag_path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+    throw std::invalid_argument("--bag '" + bag_path + "': there is no folder " + folder.string());
+  }
   if (encoding != "bgr8" && encoding != "mono8") {
     throw std::invalid_argument("unknown encoding '" + encoding + "' (expected bgr8 or mono8)");
   }

@@ -92,6 +92,11 @@ int run(int argc, char** argv) {
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = min_appearance_change;
   keyframing.validate();
+  std::string why;
+  if (service.empty()) throw std::invalid_argument("--service must not be empty");
+  if (!ros::names::validate(service, why)) {
+    throw std::invalid_argument("--service '" + service + "' is not a valid ROS name: " + why);
+  }
   // A negative duration would make roscpp wait for the service for ever.
   if (!(timeout > 0.0 && timeout <= 3600.0)) {
     throw std::invalid_argument("--timeout must be in (0, 3600] s, got " + mrs_vpr::numberText(timeout));

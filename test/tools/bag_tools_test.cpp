@@ -157,6 +157,12 @@ TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
       run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag '' --topic /t --rate 5");
   EXPECT_EQ(no_bag.status, 1);
   EXPECT_NE(no_bag.err.find("--bag must not be empty"), std::string::npos) << no_bag.err;
+  const CommandResult no_bag_folder = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                          path("nowhere/x.bag") + " --topic /t --rate 5");
+  EXPECT_EQ(no_bag_folder.status, 1);
+  EXPECT_NE(no_bag_folder.err.find("--bag '" + path("nowhere/x.bag") + "': there is no folder " + path("nowhere")),
+            std::string::npos)
+      << no_bag_folder.err;
 }
 
 TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChanged) {
@@ -360,6 +366,13 @@ TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
     EXPECT_NE(result.err.find("--timeout must be in (0, 3600] s"), std::string::npos) << result.err;
     EXPECT_TRUE(result.out.empty()) << "stdout holds only the JSON answer: " << result.out;
   }
+  // A service that no node can offer is named as such, not waited for.
+  const CommandResult unnamed = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service ''");
+  EXPECT_EQ(unnamed.status, 1);
+  EXPECT_NE(unnamed.err.find("--service must not be empty"), std::string::npos) << unnamed.err;
+  const CommandResult invalid = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service 'my query'");
+  EXPECT_EQ(invalid.status, 1);
+  EXPECT_NE(invalid.err.find("--service 'my query' is not a valid ROS name"), std::string::npos) << invalid.err;
 }
 
 TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
