@@ -29,13 +29,14 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: make_demo_route --output DIR [--reference-frames M] [--query-frames Q] [--topic T]\n"
-    "                       [--rate HZ] [--start-time SEC] [--seed S] [--images]\n"
+    "                       [--rate HZ] [--start-time SEC] [--seed S] [--images] [--force]\n"
     "\n"
     "Generates two traversals of one synthetic route (the second one at 0.8..1.2 times the speed, with\n"
     "other illumination, contrast, blur, noise and small shifts) and writes DIR/reference.bag,\n"
     "DIR/query.bag (bgr8 sensor_msgs/Image on T) and DIR/ground_truth.csv (query_index,\n"
     "matching_ref_indices). Reference frame i is stamped start-time + i / rate; the query traversal\n"
-    "starts one hour later. --images also writes DIR/reference/ and DIR/query/ as PNG folders.\n";
+    "starts one hour later. --images also writes DIR/reference/ and DIR/query/ as PNG folders. The\n"
+    "files of an earlier route in DIR are replaced only with --force.\n";
 
 /// The bag appears under `path` only once complete: a failure or Ctrl-C leaves no bag that looks whole.
 void writeBag(const std::string& path, const std::string& topic, const std::vector<cv::Mat>& frames, double start,
@@ -84,7 +85,8 @@ int run(int argc, char** argv) {
       ("rate", po::value(&rate)->default_value(rate), "frame rate of the stamps [Hz]")
       ("start-time", po::value(&start_time)->default_value(start_time), "stamp of the first reference frame [s]")
       ("seed", po::value(&seed)->default_value(seed), "seed of the route, >= 0")
-      ("images", "also write the traversals as PNG folders");
+      ("images", "also write the traversals as PNG folders")
+      ("force", "replace the files of an earlier route in DIR");
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
@@ -105,8 +107,16 @@ int run(int argc, char** argv) {
     throw std::invalid_argument(std::string("the traversals cannot all be stamped: ") + error.what());
   }
 
-  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   const fs::path folder(output);
+  if (variables.count("force") == 0) {
+    for (const char* name : {"reference.bag", "query.bag", "ground_truth.csv", "reference", "query"}) {
+      if (fs::exists(folder / name)) {
+        throw std::invalid_argument("'" + (folder / name).string() +
+                                    "' exists: use --force to replace an earlier route's files");
+      }
+    }
+  }
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   fs::create_directories(folder);
   writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
   writeBag((folder / "query.bag").string(), topic, route.query, start_time + 3600.0, rate);

@@ -394,6 +394,15 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
     EXPECT_TRUE(fs::exists(path("demo/") + file)) << file;
     EXPECT_FALSE(fs::exists(path("demo/") + file + ".part")) << file;
   }
+  // An earlier route is replaced only with --force.
+  const std::string first_route = fileContents(path("demo/reference.bag"));
+  const CommandResult again = run(tool + " --reference-frames 40 --query-frames 20");
+  EXPECT_EQ(again.status, 1);
+  EXPECT_NE(again.err.find("'" + path("demo/reference.bag") + "' exists: use --force"), std::string::npos)
+      << again.err;
+  EXPECT_EQ(fileContents(path("demo/reference.bag")), first_route);
+  ASSERT_EQ(run(tool + " --reference-frames 40 --query-frames 20 --force").status, 0);
+  EXPECT_NE(fileContents(path("demo/reference.bag")), first_route);
 }
 
 TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
