@@ -19,7 +19,9 @@ namespace mrs_vpr {
  * see MapWriter). Without a database the map lives in memory only, and save() still writes one.
  *
  * reset(), load() and save() replace or copy the whole map consistently while add() goes on from
- * another thread. Errors throw MapDatabaseError naming the file and the problem; the map and the
+ * another thread: add() waits only while reset() or load() empties or rewrites the database (load()
+ * reads and checks the new map before that), so that no frame reaches one of map and database
+ * without the other. Errors throw MapDatabaseError naming the file and the problem; the map and the
  * database are then as they were. Every member is thread-safe.
  */
 class PersistentMap {
@@ -40,7 +42,7 @@ class PersistentMap {
   PersistentMap& operator=(const PersistentMap&) = delete;
 
   /// Adds a keyframe (one chosen by travel, say) to the map and, when admitted, queues it for the
-  /// database. Cheap: never waits for the disk or a query.
+  /// database. Cheap: never waits for the disk or a query (only for reset() and load(), see above).
   FrameAdmission add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id = "",
                      std::int64_t sequence = -1);
   /// The same for a camera frame that joins the map only if its view has changed enough
