@@ -208,7 +208,8 @@ double shareOf(const std::vector<bool>& flags) {
 
 void runCameraDrives(const CameraDriveInput& input, const std::function<void(const std::vector<nlohmann::json>&)>& add,
                      const PerFrameRow& per_frame) {
-  if (input.summer == nullptr || input.winter == nullptr) throw std::invalid_argument("camera drives need both seasons");
+  if (input.summer == nullptr || input.winter == nullptr)
+    throw std::invalid_argument("camera drives need both seasons");
   const int route = input.route_frames;
   const Drive map = makeDrive("map drive, summer 0.." + std::to_string(route - 1), kMapRate, *input.summer, 0, route,
                               input.seed);
@@ -253,11 +254,13 @@ void runCameraDrives(const CameraDriveInput& input, const std::function<void(con
       const int with_right = static_cast<int>(std::count(c.stretch_right.begin(), c.stretch_right.end(), true));
       const int keyframed = static_cast<int>(std::count(c.stretch_keyframed.begin(), c.stretch_keyframed.end(), true));
       const std::string wrong = std::to_string(c.wrong) + " (" + std::to_string(c.wrong_route_frames) + ")";
-      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d", drive.name.c_str(), method.c_str(),
-                  length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right, wrong.c_str(), with_right,
-                  stretches, keyframed, shareOf(c.stretch_right), c.standing_right, c.standing_wrong);
+      std::printf("%-28s %-8s %4d %9d %10d %7d %8d %5d %10s %4d/%-4d (%d) %.3f  restated %d/%d", drive.name.c_str(),
+                  method.c_str(), length, c.keyframes, c.stopped_keyframes, c.queries, c.accepted, c.right,
+                  wrong.c_str(), with_right, stretches, keyframed, shareOf(c.stretch_right), c.standing_right,
+                  c.standing_wrong);
       if (d > 0 && c.wrong + c.standing_wrong > 0) {
-        std::printf(", wrong by up to %d places (%d route frames)", c.largest_wrong_places, c.largest_wrong_route_frames);
+        std::printf(", wrong by up to %d places (%d route frames)", c.largest_wrong_places,
+                    c.largest_wrong_route_frames);
       }
       std::printf("\n");
       const double share = shareOf(c.stretch_right);

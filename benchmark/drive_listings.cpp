@@ -56,7 +56,8 @@ void printFalseClosure(const std::string& method, const std::string& drive, int 
                method.c_str(), drive.c_str(), drive_frame, log.routeOfKeyframe(anchor), match.reference_index,
                log.routeFrame(first), log.routeFrame(last), match.confidence, match.velocity);
   std::fprintf(stderr, "  test keyframes:");
-  for (int q = end - recent; q < end; ++q) std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == anchor ? "*" : "");
+  for (int q = end - recent; q < end; ++q)
+    std::fprintf(stderr, " %d%s", log.routeOfKeyframe(q), q == anchor ? "*" : "");
   std::fprintf(stderr, "\n  map keyframes: ");
   const int shown_end = std::min(log.keyframes(), match.reference_index + recent);
   for (int q = std::max(0, match.reference_index - recent); q < shown_end; ++q) {

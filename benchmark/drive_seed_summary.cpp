@@ -40,7 +40,8 @@ void printDriveSeedSummary(const std::vector<nlohmann::json>& continuous_rows) {
     totals.wrong += wrong;
     totals.wrong_route_frames += row.at("accepted_wrong_by_route_frame").get<int>();
     totals.restated_wrong += restated_wrong;
-    totals.largest_wrong_places = std::max(totals.largest_wrong_places, row.at("largest_wrong_error_places").get<int>());
+    totals.largest_wrong_places =
+        std::max(totals.largest_wrong_places, row.at("largest_wrong_error_places").get<int>());
     totals.largest_wrong_route_frames =
         std::max(totals.largest_wrong_route_frames, row.at("largest_wrong_error_route_frames").get<int>());
     totals.accepted += row.at("accepted").get<int>();

@@ -66,7 +66,8 @@ int measure(const MapScaleOptions& options) {
   {
     const mrs_vpr::MapDatabase map(options.measure, descriptor);
     recognizer.reserve(static_cast<int>(map.size()));
-    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
+    map.forEachFrame(
+        [&](const mrs_vpr::StoredFrame& frame) { recognizer.addDescriptor(frame.descriptor, frame.stamp); });
     recognizer.flush();
   }
   const double load_s = secondsSince(load_start);
@@ -157,12 +158,27 @@ int run(int argc, char** argv) {
     const pid_t child = fork();
     if (child == 0) {
       const std::string exe = "/proc/self/exe";
-      const std::vector<std::string> args = {
-          "mrs_vpr_map_scale_benchmark", "--data", options.data, "--measure", path, "--truth-offset",
-          std::to_string(truth_offset), "--lengths", lengths, "--queries",
-          std::to_string(options.queries), "--brute-queries", std::to_string(options.brute_queries), "--threads",
-          std::to_string(options.threads), "--periods", std::to_string(options.periods), "--keyframes-per-period",
-          std::to_string(options.keyframes_per_period), "--seed", std::to_string(options.seed)};  // The map records its front end.
+      const std::vector<std::string> args = {"mrs_vpr_map_scale_benchmark",
+                                             "--data",
+                                             options.data,
+                                             "--measure",
+                                             path,
+                                             "--truth-offset",
+                                             std::to_string(truth_offset),
+                                             "--lengths",
+                                             lengths,
+                                             "--queries",
+                                             std::to_string(options.queries),
+                                             "--brute-queries",
+                                             std::to_string(options.brute_queries),
+                                             "--threads",
+                                             std::to_string(options.threads),
+                                             "--periods",
+                                             std::to_string(options.periods),
+                                             "--keyframes-per-period",
+                                             std::to_string(options.keyframes_per_period),
+                                             "--seed",
+                                             std::to_string(options.seed)};  // The map records its front end.
       std::vector<char*> argv_child;
       for (const std::string& arg : args) argv_child.push_back(const_cast<char*>(arg.c_str()));
       argv_child.push_back(nullptr);

@@ -70,7 +70,8 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   };
   // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one.
   const std::size_t kept = recent_keyframes_.size();
-  const auto first = recent_keyframes_.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(kept, kRecentKeyframes));
+  const auto first =
+      recent_keyframes_.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(kept, kRecentKeyframes));
   if (compare_recent_ && std::any_of(first, std::prev(recent_keyframes_.end()), unchanged_from)) {
     last_seen_before_ = true;
     return false;

@@ -19,7 +19,8 @@ int realignEnd(SequenceView reference, SequenceView query, const SequenceRows& r
   // Band row i covers reference columns [low[i], low[i] + width) around the straight trajectory.
   std::vector<int> low(static_cast<std::size_t>(length));
   for (int t = rows.first; t <= rows.last; ++t) {
-    low[static_cast<std::size_t>(t - rows.first)] = end + static_cast<int>(std::lround(velocity * (t - rows.anchor))) - slack;
+    low[static_cast<std::size_t>(t - rows.first)] =
+        end + static_cast<int>(std::lround(velocity * (t - rows.anchor))) - slack;
   }
   if (low.front() < 0 || low.back() + width > reference.count) return end;  // Near an edge of the map.
 

@@ -58,7 +58,8 @@ MatchExplanation explainMatch(SequenceView reference, SequenceView query, const 
   int lowest = end;
   int highest = end;
   for (int t = 0; t < query.count; ++t) {
-    const int frame = std::clamp(visitedFrame(end, explanation.velocity, t, explanation.anchor), 0, reference.count - 1);
+    const int frame =
+        std::clamp(visitedFrame(end, explanation.velocity, t, explanation.anchor), 0, reference.count - 1);
     explanation.trajectory.push_back(frame);
     lowest = std::min(lowest, frame);
     highest = std::max(highest, frame);

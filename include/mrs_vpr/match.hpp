@@ -11,8 +11,9 @@ struct Match {
   /**
    * Distinctiveness: by how many standard deviations of the costs of all ends the best sequence
    * beats its best rival (the lowest cost farther than match_exclusion / 2 from it), >= 0; higher is
-   * surer; 0 when the answer's trajectory runs at a velocity bound. Unlike the ratio of `score`, it is measured in the noise of this very query, so a threshold
-   * means the same for every method, sequence length and map size (see acceptance.hpp).
+   * surer; 0 when the answer's trajectory runs at a velocity bound. Unlike the ratio of `score`, it is measured in the
+   * noise of this very query, so a threshold means the same for every method, sequence length and map size (see
+   * acceptance.hpp).
    */
   float confidence = 0.0F;
   /// Ends with a trajectory outside the answer's window: the wrong places the confidence was judged

@@ -40,9 +40,10 @@ void drawFigure(cv::Mat& mask, double x, double foot, double width, double heigh
   const auto point = [&](double px, double py) {
     return cv::Point(cv::saturate_cast<int>(px * kScale), cv::saturate_cast<int>(py * kScale));
   };
-  cv::ellipse(mask, point(x, foot - body_height / 2.0),
-              cv::Size(cv::saturate_cast<int>(width / 2.0 * kScale), cv::saturate_cast<int>(body_height / 2.0 * kScale)),
-              0.0, 0.0, 360.0, cv::Scalar(255), cv::FILLED, cv::LINE_AA, kShift);
+  cv::ellipse(
+      mask, point(x, foot - body_height / 2.0),
+      cv::Size(cv::saturate_cast<int>(width / 2.0 * kScale), cv::saturate_cast<int>(body_height / 2.0 * kScale)), 0.0,
+      0.0, 360.0, cv::Scalar(255), cv::FILLED, cv::LINE_AA, kShift);
   cv::circle(mask, point(x, foot - body_height - head_radius), cv::saturate_cast<int>(head_radius * kScale),
              cv::Scalar(255), cv::FILLED, cv::LINE_AA, kShift);
 }
@@ -56,10 +57,11 @@ void CameraDriveSettings::validate() const {
   if (stops < 0 || stops > kMostStops) {
     throw std::invalid_argument(settingError("stops", "in 0.." + std::to_string(kMostStops), stops));
   }
-  if (stops > 0 && stop_frames_min < 1) throw std::invalid_argument(settingError("stop_frames_min", ">= 1", stop_frames_min));
+  if (stops > 0 && stop_frames_min < 1)
+    throw std::invalid_argument(settingError("stop_frames_min", ">= 1", stop_frames_min));
   if (stop_frames_max < stop_frames_min) {
-    throw std::invalid_argument(settingError("stop_frames_max", ">= stop_frames_min (" + std::to_string(stop_frames_min) + ")",
-                                             stop_frames_max));
+    throw std::invalid_argument(settingError(
+        "stop_frames_max", ">= stop_frames_min (" + std::to_string(stop_frames_min) + ")", stop_frames_max));
   }
   if (stop_frames_max > kMostStopFrames) {
     throw std::invalid_argument(
@@ -68,8 +70,10 @@ void CameraDriveSettings::validate() const {
   if (slow_frames < 0) throw std::invalid_argument(settingError("slow_frames", ">= 0", slow_frames));
   if (fast_frames < 0) throw std::invalid_argument(settingError("fast_frames", ">= 0", fast_frames));
   // Without noise a copy could come out exact; at 100 grey levels it is no longer a view of the place.
-  if (!(noise_std > 0.0 && noise_std <= 100.0)) throw std::invalid_argument(settingError("noise_std", "in (0, 100]", noise_std));
-  if (!(vibration >= 0.0 && vibration <= 1.0)) throw std::invalid_argument(settingError("vibration", "in 0..1 px", vibration));
+  if (!(noise_std > 0.0 && noise_std <= 100.0))
+    throw std::invalid_argument(settingError("noise_std", "in (0, 100]", noise_std));
+  if (!(vibration >= 0.0 && vibration <= 1.0))
+    throw std::invalid_argument(settingError("vibration", "in 0..1 px", vibration));
   if (!(gain >= 0.0 && gain < 0.5)) throw std::invalid_argument(settingError("gain", "in [0, 0.5)", gain));
 }
 
@@ -224,7 +228,8 @@ std::vector<cv::Mat> renderDrive(const CameraDrive& drive, const std::vector<cv:
                                 " route frames, but the route has " + std::to_string(route.size()) + " images");
   }
   for (int i = 0; i < drive.size(); ++i) {
-    images.push_back(drive.render(i, route[static_cast<std::size_t>(drive.frames()[static_cast<std::size_t>(i)].route_frame)]));
+    images.push_back(
+        drive.render(i, route[static_cast<std::size_t>(drive.frames()[static_cast<std::size_t>(i)].route_frame)]));
   }
   return images;
 }

@@ -75,7 +75,8 @@ void PatchFrequencies::project(const std::uint16_t* sums, int frames, std::uint8
   // A normalised patch of side P has a norm of kLevelsPerStd * P levels, which bounds each of its
   // orthonormal coefficients: +-that bound maps to +-128, so a byte saturates only at the extreme.
   const int side = geometry().patch_size;
-  const float scale = 128.0F / (ThumbnailFrontEnd::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
+  const float scale =
+      128.0F / (ThumbnailFrontEnd::kLevelsPerStd * static_cast<float>(side) * static_cast<float>(frames));
   thread_local std::vector<float> accumulators;
   accumulators.resize(2 * static_cast<std::size_t>(geometry().image_width));
   transformPatches(sums, geometry().image_width, geometry().image_height, side, wave_.data(), scale, cell,

@@ -28,8 +28,9 @@ void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& messa
 }
 
 void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::CompressedImageConstPtr& message) {
-  addFrame(message->header, [&] { return decodeCompressedImage(*message); },
-           [&] { return "format " + inQuotes(message->format) + ", " + std::to_string(message->data.size()) + " bytes"; });
+  addFrame(
+      message->header, [&] { return decodeCompressedImage(*message); },
+      [&] { return "format " + inQuotes(message->format) + ", " + std::to_string(message->data.size()) + " bytes"; });
 }
 
 template <typename Convert, typename Summary>

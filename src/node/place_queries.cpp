@@ -183,7 +183,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
     const auto start = std::chrono::steady_clock::now();
     try {
       const PlaceAnswer answered = answer(input, response);
-      publishLoopClosure(input.header, answered, response, input.header.stamp);  // warns itself when stamps cannot go out
+      publishLoopClosure(input.header, answered, response,
+                         input.header.stamp);  // warns itself when stamps cannot go out
       publishStandingClosures(input.header, answered, response);
     } catch (const std::exception& error) {
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());

@@ -72,7 +72,9 @@ void bindEvaluation(py::module_& m) {
       py::arg("query_index"), py::arg("true_indices"), py::arg("match"), py::arg("time_ms"));
   m.def(
       "summarise",
-      [](const py::iterable& records, int tolerance) { return summaryDict(summarise(recordsFrom(records), tolerance)); },
+      [](const py::iterable& records, int tolerance) {
+        return summaryDict(summarise(recordsFrom(records), tolerance));
+      },
       py::arg("records"), py::arg("tolerance"),
       "top1, pr_auc, recall_at_100_precision, accepted figures, median error and time of query records.");
   m.def(

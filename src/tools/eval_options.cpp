@@ -95,15 +95,19 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
        "N: keyframes per test sequence (ds of the per-frame protocol; default: the node's continuous mode)")
       ("min-appearance-change", doubleOption(&options.min_appearance_change),
        "keyframes by appearance change, as the node's ~min_appearance_change; 0 = every frame")
-      ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of the global protocol")
-      ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance), "frames of error still counted correct")
+      ("queries", po::value(&options.queries)->default_value(options.queries),
+       "K: test sequences of the global protocol")
+      ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
+       "frames of error still counted correct")
       ("seed", po::value(&options.seed)->default_value(options.seed), "seed of the global start positions and of mrs")
       ("output", po::value(&options.output), "JSON file with parameters, records, summary and PR curve")
       ("plots", po::value(&options.plots), "folder for the JSON, the difference pictures and the PNG plots")
-      ("accept-threshold", po::value(&params.sequence.accept_threshold)->default_value(params.sequence.accept_threshold),
+      ("accept-threshold", po::value(&params.sequence.accept_threshold)
+           ->default_value(params.sequence.accept_threshold),
        "answers are accepted at this confidence (distinctiveness, in spreads of the query's end costs)")
       ("out-of-map", po::bool_switch(&options.out_of_map), "no query frame is in the reference (new ground)")
-      ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods; 0 = OpenCV's default")
+      ("threads", po::value(&options.threads)->default_value(options.threads),
+       "threads of both methods; 0 = OpenCV's default")
       ("alignment", po::value(&alignment)->default_value(alignment), "causal | centred: where the localised frame sits")
       ("velocity-min", doubleOption(&params.sequence.velocity_min),
        "slowest reference keyframes per test keyframe")
@@ -113,7 +117,8 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
        "step between the velocities tried (0.02 for sequences in the hundreds)")
       ("alignment-slack", po::value(&params.sequence.alignment_slack)->default_value(params.sequence.alignment_slack),
        "frames the path that places an answer may stray from the best straight trajectory; 0 = its end")
-      ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels), "mrs: l_max, coarsest stride 2^levels")
+      ("levels", po::value(&params.mrs.levels)->default_value(params.mrs.levels),
+       "mrs: l_max, coarsest stride 2^levels")
       ("tau", po::value(&params.mrs.tau)->default_value(params.mrs.tau), "mrs: particle overlap, P_init = M / N * tau");
   // clang-format on
   addDescriptorOptions(description, params.descriptor);

@@ -139,7 +139,8 @@ void writeDrive(const Options& options) {
     try {
       image = drive.render(i, route_image);
     } catch (const std::invalid_argument& error) {
-      throw std::runtime_error("image '" + files[static_cast<std::size_t>(options.begin + route_frame)] + "': " + error.what());
+      throw std::runtime_error("image '" + files[static_cast<std::size_t>(options.begin + route_frame)] +
+                               "': " + error.what());
     }
     const std::string path = (part / frameName(i, drive.size())).string();
     if (!mrs_vpr::image_codecs::write(path, image)) throw std::runtime_error("cannot write '" + path + "'");
@@ -156,8 +157,8 @@ void writeDrive(const Options& options) {
     return begin < 0 ? std::string(", no ") + speed + " stretch"
                      : std::string(", ") + speed + " from route frame " + std::to_string(options.begin + begin);
   };
-  std::cerr << "make_drive: " << drive.size() << " frames of route frames " << options.begin << ".." << end - 1 << " in "
-            << options.output << ": " << options.drive.stops << " stops (" << stopped << " frames)"
+  std::cerr << "make_drive: " << drive.size() << " frames of route frames " << options.begin << ".." << end - 1
+            << " in " << options.output << ": " << options.drive.stops << " stops (" << stopped << " frames)"
             << stretch("half speed", drive.slowBegin()) << stretch("double speed", drive.fastBegin()) << "\n";
 }
 
@@ -187,7 +188,8 @@ std::vector<int> routePlacesOf(const std::string& folders) {
     traversals.push_back(routeImages(name));
     if (traversals.back().size() != traversals.front().size()) {
       throw std::invalid_argument("--places-from: '" + name + "' has " + std::to_string(traversals.back().size()) +
-                                  " images but '" + names.front() + "' has " + std::to_string(traversals.front().size()) +
+                                  " images but '" + names.front() + "' has " +
+                                  std::to_string(traversals.front().size()) +
                                   ": the folders must show the same route frames");
     }
   }
@@ -201,7 +203,8 @@ void writeGroundTruth(const Options& options) {
   mrs_vpr::tools::requireApartFromInputs({"--ground-truth", options.ground_truth},
                                          {{"--reference", options.reference}, {"--query", options.query}});
   if (fs::is_directory(options.ground_truth)) {
-    throw std::invalid_argument("'" + options.ground_truth + "' is a folder; --ground-truth names the CSV file to write");
+    throw std::invalid_argument("'" + options.ground_truth +
+                                "' is a folder; --ground-truth names the CSV file to write");
   }
   if (fs::exists(options.ground_truth) && !options.force) {
     throw std::invalid_argument("'" + options.ground_truth + "' exists; use --force to replace it");
@@ -283,7 +286,8 @@ int run(int argc, char** argv) {
                                 "--query (the truth of two drives)");
   }
   if (drives) {
-    if (options.images.empty() || options.output.empty()) throw std::invalid_argument("a drive needs --images and --output");
+    if (options.images.empty() || options.output.empty())
+      throw std::invalid_argument("a drive needs --images and --output");
     if (!options.places_from.empty()) throw std::invalid_argument("--places-from belongs to the ground truth's form");
     writeDrive(options);
   } else {

@@ -43,7 +43,8 @@ cv::Mat viewAt(double x, double gain, double noise, cv::RNG& rng) {
 }
 
 /// Keyframes chosen among `views` (each offered in turn).
-int keyframesOf(AppearanceKeyframes& keyframes, const DescriptorExtractor& extractor, const std::vector<cv::Mat>& views) {
+int keyframesOf(AppearanceKeyframes& keyframes, const DescriptorExtractor& extractor,
+                const std::vector<cv::Mat>& views) {
   int kept = 0;
   for (const cv::Mat& view : views) {
     const cv::Mat descriptor = extractor.compute(view);
@@ -149,7 +150,8 @@ TEST_P(AppearanceKeyframesTest, AViewAmongTheRecentKeyframesIsNotNewAgain) {
   EXPECT_EQ(keyframesOf(follower, extractor, swinging), 40);
   // Once more than kRecentKeyframes other keyframes came, the first view is new again (a revisit).
   std::vector<cv::Mat> away;
-  for (int i = 0; i <= AppearanceKeyframes::kRecentKeyframes; ++i) away.push_back(viewAt(3200.0 + 400.0 * i, 1, 1, rng));
+  for (int i = 0; i <= AppearanceKeyframes::kRecentKeyframes; ++i)
+    away.push_back(viewAt(3200.0 + 400.0 * i, 1, 1, rng));
   EXPECT_EQ(keyframesOf(keyframes, extractor, away), AppearanceKeyframes::kRecentKeyframes + 1);
   EXPECT_EQ(keyframesOf(keyframes, extractor, {viewAt(2400.0, 1.0, 1.0, rng)}), 1);
 }

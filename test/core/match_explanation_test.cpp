@@ -22,8 +22,9 @@ using testing_support::within;
 void mapReference(PlaceRecognizer& recognizer) {
   const SequenceView reference = standardRoute().reference.view();
   for (int i = 0; i < reference.count; ++i) {
-    recognizer.addDescriptor(cv::Mat(1, reference.descriptor_size, CV_8UC1, const_cast<std::uint8_t*>(reference.frame(i))),
-                             Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i), 0));
+    recognizer.addDescriptor(
+        cv::Mat(1, reference.descriptor_size, CV_8UC1, const_cast<std::uint8_t*>(reference.frame(i))),
+        Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i), 0));
   }
 }
 

@@ -216,8 +216,8 @@ TEST(NoiseRejection, SequencesOfAnUnmappedRouteAreNeverAcceptedInASmallMap) {
   // is accepted.
   for (const std::string& method : kMethods) {
     for (int map_frames : {20, 30, 50, 80, 110}) {
-      const Tally tally =
-          routeQueries(method, routeParameters(), unmappedRoute().query, 10, standardRoute().reference.view(0, map_frames));
+      const Tally tally = routeQueries(method, routeParameters(), unmappedRoute().query, 10,
+                                       standardRoute().reference.view(0, map_frames));
       EXPECT_EQ(tally.accepted, 0) << method << ", map of " << map_frames << " frames: " << tally;
     }
   }

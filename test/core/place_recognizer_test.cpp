@@ -202,7 +202,8 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(2147483647LL); }).find("recent_frames 2147483647 is more than"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(300); }).find("leaves 200 searchable frames"), std::string::npos);
-  EXPECT_NE(errorOf([&] { recognizer.addDescriptor(cv::Mat(1, 10, CV_8U)); }).find("2048 continuous bytes"), std::string::npos);
+  EXPECT_NE(errorOf([&] { recognizer.addDescriptor(cv::Mat(1, 10, CV_8U)); }).find("2048 continuous bytes"),
+            std::string::npos);
   // Still answers.
   EXPECT_GE(recognizer.match(queryImages(0, 20)).match.reference_index, 0);
 }

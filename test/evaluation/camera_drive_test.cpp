@@ -128,7 +128,8 @@ TEST(CameraDrive, NoStoppedOrSlowFrameIsAnExactCopy) {
       EXPECT_GT(change, 0.0) << "drive frame " << i << " (" << toString(frame.kind) << ") is an exact copy";
     }
     if (i > 0 && frame.kind == DriveFrameKind::kStopped) {
-      EXPECT_GT(cv::norm(images[static_cast<std::size_t>(i)], images[static_cast<std::size_t>(i) - 1], cv::NORM_INF), 0.0)
+      EXPECT_GT(cv::norm(images[static_cast<std::size_t>(i)], images[static_cast<std::size_t>(i) - 1], cv::NORM_INF),
+                0.0)
           << "stopped frame " << i << " repeats the frame before it";
     }
   }
@@ -180,7 +181,8 @@ TEST(CameraDrive, APasserByCrossesTheViewDuringEachStop) {
   const std::vector<cv::Mat> images = renderDrive(drive, route);
   for (const auto& [first, length] : stopsOf(drive)) {
     SCOPED_TRACE("stop at drive frame " + std::to_string(first));
-    const cv::Mat& background = route[static_cast<std::size_t>(drive.frames()[static_cast<std::size_t>(first)].route_frame)];
+    const cv::Mat& background =
+        route[static_cast<std::size_t>(drive.frames()[static_cast<std::size_t>(first)].route_frame)];
     std::vector<double> centres;
     for (int i = first; i < first + length; ++i) {
       // The figure: far darker than the view (noise is 0.5 grey levels), measured where it covers
@@ -248,7 +250,9 @@ TEST(CameraDrive, AStandingCameraAddsNoiseOfHalfAGreyLevelAndAGainWithinTwoPerce
 TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   CameraDriveSettings settings;
   settings.stop_frames_max = 10;
-  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("stop_frames_max must be >= stop_frames_min (30), got 10"),
+  EXPECT_NE(invalidArgumentMessage([&] {
+              CameraDrive(1000, settings);
+            }).find("stop_frames_max must be >= stop_frames_min (30), got 10"),
             std::string::npos);
   settings = CameraDriveSettings{};
   settings.noise_std = 0.0;
@@ -272,7 +276,8 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
             std::string::npos);
   const CameraDrive drive(300);
   EXPECT_THROW(drive.render(drive.size(), cv::Mat(32, 64, CV_8UC1)), std::out_of_range);
-  EXPECT_NE(invalidArgumentMessage([&] { drive.render(0, cv::Mat(32, 64, CV_16UC1)); }).find("8-bit"), std::string::npos);
+  EXPECT_NE(invalidArgumentMessage([&] { drive.render(0, cv::Mat(32, 64, CV_16UC1)); }).find("8-bit"),
+            std::string::npos);
   EXPECT_NE(invalidArgumentMessage([&] { renderDrive(drive, flatRoute(10)); })
                 .find("planned for 300 route frames, but the route has 10 images"),
             std::string::npos);

@@ -59,8 +59,9 @@ TEST_F(DriveFileTest, ABadFileIsNamedWithItsLine) {
   EXPECT_NE(invalidArgumentMessage([&] { readDriveFile(write("frame,route\n")); })
                 .find(":1: expected the header 'drive_frame,route_frame,kind', got 'frame,route'"),
             std::string::npos);
-  EXPECT_NE(invalidArgumentMessage([&] { readDriveFile(write("drive_frame,route_frame,kind\n0,4,moving\n2,5,moving\n")); })
-                .find(":3: expected drive frame 1, got '2'"),
+  EXPECT_NE(invalidArgumentMessage([&] {
+              readDriveFile(write("drive_frame,route_frame,kind\n0,4,moving\n2,5,moving\n"));
+            }).find(":3: expected drive frame 1, got '2'"),
             std::string::npos);
   EXPECT_NE(invalidArgumentMessage([&] { readDriveFile(write("drive_frame,route_frame,kind\n0,-4,moving\n")); })
                 .find(":2: route frame '-4' is not a non-negative integer"),

@@ -46,7 +46,9 @@ class TempFolder {
     std::error_code ignored;
     fs::remove_all(path_, ignored);
   }
-  std::string path(const std::string& child = "") const { return child.empty() ? path_.string() : (path_ / child).string(); }
+  std::string path(const std::string& child = "") const {
+    return child.empty() ? path_.string() : (path_ / child).string();
+  }
   std::string write(const std::string& name, const std::string& text) const {
     std::ofstream(path(name)) << text;
     return path(name);

@@ -325,7 +325,8 @@ TEST(MrsMatcher, TraceRecordsEveryLevelCoarsestFirstWithDistinctTableMinima) {
       const Match plain = search.match(route.reference.view(), query);
       expectIdentical(plain, traced);
       EXPECT_EQ(plain.accepted, traced.accepted) << where;
-      EXPECT_TRUE(within(traced.reference_index, truth, 3)) << where << ": " << traced.reference_index << " vs " << truth;
+      EXPECT_TRUE(within(traced.reference_index, truth, 3))
+          << where << ": " << traced.reference_index << " vs " << truth;
     }
   }
 }
@@ -361,8 +362,10 @@ TEST(MrsMatcher, TwoOrEightHypothesesBothFindThePlantedTruthOnTheRoute) {
       const SequenceView query = route.query.view(start, end + 1);
       const Match a = single->match(route.reference.view(), query);
       const Match b = several->match(route.reference.view(), query);
-      EXPECT_TRUE(within(a.reference_index, truth, 3)) << "N = " << length << ", start " << start << ": " << a.reference_index;
-      EXPECT_TRUE(within(b.reference_index, truth, 3)) << "N = " << length << ", start " << start << ": " << b.reference_index;
+      EXPECT_TRUE(within(a.reference_index, truth, 3))
+          << "N = " << length << ", start " << start << ": " << a.reference_index;
+      EXPECT_TRUE(within(b.reference_index, truth, 3))
+          << "N = " << length << ", start " << start << ": " << b.reference_index;
       EXPECT_TRUE(a.accepted);
       EXPECT_TRUE(b.accepted);
     }
@@ -409,7 +412,8 @@ TEST(MrsMatcher, MoreHypothesesRecoverATruthTheCoarseTableRanksSecond) {
   ASSERT_EQ(MrsMatcher(params.sequence, params.mrs, params.descriptor).levelsFor(length, reference.size()), 1);
   params.mrs.hypotheses = 8;
   std::vector<MrsLevelTrace> trace;
-  const Match several = MrsMatcher(params.sequence, params.mrs, params.descriptor).match(reference.view(), query, &trace);
+  const Match several =
+      MrsMatcher(params.sequence, params.mrs, params.descriptor).match(reference.view(), query, &trace);
   ASSERT_EQ(trace.size(), 2U);
   EXPECT_EQ(rankOf(trace.front().table_minima, decoy_end, 2), 0) << "the decoy is not the coarse minimum";
   EXPECT_EQ(rankOf(trace.front().table_minima, truth, 2), 1) << "truth " << truth;
@@ -443,7 +447,8 @@ TEST(MrsMatcher, PerFrameWithoutCoarserLevelsEqualsTheBruteForceFrameByFrame) {
       const std::vector<Match> fast = mrs.matchEveryFrame(route.reference.view(), query);
       const std::vector<Match> brute = SeqSlamMatcher(params.sequence).matchEveryFrame(route.reference.view(), query);
       ASSERT_EQ(fast.size(), brute.size());
-      const std::string where = "N = " + std::to_string(length) + (alignment == WindowAlignment::kCausal ? " causal" : " centred");
+      const std::string where =
+          "N = " + std::to_string(length) + (alignment == WindowAlignment::kCausal ? " causal" : " centred");
       int found = 0;
       int accepted = 0;
       for (std::size_t frame = 0; frame < fast.size(); ++frame) {

@@ -123,7 +123,8 @@ class CameraDriveTest : public ::testing::Test {
     const double seconds = stamp.toSec();
     const bool revisit = seconds >= revisit_start_ - 0.5;
     const CameraDrive& drive = revisit ? revisit_drive_ : map_drive_;
-    const long index = std::lround((seconds - (revisit ? revisit_start_ : kMapStart)) * (revisit ? kRevisitRate : kMapRate));
+    const long index =
+        std::lround((seconds - (revisit ? revisit_start_ : kMapStart)) * (revisit ? kRevisitRate : kMapRate));
     if (index < 0 || index >= drive.size()) return {revisit, -1};
     const auto& frame = drive.frames()[static_cast<std::size_t>(index)];
     return {revisit, frame.route_frame, frame.kind == DriveFrameKind::kStopped};
@@ -152,7 +153,8 @@ TEST_F(CameraDriveTest, LoopClosuresOfAVehicleThatStopsAndChangesSpeedAreRightAn
 
   // As a user plays a recording; --wait-for-subscribers: nothing is published before the node listens.
   const std::string log = folder_.path("play.log");
-  const int played = std::system(("rosbag play --quiet --wait-for-subscribers '" + bag + "' >'" + log + "' 2>&1").c_str());
+  const int played =
+      std::system(("rosbag play --quiet --wait-for-subscribers '" + bag + "' >'" + log + "' 2>&1").c_str());
   ASSERT_TRUE(WIFEXITED(played) && WEXITSTATUS(played) == 0) << mrs_vpr::testing_support::fileContents(log);
   const auto total = static_cast<std::uint64_t>(map_drive_.size() + revisit_drive_.size());
   ASSERT_TRUE(map_info.waitFor([&](const mrs_vpr::MapInfo& info) { return info.frames_received == total; }, 20.0))
@@ -248,4 +250,6 @@ TEST_F(CameraDriveTest, ImagesAtTheCameraRateAreKeyframedAsTheMapWas) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_camera_drive_rostest"); }
+int main(int argc, char** argv) {
+  return mrs_vpr::testing_support::runRostests(argc, argv, "mrs_vpr_camera_drive_rostest");
+}

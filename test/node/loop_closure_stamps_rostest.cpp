@@ -114,7 +114,8 @@ class LoopClosureStampsTest : public ::testing::Test {
     EXPECT_TRUE(node.query.call(srv)) << "the service call itself failed";
     EXPECT_TRUE(srv.response.success) << srv.response.message;
     LoopClosure closure;
-    EXPECT_TRUE(node.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, localised); }, closure, 10.0))
+    EXPECT_TRUE(
+        node.closures.waitFor([&](const LoopClosure& m) { return at(m.header.stamp, localised); }, closure, 10.0))
         << "no ~loop_closure for the query whose localised frame is at " << localised;
     return closure;
   }
@@ -207,8 +208,9 @@ TEST_F(LoopClosureStampsTest, AnAcceptedAnswerToUnstampedImagesSaysWhyItsStampsA
   for (auto& image : srv.request.images) image.header.stamp = ros::Time();
   const LoopClosure closure = ask(queried_, srv, ros::Time());
   EXPECT_TRUE(closure.accepted);
-  EXPECT_EQ(srv.response.message,
-            "accepted; not published on /queried/lio_loop/loop_closure_detection: the localised test frame has no stamp");
+  EXPECT_EQ(
+      srv.response.message,
+      "accepted; not published on /queried/lio_loop/loop_closure_detection: the localised test frame has no stamp");
   expectStampsOfAcceptedClosuresOnly(queried_);  // none for it
 }
 

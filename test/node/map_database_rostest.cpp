@@ -173,8 +173,9 @@ class MapDatabaseNodeTest : public ::testing::Test {
   static mrs_vpr::QuerySequence::Response query(const NodeProcess& node, int first, int count) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + count; ++i) {
-      srv.request.images.push_back(*mrs_vpr::bag::toImageMessage(defaultRouteImages().query[static_cast<std::size_t>(i)], "bgr8",
-                                                                 ros::Time(9000.0 + i * kFramePeriod), "camera"));
+      srv.request.images.push_back(
+          *mrs_vpr::bag::toImageMessage(defaultRouteImages().query[static_cast<std::size_t>(i)], "bgr8",
+                                        ros::Time(9000.0 + i * kFramePeriod), "camera"));
     }
     srv.request.method = "seqslam";
     EXPECT_TRUE(mrs_vpr::testing_support::callService(node.service("query"), srv));
@@ -225,14 +226,16 @@ TEST_F(MapDatabaseNodeTest, ARestartedNodeKeepsItsMapAndAnswersAboutTheFirstPart
   ASSERT_LT(defaultRouteImages().query_to_reference[static_cast<std::size_t>(last)], 200);
   auto response = query(*node, first, 80);
   ASSERT_TRUE(response.success) << response.message;
-  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(last)], kTolerance);
+  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(last)],
+              kTolerance);
   EXPECT_NEAR(response.reference_stamp.toSec(), kReferenceStart + response.reference_index * kFramePeriod, 1e-3);
   EXPECT_TRUE(response.accepted);
   // And one over frames mapped after it.
   const int later = queryFrameAt(210);
   response = query(*node, later, 60);
   ASSERT_TRUE(response.success) << response.message;
-  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(later + 59)], kTolerance);
+  EXPECT_NEAR(response.reference_index, defaultRouteImages().query_to_reference[static_cast<std::size_t>(later + 59)],
+              kTolerance);
   EXPECT_EQ(node->stop(), 0);
 }
 

@@ -267,7 +267,8 @@ TEST_F(NodeTest, RecentFramesAndContinuousMode) {
   // The continuous-mode node answers on its own once the newest frame is in its map.
   mrs_vpr::LoopClosure automatic;
   ASSERT_TRUE(auto_loop_closures_.waitFor(
-      [&](const mrs_vpr::LoopClosure& m) { return std::abs((m.header.stamp - newest_stamp).toSec()) < 1e-6; }, automatic, 10.0));
+      [&](const mrs_vpr::LoopClosure& m) { return std::abs((m.header.stamp - newest_stamp).toSec()) < 1e-6; },
+      automatic, 10.0));
   EXPECT_EQ(automatic.query_length, 30U);
   EXPECT_EQ(automatic.method, "mrs");
   EXPECT_NEAR(automatic.reference_index, truth, kTolerance);

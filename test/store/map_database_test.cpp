@@ -198,7 +198,8 @@ TEST_F(MapDatabaseTest, AMapThatRecordsNoFrontEndHoldsThumbnails) {
   }
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path("map.db").c_str(), &db), SQLITE_OK);
-  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM metadata WHERE key = 'descriptor_type'", nullptr, nullptr, nullptr), SQLITE_OK);
+  ASSERT_EQ(sqlite3_exec(db, "DELETE FROM metadata WHERE key = 'descriptor_type'", nullptr, nullptr, nullptr),
+            SQLITE_OK);
   sqlite3_close(db);
   EXPECT_EQ(MapDatabase(path("map.db"), thumbnailParams()).size(), 3);
   EXPECT_NE(openingError(path("map.db"), DescriptorParams{}).find("thumbnail (64 x 32, patches of 8 px) front end"),

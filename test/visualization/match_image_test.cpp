@@ -121,9 +121,12 @@ TEST(MatchImage, MarksEachLevelsParticlesOverTheWholeMap) {
 TEST(MatchImage, WritesTheMapStatusOnTheLastLineOnlyWhenGiven) {
   const MatchExplanation explanation = handMadeExplanation();
   const cv::Rect line = matchImageLayout(2).map_status;
-  const auto written = [&](const cv::Mat& image) { return cv::countNonZero(image(line).reshape(1) != image.at<cv::Vec3b>(line.y, line.x)[0]); };
+  const auto written = [&](const cv::Mat& image) {
+    return cv::countNonZero(image(line).reshape(1) != image.at<cv::Vec3b>(line.y, line.x)[0]);
+  };
   EXPECT_EQ(written(renderMatchImage(explanation, answerAt(159, true))), 0);
-  EXPECT_GT(written(renderMatchImage(explanation, answerAt(159, true), "map 460 keyframes; 377 frames too similar")), 0);
+  EXPECT_GT(written(renderMatchImage(explanation, answerAt(159, true), "map 460 keyframes; 377 frames too similar")),
+            0);
 }
 
 TEST(MatchImage, SeqslamAndNoMatchStillGiveAnImage) {

@@ -30,10 +30,10 @@ MatchImageLayout matchImageLayout(int levels);
 /**
  * The picture of one answer, BGR (CV_8UC3, matchImageLayout(explanation.levels.size()).size):
  * the localised test frame beside the matched reference frame (their descriptors), the band of
- * differences around the match (each reference frame's column standardised; dark = similar) with the best trajectory dashed in red, for MRS one strip
- * per level with its particles (yellow, the lowest-cost one green) and the answer (red) over the
- * whole map, and the confidence with the verdict (green accepted, red not). No ROS: the node
- * publishes it, a tool may write it to a file.
+ * differences around the match (each reference frame's column standardised; dark = similar) with the best trajectory
+ * dashed in red, for MRS one strip per level with its particles (yellow, the lowest-cost one green) and the answer
+ * (red) over the whole map, and the confidence with the verdict (green accepted, red not). No ROS: the node publishes
+ * it, a tool may write it to a file.
  */
 /// `map_status` is written on the last line (the node says how many frames it skipped as too similar).
 cv::Mat renderMatchImage(const MatchExplanation& explanation, const PlaceAnswer& answer,
