@@ -38,13 +38,13 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
       {{"auto_query_period", Range::closed(0, 86400), {}, "",
-        "Continuous mode: every this many seconds, localise each keyframe that came since the last time "
-        "(within a fifth of the period); 0 = off."},
+        "Continuous mode: every this many seconds (wall-clock, also under use_sim_time), localise each "
+        "keyframe that came since the last time (within a fifth of the period); 0 = off."},
        &P::auto_query_period},
       {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
        &P::auto_query_frames},
-      {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz]."},
+      {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz, wall-clock]."},
        &P::map_info_rate},
       {{"database", Range{}, {}, "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},

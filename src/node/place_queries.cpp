@@ -157,7 +157,7 @@ void PlaceRecognitionNode::publishStandingClosures(const std_msgs::Header& heade
   }
 }
 
-void PlaceRecognitionNode::autoQueryCallback(const ros::TimerEvent&) {
+void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   if (!flushWaitingKeyframes()) return;
   const std::uint64_t version = map_version_.load();
   if (version == auto_query_version_) {

@@ -45,11 +45,13 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   reset_srv_ = query_nh_.advertiseService("reset", &PlaceRecognitionNode::resetCallback, this);
   save_map_srv_ = query_nh_.advertiseService("save_map", &PlaceRecognitionNode::saveMapCallback, this);
   load_map_srv_ = query_nh_.advertiseService("load_map", &PlaceRecognitionNode::loadMapCallback, this);
-  map_info_timer_ = query_nh_.createTimer(ros::Duration(1.0 / params_.map_info_rate),
-                                          &PlaceRecognitionNode::mapInfoCallback, this);
+  // Wall-clock timers: they pace the node's own work, which goes on under use_sim_time whether or not
+  // a /clock runs (before one starts, and after a replayed bag's clock stops, ROS time stands still).
+  map_info_timer_ = query_nh_.createWallTimer(ros::WallDuration(1.0 / params_.map_info_rate),
+                                              &PlaceRecognitionNode::mapInfoCallback, this);
   if (params_.auto_query_period > 0.0) {
-    auto_query_timer_ = query_nh_.createTimer(ros::Duration(params_.auto_query_period),
-                                              &PlaceRecognitionNode::autoQueryCallback, this);
+    auto_query_timer_ = query_nh_.createWallTimer(ros::WallDuration(params_.auto_query_period),
+                                                  &PlaceRecognitionNode::autoQueryCallback, this);
   }
   if (travel_policy_.enabled()) {
     tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
@@ -164,7 +166,7 @@ bool PlaceRecognitionNode::flushWaitingKeyframes() {
   }
 }
 
-void PlaceRecognitionNode::mapInfoCallback(const ros::TimerEvent&) {
+void PlaceRecognitionNode::mapInfoCallback(const ros::WallTimerEvent&) {
   // Frames parked during a query show up even when no new image arrives; reserveAhead gives up by itself
   // when memory runs out.
   if (flushWaitingKeyframes()) recognizer_.reserveAhead();

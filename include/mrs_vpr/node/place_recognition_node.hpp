@@ -115,8 +115,8 @@ class PlaceRecognitionNode {
   void startOverOnNewMap();
   /// Logs (throttled) why commits to ~database fail, while they do.
   void reportWriteErrors();
-  void autoQueryCallback(const ros::TimerEvent& event);
-  void mapInfoCallback(const ros::TimerEvent& event);
+  void autoQueryCallback(const ros::WallTimerEvent& event);
+  void mapInfoCallback(const ros::WallTimerEvent& event);
   /// Moves the keyframes parked during a query into the map; false, logged, when memory ran out (a
   /// timer callback must not throw: roscpp would end the node).
   bool flushWaitingKeyframes();
@@ -186,8 +186,8 @@ class PlaceRecognitionNode {
   ros::ServiceServer reset_srv_;
   ros::ServiceServer save_map_srv_;
   ros::ServiceServer load_map_srv_;
-  ros::Timer auto_query_timer_;
-  ros::Timer map_info_timer_;
+  ros::WallTimer auto_query_timer_;
+  ros::WallTimer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
   std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
 };
