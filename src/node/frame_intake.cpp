@@ -36,7 +36,7 @@ void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::Compressed
 template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
-  countMissingFrames(header.seq);
+  countMissingFrames(header.seq, header.stamp.toSec());
   const std::optional<Stamp> stamp = frameStamp(header);
   if (!stamp) return;
   // The keyframe policies compare intervals, for which seconds in a double are precise enough.
@@ -195,11 +195,11 @@ std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Ti
   return position;
 }
 
-void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
+void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq, double stamp) {
   std::uint64_t missing = 0;
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    missing = sequence_gaps_.record(seq);
+    missing = sequence_gaps_.record(seq, stamp);
   }
   if (missing == 0) {
     return;
@@ -210,7 +210,7 @@ void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq) {
   ROS_WARN_THROTTLE(kWarningPeriod,
                     "mrs_vpr: %llu frames of %s never reached the node (header.seq jumped to %u): the "
                     "subscriber queue (~image_queue_size = %d) overflowed while frames were described%s, or the "
-                    "publisher dropped them; counted as failed",
+                    "publisher dropped or skipped them; counted as failed",
                     static_cast<unsigned long long>(missing), imageTopic().c_str(), seq, params_.image_queue_size,
                     travel_policy_.enabled() ? " or waited for the robot's pose (~tf_timeout)" : "");
 }

@@ -55,6 +55,23 @@ TEST(SequenceGaps, TwoPublishersAtOnceLoseNothingBetweenThem) {
   EXPECT_EQ(gaps.record(106), 0U);
 }
 
+TEST(SequenceGaps, AJumpTheStampsDoNotBearOutIsAnotherRecording) {
+  SequenceGaps gaps;
+  const double summer = 1600000000.0;  // one recording at 10 Hz, numbered from 1000 ...
+  for (std::uint32_t i = 0; i <= 10; ++i) EXPECT_EQ(gaps.record(1000 + i, summer + 0.1 * i), 0U) << i;
+  EXPECT_EQ(gaps.record(1013, summer + 1.3), 2U);  // lost frames: three periods for three steps
+  // ... then another, numbered from 5000 and recorded a day later: not 3986 lost frames.
+  const double winter = summer + 86400.0;
+  EXPECT_EQ(gaps.record(5000, winter), 0U);
+  EXPECT_EQ(gaps.record(5001, winter + 0.1), 0U);
+  EXPECT_EQ(gaps.record(5003, winter + 0.3), 1U);  // its own losses count again
+  // A jump back in time, or a gap far shorter than the frames it skips, is no loss either.
+  EXPECT_EQ(gaps.record(5004, winter + 0.4), 0U);
+  EXPECT_EQ(gaps.record(5100, winter + 0.5), 0U);
+  // Without stamps only the seq is known, and a jump counts.
+  EXPECT_EQ(gaps.record(6000), 899U);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

@@ -101,7 +101,7 @@ class PlaceRecognitionNode {
   /// ~odom_frame or ~base_frame when no transform received has named it yet, else "".
   std::string unknownTfFrame() const;
   /// Counts (received and failed) and reports the frames missing before the one numbered `seq`.
-  void countMissingFrames(std::uint32_t seq);
+  void countMissingFrames(std::uint32_t seq, double stamp);
   /// The topic the camera frames come from, for messages.
   std::string imageTopic() const;
   bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);

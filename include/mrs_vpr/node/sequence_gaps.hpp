@@ -21,7 +21,13 @@ namespace node {
  * callbacks do not say which publisher sent a message. So a few numberings are followed, and each seq
  * continues the one it is the shortest step ahead of; a step of more than kInterleavedStep ahead of
  * one that is not the newest is a numbering of its own. Only the first jump from one numbering to
- * the other, which nothing yet tells from a gap, is counted. No ROS inside.
+ * the other, which nothing yet tells from a gap, is counted.
+ *
+ * A jump forward that the stamps do not bear out is a numbering of its own too: one recording played
+ * after another (seq 1599, then 5000, stamps a day apart), or a camera driver restarted. Lost frames
+ * leave a stamp gap of about as many frame periods as the seq gap; the period is learnt from the
+ * numbering's own steps of one, and a gap outside kStampSlack times the expected one is no loss. A
+ * stream without stamps (0) or without a learnt period is judged by seq alone. No ROS inside.
  */
 class SequenceGaps {
  public:
@@ -29,9 +35,12 @@ class SequenceGaps {
   static constexpr int kStreams = 8;
   /// The longest step a seq may take ahead of a numbering other than the newest and still continue it.
   static constexpr std::uint32_t kInterleavedStep = 1000;
+  /// How far a stamp gap may lie from the seq gap times the frame period, either way, and still be loss.
+  static constexpr double kStampSlack = 2.0;
 
-  /// Records the seq of a message that arrived; returns how many are missing just before it.
-  std::uint64_t record(std::uint32_t seq) {
+  /// Records the seq of a message that arrived, stamped `stamp` seconds (0: unknown); returns how many
+  /// are missing just before it.
+  std::uint64_t record(std::uint32_t seq, double stamp = 0.0) {
     ++clock_;
     int chosen = -1;
     std::uint32_t shortest = 0;
@@ -46,20 +55,40 @@ class SequenceGaps {
       }
     }
     std::uint64_t missing = 0;
+    double period = 0.0;
     if (chosen >= 0) {
+      Stream& stream = streams_[chosen];
+      period = stream.period;
+      const double stamp_gap = stamp - stream.last_stamp;
+      const bool stamped = stamp > 0.0 && stream.last_stamp > 0.0;
+      if (shortest == 1 && stamped && stamp_gap > 0.0) {
+        period = period > 0.0 ? (1.0 - kPeriodWeight) * period + kPeriodWeight * stamp_gap : stamp_gap;
+      }
       missing = shortest == 0 ? 0 : shortest - 1;
+      if (missing > 0 && stamped && period > 0.0) {
+        const double expected = static_cast<double>(shortest) * period;
+        if (!(stamp_gap >= expected / kStampSlack && stamp_gap <= expected * kStampSlack)) {
+          missing = 0;  // another recording's numbering
+          period = 0.0;
+        }
+      }
     } else {
       chosen = count_ < kStreams ? count_++ : leastRecent();
     }
-    streams_[chosen] = {seq, clock_};
+    streams_[chosen] = {seq, clock_, stamp, period};
     newest_ = chosen;
     return missing;
   }
 
  private:
+  /// Weight of the newest step in the learnt frame period.
+  static constexpr double kPeriodWeight = 0.1;
+
   struct Stream {
     std::uint32_t last_seq = 0;
-    std::uint64_t seen = 0;  ///< clock_ when its last seq came
+    std::uint64_t seen = 0;   ///< clock_ when its last seq came
+    double last_stamp = 0.0;  ///< [s], 0 when unknown
+    double period = 0.0;      ///< between messages one seq apart [s], 0 until learnt
   };
 
   int leastRecent() const {
