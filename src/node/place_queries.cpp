@@ -100,9 +100,9 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   }
   if (explain != nullptr) {
     // What keyframing left out, so that a stop shows as frames skipped rather than as missing answers.
-    const std::string map_status = std::to_string(frames_too_similar_.load()) +
-                                   " frames skipped as too similar to the last keyframe; " +
-                                   std::to_string(frames_skipped_.load()) + " skipped by the keyframe policy";
+    // Short enough for the picture's 512 px.
+    const std::string map_status = "skipped: " + std::to_string(frames_too_similar_.load()) + " too similar, " +
+                                   std::to_string(frames_skipped_.load()) + " by keyframe policy";
     debug_image_->publish(input.header, answered, explanation, map_status);
   }
   const Match& match = answered.match;

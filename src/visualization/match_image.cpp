@@ -125,8 +125,9 @@ void drawVerdict(cv::Mat& image, const cv::Rect& area, const MatchExplanation& e
                            "  confidence " + twoDecimals(match.confidence) + "  " + verdict;
   label(image, head, {area.x + 4, area.y + 15}, match.accepted ? kAcceptedColour : kRejectedColour, 1.1);
   label(image,
-        std::to_string(explanation.query_frames) + " test frames, map " + std::to_string(explanation.reference_frames) +
-            " frames, velocity " + twoDecimals(explanation.velocity),
+        // The frames searched, which a question about the map's own newest frames ends well before its size.
+        std::to_string(explanation.query_frames) + " test frames vs map frames 0.." +
+            std::to_string(explanation.reference_frames - 1) + ", velocity " + twoDecimals(explanation.velocity),
         {area.x + 4, area.y + 33}, kDimText);
 }
 
