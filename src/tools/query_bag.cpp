@@ -131,7 +131,13 @@ int run(int argc, char** argv) {
           bag_path, topic, start, count,
           [&](const sensor_msgs::ImageConstPtr& image) {
             ++offered;
-            const cv::Mat descriptor = mrs_vpr::node::describeImage(extractor, *image);
+            cv::Mat descriptor;
+            try {
+              descriptor = mrs_vpr::node::describeImage(extractor, *image);
+            } catch (const std::exception& error) {
+              throw std::invalid_argument("message " + std::to_string(start + offered - 1) + " of topic '" + topic +
+                                          "' in bag '" + bag_path + "': " + error.what());
+            }
             if (!keyframes.wants(descriptor)) {
               keyframes.skip(descriptor);
               return false;

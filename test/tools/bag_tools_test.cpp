@@ -595,6 +595,25 @@ TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
             std::string::npos)
       << nothing.err;
   EXPECT_EQ(nothing.err.find("OpenCV("), std::string::npos) << nothing.err;
+
+  // An encoding no front end reads: query_bag names the message too (no master is needed to find it).
+  const std::string depth = path("depth.bag");
+  {
+    rosbag::Bag writer(depth, rosbag::bagmode::Write);
+    sensor_msgs::Image image;
+    image.header.stamp = ros::Time(100, 0);
+    image.height = 8;
+    image.width = 8;
+    image.encoding = "32FC1";
+    image.step = 8 * sizeof(float);
+    image.data.assign(image.step * image.height, 0);
+    writer.write("/depth", image.header.stamp, image);
+  }
+  const CommandResult unread = run(std::string(QUERY_BAG_PATH) + " --bag " + depth + " --topic /depth --count 1");
+  EXPECT_EQ(unread.status, 1);
+  EXPECT_NE(unread.err.find("query_bag: error: message 0 of topic '/depth' in bag '" + depth + "': "),
+            std::string::npos)
+      << unread.err;
 }
 
 }  // namespace
