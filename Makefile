@@ -63,11 +63,12 @@ test: build lint
 
 # Sanitizers and fuzzing, each in a workspace of its own that links the same package (.ws is not
 # touched) and builds only the targets it needs: .ws-sanitize (the compiler of .ws) the core's,
-# evaluation's and store's tests, .ws-fuzz (clang, for libFuzzer) the map loader's fuzzer.
+# evaluation's and store's tests and the failed-allocation tests, .ws-fuzz (clang, for libFuzzer) the
+# map loader's fuzzer.
 SANITIZE_WS := $(CURDIR)/.ws-sanitize
 FUZZ_WS := $(CURDIR)/.ws-fuzz
 SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
-SANITIZED_TESTS := mrs_vpr_core_test mrs_vpr_evaluation_test mrs_vpr_store_test
+SANITIZED_TESTS := mrs_vpr_core_test mrs_vpr_evaluation_test mrs_vpr_store_test mrs_vpr_allocation_failure_test
 FUZZ_SECONDS ?= 60
 # Installed by `make fuzz` only: the README's two commands do not need a second compiler.
 FUZZ_DEB_PACKAGES := clang-14 libfuzzer-14-dev
