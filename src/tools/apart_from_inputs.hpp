@@ -1,7 +1,8 @@
 #pragma once
 
 // A tool's outputs kept apart from what it reads, so that no run writes over its own input: a bag,
-// a map, an image of a folder, or new files in an image folder that the next run would read as frames.
+// a map, an image of a folder, or new files in an image folder that the next run would read as frames;
+// and written only into folders that exist.
 
 #include <algorithm>
 #include <filesystem>
@@ -26,11 +27,26 @@ inline std::filesystem::path resolved(const std::string& path) {
   return error ? std::filesystem::path() : absolute;
 }
 
+/// `path` without dots and without a trailing '/', so that its parent is the folder it lies in.
+inline std::filesystem::path normalPath(const std::string& path) {
+  std::filesystem::path normal = std::filesystem::path(path).lexically_normal();
+  if (normal.filename().empty()) normal = normal.parent_path();
+  return normal;
+}
+
+/// Throws std::invalid_argument, naming `option`, when the folder that is to hold `path` does not
+/// exist: a tool creates only its own output, not a mistyped tree of folders.
+inline void requireParentFolder(const std::string& option, const std::string& path) {
+  const std::filesystem::path parent = normalPath(path).parent_path();
+  if (!parent.empty() && !std::filesystem::exists(parent)) {
+    throw std::invalid_argument(option + " '" + path + "': there is no folder " + parent.string());
+  }
+}
+
 /// Where a file written at `path` lands: its folder resolved, its own name kept, since writing replaces
 /// a symbolic link there rather than its target.
 inline std::filesystem::path writtenAt(const std::string& path) {
-  std::filesystem::path name = std::filesystem::path(path).lexically_normal();
-  if (name.filename().empty()) name = name.parent_path();  // a trailing '/'
+  const std::filesystem::path name = normalPath(path);
   const std::filesystem::path folder = resolved(name.parent_path().empty() ? "." : name.parent_path().string());
   return folder.empty() ? folder : folder / name.filename();
 }

@@ -54,15 +54,9 @@ constexpr const char* kUsage =
  * system, a file in the way). Throws std::runtime_error naming `option`, the folder and the reason.
  */
 void requireWritableFolder(const std::string& folder, const std::string& option) {
-  // Only the folder itself is created: a typo in its parent would otherwise make a tree of folders.
-  std::filesystem::path created = std::filesystem::path(folder).lexically_normal();
-  if (created.filename().empty()) created = created.parent_path();  // a trailing '/'
-  const std::filesystem::path parent = created.parent_path();
-  if (!parent.empty() && !std::filesystem::exists(parent)) {
-    throw std::invalid_argument(option + " '" + folder + "': there is no folder " + parent.string());
-  }
+  requireParentFolder(option, folder);
   std::error_code error;
-  std::filesystem::create_directory(created, error);
+  std::filesystem::create_directory(normalPath(folder), error);
   if (error) throw std::runtime_error(option + " '" + folder + "': cannot create the folder: " + error.message());
   std::string probe = (std::filesystem::path(folder) / ".mrs_vpr_eval_probe.XXXXXX").string();
   const int file = ::mkstemp(probe.data());

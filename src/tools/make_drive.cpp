@@ -81,13 +81,7 @@ std::string frameName(int index, int count) {
 /// is not a drive (one without drive.csv).
 void checkOutputFolder(const std::string& output, bool force) {
   if (!fs::exists(output)) {
-    // Only the drive's own folder is created: a typo in its parent would otherwise make a tree of folders.
-    fs::path created = fs::path(output).lexically_normal();
-    if (created.filename().empty()) created = created.parent_path();  // a trailing '/'
-    const fs::path parent = created.parent_path();
-    if (!parent.empty() && !fs::exists(parent)) {
-      throw std::invalid_argument("--output '" + output + "': there is no folder " + parent.string());
-    }
+    mrs_vpr::tools::requireParentFolder("--output", output);
     return;
   }
   if (!fs::is_directory(output)) throw std::invalid_argument("'" + output + "' is a file; --output names a folder");
