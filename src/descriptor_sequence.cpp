@@ -49,28 +49,34 @@ DescriptorSequence::DescriptorSequence(int descriptor_size) : descriptor_size_(d
 void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
   if (descriptor.type() != CV_8UC1 || descriptor.total() != static_cast<std::size_t>(descriptor_size_) ||
       !descriptor.isContinuous()) {
-    throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " +
-                                std::to_string(descriptor_size_) + " bytes, got " +
-                                cv::typeToString(descriptor.type()) + " with " +
+    throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " + std::to_string(descriptor_size_) +
+                                " bytes, got " + cv::typeToString(descriptor.type()) + " with " +
                                 std::to_string(descriptor.total()) + " elements");
   }
   // A failed allocation part-way through leaves every array as it was, not one frame longer than another.
-  const std::size_t data_size = data_.size();
-  const std::size_t stamp_count = stamps_.size();
-  const std::size_t frame_cells = coarse_.frames.size();
-  std::vector<std::size_t> level_cells;
-  level_cells.reserve(coarse_.levels.size());
-  for (const std::vector<std::uint8_t>& cells : coarse_.levels) level_cells.push_back(cells.size());
+  const int frames = size();
   try {
     data_.insert(data_.end(), descriptor.data, descriptor.data + descriptor_size_);
     stamps_.push_back(stamp);
     appendCoarseCells(size() - 1);
   } catch (...) {
-    data_.resize(data_size);
-    stamps_.resize(stamp_count);
-    coarse_.frames.resize(frame_cells);
-    for (std::size_t level = 0; level < level_cells.size(); ++level) coarse_.levels[level].resize(level_cells[level]);
+    trimTo(frames);
     throw;
+  }
+}
+
+void DescriptorSequence::trimTo(int frames) {
+  const auto count = static_cast<std::size_t>(frames);
+  data_.resize(count * static_cast<std::size_t>(descriptor_size_));
+  stamps_.resize(count);
+  if (coarse_.levels.empty()) return;
+  const auto cell_size = static_cast<std::size_t>(coarse_.kind->cellSize());
+  coarse_.frames.resize(count * cell_size);
+  for (std::size_t level = 0; level < coarse_.levels.size(); ++level) {
+    // Cells end at frames 0, stride, 2 * stride, ...
+    const std::size_t stride = std::size_t{2} << level;
+    const std::size_t cells = count == 0 ? 0 : (count - 1) / stride + 1;
+    coarse_.levels[level].resize(cells * cell_size);
   }
 }
 
@@ -132,8 +138,8 @@ cv::Mat DescriptorSequence::descriptorRow(int index) const {
 
 const std::uint8_t* DescriptorSequence::descriptor(int index) const {
   if (index < 0 || index >= size()) {
-    throw std::out_of_range("frame " + std::to_string(index) + " is outside a sequence of " +
-                            std::to_string(size()) + " frames");
+    throw std::out_of_range("frame " + std::to_string(index) + " is outside a sequence of " + std::to_string(size()) +
+                            " frames");
   }
   return view().frame(index);
 }

@@ -90,6 +90,8 @@ class DescriptorSequence {
   CoarseCells coarse_;
 
   void appendCoarseCells(int last);
+  /// Shrinks every array to its first `frames` frames (never grows them, so it cannot throw).
+  void trimTo(int frames);
 };
 
 }  // namespace mrs_vpr

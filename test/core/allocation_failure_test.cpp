@@ -114,7 +114,8 @@ TEST(AllocationFailure, AFailedAppendLeavesTheSequenceAsItWas) {
     ASSERT_TRUE(appended) << "frame " << frame;
   }
   EXPECT_EQ(contentsOf(sequence, geometry), contentsOf(undisturbed, geometry));
-  EXPECT_GT(failures, 40);  // every append allocates at least once while the arrays grow
+  // The first append alone allocates each of the six arrays (descriptors, stamps, cells of strides 1 to 8).
+  EXPECT_GE(failures, 6);
 }
 
 TEST(AllocationFailure, EveryFrameThePlaceRecognizerAdmittedReachesTheMapInOrder) {
@@ -156,7 +157,7 @@ TEST(AllocationFailure, EveryFrameThePlaceRecognizerAdmittedReachesTheMapInOrder
     }
   }
   recognizer.flush();
-  EXPECT_GT(failures, 60);
+  EXPECT_GE(failures, 10);          // each time the map's or the keyframe rule's arrays grow
   EXPECT_GT(admitted.size(), 30U);  // random views are unrelated: most are keyframes
   ASSERT_EQ(recognizer.size(), static_cast<int>(admitted.size()));
   int frame = 0;
