@@ -21,32 +21,50 @@ namespace node {
 const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
   using P = NodeParameters;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"min_frame_interval", Range::closed(0, 86400), {}, "",
+      {{"min_frame_interval",
+        Range::closed(0, 86400),
+        {},
+        "",
         "Seconds (by header stamp) between keyframes; 0 = no limit."},
        &P::min_frame_interval},
       {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
-      {{"min_travel", Range::atLeast(0), {}, "",
+      {{"min_travel",
+        Range::atLeast(0),
+        {},
+        "",
         "Metres the robot travels (~base_frame in ~odom_frame, by tf) between keyframes; 0 = off. For a "
         "robot that stops or changes speed."},
        &P::min_travel},
       {{"odom_frame", Range{}, {}, "a tf frame", "Fixed frame in which ~min_travel is measured."}, &P::odom_frame},
       {{"base_frame", Range{}, {}, "a tf frame", "The robot's frame, whose travel ~min_travel measures."},
        &P::base_frame},
-      {{"tf_timeout", Range::openClosed(0, 10), {}, "",
+      {{"tf_timeout",
+        Range::openClosed(0, 10),
+        {},
+        "",
         "Longest wait for the robot's pose at an image's stamp [s] (~min_travel > 0)."},
        &P::tf_timeout},
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
-      {{"auto_query_period", Range::closed(0, 86400), {}, "",
+      {{"auto_query_period",
+        Range::closed(0, 86400),
+        {},
+        "",
         "Continuous mode: every this many seconds (wall-clock, also under use_sim_time), localise each "
         "keyframe that came since the last time (within a fifth of the period); 0 = off."},
        &P::auto_query_period},
-      {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
+      {{"auto_query_frames",
+        Range::closed(2, 1000000).orZero(),
+        {},
+        "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
        &P::auto_query_frames},
       {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz, wall-clock]."},
        &P::map_info_rate},
-      {{"database", Range{}, {}, "a file path; empty = memory only",
+      {{"database",
+        Range{},
+        {},
+        "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
        &P::database},
   };
@@ -56,7 +74,10 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
 const std::vector<ParameterSpec<CommitPolicy>>& commitParameters() {
   using P = CommitPolicy;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"commit_period", Range::openClosed(0, 3600), {}, "",
+      {{"commit_period",
+        Range::openClosed(0, 3600),
+        {},
+        "",
         "Longest time a keyframe waits for its commit to ~database [s]."},
        &P::period},
       {{"commit_frames", Range::closed(1, 1000000), {}, "", "Most keyframes waiting for a commit to ~database."},
@@ -102,14 +123,31 @@ const std::vector<Entry>& entries() {
 
 std::string typeName(XmlRpc::XmlRpcValue::Type type) {
   switch (type) {
-    case XmlRpc::XmlRpcValue::TypeBoolean: return "a boolean";
-    case XmlRpc::XmlRpcValue::TypeInt: return "an integer";
-    case XmlRpc::XmlRpcValue::TypeDouble: return "a number";
-    case XmlRpc::XmlRpcValue::TypeString: return "a string";
-    case XmlRpc::XmlRpcValue::TypeArray: return "a list";
-    case XmlRpc::XmlRpcValue::TypeStruct: return "a dictionary";
-    default: return "an invalid value";
+    case XmlRpc::XmlRpcValue::TypeBoolean:
+      return "a boolean";
+    case XmlRpc::XmlRpcValue::TypeInt:
+      return "an integer";
+    case XmlRpc::XmlRpcValue::TypeDouble:
+      return "a number";
+    case XmlRpc::XmlRpcValue::TypeString:
+      return "a string";
+    case XmlRpc::XmlRpcValue::TypeArray:
+      return "a list";
+    case XmlRpc::XmlRpcValue::TypeStruct:
+      return "a dictionary";
+    default:
+      return "an invalid value";
   }
+}
+
+/// Throws when ~name holds a value other than the expected type.
+void requireType(const std::string& name, const XmlRpc::XmlRpcValue& value, XmlRpc::XmlRpcValue::Type expected,
+                 bool also_int = false) {
+  if (value.getType() == expected || (also_int && value.getType() == XmlRpc::XmlRpcValue::TypeInt)) {
+    return;
+  }
+  // Silently keeping the default for `image_width: 64.0` or `tau: "2"` would hide the user's intent.
+  throw std::invalid_argument("~" + name + " must be " + typeName(expected) + ", got " + typeName(value.getType()));
 }
 
 /// The value of ~name when it is set; throws when it is set but not of the expected type.
@@ -118,12 +156,8 @@ bool lookup(const ros::NodeHandle& nh, const std::string& name, XmlRpc::XmlRpcVa
   if (!nh.getParam(name, value)) {
     return false;
   }
-  if (value.getType() == expected || (also_int && value.getType() == XmlRpc::XmlRpcValue::TypeInt)) {
-    return true;
-  }
-  // Silently keeping the default for `image_width: 64.0` or `tau: "2"` would hide the user's intent.
-  throw std::invalid_argument("~" + name + " must be " + typeName(expected) + ", got " +
-                              typeName(value.getType()));
+  requireType(name, value, expected, also_int);
+  return true;
 }
 
 /// Validation messages start with the parameter's name; the node's user knows it as ~name.
@@ -131,31 +165,31 @@ bool lookup(const ros::NodeHandle& nh, const std::string& name, XmlRpc::XmlRpcVa
   throw std::invalid_argument("~" + std::string(error.what()));
 }
 
-/// A whole number beyond 32 bits reaches the node as a double: it is out of the integer's range, which
-/// the message says, rather than of another type.
-void refuseWholeNumberBeyondInt(const ros::NodeHandle& nh, const ParameterInfo& info) {
+/// The integer ~name when it is set. A whole number beyond 32 bits reaches the node as a double: it is
+/// refused as out of the integer's range, which the message says, rather than as of another type.
+bool lookupInteger(const ros::NodeHandle& nh, const ParameterInfo& info, int& number) {
   XmlRpc::XmlRpcValue value;
-  if (!nh.getParam(info.name, value) || value.getType() != XmlRpc::XmlRpcValue::TypeDouble) return;
-  const double number = static_cast<double>(value);
-  if (std::isfinite(number) && number == std::floor(number) && std::abs(number) > 2147483647.0) {
-    throwPrivate(
-        std::invalid_argument(info.rejection(numberText(number), "a ROS parameter holds integers of 32 bits")));
+  if (!nh.getParam(info.name, value)) {
+    return false;
   }
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeDouble) {
+    const double whole = static_cast<double>(value);
+    if (std::isfinite(whole) && whole == std::floor(whole) && std::abs(whole) > 2147483647.0) {
+      throwPrivate(
+          std::invalid_argument(info.rejection(numberText(whole), "a ROS parameter holds integers of 32 bits")));
+    }
+  }
+  requireType(info.name, value, XmlRpc::XmlRpcValue::TypeInt);
+  number = static_cast<int>(value);
+  return true;
 }
 
-void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) {
-  XmlRpc::XmlRpcValue value;
-  refuseWholeNumberBeyondInt(nh, info);
-  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
-    field = static_cast<int>(value);
-  }
-}
+void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) { lookupInteger(nh, info, field); }
 
 void read(const ros::NodeHandle& nh, const ParameterInfo& info, double& field) {
   XmlRpc::XmlRpcValue value;
   if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeDouble, true)) {
-    field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value)
-                                                             : static_cast<double>(value);
+    field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value) : static_cast<double>(value);
   }
 }
 
@@ -167,10 +201,8 @@ void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::string& fie
 }
 
 void read(const ros::NodeHandle& nh, const ParameterInfo& info, std::uint64_t& field) {
-  XmlRpc::XmlRpcValue value;
-  refuseWholeNumberBeyondInt(nh, info);
-  if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeInt)) {
-    const int seed = static_cast<int>(value);
+  int seed = 0;
+  if (lookupInteger(nh, info, seed)) {
     try {
       info.require(seed);  // checked before the conversion, which would wrap a negative seed round
     } catch (const std::invalid_argument& error) {
@@ -240,8 +272,10 @@ void NodeParameters::validate() const {
     throwPrivate(error);
   }
   if (min_travel > 0.0 && !TravelPolicy::measurableBetween(odom_frame, base_frame)) {
-    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
-                                "(got '" + odom_frame + "' and '" + base_frame + "')");
+    throw std::invalid_argument(
+        "~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
+        "(got '" +
+        odom_frame + "' and '" + base_frame + "')");
   }
 }
 
@@ -290,8 +324,8 @@ std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh) {
 std::vector<std::string> unknownParameters(const std::vector<std::string>& names) {
   std::vector<std::string> unknown;
   for (const auto& name : names) {
-    const bool known = std::any_of(entries().begin(), entries().end(),
-                                   [&](const Entry& entry) { return entry.info->name == name; });
+    const bool known =
+        std::any_of(entries().begin(), entries().end(), [&](const Entry& entry) { return entry.info->name == name; });
     if (!known && !isTransportParameter(name)) {
       unknown.push_back("~" + name);
     }
