@@ -195,7 +195,9 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
   const std::string with_nul = errorOf([&] { recognizer.match(queryImages(0, 10), std::string("m\0rs", 4)); });
   EXPECT_EQ(with_nul.find('\0'), std::string::npos);
   EXPECT_NE(with_nul.find("unknown method 'm\\x00rs': use 'mrs' or 'seqslam'"), std::string::npos) << with_nul;
-  EXPECT_NE(errorOf([&] { recognizer.match({route().query[0], cv::Mat()}); }).find("image 1 of the test sequence"),
+  EXPECT_NE(errorOf([&] {
+              recognizer.match({route().query[0], cv::Mat()});
+            }).find("image 1 of the test sequence"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(1); }).find("at least 2"), std::string::npos);
   // A request larger than any int is reported as it was made, not wrapped or clamped.
@@ -255,18 +257,22 @@ TEST(PlaceRecognizer, ReplaceExchangesTheWholeMapInOneStep) {
 
   std::atomic<bool> done{false};
   std::atomic<int> partial{0};
+  std::atomic<int> samples{0};
   std::thread reader([&] {
     while (!done) {
       const int size = recognizer.state().frames;
       if (size != whole && size != 200) ++partial;
+      ++samples;
     }
   });
-  for (int round = 0; round < 20; ++round) {
+  // At least 20 rounds, and on until the reader has looked often enough to have seen a partial map.
+  for (int round = 0; round < 20 || (samples < 1000 && round < 100000); ++round) {
     recognizer.replace(part, part_stamps);
     recognizer.replace(all, stamps);
   }
   done = true;
   reader.join();
+  EXPECT_GE(samples, 1000);
   EXPECT_EQ(partial, 0);
   // The map answers as the one built frame by frame.
   const PlaceAnswer answer = recognizer.match(queryImages(150, 30));

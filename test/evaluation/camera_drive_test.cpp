@@ -143,6 +143,7 @@ TEST(CameraDrive, ACopyIsNeverExactEvenWhenTheNoiseRoundsAway) {
   settings.gain = 0.0;
   const std::vector<cv::Mat> route = flatRoute(100);
   const CameraDrive drive(100, settings);
+  int copies = 0;
   for (int i = 0; i < drive.size(); ++i) {
     const DriveFrame& frame = drive.frames()[static_cast<std::size_t>(i)];
     if (frame.kind != DriveFrameKind::kSlowCopy) continue;
@@ -151,7 +152,9 @@ TEST(CameraDrive, ACopyIsNeverExactEvenWhenTheNoiseRoundsAway) {
                        route[static_cast<std::size_t>(frame.route_frame)], cv::NORM_L1),
               1.0)
         << "drive frame " << i;
+    ++copies;
   }
+  EXPECT_EQ(copies, settings.slow_frames);
 }
 
 TEST(CameraDrive, TheSameSeedGivesTheSameDriveAndAnotherSeedAnother) {
@@ -261,8 +264,9 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   // A drive is held in memory: a stop of 10^8 frames grew to 15 GB before it was refused.
   settings = CameraDriveSettings{};
   settings.stop_frames_max = 100000000;
-  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); })
-                .find("stop_frames_max must be <= 100000, got 100000000"),
+  EXPECT_NE(invalidArgumentMessage([&] {
+              CameraDrive(1000, settings);
+            }).find("stop_frames_max must be <= 100000, got 100000000"),
             std::string::npos);
   settings = CameraDriveSettings{};
   settings.stops = 5000;
@@ -271,15 +275,17 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   settings = CameraDriveSettings{};
   settings.vibration = 2.0;
   EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("vibration"), std::string::npos);
-  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(150, CameraDriveSettings{}); })
-                .find("a route of 150 frames cannot hold a half-speed stretch of 100, a double-speed stretch of 100"),
+  EXPECT_NE(invalidArgumentMessage([&] {
+              CameraDrive(150, CameraDriveSettings{});
+            }).find("a route of 150 frames cannot hold a half-speed stretch of 100, a double-speed stretch of 100"),
             std::string::npos);
   const CameraDrive drive(300);
   EXPECT_THROW(drive.render(drive.size(), cv::Mat(32, 64, CV_8UC1)), std::out_of_range);
   EXPECT_NE(invalidArgumentMessage([&] { drive.render(0, cv::Mat(32, 64, CV_16UC1)); }).find("8-bit"),
             std::string::npos);
-  EXPECT_NE(invalidArgumentMessage([&] { renderDrive(drive, flatRoute(10)); })
-                .find("planned for 300 route frames, but the route has 10 images"),
+  EXPECT_NE(invalidArgumentMessage([&] {
+              renderDrive(drive, flatRoute(10));
+            }).find("planned for 300 route frames, but the route has 10 images"),
             std::string::npos);
 }
 

@@ -80,7 +80,6 @@ class MapDatabaseTest : public ::testing::Test {
     return "(opened)";
   }
 
-
   testing_support::TemporaryFolder folder_{"mrs_vpr_store_test"};
 };
 
@@ -207,9 +206,7 @@ TEST_F(MapDatabaseTest, AMapThatRecordsNoFrontEndHoldsThumbnails) {
 }
 
 TEST_F(MapDatabaseTest, AFrontEndRecordedIncompletelyIsRefusedSayingSo) {
-  {
-    MapDatabase database(path("map.db"), thumbnailParams());
-  }
+  { MapDatabase database(path("map.db"), thumbnailParams()); }
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path("map.db").c_str(), &db), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(db, "UPDATE metadata SET value = 'wide' WHERE key = 'image_width'", nullptr, nullptr, nullptr),
@@ -407,12 +404,21 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
 }
 
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
-  MapDatabase database(path("map.db"), thumbnailParams());
-  database.append(frames(5));
-  database.clear();
-  EXPECT_EQ(database.size(), 0);
-  database.append(frames(1));
-  EXPECT_EQ(database.size(), 1);
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(5));
+    database.clear();
+    EXPECT_EQ(database.size(), 0);
+    database.append(frames(1));
+    EXPECT_EQ(database.size(), 1);
+  }  // Closed: it holds the map exclusively while open.
+  std::map<std::string, std::string> metadata;
+  for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+  EXPECT_EQ(metadata["format_version"], "2");
+  EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
+  EXPECT_EQ(metadata["descriptor_bytes"], "2048");
+  // And the map is still one of these descriptors: another front end's is refused.
+  EXPECT_THROW(MapDatabase(path("map.db"), DescriptorParams{}), MapDatabaseError);  // HOG, the default
 }
 
 TEST_F(MapDatabaseTest, BadDescriptorsAreRefusedBeforeAnythingIsWritten) {

@@ -7,7 +7,9 @@
 
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "route_folders.hpp"
 #include "support/command_run.hpp"
@@ -39,13 +41,27 @@ class RouteToolsTest : public ::testing::Test {
   static std::string path(const std::string& child) { return folder_->path(child); }
   static const std::filesystem::path& root() { return folder_->root(); }
 
-  /// Expects exit code 1 and exactly one line on stderr that contains `text`.
+  /// Expects exit code 1 and one error line on stderr, the last, that contains `text`. An error found
+  /// only once the traversals are read (a sequence longer than the map) follows the tool's progress
+  /// lines: its header and its indented lines about what it read.
   static void expectError(const std::string& arguments, const std::string& text) {
     const CommandResult result = run(eval(arguments));
     EXPECT_EQ(result.status, 1) << arguments << "\n" << result.err;
-    EXPECT_NE(result.err.find(text), std::string::npos) << result.err;
-    const std::string last_line = result.err.substr(result.err.rfind('\n', result.err.size() - 2) + 1);
-    EXPECT_EQ(last_line.rfind("mrs_vpr_eval: error: ", 0), 0U) << result.err;
+    std::istringstream lines(result.err);
+    std::vector<std::string> errors;
+    std::string line;
+    std::string last_line;
+    while (std::getline(lines, line)) {
+      last_line = line;
+      if (line.rfind("mrs_vpr_eval: error: ", 0) == 0) {
+        errors.push_back(line);
+      } else {
+        const bool progress = line.rfind("  ", 0) == 0 || line.rfind("mrs_vpr_eval: ", 0) == 0;
+        EXPECT_TRUE(progress) << "neither progress nor the error: '" << line << "'\n" << result.err;
+      }
+    }
+    ASSERT_EQ(errors.size(), 1U) << result.err;
+    EXPECT_EQ(errors.front(), last_line) << result.err;
     EXPECT_NE(last_line.find(text), std::string::npos) << result.err;
   }
 
