@@ -88,7 +88,9 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     with `seed`. ground_truth: None (query frame i shows map frame i), a dict {query frame: [map
     frames]} or a sequence of one map frame per query frame. Map frames are those the recognizer holds
     (its keyframes; build the map with min_appearance_change=0 to keep every frame). The per-frame
-    protocol matches every query frame; a global test sequence is keyframed by match(). An answer is
+    protocol matches every query frame; a global test sequence is keyframed by match(), and its record
+    names the image the answer localises (the middle or newest keyframe kept, not always the window's
+    middle or newest image); a test sequence whose localised image has no truth is skipped. An answer is
     correct within `tolerance` frames of a true one. Returns an Evaluation (records, summary, pr_curve).
 
     Every argument is checked before any query is matched: a bad one raises ValueError naming it and
@@ -123,11 +125,15 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
             if truths[query] is not None:
                 records.append(_bindings.query_record(query, truths[query], matches[query], per_query_ms))
     else:  # "global"
-        for first, count, query in _bindings.global_queries(frames, length, queries, seed, alignment):
-            if truths[query] is None:
-                continue
+        for first, count, _ in _bindings.global_queries(frames, length, queries, seed, alignment):
             start = time.perf_counter()
             answer = recognizer.match(query_images[first:first + count], method, channel_order)
             elapsed_ms = 1000.0 * (time.perf_counter() - start)
+            # match() keyframes the window, so the image it localises is not always the window's anchor
+            # (a stop drops images): judge the answer at that image, and skip the window when it has no
+            # truth, as mrs_vpr_eval does.
+            query = first + answer.localised_row
+            if truths[query] is None:
+                continue
             records.append(_bindings.query_record(query, truths[query], answer.match, elapsed_ms))
     return Evaluation(records, summarise(records, tolerance), precision_recall_curve(records, tolerance))

@@ -184,3 +184,34 @@ def test_arguments_at_the_ends_of_their_ranges_evaluate(route, short_sequences):
     assert evaluation.summary["tolerance"] == 0
     for record in evaluation.records:
         assert record["true_indices"] == ([] if record["query_index"] < 200 else [truth[record["query_index"]]])
+
+
+def test_a_global_record_is_judged_at_the_image_the_answer_localises(route):
+    # A stop: query image 150 held for 15 images with pixel noise. match() keeps only the first of them,
+    # so a window that holds the stop localises an image before the window's middle one.
+    stop, held, length = 150, 15, 20
+    noise = np.random.default_rng(0).integers(-2, 3, (held,) + route["query"].shape[1:])
+    still = np.clip(route["query"][stop].astype(np.int16) + noise, 0, 255).astype(np.uint8)
+    images = np.concatenate([route["query"][:stop], still, route["query"][stop + 1:]])
+    truth = [int(frame) for frame in route["query_to_reference"]]
+    truth = truth[:stop] + [truth[stop]] * held + truth[stop + 1:]
+    recognizer = mrs_vpr.PlaceRecognizer(sequence_length=length, **dict(ROUTE_PARAMETERS, alignment="centred"))
+    recognizer.add_frames(route["reference"])
+    windows = len(images) - length + 1  # every start once, in ascending order
+    localised = []
+    for first in range(windows):
+        kept = recognizer.keyframes_of(images[first:first + length])
+        localised.append(first + kept[len(kept) // 2])
+    assert localised[136] == 143  # window 136..155 keeps images 136..150: the middle one kept, not 146
+
+    evaluation = mrs_vpr.evaluate(recognizer, images, ground_truth=truth, protocol="global", queries=windows)
+    assert [record["query_index"] for record in evaluation.records] == localised
+    record = evaluation.records[136]
+    assert record["true_indices"] == [truth[143]]
+    assert abs(record["predicted_index"] - truth[143]) <= 2  # right, though 3 map frames from image 146's place
+
+    # Only windows that localise image 143 are evaluated, whatever their middle image.
+    only = mrs_vpr.evaluate(recognizer, images, ground_truth={143: [truth[143]]}, protocol="global",
+                            queries=windows)
+    assert [record["query_index"] for record in only.records] == [143] * localised.count(143)
+    assert localised.count(143) >= 2
