@@ -14,8 +14,12 @@ import json
 import numpy as np
 
 
-def average_precision(correct, confidence):
-    """Area under the precision-recall curve as mrs_vpr_eval computes it (ties form one step)."""
+def average_precision(correct, confidence, answered):
+    """Area under the precision-recall curve as mrs_vpr_eval computes it (precisionRecallCurve and
+    averagePrecision in src/evaluation/evaluation.cpp): records without an answer are never accepted
+    but count in the recall's denominator, and ties form one step."""
+    all_records = len(correct)
+    correct, confidence = correct[answered], confidence[answered]
     order = np.argsort(-confidence, kind="stable")
     correct, confidence = correct[order], confidence[order]
     area, previous_recall, true_positives, i = 0.0, 0.0, 0, 0
@@ -24,8 +28,8 @@ def average_precision(correct, confidence):
         while j < len(correct) and confidence[j] == confidence[i]:
             j += 1
         true_positives += correct[i:j].sum()
-        recall = true_positives / len(correct)
-        area += (recall - previous_recall) * true_positives / j
+        recall = true_positives / all_records
+        area += (recall - previous_recall) * (true_positives / j)
         previous_recall, i = recall, j
     return area
 
@@ -36,8 +40,10 @@ def summary(records):
     correct = np.array([r["correct"] for r in records])
     confidence = np.array([r["confidence"] for r in records])
     accepted = np.array([r["accepted"] for r in records])
+    answered = np.array([r["predicted_index"] >= 0 for r in records])
     precision = (accepted & correct).sum() / accepted.sum() if accepted.any() else float("nan")
-    return (f"queries {len(records):5d}  top-1 {correct.mean():.3f}  PR-AUC {average_precision(correct, confidence):.3f}  "
+    pr_auc = average_precision(correct, confidence, answered)
+    return (f"queries {len(records):5d}  top-1 {correct.mean():.3f}  PR-AUC {pr_auc:.3f}  "
             f"accepted {accepted.sum():5d}  precision {precision:.3f}  recall {(accepted & correct).sum() / len(records):.3f}")
 
 

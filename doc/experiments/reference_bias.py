@@ -107,7 +107,9 @@ def remove_bias(differences, last, method):
 
 
 def average_precision(correct, confidence):
-    """Area under the precision-recall curve as mrs_vpr_eval computes it (ties form one step)."""
+    """Area under the precision-recall curve as mrs_vpr_eval computes it (ties form one step). Every
+    query here has an answer (answer() always names an end), so none has to be kept out of acceptance
+    as mrs_vpr_eval keeps out queries without one."""
     order = np.argsort(-confidence, kind="stable")
     correct, confidence = correct[order], confidence[order]
     area, previous_recall, true_positives, i = 0.0, 0.0, 0, 0
@@ -117,7 +119,7 @@ def average_precision(correct, confidence):
             j += 1
         true_positives += correct[i:j].sum()
         recall = true_positives / len(correct)
-        area += (recall - previous_recall) * true_positives / j
+        area += (recall - previous_recall) * (true_positives / j)
         previous_recall, i = recall, j
     return area
 
