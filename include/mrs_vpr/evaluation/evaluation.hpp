@@ -23,15 +23,15 @@ struct QueryRecord {
   /// The last reference frame the answer stands for: a keyframe stands for the frames after it that
   /// were too similar to become keyframes (keyframeRecordOf); equal to predicted_index otherwise.
   int predicted_last = -1;
-  float score = 1.0F;             ///< Best / runner-up, lower is better.
-  float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
-  bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
-  int rival_places = 0;           ///< Places the confidence was judged among (Match::rival_places).
+  float score = 1.0F;       ///< Best / runner-up, lower is better.
+  float confidence = 0.0F;  ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
+  bool accepted = false;    ///< Passed the acceptance rule (Match::accepted).
+  int rival_places = 0;     ///< Places the confidence was judged among (Match::rival_places).
   /// The answer's trajectory runs at a velocity bound (Match::at_velocity_bound; confidence 0).
   bool at_velocity_bound = false;
   /// Most of the test sequence's keyframes show one view again (Match::repeated_view; not accepted).
   bool repeated_view = false;
-  double time_ms = 0.0;           ///< Time spent on this query.
+  double time_ms = 0.0;  ///< Time spent on this query.
 };
 
 /// The record of the answer `match` to the query localising `query_index`, whose true places are
@@ -52,11 +52,11 @@ struct EvaluationSummary {
   double top1 = 0.0;
   double pr_auc = 0.0;
   double recall_at_100_precision = 0.0;
-  int accepted = 0;                ///< Answers that passed the acceptance rule.
-  double accepted_rate = 0.0;      ///< accepted / queries: for queries outside the map, the false-closure rate.
+  int accepted = 0;            ///< Answers that passed the acceptance rule.
+  double accepted_rate = 0.0;  ///< accepted / queries: for queries outside the map, the false-closure rate.
   /// Correct accepted / accepted: NaN when nothing was accepted.
   double accepted_precision = std::numeric_limits<double>::quiet_NaN();
-  double accepted_recall = 0.0;    ///< Correct accepted / queries.
+  double accepted_recall = 0.0;  ///< Correct accepted / queries.
   /// How far the wrong accepted answers lie: the largest distance of one from its nearest true frame
   /// [frames]. NaN when no accepted answer about a place in the map is wrong (an answer about a place
   /// outside it has no distance; accepted_rate counts those).
@@ -97,14 +97,19 @@ double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance);
 
 /**
  * Precision-recall curve over a threshold on confidence, one point per distinct confidence, from
- * the highest threshold down. Queries without a prediction are never accepted; recall counts every
- * query. Throws std::invalid_argument when tolerance < 0.
+ * the highest threshold down. Queries without a prediction are never accepted. Recall is correct
+ * accepted / records.size(), over every query as VPR benchmarks count it: those without a prediction
+ * and those whose truth lies outside the map (no true index, never correct) stay in the denominator.
+ * Throws std::invalid_argument when tolerance < 0.
  */
 std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& records, int tolerance);
 
 /**
- * Area under the PR curve as average precision (the step-wise sum that scikit-learn's
- * average_precision_score computes): sum over the curve's points of (R_k - R_{k-1}) * P_k, with R_0 = 0.
+ * Area under the PR curve as average precision: sum over the curve's points of (R_k - R_{k-1}) * P_k,
+ * with R_0 = 0, the step-wise formula of scikit-learn's average_precision_score. The recall is the
+ * curve's, over every query, so the area never exceeds top-1. average_precision_score fed "is this
+ * answer right" as labels divides by the right answers only and gives a much higher figure (0.997
+ * where this gives 0.814: doc/results.md's thumbnail Nordland run, ds = 10).
  * No interpolation, so it does not reward the optimistic straight lines of the trapezoidal rule.
  */
 double averagePrecision(const std::vector<PrPoint>& curve);
@@ -152,7 +157,6 @@ void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int ref
  * Truth for a query frame: its ground-truth entry when `ground_truth` is given (nothing when the frame
  * has no entry), else the identity alignment {query_index} (nothing when query_index >= reference_frames).
  */
-std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth,
-                                         int reference_frames);
+std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames);
 
 }  // namespace mrs_vpr
