@@ -58,8 +58,9 @@ void measureLength(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& rec
       auto right = [&](const mrs_vpr::PlaceAnswer& answer) {
         return std::llabs(answer.match.reference_index - (first_truth + answer.localised_row)) <= 5;
       };
-      const auto [mrs, answered] = tally.time([&](const char* method) { return recognizer.match(query, method); },
-                                              q < options.brute_queries, right);
+      const auto ask = [&](const char* method) { return recognizer.match(query, method); };
+      if (q == 0) RowTally::warmUp(ask);
+      const auto [mrs, answered] = tally.time(ask, q < options.brute_queries, right);
       if (answered) {
         const mrs_vpr::PlaceAnswer& brute = *answered;
         if (std::getenv("MRS_VPR_SHOW_ANSWERS") != nullptr) {
@@ -163,6 +164,8 @@ void measureRecent(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& rec
       }
     }
     const int asked = rows_kept ? options.queries : options.brute_queries;
+    const auto ask = [&](const char* method) { return recognizer.matchRecent(length, method); };
+    RowTally::warmUp(ask);  // before the first question's new keyframes, whose rows it would compute
     RowTally tally;
     for (int q = 0; q < asked; ++q) {
       addKeyframes(kind.new_keyframes);
@@ -171,8 +174,7 @@ void measureRecent(const MapScaleOptions& options, mrs_vpr::PlaceRecognizer& rec
         const int route_frame = route_frame_of[static_cast<std::size_t>(first + answer.localised_row - base)];
         return std::llabs(answer.match.reference_index - (options.truth_offset + route_frame)) <= 5;
       };
-      tally.time([&](const char* method) { return recognizer.matchRecent(length, method); }, q < options.brute_queries,
-                 right);
+      tally.time(ask, q < options.brute_queries, right);
     }
     tally.print(sizeName(base), length, kind.name, load_s, rss_per_frame, peak_per_frame);
   }
