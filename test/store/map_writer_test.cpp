@@ -42,10 +42,16 @@ class MapWriterTest : public ::testing::Test {
 TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {
   MapDatabase database(path(), thumbnailParams());
   MapWriter writer(database, CommitPolicy{2.0, 1000});
+  const auto added = std::chrono::steady_clock::now();
   for (int i = 0; i < 5; ++i) writer.add(frame(i));
-  // Far below the batch size: nothing is written before the period has passed.
+  // Far below the batch size: nothing is written before the period has passed, a quarter of it later
+  // either (a writer that ignored the period would have committed by then).
   EXPECT_EQ(writer.persisted(), 0U);
   EXPECT_EQ(writer.queued(), 5U);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  if (std::chrono::steady_clock::now() - added < std::chrono::milliseconds(1900)) {
+    EXPECT_EQ(writer.persisted(), 0U) << "committed before the period";
+  }
   EXPECT_TRUE(waitPersisted(writer, 5, 10.0));
   EXPECT_EQ(writer.queued(), 0U);
   std::int64_t stored = 0;
