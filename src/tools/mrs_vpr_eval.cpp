@@ -41,6 +41,17 @@ struct Keyframed {
   Keyframes query;
 };
 
+/// The true reference frames of query frame `frame`; nullopt when it has no ground truth. By the
+/// identity ground truth, a frame before the map's first keyframe shows a place the map does not hold
+/// (a map database whose frames are numbered from later on): it is a query about a place outside the
+/// map, not one the map should have answered.
+std::optional<std::vector<int>> truthOfFrame(int frame, const GroundTruth* truth, const Keyframes& reference) {
+  if (truth == nullptr && !reference.frames.empty() && frame >= 0 && frame < reference.frames.front()) {
+    return std::vector<int>{};
+  }
+  return truthFor(frame, truth, reference.total);
+}
+
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
@@ -58,13 +69,18 @@ std::vector<QueryRecord> runPerFrame(PlaceRecognizer& reference, const std::stri
   const double per_query_ms = 1000.0 * secondsSince(start) / static_cast<double>(frames.size());
 
   std::vector<QueryRecord> records;
+  int skipped = 0;
   for (int keyframe : frames) {
     const int frame = keyframes.query.frames[static_cast<std::size_t>(keyframe)];
-    const auto true_indices = truthFor(frame, truth, keyframes.reference.total);
-    if (!true_indices) continue;
+    const auto true_indices = truthOfFrame(frame, truth, keyframes.reference);
+    if (!true_indices) {
+      ++skipped;
+      continue;
+    }
     records.push_back(keyframeRecordOf(frame, *true_indices, matches.at(static_cast<std::size_t>(keyframe)),
                                        keyframes.reference, per_query_ms));
   }
+  if (skipped > 0) std::cerr << "  " << skipped << " query frames skipped: they have no ground truth\n";
   return records;
 }
 
@@ -86,7 +102,7 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
   for (const TestSequence& test : tests) {
     progress.update(done++);
     const int frame = keyframes.query.frames[static_cast<std::size_t>(test.query_index)];
-    const auto true_indices = truthFor(frame, truth, keyframes.reference.total);
+    const auto true_indices = truthOfFrame(frame, truth, keyframes.reference);
     if (!true_indices) {
       ++skipped;
       continue;
@@ -182,6 +198,11 @@ int run(int argc, char** argv) {
       keyframes.reference = *numbered;
       std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back()
                 << " of its traversal by the numbers it stores\n";
+      if (numbered->frames.front() > 0 && options.ground_truth.empty() && !options.out_of_map) {
+        std::cerr << "  query frames 0 to " << numbered->frames.front() - 1
+                  << " show, by the identity ground truth, places before the map's first frame: places outside"
+                  << " the map\n";
+      }
     } else {
       std::cerr << ", numbered 0 to " << recognizer.size() - 1 << " in order: it stores no increasing frame numbers"
                 << " (build_map's maps do), so frame i of the ground truth is its i-th keyframe\n";
@@ -270,10 +291,11 @@ int run(int argc, char** argv) {
       runPlotTool({"eval", evaluation, "--directory", options.plots});
     }
   }
-  std::cout
-      << jsonText(
-             json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}, 2)
-      << std::endl;
+  std::cout << jsonText(
+                   json{
+                       {"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}},
+                   2)
+            << std::endl;
   return 0;
 }
 

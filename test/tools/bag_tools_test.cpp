@@ -281,6 +281,39 @@ TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   EXPECT_FALSE(fs::exists(map + ".part"));
 }
 
+TEST_F(BagToolsTest, AMapNumberedFromLaterOnHoldsNoPlaceBeforeItsFirstFrame) {
+  // A map whose frames are numbered from 40 on (a node's map, numbered by header.seq): by the identity
+  // ground truth, query frames 0 to 39 show places outside it, not places it should have answered.
+  ASSERT_EQ(run(buildMap() + " --images " + path("reference") + " --output " + path("numbered.db")).status, 0);
+  std::vector<mrs_vpr::StoredFrame> late;
+  mrs_vpr::DescriptorParams params;
+  {
+    const mrs_vpr::MapDatabase numbered(path("numbered.db"), mrs_vpr::MapAccess::kReadOnly);
+    params = numbered.descriptorParams();
+    numbered.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+      if (frame.sequence >= 40) late.push_back({frame.descriptor.clone(), frame.stamp, frame.frame_id, frame.sequence});
+    });
+  }
+  ASSERT_EQ(late.size(), 110U);
+  { mrs_vpr::MapDatabase(path("late.db"), params).append(late); }
+
+  const CommandResult result =
+      run(eval("--reference " + path("late.db") + " --query " + path("query") +
+               " --method seqslam --protocol per-frame --sequence-length 10 --output " + path("late.json")));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_NE(result.err.find("query frames 0 to 39 show, by the identity ground truth, places before the map's first"),
+            std::string::npos)
+      << result.err;
+  int before_the_map = 0;
+  const json document = json::parse(fileContents(path("late.json")));
+  for (const json& record : document.at("records")) {
+    const int frame = record.at("query_index").get<int>();
+    EXPECT_EQ(record.at("true_indices").empty(), frame < 40) << "query frame " << frame;
+    before_the_map += frame < 40 ? 1 : 0;
+  }
+  EXPECT_GT(before_the_map, 0);
+}
+
 TEST_F(BagToolsTest, AMapIsReadAndExtendedWithTheFrontEndItRecords) {
   // Without a front-end option the evaluator and build_map --append take the map's own front end;
   // another one named is refused, naming the file and both front ends.
