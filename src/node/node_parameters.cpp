@@ -123,20 +123,13 @@ const std::vector<Entry>& entries() {
 
 std::string typeName(XmlRpc::XmlRpcValue::Type type) {
   switch (type) {
-    case XmlRpc::XmlRpcValue::TypeBoolean:
-      return "a boolean";
-    case XmlRpc::XmlRpcValue::TypeInt:
-      return "an integer";
-    case XmlRpc::XmlRpcValue::TypeDouble:
-      return "a number";
-    case XmlRpc::XmlRpcValue::TypeString:
-      return "a string";
-    case XmlRpc::XmlRpcValue::TypeArray:
-      return "a list";
-    case XmlRpc::XmlRpcValue::TypeStruct:
-      return "a dictionary";
-    default:
-      return "an invalid value";
+    case XmlRpc::XmlRpcValue::TypeBoolean: return "a boolean";
+    case XmlRpc::XmlRpcValue::TypeInt: return "an integer";
+    case XmlRpc::XmlRpcValue::TypeDouble: return "a number";
+    case XmlRpc::XmlRpcValue::TypeString: return "a string";
+    case XmlRpc::XmlRpcValue::TypeArray: return "a list";
+    case XmlRpc::XmlRpcValue::TypeStruct: return "a dictionary";
+    default: return "an invalid value";
   }
 }
 
