@@ -90,7 +90,10 @@ def measure(options, node):
     for i, path in enumerate(reference):
         images.publish(message(path, 1000.0 + i * 0.1))
         time.sleep(0.001)
-    wait(lambda: 'info' in latest and latest['info'].frames == len(reference), 'the map')
+    # Every frame received and none waiting: at the default min_appearance_change the map keeps only
+    # the keyframes, fewer than the frames sent.
+    wait(lambda: 'info' in latest and latest['info'].frames_received == len(reference)
+         and latest['info'].frames_pending == 0, 'the map')
     rospy.wait_for_service('/mrs_vpr/query')
     query = rospy.ServiceProxy('/mrs_vpr/query', QuerySequence)
     span = len(test) - options.length
