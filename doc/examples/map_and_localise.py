@@ -81,11 +81,16 @@ def main():
                         help="also localise N stretches at random positions and print the figures")
     parser.add_argument("--seed", type=int, default=0, help="of the random positions (default 0)")
     parser.add_argument("--save", metavar="PATH", help="also save the map as a new map database")
-    parser.add_argument("--parameter", type=parameter, action="append", default=[], metavar="NAME=VALUE")
+    parser.add_argument("--parameter", type=parameter, action="append", default=[], metavar="NAME=VALUE",
+                        help="a parameter of the core; repeat the option for several")
     args = parser.parse_args()
 
+    parameters = dict(args.parameter)
+    for name in parameters:
+        if name.split("/")[-1] == "sequence_length":
+            parser.error("--parameter %s: the sequence length is the stretch's, set it with --length" % name)
     try:
-        recognizer = mrs_vpr.PlaceRecognizer(sequence_length=args.length, **dict(args.parameter))
+        recognizer = mrs_vpr.PlaceRecognizer(sequence_length=args.length, **parameters)
     except ValueError as error:
         sys.exit("bad parameter: %s" % error)
 

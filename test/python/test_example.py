@@ -74,3 +74,13 @@ def test_the_example_reports_a_bad_parameter(tmp_path):
                             capture_output=True, text=True)
     assert result.returncode != 0
     assert "bad parameter: mrs/tau must be in 1..16, got 0" in result.stderr
+
+
+def test_the_example_refuses_a_sequence_length_other_than_its_length_option(tmp_path):
+    for name in ("sequence_length", "sequence/sequence_length"):
+        result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path), "--parameter",
+                                 name + "=30"], capture_output=True, text=True)
+        assert result.returncode == 2
+        assert result.stderr.splitlines()[-1] == ("map_and_localise.py: error: --parameter %s: the sequence length "
+                                                  "is the stretch's, set it with --length" % name)
+        assert "Traceback" not in result.stderr
