@@ -61,7 +61,7 @@ int measure(const MapScaleOptions& options) {
   const auto before = residentBytes();
   const auto load_start = Clock::now();
   mrs_vpr::RecognizerParams limits;
-  limits.max_frames = 0;               // Unbounded: the largest maps measured may exceed the default capacity.
+  limits.max_frames = 0;  // Unbounded: the largest maps measured may exceed the default capacity.
   limits.min_appearance_change = 0.0;  // The map's frames are keyframes already.
   mrs_vpr::PlaceRecognizer recognizer(paramsFor(10, descriptor), limits);
   {
@@ -103,10 +103,8 @@ int measure(const MapScaleOptions& options) {
   }
   int next_route_frame = std::min(continuous_frames + kRouteGap, static_cast<int>(winter.size()) - recent_frames);
   if (next_route_frame < continuous_frames) {
-    std::printf(
-        "%9s recent rows skipped: they need %d frames of the route in winter after continuous mode's %d, "
-        "of %zu\n",
-        sizeName(frames).c_str(), recent_frames, continuous_frames, winter.size());
+    std::printf("%9s recent rows skipped: they need %d frames of the route in winter after continuous mode's %d, "
+                "of %zu\n", sizeName(frames).c_str(), recent_frames, continuous_frames, winter.size());
     measureMapStream(recognizer, frames);
     return 0;
   }
@@ -149,23 +147,21 @@ int run(int argc, char** argv) {
   ::mkdir(options.dir.c_str(), 0755);
   std::string lengths;
   for (int length : options.lengths) lengths += (lengths.empty() ? "" : ",") + std::to_string(length);
-  std::printf(
-      "Map-scale benchmark: real frames (Nordland summer as the true places among augmented real "
-      "distractors), queries of N = %s, %d per map (%d for brute force), threads %d, seed %llu;\n"
-      "the core's default parameters, velocity step 0.02 from N = 128 on\n",
-      lengths.c_str(), options.queries, options.brute_queries, options.threads,
-      static_cast<unsigned long long>(options.seed));
-  std::printf(
-      "queries: winter = the route in winter; summer* = summer with a new shift, gain and noise; "
-      "recent = the map's newest N frames (the route in winter, added as keyframes) after one new keyframe, "
-      "recent= = again with none (a map that is not growing), recent* = after N. "
-      "load = database to a queryable map;\nRSS/frame = resident growth of the load; peak = the process's "
-      "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted;\n"
-      "same = queries where mrs and brute force gave the same frame / the same acceptance / of those both "
-      "answered; dconf = largest confidence difference\n\n");
+  std::printf("Map-scale benchmark: real frames (Nordland summer as the true places among augmented real "
+              "distractors), queries of N = %s, %d per map (%d for brute force), threads %d, seed %llu;\n"
+              "the core's default parameters, velocity step 0.02 from N = 128 on\n",
+              lengths.c_str(), options.queries, options.brute_queries, options.threads,
+              static_cast<unsigned long long>(options.seed));
+  std::printf("queries: winter = the route in winter; summer* = summer with a new shift, gain and noise; "
+              "recent = the map's newest N frames (the route in winter, added as keyframes) after one new keyframe, "
+              "recent= = again with none (a map that is not growing), recent* = after N. "
+              "load = database to a queryable map;\nRSS/frame = resident growth of the load; peak = the process's "
+              "peak RSS over frames; right = within 5 frames; wrong/acc = mrs answers accepted and wrong / accepted;\n"
+              "same = queries where mrs and brute force gave the same frame / the same acceptance / of those both "
+              "answered; dconf = largest confidence difference\n\n");
   std::printf("%9s %5s %8s %8s %9s %9s %8s %10s %10s %8s %10s %10s %10s %6s\n", "map", "N", "queries", "load[s]",
-              "RSS/frame", "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "wrong/acc", "same",
-              "dconf");
+              "RSS/frame", "peak/fr", "mrs[ms]", "brute[ms]", "mrs right", "speed-up", "brute rt", "wrong/acc",
+              "same", "dconf");
   std::fflush(stdout);
   for (const long long frames : options.sizes) {
     const std::string path = options.dir + "/map-" + sizeName(frames) + "-" + options.descriptor.type + "-seed" +

@@ -49,8 +49,9 @@ DescriptorSequence::DescriptorSequence(int descriptor_size) : descriptor_size_(d
 void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
   if (descriptor.type() != CV_8UC1 || descriptor.total() != static_cast<std::size_t>(descriptor_size_) ||
       !descriptor.isContinuous()) {
-    throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " + std::to_string(descriptor_size_) +
-                                " bytes, got " + cv::typeToString(descriptor.type()) + " with " +
+    throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " +
+                                std::to_string(descriptor_size_) + " bytes, got " +
+                                cv::typeToString(descriptor.type()) + " with " +
                                 std::to_string(descriptor.total()) + " elements");
   }
   // A failed allocation part-way through leaves every array as it was, not one frame longer than another.
@@ -138,8 +139,8 @@ cv::Mat DescriptorSequence::descriptorRow(int index) const {
 
 const std::uint8_t* DescriptorSequence::descriptor(int index) const {
   if (index < 0 || index >= size()) {
-    throw std::out_of_range("frame " + std::to_string(index) + " is outside a sequence of " + std::to_string(size()) +
-                            " frames");
+    throw std::out_of_range("frame " + std::to_string(index) + " is outside a sequence of " +
+                            std::to_string(size()) + " frames");
   }
   return view().frame(index);
 }

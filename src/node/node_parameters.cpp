@@ -21,50 +21,32 @@ namespace node {
 const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
   using P = NodeParameters;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"min_frame_interval",
-        Range::closed(0, 86400),
-        {},
-        "",
+      {{"min_frame_interval", Range::closed(0, 86400), {}, "",
         "Seconds (by header stamp) between keyframes; 0 = no limit."},
        &P::min_frame_interval},
       {{"frame_stride", Range::closed(1, 10000), {}, "", "Keep at most every n-th image."}, &P::frame_stride},
-      {{"min_travel",
-        Range::atLeast(0),
-        {},
-        "",
+      {{"min_travel", Range::atLeast(0), {}, "",
         "Metres the robot travels (~base_frame in ~odom_frame, by tf) between keyframes; 0 = off. For a "
         "robot that stops or changes speed."},
        &P::min_travel},
       {{"odom_frame", Range{}, {}, "a tf frame", "Fixed frame in which ~min_travel is measured."}, &P::odom_frame},
       {{"base_frame", Range{}, {}, "a tf frame", "The robot's frame, whose travel ~min_travel measures."},
        &P::base_frame},
-      {{"tf_timeout",
-        Range::openClosed(0, 10),
-        {},
-        "",
+      {{"tf_timeout", Range::openClosed(0, 10), {}, "",
         "Longest wait for the robot's pose at an image's stamp [s] (~min_travel > 0)."},
        &P::tf_timeout},
       {{"image_queue_size", Range::closed(1, 10000), {}, "", "Subscriber queue of the image topic."},
        &P::image_queue_size},
-      {{"auto_query_period",
-        Range::closed(0, 86400),
-        {},
-        "",
+      {{"auto_query_period", Range::closed(0, 86400), {}, "",
         "Continuous mode: every this many seconds (wall-clock, also under use_sim_time), localise each "
         "keyframe that came since the last time (within a fifth of the period); 0 = off."},
        &P::auto_query_period},
-      {{"auto_query_frames",
-        Range::closed(2, 1000000).orZero(),
-        {},
-        "",
+      {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
        &P::auto_query_frames},
       {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz, wall-clock]."},
        &P::map_info_rate},
-      {{"database",
-        Range{},
-        {},
-        "a file path; empty = memory only",
+      {{"database", Range{}, {}, "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
        &P::database},
   };
@@ -74,10 +56,7 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
 const std::vector<ParameterSpec<CommitPolicy>>& commitParameters() {
   using P = CommitPolicy;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"commit_period",
-        Range::openClosed(0, 3600),
-        {},
-        "",
+      {{"commit_period", Range::openClosed(0, 3600), {}, "",
         "Longest time a keyframe waits for its commit to ~database [s]."},
        &P::period},
       {{"commit_frames", Range::closed(1, 1000000), {}, "", "Most keyframes waiting for a commit to ~database."},
@@ -182,7 +161,8 @@ void read(const ros::NodeHandle& nh, const ParameterInfo& info, int& field) { lo
 void read(const ros::NodeHandle& nh, const ParameterInfo& info, double& field) {
   XmlRpc::XmlRpcValue value;
   if (lookup(nh, info.name, value, XmlRpc::XmlRpcValue::TypeDouble, true)) {
-    field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value) : static_cast<double>(value);
+    field = value.getType() == XmlRpc::XmlRpcValue::TypeInt ? static_cast<int>(value)
+                                                             : static_cast<double>(value);
   }
 }
 
@@ -265,10 +245,8 @@ void NodeParameters::validate() const {
     throwPrivate(error);
   }
   if (min_travel > 0.0 && !TravelPolicy::measurableBetween(odom_frame, base_frame)) {
-    throw std::invalid_argument(
-        "~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
-        "(got '" +
-        odom_frame + "' and '" + base_frame + "')");
+    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
+                                "(got '" + odom_frame + "' and '" + base_frame + "')");
   }
 }
 
@@ -317,8 +295,8 @@ std::vector<std::string> unknownParameters(const ros::NodeHandle& private_nh) {
 std::vector<std::string> unknownParameters(const std::vector<std::string>& names) {
   std::vector<std::string> unknown;
   for (const auto& name : names) {
-    const bool known =
-        std::any_of(entries().begin(), entries().end(), [&](const Entry& entry) { return entry.info->name == name; });
+    const bool known = std::any_of(entries().begin(), entries().end(),
+                                   [&](const Entry& entry) { return entry.info->name == name; });
     if (!known && !isTransportParameter(name)) {
       unknown.push_back("~" + name);
     }

@@ -291,11 +291,10 @@ int run(int argc, char** argv) {
       runPlotTool({"eval", evaluation, "--directory", options.plots});
     }
   }
-  std::cout << jsonText(
-                   json{
-                       {"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}},
-                   2)
-            << std::endl;
+  std::cout
+      << jsonText(
+             json{{"method", options.method}, {"protocol", options.protocol}, {"summary", summaryToJson(summary)}}, 2)
+      << std::endl;
   return 0;
 }
 

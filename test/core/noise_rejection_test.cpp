@@ -101,8 +101,8 @@ const DescribedRoute& unmappedRoute() {
 
 /// Tally of `method` over kSequences sequences of `frames` frames of `traversal`, spread evenly
 /// over it.
-Tally routeQueries(const std::string& method, const Parameters& params, const DescriptorSequence& traversal, int frames,
-                   SequenceView map = standardRoute().reference.view()) {
+Tally routeQueries(const std::string& method, const Parameters& params, const DescriptorSequence& traversal,
+                   int frames, SequenceView map = standardRoute().reference.view()) {
   const auto matcher = makeMatcher(method, params);
   Tally tally;
   for (int i = 0; i < kSequences; ++i) {
@@ -189,7 +189,8 @@ TEST(NoiseRejection, ACameraBlackedOutInTheMapAndAgainElsewhereGivesNoFalseLoopC
           wrong_accepted += match.accepted && !within(match.reference_index, truth, 3) ? 1 : 0;
         }
         const std::string what = method + ", " + std::to_string(black_in_map) + " black in the map, " +
-                                 std::to_string(blacked_out) + " of " + std::to_string(kFrames) + " in the query: ";
+                                 std::to_string(blacked_out) + " of " + std::to_string(kFrames) +
+                                 " in the query: ";
         EXPECT_EQ(wrong_accepted, 0) << what << tally;
         if (blacked_out == 0) EXPECT_GT(tally.accepted, tally.queries / 3) << what << tally;  // the control
         if (blacked_out == kFrames) EXPECT_EQ(tally.accepted, 0) << what << tally;

@@ -195,9 +195,7 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
   const std::string with_nul = errorOf([&] { recognizer.match(queryImages(0, 10), std::string("m\0rs", 4)); });
   EXPECT_EQ(with_nul.find('\0'), std::string::npos);
   EXPECT_NE(with_nul.find("unknown method 'm\\x00rs': use 'mrs' or 'seqslam'"), std::string::npos) << with_nul;
-  EXPECT_NE(errorOf([&] {
-              recognizer.match({route().query[0], cv::Mat()});
-            }).find("image 1 of the test sequence"),
+  EXPECT_NE(errorOf([&] { recognizer.match({route().query[0], cv::Mat()}); }).find("image 1 of the test sequence"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { recognizer.matchRecent(1); }).find("at least 2"), std::string::npos);
   // A request larger than any int is reported as it was made, not wrapped or clamped.

@@ -244,7 +244,7 @@ TEST(ScoreAround, ScoresAGivenWinner) {
   EXPECT_FLOAT_EQ(match.sequence_difference, 2.0F);
   EXPECT_FLOAT_EQ(match.score, 1.0F);  // 2 / 1, clamped.
   const Match good = scoreAround(costs, 6, 2);
-  EXPECT_FLOAT_EQ(good.score, 0.5F);       // 1 / 2.
+  EXPECT_FLOAT_EQ(good.score, 0.5F);  // 1 / 2.
   EXPECT_FLOAT_EQ(good.confidence, 0.0F);  // Five rivals: too few.
   EXPECT_EQ(scoreAround(costs, 7, 2).reference_index, -1);
   EXPECT_EQ(scoreAround(costs, -1, 2).reference_index, -1);

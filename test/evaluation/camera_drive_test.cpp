@@ -264,9 +264,8 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   // A drive is held in memory: a stop of 10^8 frames grew to 15 GB before it was refused.
   settings = CameraDriveSettings{};
   settings.stop_frames_max = 100000000;
-  EXPECT_NE(invalidArgumentMessage([&] {
-              CameraDrive(1000, settings);
-            }).find("stop_frames_max must be <= 100000, got 100000000"),
+  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); })
+                .find("stop_frames_max must be <= 100000, got 100000000"),
             std::string::npos);
   settings = CameraDriveSettings{};
   settings.stops = 5000;
@@ -275,17 +274,15 @@ TEST(CameraDrive, BadSettingsAndRoutesTooShortAreRefusedByName) {
   settings = CameraDriveSettings{};
   settings.vibration = 2.0;
   EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("vibration"), std::string::npos);
-  EXPECT_NE(invalidArgumentMessage([&] {
-              CameraDrive(150, CameraDriveSettings{});
-            }).find("a route of 150 frames cannot hold a half-speed stretch of 100, a double-speed stretch of 100"),
+  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(150, CameraDriveSettings{}); })
+                .find("a route of 150 frames cannot hold a half-speed stretch of 100, a double-speed stretch of 100"),
             std::string::npos);
   const CameraDrive drive(300);
   EXPECT_THROW(drive.render(drive.size(), cv::Mat(32, 64, CV_8UC1)), std::out_of_range);
   EXPECT_NE(invalidArgumentMessage([&] { drive.render(0, cv::Mat(32, 64, CV_16UC1)); }).find("8-bit"),
             std::string::npos);
-  EXPECT_NE(invalidArgumentMessage([&] {
-              renderDrive(drive, flatRoute(10));
-            }).find("planned for 300 route frames, but the route has 10 images"),
+  EXPECT_NE(invalidArgumentMessage([&] { renderDrive(drive, flatRoute(10)); })
+                .find("planned for 300 route frames, but the route has 10 images"),
             std::string::npos);
 }
 

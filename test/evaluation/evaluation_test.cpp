@@ -73,9 +73,9 @@ std::string errorOf(const std::function<void()>& action) {
 TEST(Evaluation, CorrectWithinToleranceOfAnyTrueIndex) {
   EXPECT_TRUE(isCorrect(record(0, {10}, 12, 0.5F), 2));
   EXPECT_FALSE(isCorrect(record(0, {10}, 13, 0.5F), 2));
-  EXPECT_TRUE(isCorrect(record(0, {3, 20}, 21, 0.5F), 1));  // Near the second true index.
-  EXPECT_FALSE(isCorrect(record(0, {10}, -1, 0.5F), 100));  // No prediction.
-  EXPECT_FALSE(isCorrect(record(0, {}, 5, 0.5F), 100));     // No true match exists.
+  EXPECT_TRUE(isCorrect(record(0, {3, 20}, 21, 0.5F), 1));   // Near the second true index.
+  EXPECT_FALSE(isCorrect(record(0, {10}, -1, 0.5F), 100));   // No prediction.
+  EXPECT_FALSE(isCorrect(record(0, {}, 5, 0.5F), 100));      // No true match exists.
   EXPECT_TRUE(isCorrect(record(0, {7}, 7, 0.5F), 0));
 }
 
@@ -88,8 +88,8 @@ TEST(Evaluation, AbsoluteErrorIsToTheNearestTrueIndex) {
 }
 
 TEST(Evaluation, TopOneAccuracy) {
-  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 9, 0.8F), record(2, {2}, 3, 0.1F),
-                                            record(3, {3}, -1, 0.0F)};
+  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 9, 0.8F),
+                                            record(2, {2}, 3, 0.1F), record(3, {3}, -1, 0.0F)};
   EXPECT_DOUBLE_EQ(top1Accuracy(records, 0), 0.25);
   EXPECT_DOUBLE_EQ(top1Accuracy(records, 1), 0.5);
   EXPECT_DOUBLE_EQ(top1Accuracy({}, 1), 0.0);
@@ -101,8 +101,9 @@ TEST(Evaluation, TopOneAccuracy) {
 
 TEST(Evaluation, PrecisionRecallCurveByHand) {
   // Confidence order: 0.9 correct, 0.8 wrong, 0.7 correct, 0.6 correct; a fifth query has no prediction.
-  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 50, 0.8F), record(2, {2}, 2, 0.7F),
-                                            record(3, {3}, 4, 0.6F), record(4, {4}, -1, 0.95F)};
+  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 50, 0.8F),
+                                            record(2, {2}, 2, 0.7F), record(3, {3}, 4, 0.6F),
+                                            record(4, {4}, -1, 0.95F)};
   const std::vector<PrPoint> curve = precisionRecallCurve(records, 1);
   ASSERT_EQ(curve.size(), 4U);
   EXPECT_FLOAT_EQ(static_cast<float>(curve[0].threshold), 0.9F);
@@ -161,7 +162,8 @@ TEST(Evaluation, AConfidenceThatIsNotANumberIsRefused) {
 }
 
 TEST(Evaluation, PerfectRankingHasUnitAreaAndFullRecall) {
-  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 1, 0.3F), record(2, {2}, 2, 0.2F)};
+  const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 1, 0.3F),
+                                            record(2, {2}, 2, 0.2F)};
   const std::vector<PrPoint> curve = precisionRecallCurve(records, 0);
   EXPECT_DOUBLE_EQ(averagePrecision(curve), 1.0);
   EXPECT_DOUBLE_EQ(recallAtFullPrecision(curve), 1.0);
@@ -200,7 +202,7 @@ TEST(Evaluation, SummaryByHand) {
   EXPECT_DOUBLE_EQ(summary.median_time_ms, 5.0);
   EXPECT_DOUBLE_EQ(summary.total_time_s, 0.022);
   EXPECT_EQ(summary.accepted, 0);
-  EXPECT_TRUE(std::isnan(summary.accepted_precision));            // Nothing accepted: precision undefined.
+  EXPECT_TRUE(std::isnan(summary.accepted_precision));  // Nothing accepted: precision undefined.
   EXPECT_TRUE(std::isnan(summary.largest_wrong_accepted_error));  // ... and no wrong one.
   EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.0);
 }
@@ -324,9 +326,9 @@ TEST(ImageFolder, AnImageThatCannotBeListedIsAnErrorNotLeftOut) {
   cv::imwrite(folder.path("0.png"), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
   cv::imwrite(folder.path("1.webp"), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
   fs::create_symlink(folder.path("unmounted/2.png"), folder.path("2.png"));
-  EXPECT_EQ(
-      errorOf([&] { listImageFiles(folder.path()); }),
-      "image '" + folder.path("2.png") + "' is a broken symbolic link (to '" + folder.path("unmounted/2.png") + "')");
+  EXPECT_EQ(errorOf([&] { listImageFiles(folder.path()); }),
+            "image '" + folder.path("2.png") + "' is a broken symbolic link (to '" + folder.path("unmounted/2.png") +
+                "')");
   fs::remove(folder.path("2.png"));
   std::ofstream(folder.path("2.gif")) << "GIF89a";
   const std::vector<std::string> files = listImageFiles(folder.path());
@@ -367,9 +369,8 @@ TEST(ImageFolder, ClearErrors) {
   cv::imwrite(broken + "/0.png", cv::Mat(4, 4, CV_8UC1, cv::Scalar(0)));
   std::ofstream(broken + "/1.png") << "not a png";
   EXPECT_EQ(errorOf([&] { loadImageFolder(broken); }),
-            "cannot read image '" + broken +
-                "/1.png': no image decoder of OpenCV reads it (a corrupt file, or a "
-                "format this build of OpenCV lacks)");
+            "cannot read image '" + broken + "/1.png': no image decoder of OpenCV reads it (a corrupt file, or a "
+            "format this build of OpenCV lacks)");
   std::ofstream(broken + "/1.png", std::ios::trunc).close();
   EXPECT_EQ(errorOf([&] { loadImageFolder(broken); }), "cannot read image '" + broken + "/1.png': the file is empty");
 
@@ -389,8 +390,8 @@ TEST(ImageFolder, ATruncatedJpegFileIsRefusedNotReadHalfGrey) {
   cv::randu(texture, cv::Scalar::all(0), cv::Scalar::all(256));
   std::vector<std::uint8_t> jpeg;
   cv::imencode(".jpg", texture, jpeg);
-  std::ofstream(folder.path("0.jpg"), std::ios::binary)
-      .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size()));
+  std::ofstream(folder.path("0.jpg"), std::ios::binary).write(reinterpret_cast<const char*>(jpeg.data()),
+                                                                static_cast<std::streamsize>(jpeg.size()));
   std::ofstream(folder.path("1.JPEG"), std::ios::binary)
       .write(reinterpret_cast<const char*>(jpeg.data()), static_cast<std::streamsize>(jpeg.size() / 2));
   EXPECT_EQ(loadImage(folder.path("0.jpg")).size(), texture.size());

@@ -22,9 +22,9 @@
 namespace mrs_vpr {
 namespace {
 
-using testing_support::globalSearchParams;
 using testing_support::invalidArgumentMessage;
 using testing_support::longRoute;
+using testing_support::globalSearchParams;
 using testing_support::routeDescriptor;
 using testing_support::routeParameters;
 using testing_support::standardRoute;
@@ -49,13 +49,13 @@ TEST(MrsMatcher, LevelsForKeepsEnoughCoarseFrames) {
   const MrsMatcher search(SequenceParams{}, MrsParams{});  // levels 3, min_coarse_frames 64
   constexpr int kLargeMap = 100000;
   EXPECT_EQ(search.levelsFor(10, kLargeMap), 0);
-  EXPECT_EQ(search.levelsFor(126, kLargeMap), 0);   // 63 cells at stride 2: too few ...
-  EXPECT_EQ(search.levelsFor(127, kLargeMap), 1);   // ... 64 cells at stride 2 (frames 0, 2, ..., 126).
-  EXPECT_EQ(search.levelsFor(200, kLargeMap), 1);   // 50 cells at stride 4: too few.
-  EXPECT_EQ(search.levelsFor(252, kLargeMap), 1);   // 63 cells at stride 4 ...
-  EXPECT_EQ(search.levelsFor(253, kLargeMap), 2);   // ... 64.
-  EXPECT_EQ(search.levelsFor(300, kLargeMap), 2);   // 75 at stride 4, 38 at stride 8.
-  EXPECT_EQ(search.levelsFor(505, kLargeMap), 3);   // 64 at stride 8.
+  EXPECT_EQ(search.levelsFor(126, kLargeMap), 0);  // 63 cells at stride 2: too few ...
+  EXPECT_EQ(search.levelsFor(127, kLargeMap), 1);  // ... 64 cells at stride 2 (frames 0, 2, ..., 126).
+  EXPECT_EQ(search.levelsFor(200, kLargeMap), 1);  // 50 cells at stride 4: too few.
+  EXPECT_EQ(search.levelsFor(252, kLargeMap), 1);  // 63 cells at stride 4 ...
+  EXPECT_EQ(search.levelsFor(253, kLargeMap), 2);  // ... 64.
+  EXPECT_EQ(search.levelsFor(300, kLargeMap), 2);  // 75 at stride 4, 38 at stride 8.
+  EXPECT_EQ(search.levelsFor(505, kLargeMap), 3);  // 64 at stride 8.
   EXPECT_EQ(search.levelsFor(5000, kLargeMap), 3);  // Never more than mrs/levels.
   MrsParams fewer;
   fewer.min_coarse_frames = 10;

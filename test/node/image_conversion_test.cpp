@@ -22,7 +22,8 @@ cv::Mat texturedBgr(int width = 160, int height = 120) {
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       image.at<cv::Vec3b>(y, x) = cv::Vec3b(static_cast<uchar>((x * 7 + y * 3) % 256),
-                                            static_cast<uchar>((x * x + y) % 256), static_cast<uchar>((y * 11) % 256));
+                                            static_cast<uchar>((x * x + y) % 256),
+                                            static_cast<uchar>((y * 11) % 256));
     }
   }
   return image;

@@ -94,9 +94,10 @@ TEST_F(BagToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) 
   EXPECT_NEAR(images[99]->header.stamp.toSec(), 1009.9, 1e-6);
 
   // Same frames from bags as from folders: the same answers.
-  const std::string common =
-      " --ground-truth " + path("truth.csv") + " --method seqslam --protocol per-frame --sequence-length 10 --output ";
-  ASSERT_EQ(run(eval("--reference " + path("reference") + " --query " + path("query") + common + path("folders.json")))
+  const std::string common = " --ground-truth " + path("truth.csv") +
+                             " --method seqslam --protocol per-frame --sequence-length 10 --output ";
+  ASSERT_EQ(run(eval("--reference " + path("reference") + " --query " + path("query") + common +
+                     path("folders.json")))
                 .status,
             0);
   const CommandResult from_bags = run(eval("--reference " + path("reference.bag") + " --query " + path("query.bag") +
@@ -317,8 +318,8 @@ TEST_F(BagToolsTest, AMapNumberedFromLaterOnHoldsNoPlaceBeforeItsFirstFrame) {
 TEST_F(BagToolsTest, AMapIsReadAndExtendedWithTheFrontEndItRecords) {
   // Without a front-end option the evaluator and build_map --append take the map's own front end;
   // another one named is refused, naming the file and both front ends.
-  const std::string build_map =
-      std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " + path("small.db");
+  const std::string build_map = std::string(BUILD_MAP_PATH) + " --images " + path("reference") + " --output " +
+                                path("small.db");
   const CommandResult other = run(build_map + " --descriptor thumbnail --image-width 32 --image-height 16");
   ASSERT_EQ(other.status, 0) << other.err;
   const std::string evaluate = std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("small.db") + " --query " +
@@ -436,7 +437,8 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
   const std::string first_route = fileContents(path("demo/reference.bag"));
   const CommandResult again = run(tool + " --reference-frames 40 --query-frames 20");
   EXPECT_EQ(again.status, 1);
-  EXPECT_NE(again.err.find("'" + path("demo/reference.bag") + "' exists: use --force"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("'" + path("demo/reference.bag") + "' exists: use --force"), std::string::npos)
+      << again.err;
   EXPECT_EQ(fileContents(path("demo/reference.bag")), first_route);
   ASSERT_EQ(run(tool + " --reference-frames 40 --query-frames 20 --force").status, 0);
   EXPECT_NE(fileContents(path("demo/reference.bag")), first_route);
@@ -501,10 +503,9 @@ TEST_F(BagToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
 
 TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {
   const std::string bag = path("own_input.bag");
-  ASSERT_EQ(
-      run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " + bag + " --topic /t --rate 5")
-          .status,
-      0);
+  ASSERT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " + bag +
+                " --topic /t --rate 5").status,
+            0);
   const std::string bag_bytes = fileContents(bag);
   const std::string first_image = mrs_vpr::listImageFiles(path("reference")).front();
   const std::string image_bytes = fileContents(first_image);
@@ -526,7 +527,8 @@ TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {
   refused(run(eval("--reference " + path("reference") + " --query " + path("query") + " --protocol per-frame --plots " +
                    path("query/plots"))),
           "--plots '" + path("query/plots") + "' lies inside the folder '" + path("query") + "' that --query reads");
-  refused(run(std::string(MAKE_DRIVE_PATH) + " --images " + path("reference") + " --output " + path("reference/drive")),
+  refused(run(std::string(MAKE_DRIVE_PATH) + " --images " + path("reference") + " --output " +
+              path("reference/drive")),
           "make_drive: error: --output '" + path("reference/drive") + "' lies inside the folder");
   EXPECT_EQ(fileContents(bag), bag_bytes);
   EXPECT_EQ(fileContents(first_image), image_bytes);
@@ -548,8 +550,8 @@ TEST_F(BagToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
     EXPECT_EQ(written[i]->header.stamp, ros::Time(4294967286U + i / 10, (i % 10) * 100000000U)) << i;
   }
   // Stamps beyond 4294967295.999999999 s: refused before anything is written.
-  for (const std::string& timing :
-       {std::string(" --rate 1e-300 --start-time 1000"), std::string(" --rate 10 --start-time 4294967290")}) {
+  for (const std::string& timing : {std::string(" --rate 1e-300 --start-time 1000"),
+                                    std::string(" --rate 10 --start-time 4294967290")}) {
     SCOPED_TRACE(timing);
     const CommandResult result = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + path("never.bag") + timing);
     EXPECT_EQ(result.status, 1);
@@ -607,8 +609,8 @@ TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
     writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
     writer.write("/camera/image_raw", stamp + ros::Duration(0.1), CorruptImage{{1, 2, 3, 4, 5, 6, 7}});
   }
-  const CommandResult cut =
-      run(buildMap() + " --bag " + corrupt + " --topic /camera/image_raw --output " + path("corrupt.db"));
+  const CommandResult cut = run(buildMap() + " --bag " + corrupt + " --topic /camera/image_raw --output " +
+                                path("corrupt.db"));
   EXPECT_EQ(cut.status, 1);
   EXPECT_NE(cut.err.find("build_map: error: message 1 of topic '/camera/image_raw' in bag '" + corrupt +
                          "' cannot be read: "),
@@ -624,8 +626,8 @@ TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
     compressed.format = "jpeg";
     writer.write("/camera/image_raw/compressed", compressed.header.stamp, compressed);
   }
-  const CommandResult nothing =
-      run(buildMap() + " --bag " + empty + " --topic /camera/image_raw/compressed --output " + path("empty.db"));
+  const CommandResult nothing = run(buildMap() + " --bag " + empty + " --topic /camera/image_raw/compressed --output " +
+                                    path("empty.db"));
   EXPECT_EQ(nothing.status, 1);
   EXPECT_NE(nothing.err.find("message 0 of topic '/camera/image_raw/compressed' in bag '" + empty +
                              "' cannot be read: the compressed image holds no data (0 bytes)"),

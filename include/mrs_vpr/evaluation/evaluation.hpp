@@ -23,15 +23,15 @@ struct QueryRecord {
   /// The last reference frame the answer stands for: a keyframe stands for the frames after it that
   /// were too similar to become keyframes (keyframeRecordOf); equal to predicted_index otherwise.
   int predicted_last = -1;
-  float score = 1.0F;       ///< Best / runner-up, lower is better.
-  float confidence = 0.0F;  ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
-  bool accepted = false;    ///< Passed the acceptance rule (Match::accepted).
-  int rival_places = 0;     ///< Places the confidence was judged among (Match::rival_places).
+  float score = 1.0F;             ///< Best / runner-up, lower is better.
+  float confidence = 0.0F;        ///< Distinctiveness, higher is surer; the PR curve sweeps a threshold on it.
+  bool accepted = false;          ///< Passed the acceptance rule (Match::accepted).
+  int rival_places = 0;           ///< Places the confidence was judged among (Match::rival_places).
   /// The answer's trajectory runs at a velocity bound (Match::at_velocity_bound; confidence 0).
   bool at_velocity_bound = false;
   /// Most of the test sequence's keyframes show one view again (Match::repeated_view; not accepted).
   bool repeated_view = false;
-  double time_ms = 0.0;  ///< Time spent on this query.
+  double time_ms = 0.0;           ///< Time spent on this query.
 };
 
 /// The record of the answer `match` to the query localising `query_index`, whose true places are
@@ -52,11 +52,11 @@ struct EvaluationSummary {
   double top1 = 0.0;
   double pr_auc = 0.0;
   double recall_at_100_precision = 0.0;
-  int accepted = 0;            ///< Answers that passed the acceptance rule.
-  double accepted_rate = 0.0;  ///< accepted / queries: for queries outside the map, the false-closure rate.
+  int accepted = 0;                ///< Answers that passed the acceptance rule.
+  double accepted_rate = 0.0;      ///< accepted / queries: for queries outside the map, the false-closure rate.
   /// Correct accepted / accepted: NaN when nothing was accepted.
   double accepted_precision = std::numeric_limits<double>::quiet_NaN();
-  double accepted_recall = 0.0;  ///< Correct accepted / queries.
+  double accepted_recall = 0.0;    ///< Correct accepted / queries.
   /// How far the wrong accepted answers lie: the largest distance of one from its nearest true frame
   /// [frames]. NaN when no accepted answer about a place in the map is wrong (an answer about a place
   /// outside it has no distance; accepted_rate counts those).
@@ -157,6 +157,7 @@ void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int ref
  * Truth for a query frame: its ground-truth entry when `ground_truth` is given (nothing when the frame
  * has no entry), else the identity alignment {query_index} (nothing when query_index >= reference_frames).
  */
-std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames);
+std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth,
+                                         int reference_frames);
 
 }  // namespace mrs_vpr
