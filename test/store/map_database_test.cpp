@@ -54,6 +54,13 @@ class MapDatabaseTest : public ::testing::Test {
     return rows;
   }
 
+  /// The metadata table of the database file `file`, by key.
+  static std::map<std::string, std::string> metadataOf(const std::string& file) {
+    std::map<std::string, std::string> metadata;
+    for (const auto& row : rowsOf(file, "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+    return metadata;
+  }
+
   /// Frames whose descriptor bytes, stamps and ids all differ.
   static std::vector<StoredFrame> frames(int count, int first = 0) {
     std::vector<StoredFrame> result;
@@ -79,6 +86,7 @@ class MapDatabaseTest : public ::testing::Test {
     }
     return "(opened)";
   }
+
 
   testing_support::TemporaryFolder folder_{"mrs_vpr_store_test"};
 };
@@ -132,8 +140,7 @@ TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
 
 TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), thumbnailParams()); }
-  std::map<std::string, std::string> metadata;
-  for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+  std::map<std::string, std::string> metadata = metadataOf(path("map.db"));
   EXPECT_EQ(metadata["format_version"], "2");
   EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["image_width"], "64");
@@ -169,8 +176,7 @@ TEST_F(MapDatabaseTest, AHogMapRecordsItsFrontEndAndAThumbnailReaderIsRefusedNam
     frame.descriptor = cv::Mat(1, hog.descriptorSize(), CV_8UC1, cv::Scalar(9));
     database.append({frame, frame});
   }
-  std::map<std::string, std::string> metadata;
-  for (const auto& row : rowsOf(path("hog.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+  std::map<std::string, std::string> metadata = metadataOf(path("hog.db"));
   EXPECT_EQ(metadata["descriptor_type"], "hog");
   EXPECT_EQ(metadata["hog_window_width"], "128");
   EXPECT_EQ(metadata["hog_window_height"], "64");
@@ -206,7 +212,9 @@ TEST_F(MapDatabaseTest, AMapThatRecordsNoFrontEndHoldsThumbnails) {
 }
 
 TEST_F(MapDatabaseTest, AFrontEndRecordedIncompletelyIsRefusedSayingSo) {
-  { MapDatabase database(path("map.db"), thumbnailParams()); }
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+  }
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open(path("map.db").c_str(), &db), SQLITE_OK);
   ASSERT_EQ(sqlite3_exec(db, "UPDATE metadata SET value = 'wide' WHERE key = 'image_width'", nullptr, nullptr, nullptr),
@@ -412,8 +420,7 @@ TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
     database.append(frames(1));
     EXPECT_EQ(database.size(), 1);
   }  // Closed: it holds the map exclusively while open.
-  std::map<std::string, std::string> metadata;
-  for (const auto& row : rowsOf(path("map.db"), "SELECT key, value FROM metadata")) metadata[row[0]] = row[1];
+  std::map<std::string, std::string> metadata = metadataOf(path("map.db"));
   EXPECT_EQ(metadata["format_version"], "2");
   EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["descriptor_bytes"], "2048");
