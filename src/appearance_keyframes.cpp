@@ -38,7 +38,11 @@ double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float*
 double AppearanceKeyframes::scale() const {
   if (static_cast<int>(samples_.size()) >= kMinScaleSamples) {
     std::vector<double> values(samples_.begin(), samples_.end());
-    return upperMedian(values);
+    const double median = upperMedian(values);
+    // Zero when most pairs are one view (keyframes taken by travel or loaded from a map while the
+    // camera was covered): every change would then read as none, and no keyframe would ever come
+    // to change it. The stand-in below measures the change instead.
+    if (median > 0.0) return median;
   }
   if (frames_in_mean_ == 0) return 0.0;
   std::vector<float> mean(mean_);

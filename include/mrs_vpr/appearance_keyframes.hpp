@@ -48,7 +48,8 @@ namespace mrs_vpr {
  * - The scale is the data's own: the median change between keyframes kUnrelatedGap keyframes apart,
  *   over the last kScaleSamples such pairs. Until kMinScaleSamples pairs exist, the change from a view
  *   of noise (unrelated to any place by construction) stands in for it, so that a robot standing still
- *   from the start adds no keyframe either.
+ *   from the start adds no keyframe either. It stands in as well while that median is 0 (most pairs
+ *   one view: keyframes of a covered camera taken by travel, or loaded so).
  *
  * No ROS inside; not thread-safe (one owner, one frame at a time).
  */

@@ -184,6 +184,20 @@ TEST_P(AppearanceKeyframesTest, TheScaleBecomesTheDataOwnOnceKeyframesAreFarEnou
   EXPECT_NEAR(keyframes.scale(), stand_in, 0.5 * stand_in);  // Both are unrelated views.
 }
 
+TEST_P(AppearanceKeyframesTest, KeyframesOfOneViewLeaveTheStandInNotAScaleOfZero) {
+  // Keyframes of a covered camera, taken by travel or loaded from a map: their pairs kUnrelatedGap
+  // apart differ by nothing. A scale of 0 would read every later change as none, for good.
+  const DescriptorExtractor extractor(GetParam());
+  AppearanceKeyframes keyframes(GetParam(), 0.4);
+  const cv::Mat covered = extractor.compute(cv::Mat(120, 160, CV_8UC1, cv::Scalar(0)));
+  for (int i = 0; i < AppearanceKeyframes::kUnrelatedGap + AppearanceKeyframes::kScaleSamples; ++i) {
+    keyframes.keep(covered);
+  }
+  EXPECT_GT(keyframes.scale(), 0.0);
+  cv::RNG rng(7);
+  EXPECT_GT(keyframesOf(keyframes, extractor, drive(0.0, 12.0, 50, rng)), 10);
+}
+
 TEST_P(AppearanceKeyframesTest, AStandingCamerasNoiseAveragesOutOfTheReference) {
   // A clean keyframe, then a standing camera whose noise (up to 16 grey levels) changes its HOG
   // descriptor by about 0.75 of min_change. Once the noisy frames join the reference, a frame is
