@@ -13,7 +13,7 @@ namespace mrs_vpr {
 float costSpread(const std::vector<float>& costs) {
   const std::size_t step = std::max<std::size_t>(1, costs.size() / kSpreadSamples);
   std::vector<float> samples;
-  samples.reserve(std::min(costs.size(), static_cast<std::size_t>(kSpreadSamples) + 1));
+  samples.reserve((costs.size() + step - 1) / step);
   for (std::size_t i = 0; i < costs.size(); i += step) {
     if (std::isfinite(costs[i])) samples.push_back(costs[i]);
   }

@@ -22,11 +22,13 @@ namespace mrs_vpr {
  */
 
 /// Robust standard deviation of the finite costs: 1.4826 x their median absolute deviation, so that
-/// the few ends near the true place do not inflate it. Reads at most kSpreadSamples evenly spaced
-/// costs, which estimates it to a few percent at any map size. 0 when fewer than 3 costs are finite.
+/// the few ends near the true place do not inflate it. Reads every (size / kSpreadSamples)-th cost:
+/// all of a table shorter than 2 x kSpreadSamples, and from kSpreadSamples to under twice that many
+/// evenly spaced costs of a longer one, which estimates it to a few percent at any map size. 0 when
+/// fewer than 3 costs are finite.
 float costSpread(const std::vector<float>& costs);
 
-/// Costs read by costSpread at most.
+/// Evenly spaced costs that costSpread reads at least from a long table (and fewer than twice as many).
 constexpr int kSpreadSamples = 4096;
 
 /// Fewest rivals (finite ends outside the answer's exclusion window) a confidence needs. The bound

@@ -149,18 +149,22 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   const int winner = static_cast<int>(lowest - cost.begin());
 
   // The rival may lie on the answer's own slope, just outside its exclusion window: make sure every
-  // end there is known. Then the spread's sample.
+  // end there is known. Then the spread's sample. An end is queued once (marked known as it is), so
+  // that no two threads compute it and it is counted once.
   std::vector<EndRange> missing;
+  const auto queue = [&](int end) {
+    if (known[static_cast<std::size_t>(end)]) return;
+    known[static_cast<std::size_t>(end)] = 1;
+    missing.push_back({end, end + 1});
+  };
   for (const EndRange& range : windowsAround({winner}, sequence.match_exclusion, columns)) {
-    for (int end = range.begin; end < range.end; ++end) {
-      if (!known[static_cast<std::size_t>(end)]) missing.push_back({end, end + 1});
-    }
+    for (int end = range.begin; end < range.end; ++end) queue(end);
   }
   std::vector<int> sampled;
   for (int end = 0; end < columns; end += spreadStep(columns)) {
     if (!std::isfinite(first.cost[static_cast<std::size_t>(end)])) continue;  // No trajectory: costSpread skips it.
     sampled.push_back(end);
-    if (!known[static_cast<std::size_t>(end)]) missing.push_back({end, end + 1});
+    queue(end);
   }
   computeRanges(missing);
   std::vector<float> samples;
