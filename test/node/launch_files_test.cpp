@@ -1,6 +1,6 @@
 // The launch files' arguments: a parameter file's values stay unless an argument is given
-// (roslaunch --dump-params), and topics are remapped only when asked (roslaunch --args); no master
-// needed.
+// (roslaunch --dump-params), topics are remapped only when asked (roslaunch --args), and an earlier
+// launch's parameters are cleared first (roslaunch's loader); no master needed.
 
 #include <gtest/gtest.h>
 
@@ -57,6 +57,18 @@ std::map<std::string, std::string> nodeRemappings(const std::string& launch, con
     }
   }
   return remappings;
+}
+
+/// The namespaces roslaunch empties before it sets the parameters of `roslaunch mrs_vpr LAUNCH`
+/// (its nodes' clear_params), as its own loader reads the file; empty when it cannot.
+std::vector<std::string> clearedNamespaces(const std::string& launch) {
+  const std::string script = R"(
+import sys, roslaunch.config, roslaunch.rlutil
+files = roslaunch.rlutil.resolve_launch_arguments(["mrs_vpr", sys.argv[1]])
+sys.argv = sys.argv[:1] + sys.argv[2:]  # The launch arguments (name:=value), where roslaunch reads them.
+print("\n".join(roslaunch.config.load_config_default(files, None).clear_params))
+)";
+  return outputLines("/usr/bin/python3 -c '" + script + "' " + launch);
 }
 
 class LaunchFilesTest : public ::testing::TestWithParam<std::string> {
@@ -125,6 +137,13 @@ TEST_P(LaunchFilesTest, ArgumentsGivenOverrideTheParameterFile) {
   EXPECT_EQ(parameters.at("auto_query_period"), "1.5");
   EXPECT_EQ(parameters.at("image_transport"), "raw");
   EXPECT_EQ(parameters.at("database"), "/maps/other.db");
+}
+
+TEST_P(LaunchFilesTest, WhatAnEarlierLaunchLeftOnTheMasterIsClearedFirst) {
+  // Otherwise a parameter that neither the file nor an argument sets keeps an earlier launch's value:
+  // its image transport (the node then waits for frames on another topic), its map database.
+  const std::vector<std::string> cleared = clearedNamespaces(launch());
+  EXPECT_EQ(cleared, std::vector<std::string>{"/mrs_vpr/"});
 }
 
 TEST_P(LaunchFilesTest, LoopClosureStampsStayOnTheNodesOwnTopicUnlessATopicIsGiven) {
