@@ -19,7 +19,8 @@ void validate(const TravelSettings& settings) {
     throw std::invalid_argument(message.str());
   }
   if (settings.min_travel > 0.0 && !node::TravelPolicy::measurableBetween(settings.odom_frame, settings.base_frame)) {
-    throw std::invalid_argument("keyframes by travel need two different, non-empty frames; got odom frame '" +
+    throw std::invalid_argument("keyframes by travel need two different, non-empty frames without a leading '/' "
+                                "(tf2 refuses it); got odom frame '" +
                                 settings.odom_frame + "' and base frame '" + settings.base_frame + "'");
   }
 }

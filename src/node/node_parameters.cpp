@@ -245,8 +245,9 @@ void NodeParameters::validate() const {
     throwPrivate(error);
   }
   if (min_travel > 0.0 && !TravelPolicy::measurableBetween(odom_frame, base_frame)) {
-    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 "
-                                "(got '" + odom_frame + "' and '" + base_frame + "')");
+    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames, without a leading "
+                                "'/' (tf2 refuses it), when ~min_travel > 0 (got '" + odom_frame + "' and '" +
+                                base_frame + "')");
   }
 }
 

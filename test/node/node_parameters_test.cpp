@@ -175,10 +175,13 @@ TEST(NodeParameters, TravelNeedsTwoDifferentFramesOnlyWhenOn) {
   EXPECT_EQ(errorOf(params), "");  // ~min_travel 0: the frames are not used.
   params.min_travel = 0.5;
   EXPECT_EQ(errorOf(params),
-            "~odom_frame and ~base_frame must name two different tf frames when ~min_travel > 0 (got '' and "
-            "'base_link')");
+            "~odom_frame and ~base_frame must name two different tf frames, without a leading '/' (tf2 refuses it), "
+            "when ~min_travel > 0 (got '' and 'base_link')");
   params.odom_frame = "base_link";
   EXPECT_NE(errorOf(params), "");
+  // tf1's spelling: tf2 would refuse every lookup, and every image would be skipped as without a pose.
+  params.odom_frame = "/map";
+  EXPECT_NE(errorOf(params).find("got '/map' and 'base_link'"), std::string::npos) << errorOf(params);
   params.odom_frame = "map";
   EXPECT_EQ(errorOf(params), "");
   params.tf_timeout = 0.0;

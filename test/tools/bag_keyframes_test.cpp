@@ -109,11 +109,14 @@ TEST_F(BagKeyframesTest, BadSettingsAreRefused) {
     const std::string message = testing_support::invalidArgumentMessage([&] { BagKeyframes keyframes(bag(), travel); });
     EXPECT_NE(message.find("min_travel must be"), std::string::npos) << bad << ": " << message;
   }
-  TravelSettings same;
-  same.min_travel = 1.0;
-  same.base_frame = "odom";
-  const std::string message = testing_support::invalidArgumentMessage([&] { BagKeyframes keyframes(bag(), same); });
-  EXPECT_NE(message.find("two different, non-empty frames"), std::string::npos) << message;
+  for (const std::string& base_frame : {"odom", "/base_link"}) {
+    TravelSettings refused;
+    refused.min_travel = 1.0;
+    refused.base_frame = base_frame;
+    const std::string message =
+        testing_support::invalidArgumentMessage([&] { BagKeyframes keyframes(bag(), refused); });
+    EXPECT_NE(message.find("two different, non-empty frames without a leading '/'"), std::string::npos) << message;
+  }
 }
 
 TEST_F(BagKeyframesTest, ReadKeyframesTakesCountKeyframesFromStart) {

@@ -20,10 +20,12 @@ class TravelPolicy {
  public:
   explicit TravelPolicy(double min_travel) : min_travel_(min_travel) {}
 
-  /// Whether travel can be measured between these frames: two different, non-empty tf frames.
+  /// Whether travel can be measured between these frames: two different tf frame names.
   static bool measurableBetween(const std::string& odom_frame, const std::string& base_frame) {
-    return !odom_frame.empty() && !base_frame.empty() && odom_frame != base_frame;
+    return isFrameName(odom_frame) && isFrameName(base_frame) && odom_frame != base_frame;
   }
+  /// A name tf2 looks up: not empty, and without tf1's leading '/', which tf2 refuses in every lookup.
+  static bool isFrameName(const std::string& frame) { return !frame.empty() && frame.front() != '/'; }
 
   /// Whether frames are chosen by distance at all (min_travel > 0).
   bool enabled() const { return min_travel_ > 0.0; }
