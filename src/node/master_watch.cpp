@@ -98,6 +98,8 @@ MasterWatch::MasterWatch(double period) {
     services_ = registeredServices();
   } catch (const std::exception&) {
     // Not answering already: the first check reports it.
+  } catch (const XmlRpc::XmlRpcException&) {
+    // A reply of unexpected types: the next check asks again.
   }
   nh_.setCallbackQueue(&queue_);
   // Wall time: a simulated /clock stops with the master that publishes it.
@@ -118,12 +120,16 @@ std::string MasterWatch::masterIdentity() const {
     XmlRpcValue params = callerOnly();
     params[1] = "/run_id";
     try {
-      run_id = static_cast<std::string>(callMaster("getParam", params));
+      XmlRpcValue value = callMaster("getParam", params);
+      // Set by hand to another type, it still tells this master from a new one.
+      run_id = value.getType() == XmlRpcValue::TypeString ? static_cast<std::string>(value) : value.toXml();
     } catch (const std::exception&) {
       // A master started without roslaunch (rosmaster --core) has no /run_id; its pid still differs.
     }
     return run_id + " (pid " + std::to_string(pid) + ")";
   } catch (const std::exception&) {
+    return "";
+  } catch (const XmlRpc::XmlRpcException&) {  // No std::exception: a reply of unexpected types.
     return "";
   }
 }
@@ -173,6 +179,16 @@ std::string MasterWatch::reregister() const {
          std::to_string(services) + " services";
 }
 
+namespace {
+
+void reportFailedRegistration(const std::string& identity, const std::string& previous, const std::string& reason) {
+  ROS_ERROR("mrs_vpr: the ROS master at %s was restarted (now %s, was %s) and this node could not register with "
+            "it again (%s): restart this node",
+            ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), reason.c_str());
+}
+
+}  // namespace
+
 void MasterWatch::check(const ros::WallTimerEvent&) {
   const std::string previous = state_.identity();
   const std::string identity = masterIdentity();
@@ -193,9 +209,9 @@ void MasterWatch::check(const ros::WallTimerEvent&) {
                  "values it read at start-up.",
                  ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), summary.c_str());
       } catch (const std::exception& error) {
-        ROS_ERROR("mrs_vpr: the ROS master at %s was restarted (now %s, was %s) and this node could not register "
-                  "with it again (%s): restart this node",
-                  ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), error.what());
+        reportFailedRegistration(identity, previous, error.what());
+      } catch (const XmlRpc::XmlRpcException& error) {
+        reportFailedRegistration(identity, previous, "a reply of unexpected types: " + error.getMessage());
       }
       break;
     case MasterEvent::kNone:
@@ -206,6 +222,8 @@ void MasterWatch::check(const ros::WallTimerEvent&) {
     services_ = registeredServices();
   } catch (const std::exception&) {
     // The master went away between the two calls: the next check notices.
+  } catch (const XmlRpc::XmlRpcException&) {
+    // A reply of unexpected types: the next check asks again.
   }
 }
 

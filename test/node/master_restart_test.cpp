@@ -53,6 +53,8 @@ class Child {
   Child& operator=(const Child&) = delete;
 
   bool started() const { return pid_ > 0; }
+  /// False once the process has exited (a crash included).
+  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
 
   void stop(int signal) {
     if (pid_ <= 0) return;
@@ -93,6 +95,17 @@ bool lists(int port, int kind, const std::string& node, const std::string& topic
   return false;
 }
 
+/// Sets a parameter on the master, as `rosparam set` does; true when the master accepts it.
+bool setParameter(int port, const std::string& name, const XmlRpcValue& value) {
+  XmlRpc::XmlRpcClient client("localhost", port, "/");
+  XmlRpcValue params;
+  params[0] = std::string("/master_restart_test");
+  params[1] = name;
+  params[2] = value;
+  XmlRpcValue result;
+  return client.execute("setParam", params, result) && static_cast<int>(result[0]) == 1;
+}
+
 bool publishes(int port, const std::string& node, const std::string& topic) { return lists(port, 0, node, topic); }
 bool subscribes(int port, const std::string& node, const std::string& topic) { return lists(port, 1, node, topic); }
 
@@ -105,9 +118,8 @@ bool waitFor(const std::function<bool()>& condition, double seconds) {
   return condition();
 }
 
-TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
-  const int port = freePort();
-  ASSERT_GT(port, 0);
+/// This process's environment for a master on `port` of this machine.
+std::vector<std::string> environmentFor(int port) {
   std::vector<std::string> environment;
   for (char** entry = environ; *entry != nullptr; ++entry) {
     const std::string text = *entry;
@@ -118,6 +130,13 @@ TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
   }
   environment.push_back("ROS_MASTER_URI=http://localhost:" + std::to_string(port) + "/");
   environment.push_back("ROS_HOSTNAME=localhost");
+  return environment;
+}
+
+TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
+  const int port = freePort();
+  ASSERT_GT(port, 0);
+  const std::vector<std::string> environment = environmentFor(port);
   const std::vector<std::string> master_command{"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)};
   const auto master_up = [port] { return masterSays(port, "getPid"); };
   const auto query_registered = [port] { return masterSays(port, "lookupService", "/mrs_vpr/query"); };
@@ -145,6 +164,27 @@ TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
   EXPECT_TRUE(publishes(port, "/mrs_vpr", "/mrs_vpr/loop_closure"));
   EXPECT_TRUE(subscribes(port, "/mrs_vpr", "/image"));
 
+  node.stop(SIGINT);
+}
+
+TEST(MasterRestart, ARunIdThatIsNoStringDoesNotStopTheNode) {
+  // The master's /run_id tells a restarted master from the same one. Set by hand to a number, its
+  // reading threw XmlRpc's own exception, which is no std::exception, and aborted the node.
+  const int port = freePort();
+  ASSERT_GT(port, 0);
+  const std::vector<std::string> environment = environmentFor(port);
+  Child master({"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)}, environment);
+  ASSERT_TRUE(master.started());
+  ASSERT_TRUE(waitFor([port] { return masterSays(port, "getPid"); }, 30.0)) << "rosmaster did not start";
+  ASSERT_TRUE(setParameter(port, "/run_id", XmlRpcValue(5)));
+  Child node({MRS_VPR_NODE_PATH, "__name:=mrs_vpr"}, environment);
+  ASSERT_TRUE(node.started());
+  EXPECT_TRUE(waitFor([port] { return masterSays(port, "lookupService", "/mrs_vpr/query"); }, 30.0));
+  // While it runs, too: the watch reads /run_id every second.
+  ASSERT_TRUE(setParameter(port, "/run_id", XmlRpcValue(6)));
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
+  EXPECT_TRUE(node.running());
+  EXPECT_TRUE(masterSays(port, "lookupService", "/mrs_vpr/query"));
   node.stop(SIGINT);
 }
 
