@@ -58,7 +58,9 @@ void PlaceRecognitionNode::startOverOnNewMap() {
     keyframe_policy_.reset();
     travel_policy_.reset();
     standing_frames_.clear();
+    pending_restatements_.clear();
   }
+  last_closure_.reset();
   ++map_version_;
   // Continuous mode's test sequences end in keyframes the camera adds from now on, not in a loaded
   // map's own. The services and continuous mode run on the query thread.

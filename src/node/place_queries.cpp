@@ -145,20 +145,31 @@ std::string PlaceRecognitionNode::publishLoopClosure(const std_msgs::Header& hea
 void PlaceRecognitionNode::publishStandingClosures(const std_msgs::Header& header, const PlaceAnswer& answer,
                                                    const QuerySequence::Response& response) {
   if (!response.accepted || params_.auto_query_period <= 0.0) return;
+  last_closure_ = AcceptedClosure{header, answer, response};
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    pending_restatements_.accepted(answer.localised_stamp);
+  }
+  restateLastClosure();
+}
+
+void PlaceRecognitionNode::restateLastClosure() {
+  if (!last_closure_) return;
   std::vector<Stamp> standing;
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    standing = standing_frames_.of(answer.localised_stamp);
+    standing = pending_restatements_.take(standing_frames_);
   }
   for (const Stamp stamp : standing) {
-    std_msgs::Header restated = header;
+    std_msgs::Header restated = last_closure_->header;
     restated.stamp = rosTimeOf(stamp);
-    publishLoopClosure(restated, answer, response, header.stamp);
+    publishLoopClosure(restated, last_closure_->answer, last_closure_->response, last_closure_->header.stamp);
   }
 }
 
 void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   if (!flushWaitingKeyframes()) return;
+  restateLastClosure();  // A stop at the keyframe it localised adds no keyframe, so no new question.
   const std::uint64_t version = map_version_.load();
   if (version == auto_query_version_) {
     return;  // nothing new since the last answer

@@ -69,6 +69,41 @@ TEST(StandingFrames, NothingBeforeTheFirstKeyframeNorForUnstampedOrAfterClear) {
   EXPECT_TRUE(standing.of(at(8.0)).empty());
 }
 
+TEST(PendingRestatements, TheNewestKeyframesStopIsRestatedAsItComesNotOnlyWhenItsAnswerCame) {
+  StandingFrames standing(1.0);
+  PendingRestatements pending;
+  standing.keyframe(at(10.0));
+  pending.accepted(at(10.0));  // A causal question about the newest keyframe, before the stop.
+  EXPECT_TRUE(pending.take(standing).empty());
+  for (double t = 10.1; t < 12.55; t += 0.1) standing.tooSimilar(at(t));  // 2.5 s of the stop
+  const Stamps first = pending.take(standing);
+  ASSERT_EQ(first.size(), 2U);
+  EXPECT_TRUE(pending.take(standing).empty());  // Each frame once.
+  for (double t = 12.6; t < 13.55; t += 0.1) standing.tooSimilar(at(t));
+  const Stamps second = pending.take(standing);
+  ASSERT_EQ(second.size(), 1U);
+  EXPECT_GT(second[0], first[1]);
+  // The robot drives on: the next keyframe's frames are not this closure's.
+  standing.keyframe(at(14.0));
+  for (double t = 14.1; t < 16.05; t += 0.1) standing.tooSimilar(at(t));
+  EXPECT_TRUE(pending.take(standing).empty());
+}
+
+TEST(PendingRestatements, AnAnswerAboutAnOlderKeyframeTakesItsWholeStopOnceAndClearForgetsIt) {
+  StandingFrames standing(1.0);
+  PendingRestatements pending;
+  standing.keyframe(at(10.0));
+  for (double t = 10.1; t < 13.05; t += 0.1) standing.tooSimilar(at(t));
+  standing.keyframe(at(14.0));
+  pending.accepted(at(10.0));  // A centred question, once the robot has driven on.
+  EXPECT_EQ(pending.take(standing), standing.of(at(10.0)));
+  EXPECT_TRUE(pending.take(standing).empty());
+  pending.accepted(at(10.0));  // Accepted again (another question): restated again.
+  EXPECT_EQ(pending.take(standing).size(), 3U);
+  pending.clear();
+  EXPECT_TRUE(pending.take(standing).empty());
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

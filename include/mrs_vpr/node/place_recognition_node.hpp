@@ -128,10 +128,12 @@ class PlaceRecognitionNode {
   /// returns why an accepted match could not go there (empty otherwise).
   std::string publishLoopClosure(const std_msgs::Header& header, const PlaceAnswer& answer,
                                  const QuerySequence::Response& response, const ros::Time& localised_keyframe_stamp);
-  /// An accepted answer about map keyframes, restated for the frames its localised keyframe stands for
-  /// (standing_frames.hpp).
+  /// An accepted answer of continuous mode becomes the one restated for the frames its localised
+  /// keyframe stands for (standing_frames.hpp), and those it has are restated now.
   void publishStandingClosures(const std_msgs::Header& header, const PlaceAnswer& answer,
                                const QuerySequence::Response& response);
+  /// Restates the last accepted answer for the standing frames its keyframe gained since.
+  void restateLastClosure();
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 
@@ -162,6 +164,15 @@ class PlaceRecognitionNode {
   std::uint64_t auto_query_version_ = 0;      // map_version_ at the last continuous-mode query
   int auto_query_size_ = 0;                   // map frames at the last continuous-mode query
   double auto_query_ms_ = 0.0;                // what its last query took
+  /// Continuous mode's last accepted answer and its stamp, restated for its keyframe's standing frames
+  /// (query thread only; the frames under state_mutex_).
+  struct AcceptedClosure {
+    std_msgs::Header header;
+    PlaceAnswer answer;
+    QuerySequence::Response response;
+  };
+  std::optional<AcceptedClosure> last_closure_;
+  PendingRestatements pending_restatements_;
   MapInfo last_map_info_;
   bool map_info_published_ = false;
 

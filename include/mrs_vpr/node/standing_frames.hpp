@@ -72,5 +72,36 @@ class StandingFrames {
   std::deque<Keyframe> keyframes_;
 };
 
+/**
+ * The standing frames of continuous mode's last accepted keyframe that are still to be restated: those
+ * it has when its answer comes, and those it gains afterwards. A causal question (or one of two
+ * keyframes) localises the newest keyframe before the robot's stop there has given any frame, and a
+ * stop adds no keyframe that would bring a new question; so they are taken again at every period.
+ * No ROS inside; the caller locks.
+ */
+class PendingRestatements {
+ public:
+  /// An answer localising `keyframe` was accepted: its frames are restated from the first.
+  void accepted(Stamp keyframe) {
+    keyframe_ = keyframe;
+    restated_ = 0;
+  }
+
+  /// The frames of the last accepted keyframe not taken yet, oldest first.
+  std::vector<Stamp> take(const StandingFrames& frames) {
+    const std::vector<Stamp> all = frames.of(keyframe_);
+    if (all.size() <= restated_) return {};
+    std::vector<Stamp> fresh(all.begin() + static_cast<std::ptrdiff_t>(restated_), all.end());
+    restated_ = all.size();
+    return fresh;
+  }
+
+  void clear() { accepted(Stamp()); }
+
+ private:
+  Stamp keyframe_;
+  std::size_t restated_ = 0;
+};
+
 }  // namespace node
 }  // namespace mrs_vpr
