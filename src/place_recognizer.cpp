@@ -342,7 +342,7 @@ PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, 
                                 " images hold fewer than 2 keyframes: the view hardly changes across them "
                                 "(min_appearance_change " + numberText(recognizer_.min_appearance_change) + ")");
   }
-  PlaceAnswer answer = match(keyframes, method, explanation);
+  PlaceAnswer answer = matchSequence(keyframes.view(), method, explanation, frames.size());
   if (answer.localised_row >= 0) answer.localised_row = kept.at(static_cast<std::size_t>(answer.localised_row));
   return answer;
 }
@@ -379,6 +379,11 @@ PlaceAnswer PlaceRecognizer::match(const DescriptorSequence& test_sequence, cons
 
 PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string& method,
                                    MatchExplanation* explanation) {
+  return matchSequence(test_sequence, method, explanation, -1);
+}
+
+PlaceAnswer PlaceRecognizer::matchSequence(SequenceView test_sequence, const std::string& method,
+                                           MatchExplanation* explanation, int images) {
   matcherFor(method);  // An unknown method is reported before anything else.
   if (test_sequence.count < 2) {
     throw std::invalid_argument("a test sequence needs at least 2 images, got " + std::to_string(test_sequence.count));
@@ -388,8 +393,13 @@ PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     const int frames = framesToSearchLocked();
     if (test_sequence.count > frames) {
-      throw std::invalid_argument("the test sequence has " + std::to_string(test_sequence.count) +
-                                  " images but the reference map only " + std::to_string(frames) + " frames");
+      // Counted as the user gave them: images kept as keyframes differ from the images passed.
+      const std::string held = images < 0 || images == test_sequence.count
+                                   ? " has " + std::to_string(test_sequence.count) + " frames"
+                                   : "'s " + std::to_string(images) + " images hold " +
+                                         std::to_string(test_sequence.count) + " keyframes";
+      throw std::invalid_argument("the test sequence" + held + " but the reference map only " +
+                                  std::to_string(frames) + " frames");
     }
     // The search may take a while; frames arriving meanwhile wait in the pending buffer.
     result = answer(map_.view(), test_sequence, method, explanation);

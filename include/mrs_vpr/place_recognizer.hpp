@@ -201,6 +201,10 @@ class PlaceRecognizer {
   };
 
   const SequenceMatcher& matcherFor(const std::string& method) const;
+  /// match() of a test sequence that holds the keyframes of `images` images (-1: its frames were given
+  /// as they are), which a sequence longer than the map is told in.
+  PlaceAnswer matchSequence(SequenceView test_sequence, const std::string& method, MatchExplanation* explanation,
+                            int images);
   /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock, before and
   /// apart from the map's.
   RepeatedViews repeatedViews() const;

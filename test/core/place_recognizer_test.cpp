@@ -182,6 +182,13 @@ TEST(PlaceRecognizer, FramesAtTheCameraRateAreKeyframedAndTheAnswerNamesTheFrame
   for (int i = 0; i < 10; ++i) standing.append(frames.descriptorRow(0));
   EXPECT_NE(errorOf([&] { recognizer.matchKeyframesOf(standing); }).find("hold fewer than 2 keyframes"),
             std::string::npos);
+  // Longer than the map: told in the images given and the keyframes they hold, not the one as the other.
+  PlaceRecognizer small(centred);
+  for (int i = 0; i < 30; ++i) small.addFrame(route().reference[static_cast<std::size_t>(i)]);
+  const std::string map_size = " but the reference map only " + std::to_string(small.size()) + " frames";
+  EXPECT_EQ(errorOf([&] { small.matchKeyframesOf(frames); }),
+            "the test sequence's 200 images hold " + std::to_string(answer.query_length) + " keyframes" + map_size);
+  EXPECT_EQ(errorOf([&] { small.match(frames); }), "the test sequence has 200 frames" + map_size);
 }
 
 TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsable) {
