@@ -53,7 +53,7 @@ def _one_of(name, value, allowed):
         raise ValueError("%s must be %s, got %s" % (name, " or ".join(map(repr, allowed)), reprlib.repr(value)))
 
 
-def _ground_truth_dict(ground_truth, reference_frames):
+def _ground_truth_dict(ground_truth, query_frames, reference_frames):
     """None, a dict {query frame: [map frames]} or a sequence of one map frame per query frame (< 0:
     none) as the core's ground truth. Anything else raises ValueError naming the bad entry (the core
     checks a dict's entries and the range of every frame)."""
@@ -76,6 +76,9 @@ def _ground_truth_dict(ground_truth, reference_frames):
             raise ValueError("ground truth row of query frame %d lists reference frame %d, but the reference has %d "
                              "frames" % (query, reference, reference_frames))
         truth[query] = [reference] if reference >= 0 else []
+    if len(truth) != query_frames:  # A shorter one would drop the frames it misses without a word.
+        raise ValueError("a ground truth sequence holds one map frame per query frame: %d for %d query frames"
+                         % (len(truth), query_frames))
     return truth
 
 
@@ -114,7 +117,7 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     length = parameters["sequence/sequence_length"]
     alignment = parameters["sequence/alignment"]
     frames = len(query_images)
-    truths = _bindings.truths(_ground_truth_dict(ground_truth, len(recognizer)), frames, len(recognizer))
+    truths = _bindings.truths(_ground_truth_dict(ground_truth, frames, len(recognizer)), frames, len(recognizer))
     records = []
     if protocol == "per-frame":
         evaluated = _bindings.per_frame_queries(frames, length, alignment)
@@ -125,6 +128,8 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
             if truths[query] is not None:
                 records.append(_bindings.query_record(query, truths[query], matches[query], per_query_ms))
     else:  # "global"
+        # Every image first, as match_every_frame checks them: a window meets a bad one only if it covers it.
+        recognizer._check_images(query_images, channel_order, "the traversal")
         for first, count, _ in _bindings.global_queries(frames, length, queries, seed, alignment):
             start = time.perf_counter()
             answer = recognizer.match(query_images[first:first + count], method, channel_order)

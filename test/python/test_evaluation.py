@@ -155,6 +155,9 @@ def test_a_bad_argument_is_refused_before_any_query_is_matched(route, keywords, 
         ({1, 2}, "ground_truth must be None, a dict {query frame: [map frames]} or a sequence of one map frame per "
                  "query frame, got set"),
         ({5: 3}, "ground truth maps a query frame to a list of map frames, all integers; got 5: 3"),
+        # Before, the query frames it missed were dropped without a word.
+        (list(range(40)), "a ground truth sequence holds one map frame per query frame: 40 for 100 query frames"),
+        ([0] * 101, "a ground truth sequence holds one map frame per query frame: 101 for 100 query frames"),
     ],
 )
 def test_ground_truth_of_another_shape_is_refused_naming_the_entry(route, ground_truth, message):
@@ -173,6 +176,26 @@ def test_a_recognizer_and_images_are_checked_first(route, short_sequences):
         mrs_vpr.evaluate(short_sequences, 5, protocol="global")
     assert str(error.value) == (
         "query_images must be a sequence of images (a list, or an N x H x W or N x H x W x C array), got int")
+
+
+@pytest.mark.parametrize("protocol", ["per-frame", "global"])
+def test_every_image_is_checked_before_any_query_is_matched(route, protocol):
+    # Before, the global protocol met a bad image only in a window that covered it, after matching others.
+    # The per-frame protocol's match_every_frame checks them itself, before it matches.
+    recognizer = (MatchesNothing if protocol == "global" else mrs_vpr.PlaceRecognizer)(sequence_length=20,
+                                                                                        **ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"][:100])
+    images = list(route["query"][:100])
+    images[99] = None
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(recognizer, images, protocol=protocol, queries=5)
+    assert str(error.value).startswith("image 99 of the traversal: ")
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(recognizer, route["query"][0], protocol=protocol)  # One image, not a sequence.
+    assert str(error.value).startswith("the traversal must be a sequence of images")
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(recognizer, dict(enumerate(route["query"][:100])), protocol=protocol)
+    assert str(error.value) == "the traversal must be a sequence of images, got dict"
 
 
 def test_arguments_at_the_ends_of_their_ranges_evaluate(route, short_sequences):
