@@ -7,6 +7,7 @@ import collections.abc
 import operator
 import reprlib
 import time
+import warnings
 
 import numpy as np
 
@@ -117,6 +118,11 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     length = parameters["sequence/sequence_length"]
     alignment = parameters["sequence/alignment"]
     frames = len(query_images)
+    if ground_truth is None and recognizer.frames_left_out > 0:
+        warnings.warn("without ground_truth, query frame i is taken to show map frame i, but the map left out %d "
+                      "of the frames offered to it (keyframes by min_appearance_change): its frame i is not the "
+                      "i-th image. Give ground_truth in map frames, or build the map with "
+                      "min_appearance_change=0" % recognizer.frames_left_out, UserWarning, stacklevel=2)
     truths = _bindings.truths(_ground_truth_dict(ground_truth, frames, len(recognizer)), frames, len(recognizer))
     records = []
     if protocol == "per-frame":

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -38,9 +39,16 @@ class Recognizer {
 
   Settings settings() const { return {recognizer_.parameters(), recognizer_.recognizerParameters()}; }
 
+  /// Frames offered since the map was last emptied or loaded that it did not keep: while there are
+  /// any, map frame i is not the i-th frame offered (which evaluate() without ground truth assumes).
+  long long framesLeftOut() const { return frames_left_out_.load(); }
+  void leftOut(long long frames) { frames_left_out_ += frames; }
+  void forgetLeftOut() { frames_left_out_ = 0; }
+
  private:
   PlaceRecognizer recognizer_;
   PersistentMap map_;
+  std::atomic<long long> frames_left_out_{0};
 };
 
 }  // namespace
@@ -58,7 +66,10 @@ void bindRecognizer(py::module_& m) {
             const Stamp exact = coreStamp(stamp);
             py::gil_scoped_release released;
             // The node's path: the map keeps the frame only if it is a keyframe.
-            return self.map().offer(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+            const bool kept =
+                self.map().offer(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+            self.leftOut(kept ? 0 : 1);
+            return kept;
           },
           py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
           "Offers a camera frame to the map; True when it became a keyframe. A frame too similar to the last "
@@ -93,6 +104,7 @@ void bindRecognizer(py::module_& m) {
                               ? 1
                               : 0;
             }
+            self.leftOut(descriptors.size() - admitted);
             return admitted;
           },
           py::arg("images"), py::arg("stamps") = py::none(), py::arg("channel_order") = "bgr",
@@ -182,7 +194,9 @@ void bindRecognizer(py::module_& m) {
           "load",
           [](Recognizer& self, const std::string& path) {
             py::gil_scoped_release released;
-            return self.map().load(path);
+            const int frames = self.map().load(path);
+            self.forgetLeftOut();
+            return frames;
           },
           py::arg("path"),
           "Replaces the map by the map database `path` (of this recognizer's front end); returns its frames.")
@@ -190,10 +204,16 @@ void bindRecognizer(py::module_& m) {
           "reset",
           [](Recognizer& self) {
             py::gil_scoped_release released;
-            return self.map().reset();
+            const int frames = self.map().reset();
+            self.forgetLeftOut();
+            return frames;
           },
           "Removes every frame; returns how many there were.")
       .def("__len__", [](Recognizer& self) { return self.core().size(); })
+      .def_property_readonly(
+          "frames_left_out", [](Recognizer& self) { return self.framesLeftOut(); },
+          "Frames offered since the map was last emptied or loaded that it did not keep (too similar to the "
+          "last keyframe, or the map full): while there are any, map frame i is not the i-th frame offered.")
       .def_property_readonly(
           "pending_frames", [](Recognizer& self) { return self.core().pending(); },
           "Frames added while a query held the map, waiting to enter it.")
