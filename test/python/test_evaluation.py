@@ -202,7 +202,7 @@ def test_every_image_is_checked_before_any_query_is_matched(route, protocol):
 
 def test_without_ground_truth_a_map_that_left_frames_out_is_warned_about(route):
     # Query frame i is then taken to show map frame i, which is no longer the i-th image offered (on
-    # Nordland at the defaults: top-1 0.024 where the same map frame by frame gives 0.99).
+    # Nordland at sequence_length 10: top-1 0.024, against 0.863 with every frame kept).
     recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
     recognizer.add_frames(route["reference"][:100])
     assert recognizer.add_frame(route["reference"][99]) is False  # The same view again: left out.
