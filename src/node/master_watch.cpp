@@ -61,13 +61,27 @@ XmlRpcValue callSelf(const std::string& method, const XmlRpcValue& params) {
   return result[2];
 }
 
+/// `read` over a reply of the master or of this node. XmlRpc reports a reply of unexpected types (a
+/// /run_id set by hand to a number, a listing of another shape) with its own exception, which is no
+/// std::exception and would end the node: it becomes std::runtime_error, as every other failure here.
+template <typename Read>
+auto readReply(const std::string& what, Read read) -> decltype(read()) {
+  try {
+    return read();
+  } catch (const XmlRpc::XmlRpcException& error) {
+    throw std::runtime_error(what + ": a reply of unexpected types (" + error.getMessage() + ")");
+  }
+}
+
 /// [[topic, type], ...] of a slave API listing.
 std::vector<std::pair<std::string, std::string>> topicsOf(XmlRpcValue listing) {
-  std::vector<std::pair<std::string, std::string>> topics;
-  for (int i = 0; i < listing.size(); ++i) {
-    topics.emplace_back(static_cast<std::string>(listing[i][0]), static_cast<std::string>(listing[i][1]));
-  }
-  return topics;
+  return readReply("a topic listing", [&] {
+    std::vector<std::pair<std::string, std::string>> topics;
+    for (int i = 0; i < listing.size(); ++i) {
+      topics.emplace_back(static_cast<std::string>(listing[i][0]), static_cast<std::string>(listing[i][1]));
+    }
+    return topics;
+  });
 }
 
 }  // namespace
@@ -98,8 +112,6 @@ MasterWatch::MasterWatch(double period) {
     services_ = registeredServices();
   } catch (const std::exception&) {
     // Not answering already: the first check reports it.
-  } catch (const XmlRpc::XmlRpcException&) {
-    // A reply of unexpected types: the next check asks again.
   }
   nh_.setCallbackQueue(&queue_);
   // Wall time: a simulated /clock stops with the master that publishes it.
@@ -115,7 +127,7 @@ MasterWatch::~MasterWatch() {
 
 std::string MasterWatch::masterIdentity() const {
   try {
-    const int pid = static_cast<int>(callMaster("getPid", callerOnly()));
+    const int pid = readReply("getPid", [] { return static_cast<int>(callMaster("getPid", callerOnly())); });
     std::string run_id = "no run_id";
     XmlRpcValue params = callerOnly();
     params[1] = "/run_id";
@@ -129,23 +141,23 @@ std::string MasterWatch::masterIdentity() const {
     return run_id + " (pid " + std::to_string(pid) + ")";
   } catch (const std::exception&) {
     return "";
-  } catch (const XmlRpc::XmlRpcException&) {  // No std::exception: a reply of unexpected types.
-    return "";
   }
 }
 
 std::vector<std::string> MasterWatch::registeredServices() const {
   XmlRpcValue state = callMaster("getSystemState", callerOnly());
-  std::vector<std::string> mine;
-  XmlRpcValue& services = state[2];
-  for (int i = 0; i < services.size(); ++i) {
-    for (int j = 0; j < services[i][1].size(); ++j) {
-      if (static_cast<std::string>(services[i][1][j]) == ros::this_node::getName()) {
-        mine.push_back(static_cast<std::string>(services[i][0]));
+  return readReply("getSystemState", [&] {
+    std::vector<std::string> mine;
+    XmlRpcValue& services = state[2];
+    for (int i = 0; i < services.size(); ++i) {
+      for (int j = 0; j < services[i][1].size(); ++j) {
+        if (static_cast<std::string>(services[i][1][j]) == ros::this_node::getName()) {
+          mine.push_back(static_cast<std::string>(services[i][0]));
+        }
       }
     }
-  }
-  return mine;
+    return mine;
+  });
 }
 
 std::string MasterWatch::reregister() const {
@@ -179,16 +191,6 @@ std::string MasterWatch::reregister() const {
          std::to_string(services) + " services";
 }
 
-namespace {
-
-void reportFailedRegistration(const std::string& identity, const std::string& previous, const std::string& reason) {
-  ROS_ERROR("mrs_vpr: the ROS master at %s was restarted (now %s, was %s) and this node could not register with "
-            "it again (%s): restart this node",
-            ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), reason.c_str());
-}
-
-}  // namespace
-
 void MasterWatch::check(const ros::WallTimerEvent&) {
   const std::string previous = state_.identity();
   const std::string identity = masterIdentity();
@@ -209,9 +211,9 @@ void MasterWatch::check(const ros::WallTimerEvent&) {
                  "values it read at start-up.",
                  ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), summary.c_str());
       } catch (const std::exception& error) {
-        reportFailedRegistration(identity, previous, error.what());
-      } catch (const XmlRpc::XmlRpcException& error) {
-        reportFailedRegistration(identity, previous, "a reply of unexpected types: " + error.getMessage());
+        ROS_ERROR("mrs_vpr: the ROS master at %s was restarted (now %s, was %s) and this node could not register "
+                  "with it again (%s): restart this node",
+                  ros::master::getURI().c_str(), identity.c_str(), previous.c_str(), error.what());
       }
       break;
     case MasterEvent::kNone:
@@ -221,9 +223,7 @@ void MasterWatch::check(const ros::WallTimerEvent&) {
   try {
     services_ = registeredServices();
   } catch (const std::exception&) {
-    // The master went away between the two calls: the next check notices.
-  } catch (const XmlRpc::XmlRpcException&) {
-    // A reply of unexpected types: the next check asks again.
+    // The master went away between the two calls (or answered in another shape): the next check asks again.
   }
 }
 
