@@ -18,7 +18,7 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries K] [--lengths 100,200,300]\n"
-    "                              [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
+    "                              [--per-frame-lengths 10,50] [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
     "                              [--drive-alignment-slack S] [--drive-accept-threshold C]\n"
     "                              [--drive-alignment causal|centred]\n"
@@ -50,6 +50,7 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
        "tune (first half of the route) | check (second half) | all: the part whose queries are reported")
       ("queries", po::value(&options.queries)->default_value(options.queries), "K: test sequences of each global row")
       ("lengths", listValue(&options.lengths), "N of the global rows, comma-separated")
+      ("per-frame-lengths", listValue(&options.per_frame_lengths), "ds of the per-frame rows, comma-separated")
       ("references", listValue(&options.references), "1.8k and/or 9k, comma-separated")
       ("threads", po::value(&options.threads)->default_value(options.threads), "threads of both methods")
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
@@ -116,6 +117,9 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
   }
   for (const int length : options.lengths) {
     if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
+  }
+  for (const int length : options.per_frame_lengths) {
+    if (length < 2) throw std::invalid_argument("--per-frame-lengths takes sequence lengths >= 2");
   }
   for (const std::string& size : options.references) {
     if (size != "1.8k" && size != "9k") throw std::invalid_argument("--references takes 1.8k and/or 9k");

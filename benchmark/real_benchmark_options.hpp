@@ -18,6 +18,7 @@ struct RealBenchmarkOptions {
   std::string part = "check";
   int queries = 100;
   std::vector<int> lengths = {100, 200, 300};
+  std::vector<int> per_frame_lengths = {10, 50};  ///< ds of the per-frame rows
   std::vector<std::string> references = {"1.8k", "9k"};
   int threads = 1;
   int tolerance = 5;

@@ -4,7 +4,8 @@
 // from a data folder at run time and builds:
 //   - references of M ~ 1.8k (summer) and M ~ 9k (summer plus real distractors: both seasons
 //     mirrored, summer played backwards, winter mirrored and backwards, the corridor frames);
-//   - known-ground queries from winter (global protocol, N = 100, 200, 300; per-frame, ds = 10, 50);
+//   - known-ground queries from winter (global protocol, N = 100, 200, 300; per-frame, ds = 10, 50 or
+//     --per-frame-lengths);
 //   - out-of-map queries: winter frames of one half of the route against a reference built from the
 //     other half only (its summer frames and the same kinds of distractors), so every accepted
 //     answer is a false loop closure;
@@ -19,7 +20,7 @@
 // made on one and reported on the other (--part). Both methods answer the same queries in one run.
 //
 //   mrs_vpr_real_benchmark --data DIR [--part tune|check|all] [--queries 100] [--lengths 100,200,300]
-//                          [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
+//                          [--per-frame-lengths 10,50] [--references 1.8k,9k] [--threads 1] [--tolerance 5] [--seed 42]
 //                          [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]
 //                          [--drive-alignment-slack S] [--drive-accept-threshold C] [--diagnose] [--json FILE]
 
@@ -188,7 +189,7 @@ int run(int argc, char** argv) {
       }
     }
     if (options.per_frame) {
-      for (int length : {10, 50}) {
+      for (int length : options.per_frame_lengths) {
         const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
         for (const std::string& method : options.methods) {
           const auto matcher = makeBenchMatcher(method, per_frame);

@@ -18,7 +18,7 @@ void runOtherWorld(const RealFrames& frames, const DescriptorSequence& summer, c
   const Reference nordland = stretchOf(summer, 0, summer.size());
   Reference corridor{"corridor", describe(frames.corridor, extractor), {}};
   corridor.route_frame.assign(static_cast<std::size_t>(corridor.descriptors.size()), -1);
-  for (int length : {10, 50}) {
+  for (int length : options.per_frame_lengths) {
     const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (const std::string& method : options.methods) {
       const auto matcher = makeBenchMatcher(method, per_frame);
@@ -40,10 +40,12 @@ void runSmallMaps(const DescriptorSequence& summer, const DescriptorSequence& wi
   const auto stretchBegin = [](int low, int high, int size, int i) {
     return low + i * (high - low - size) / (kStretches - 1);
   };
-  for (int length : {10, 50}) {
+  for (int length : options.per_frame_lengths) {
     const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
     for (int size : {20, 50, 100, 150, 200, 300}) {
-      if (size <= length) continue;
+      // A map must be longer than its test sequences and fit in the part (and the other part) of the route.
+      const bool fits = size <= part_end - part_begin && (!out_of_map || size <= other_end - other_begin);
+      if (size <= length || !fits) continue;
       const std::string setting = " M=" + std::to_string(size) + " ds=" + std::to_string(length);
       for (const std::string& method : options.methods) {
         const auto matcher = makeBenchMatcher(method, per_frame);
@@ -104,7 +106,7 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
                    method, mrs_vpr::summarise(records, options.tolerance), {"global", false, map.size(), length});
       }
     }
-    for (int length : options.per_frame ? std::vector<int>{10, 50} : std::vector<int>{}) {
+    for (int length : options.per_frame ? options.per_frame_lengths : std::vector<int>{}) {
       const mrs_vpr::Parameters per_frame = perFrameParams(params, length);
       for (const std::string& method : options.methods) {
         const auto matcher = makeBenchMatcher(method, per_frame);
@@ -119,7 +121,9 @@ void runReplays(const DescriptorSequence& summer, const DescriptorSequence& wint
 void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& winter,
                    const mrs_vpr::Parameters& params, const RealBenchmarkOptions& options, int part_begin, int part_end,
                    Report& report) {
-  constexpr int kLength = 10;  // The node's auto_query_frames default: sequence/sequence_length.
+  // The first releases' continuous-mode length, kept so that these rows compare across releases; the
+  // camera-drive rows (camera_drive_rows.hpp) run continuous mode at the node's defaults.
+  constexpr int kLength = 10;
   const mrs_vpr::Parameters continuous = perFrameParams(params, kLength);
   const int route = summer.size();
   for (const std::string& method : options.methods) {

@@ -67,6 +67,8 @@ TEST_F(BenchmarksTest, BenchmarksPrintTheirUsageOnHelp) {
   EXPECT_NE(run(std::string(MRS_VPR_BENCHMARK_PATH) + " --help").out.find("--threads arg (=1,2)"), std::string::npos);
   EXPECT_NE(run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --help").out.find("--lengths arg (=100,200,300)"),
             std::string::npos);
+  EXPECT_NE(run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --help").out.find("--per-frame-lengths arg (=10,50)"),
+            std::string::npos);
   EXPECT_NE(run(std::string(MRS_VPR_MAP_SCALE_BENCHMARK_PATH) + " --help").out.find("--sizes arg (=10k,100k,1M)"),
             std::string::npos);
 }
@@ -97,6 +99,8 @@ TEST_F(BenchmarksTest, BenchmarksRefuseBadOptionsInOneLineNamingThem) {
   expectBenchmarkError(real, run(real.path + " --data nowhere --references 1.8k,5k"), "--references takes 1.8k");
   expectBenchmarkError(real, run(real.path + " --data nowhere --methods mrs,fastest"), "unknown method 'fastest'");
   expectBenchmarkError(real, run(real.path + " --data nowhere --seed -1"), "--seed must be >= 0");
+  expectBenchmarkError(real, run(real.path + " --data nowhere --per-frame-lengths 20,1"),
+                       "--per-frame-lengths takes sequence lengths >= 2");
   const Benchmark scale = benchmarks()[2];
   expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 10k,lots"), "bad size 'lots'");
   expectBenchmarkError(scale, run(scale.path + " --data nowhere --sizes 1k"), "bad size '1k'");
@@ -357,6 +361,25 @@ TEST_F(BenchmarksTest, TheRealDataBenchmarksDrivesLeaveOutTheFirstPassAlone) {
   const json rows = json::parse(fileContents(output)).at("rows");
   ASSERT_EQ(rows.size(), 3U) << rows.dump();
   for (const json& row : rows) EXPECT_EQ(row.at("method"), "seqslam") << row.dump();
+}
+
+TEST_F(BenchmarksTest, TheRealDataBenchmarksPerFrameRowsTakeTheGivenLengths) {
+  const fs::path data = realDataLayout(root());
+  const std::string output = path("real_benchmark_per_frame.json");
+  const CommandResult result = run(std::string(MRS_VPR_REAL_BENCHMARK_PATH) + " --data " + data.string() +
+                                   " --part all --references 1.8k --methods seqslam --skip-global --skip-drives"
+                                   " --per-frame-lengths 12 --json " +
+                                   output);
+  ASSERT_EQ(result.status, 0) << result.err;
+  const json rows = json::parse(fileContents(output)).at("rows");
+  int per_frame_rows = 0;
+  for (const json& row : rows) {
+    if (row.at("protocol").get<std::string>() != "per-frame") continue;
+    ++per_frame_rows;
+    EXPECT_EQ(row.at("sequence_length"), 12) << row.dump();
+  }
+  // The route's map, the corridor in it, Nordland in the corridor's map, small maps of 20 to 100 frames.
+  EXPECT_GE(per_frame_rows, 4) << result.out;
 }
 
 TEST_F(BenchmarksTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
