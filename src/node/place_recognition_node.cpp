@@ -103,6 +103,15 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   if (query_spinner_) {
     query_spinner_->stop();
   }
+  // The last commit now, while a failure can still be said: the frames it leaves out are lost.
+  if (map_ && map_->persistent()) {
+    try {
+      map_->commit();
+    } catch (const std::exception& error) {
+      ROS_ERROR("mrs_vpr: %zu keyframes of the map are lost: they could not be committed to ~database (%s)",
+                map_->queued(), error.what());
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------------

@@ -77,6 +77,7 @@ int run(int argc, char** argv) {
   mrs_vpr::tools::addDescriptorOptions(description, params);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag", "output"});
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (append && force) throw std::invalid_argument("--append and --force exclude each other");
@@ -87,6 +88,8 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0 && bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
+  // A link names the map it points to: the new map replaces that file, not the link.
+  if (std::filesystem::is_symlink(output)) output = std::filesystem::weakly_canonical(output).string();
   // The output is checked before any work: a folder would otherwise be found only when the finished
   // map is renamed to it.
   if (std::filesystem::is_directory(output)) {
@@ -97,7 +100,10 @@ int run(int argc, char** argv) {
   if (exists && !append && !force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
   }
-  if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);  // its folder, and a name the file system allows
+  // Its folder, a name the file system allows, and no earlier map's log beside it.
+  if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);
+  // A map a node is writing is not replaced (the node would go on writing the old file).
+  if (exists) mrs_vpr::MapDatabase::checkNotHeld(output);
   // A map is extended with its own front end, unless the command line names one (which must be the same).
   if (exists && append && !mrs_vpr::tools::descriptorOptionsGiven(variables)) {
     params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
@@ -108,9 +114,12 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0) keyframes.emplace(bag_path, travel);
 
   // Every map is built aside and renamed when complete; an extended one starts as a copy of the map,
-  // which is held meanwhile so that no node writes to it. A failure leaves the map as it was.
+  // read without being written (an older format is converted in the copy). A failure leaves the map
+  // as it was.
   const bool extend = exists && append;
   const std::string target = output + ".part";
+  // Another build_map writing the same map: its unfinished file is not ours to remove.
+  mrs_vpr::MapDatabase::checkNotHeld(target);
   const auto removePart = [&] {
     std::error_code ignored;
     for (const char* leftover : {".part", ".part-wal", ".part-shm", ".part-journal", ".part.part"}) {
@@ -118,13 +127,9 @@ int run(int argc, char** argv) {
     }
   };
   removePart();
-  std::optional<mrs_vpr::MapDatabase> original;
   int stored = 0;
   try {
-    if (extend) {
-      original.emplace(output, params);
-      original->backupTo(target);
-    }
+    if (extend) mrs_vpr::MapDatabase(output, params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
     mrs_vpr::MapDatabase map(target, params);
     const std::int64_t before = map.size();
     // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
@@ -160,6 +165,13 @@ int run(int argc, char** argv) {
         },
         images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
     flush();
+    // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
+    if (keyframes && stored == 0 && keyframes->withoutPose() > 0) {
+      throw std::runtime_error("no frame was kept: " + keyframes->summary() +
+                               "; the first frame without a pose: " + keyframes->firstMissingPose());
+    }
+    // The log copied in now, where a full disk is an error, not at the close, which cannot report it.
+    map.makeSelfContained();
     std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
     if (appearance.enabled()) {
       std::cerr << "build_map: " << too_similar << " frames too similar to a recent keyframe to be kept "
@@ -175,8 +187,18 @@ int run(int argc, char** argv) {
     removePart();
     throw;
   }
-  original.reset();  // Its connection closed before its file is replaced.
   std::error_code error;
+  if (exists) {
+    // Opened by a node while the new map was written, it is left to that node.
+    try {
+      mrs_vpr::MapDatabase::checkNotHeld(output);
+    } catch (...) {
+      removePart();
+      throw;
+    }
+    // The old map's log would be read into the new file.
+    mrs_vpr::MapDatabase::removeCompanions(output);
+  }
   std::filesystem::rename(target, output, error);
   if (error) {
     removePart();

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <initializer_list>
 #include <iostream>
 #include <string>
 
@@ -29,6 +30,18 @@ inline bool parseCommandLine(int argc, char** argv, const char* usage,
   }
   boost::program_options::notify(variables);
   return true;
+}
+
+/// Throws for each of `paths` (option names without "--") given as an empty string: an unset shell
+/// variable, which the tool would otherwise read as the option left out (the identity ground truth,
+/// no JSON written).
+inline void refuseEmptyPaths(const boost::program_options::variables_map& variables,
+                             std::initializer_list<const char*> paths) {
+  for (const char* name : paths) {
+    if (variables.count(name) > 0 && variables[name].as<std::string>().empty()) {
+      throw boost::program_options::error(std::string("--") + name + " was given an empty path");
+    }
+  }
 }
 
 /// Runs a command-line tool's `run`, turning any exception into one line on stderr

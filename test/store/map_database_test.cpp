@@ -411,6 +411,98 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
   }
 }
 
+/// A writer of `count` frames at `file` that dies after its commit, as a node killed with kill -9:
+/// the frames are committed in the log left beside the file.
+void crashAfterCommitting(const std::string& file, const std::vector<StoredFrame>& committed) {
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    MapDatabase database(file, thumbnailParams());
+    database.append(committed);
+    _exit(0);  // No close: no checkpoint, the log stays.
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ASSERT_TRUE(fs::exists(file + "-wal"));
+}
+
+TEST_F(MapDatabaseTest, ASnapshotIsNotSavedWhereAnEarlierMapLeftItsLog) {
+  // The log of a map killed at that path, whose file was then removed (as the refusal to overwrite
+  // it says): SQLite would read the log into the snapshot saved there.
+  crashAfterCommitting(path("snapshot.db"), frames(5));
+  fs::remove(path("snapshot.db"));
+  MapDatabase map(path("map.db"), thumbnailParams());
+  map.append(frames(3, 10));
+  std::string message;
+  try {
+    map.backupTo(path("snapshot.db"));
+  } catch (const MapDatabaseError& error) {
+    message = error.what();
+  }
+  EXPECT_NE(message.find("'" + path("snapshot.db") + "-wal' is left beside it by an earlier map of that name"),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(path("snapshot.db")));
+  fs::remove(path("snapshot.db-wal"));
+  map.backupTo(path("snapshot.db"));
+  EXPECT_EQ(MapDatabase(path("snapshot.db"), MapAccess::kReadOnly).size(), 3);
+}
+
+TEST_F(MapDatabaseTest, AHeldMapIsToldFromOneNobodyHolds) {
+  EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("missing.db")));
+  std::ofstream(path("notes.db")) << "my notes, not a map\n";
+  EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("notes.db")));
+  {
+    MapDatabase held(path("map.db"), thumbnailParams());
+    held.append(frames(2));
+    try {
+      MapDatabase::checkNotHeld(path("map.db"));
+      ADD_FAILURE() << "a held map was not told";
+    } catch (const MapDatabaseError& error) {
+      EXPECT_NE(std::string(error.what()).find("it is held by another process"), std::string::npos) << error.what();
+    }
+    held.append(frames(1, 2));  // The owner goes on.
+  }
+  EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("map.db")));
+  // A map whose writer was killed is held by nobody; its log is recovered, not lost.
+  crashAfterCommitting(path("crashed.db"), frames(4));
+  EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("crashed.db")));
+  EXPECT_EQ(MapDatabase(path("crashed.db"), MapAccess::kReadOnly).size(), 4);
+}
+
+TEST_F(MapDatabaseTest, ASelfContainedMapIsOneFileThatCanBeRenamed) {
+  {
+    MapDatabase database(path("map.db.part"), thumbnailParams());
+    database.append(frames(30));
+    database.makeSelfContained();
+    EXPECT_FALSE(fs::exists(path("map.db.part-wal")));
+    fs::rename(path("map.db.part"), path("map.db"));
+  }
+  EXPECT_EQ(MapDatabase(path("map.db"), MapAccess::kReadOnly).size(), 30);
+  EXPECT_EQ(rowsOf(path("map.db"), "PRAGMA integrity_check")[0][0], "ok");
+}
+
+TEST_F(MapDatabaseTest, AMapIsCheckedBeforeItIsWritten) {
+  // A free list that points past the file: every frame still reads, but every later commit fails.
+  // The header's first free-list trunk page (offset 32) and count of free pages (36), big-endian.
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(20));
+  }
+  {
+    std::fstream file(path("map.db"), std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(32);
+    file.write("\0\0\x27\x0f\0\0\0\x01", 8);
+  }
+  const std::string before = fileContents(path("map.db"));
+  EXPECT_EQ(MapDatabase(path("map.db"), MapAccess::kReadOnly).size(), 20);  // Reading alone does not tell.
+  const std::string message = openingError(path("map.db"));
+  EXPECT_NE(message.find(path("map.db")), std::string::npos) << message;
+  EXPECT_NE(message.find("it is corrupt or truncated"), std::string::npos) << message;
+  EXPECT_EQ(fileContents(path("map.db")), before);
+}
+
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
   {
     MapDatabase database(path("map.db"), thumbnailParams());

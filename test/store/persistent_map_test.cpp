@@ -150,6 +150,19 @@ TEST_F(PersistentMapTest, FramesAddedAfterARestartFollowTheLoadedOnes) {
   expectSameFrames(framesOf(path("map.db")), expectedFrames(0, 150));
 }
 
+TEST_F(PersistentMapTest, QueuedCountsTheFramesNotYetCommitted) {
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{60.0, 1000});
+  addReference(map, 0, 5);
+  EXPECT_EQ(map.queued(), 5U);
+  map.commit();
+  EXPECT_EQ(map.queued(), 0U);
+  EXPECT_EQ(map.persisted(), 5U);
+  PlaceRecognizer in_memory_recognizer;
+  const PersistentMap in_memory(in_memory_recognizer);
+  EXPECT_EQ(in_memory.queued(), 0U);
+}
+
 TEST_F(PersistentMapTest, ResetEmptiesTheMapAndTheDatabase) {
   PlaceRecognizer recognizer;
   {

@@ -112,8 +112,23 @@ class MapDatabase {
    */
   void backupTo(const std::string& path) const;
   /// Throws the MapDatabaseError backupTo() would when `path` is empty, exists, is a folder, has no
-  /// folder, or names a file too long for the file system with the suffixes written beside it.
+  /// folder, names a file too long for the file system with the suffixes written beside it, or has
+  /// an earlier map's log or journal left beside it (path-wal, -shm, -journal), which SQLite would
+  /// read into the new file.
   static void checkSaveTarget(const std::string& path);
+  /// Throws MapDatabaseError when another process holds the map at `path` (a node writing it), which
+  /// must then not be replaced. A missing file, or one that is no SQLite database, is held by nobody.
+  static void checkNotHeld(const std::string& path);
+  /// Removes what an earlier database at `path` left beside it (path-wal, -shm, -journal), which
+  /// SQLite would otherwise read into a new file renamed to `path`. Only for a path nobody holds.
+  static void removeCompanions(const std::string& path);
+
+  /**
+   * Copies the write-ahead log into the map and leaves it in rollback-journal mode: one
+   * self-contained file, which can be renamed (a log beside a renamed file would be lost, or read
+   * into another map). Throws MapDatabaseError when the log cannot be copied, as on a full disk.
+   */
+  void makeSelfContained();
 
   const std::string& path() const { return path_; }
   /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).

@@ -74,6 +74,8 @@ class PersistentMap {
   std::uint64_t persisted() const { return writer_ ? writer_->persisted() : 0; }
   /// Why the last commit failed; empty when it succeeded.
   std::string writeError() const { return writer_ ? writer_->lastError() : ""; }
+  /// Frames of the map waiting for a commit (kept through failed commits); 0 in memory only.
+  std::size_t queued() const { return writer_ ? writer_->queued() : 0; }
 
  private:
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,

@@ -1,0 +1,148 @@
+// build_map replacing and extending maps that others hold, left behind or share a name with: a map
+// it reports written is the one it wrote, and a failure leaves the map as it was.
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/stamp.hpp"
+#include "mrs_vpr/store/map_database.hpp"
+#include "route_tools_fixture.hpp"
+#include "support/format_one_map.hpp"
+#include "support/front_ends.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using mrs_vpr::MapAccess;
+using mrs_vpr::MapDatabase;
+using mrs_vpr::testing_support::CommandResult;
+using mrs_vpr::testing_support::fileContents;
+
+class BuildMapTest : public mrs_vpr::testing_support::RouteToolsTest {
+ protected:
+  /// The front end buildMap() writes.
+  static mrs_vpr::DescriptorParams thumbnail() { return mrs_vpr::testing_support::thumbnailParams(); }
+
+  /// `count` frames of thumbnail descriptors.
+  static std::vector<mrs_vpr::StoredFrame> frames(int count) {
+    std::vector<mrs_vpr::StoredFrame> result;
+    for (int i = 0; i < count; ++i) {
+      result.push_back({cv::Mat(1, thumbnail().descriptorSize(), CV_8UC1, cv::Scalar(i)),
+                        mrs_vpr::Stamp::fromNanoseconds(1'000'000'000LL * (i + 1)), "", i});
+    }
+    return result;
+  }
+
+  /// A map of `count` frames at `file` whose writer died after its commit, as a node killed with
+  /// kill -9: the frames are in the log left beside the file.
+  static void crashAfterCommitting(const std::string& file, int count) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      MapDatabase database(file, thumbnail());
+      database.append(frames(count));
+      _exit(0);  // No close: no checkpoint, the log stays.
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    ASSERT_TRUE(fs::exists(file + "-wal"));
+  }
+
+  static std::int64_t framesIn(const std::string& file) { return MapDatabase(file, MapAccess::kReadOnly).size(); }
+
+  static std::string build(const std::string& output, const std::string& options = "") {
+    return buildMap() + " --images " + path("reference") + " --output " + output + options;
+  }
+};
+
+TEST_F(BuildMapTest, AMapReplacedWithForceTakesNothingFromTheOldOnesLog) {
+  const std::string map = path("crashed.db");
+  crashAfterCommitting(map, 93);
+  const CommandResult replaced = run(build(map, " --force"));
+  ASSERT_EQ(replaced.status, 0) << replaced.err;
+  EXPECT_NE(replaced.err.find("150 frames added to 0"), std::string::npos) << replaced.err;
+  EXPECT_FALSE(fs::exists(map + "-wal"));
+  EXPECT_EQ(framesIn(map), 150);  // Not the 93 of the old log.
+}
+
+TEST_F(BuildMapTest, ALogLeftWhereTheMapIsToGoIsRefused) {
+  const std::string map = path("removed.db");
+  crashAfterCommitting(map, 5);
+  fs::remove(map);
+  const CommandResult refused = run(build(map));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("'" + map + "-wal' is left beside it by an earlier map of that name"), std::string::npos)
+      << refused.err;
+  EXPECT_FALSE(fs::exists(map));
+}
+
+TEST_F(BuildMapTest, AMapThatIsHeldIsNeitherReplacedNorExtended) {
+  const std::string map = path("held.db");
+  ASSERT_EQ(run(build(map)).status, 0);
+  {
+    MapDatabase node(map, thumbnail());  // As a node writing it.
+    for (const std::string& option : {" --force", " --append"}) {
+      const CommandResult refused = run(build(map, option));
+      EXPECT_EQ(refused.status, 1) << option;
+      EXPECT_NE(refused.err.find(map), std::string::npos) << option << ": " << refused.err;
+      EXPECT_TRUE(refused.err.find("held by another process") != std::string::npos ||
+                  refused.err.find("locked by another process") != std::string::npos)
+          << option << ": " << refused.err;
+      EXPECT_FALSE(fs::exists(map + ".part")) << option;
+    }
+    node.append(frames(2));  // The node goes on.
+  }
+  EXPECT_EQ(framesIn(map), 152);
+}
+
+TEST_F(BuildMapTest, AnotherRunsUnfinishedMapIsLeftToIt) {
+  const std::string map = path("shared.db");
+  {
+    MapDatabase other(map + ".part", thumbnail());  // Another build_map, still writing.
+    other.append(frames(3));
+    const CommandResult refused = run(build(map));
+    EXPECT_EQ(refused.status, 1);
+    EXPECT_NE(refused.err.find(map + ".part': it is held by another process"), std::string::npos) << refused.err;
+    EXPECT_TRUE(fs::exists(map + ".part"));
+    other.append(frames(1));  // Its file is still its own.
+  }
+  EXPECT_FALSE(fs::exists(map));
+}
+
+TEST_F(BuildMapTest, AFailedExtensionLeavesAMapOfAnEarlierFormatAsItWas) {
+  const std::string map = path("format1.db");
+  mrs_vpr::testing_support::writeFormatOneMap(map, {1.0, 2.0, 3.0});
+  const std::string before = fileContents(map);
+  const CommandResult failed =
+      run(buildMap() + " --images " + path("no_such_folder") + " --output " + map + " --append");
+  EXPECT_EQ(failed.status, 1);
+  EXPECT_NE(failed.err.find("no_such_folder"), std::string::npos) << failed.err;
+  EXPECT_EQ(fileContents(map), before);  // Neither converted to format 2 nor switched to a log.
+  EXPECT_FALSE(fs::exists(map + ".part"));
+  // A successful extension converts its copy.
+  const CommandResult appended = run(build(map, " --append"));
+  ASSERT_EQ(appended.status, 0) << appended.err;
+  EXPECT_NE(appended.err.find("150 frames added to 3"), std::string::npos) << appended.err;
+  EXPECT_EQ(framesIn(map), 153);
+}
+
+TEST_F(BuildMapTest, AMapNamedThroughALinkIsExtendedWhereTheLinkPoints) {
+  const std::string map = path("linked.db");
+  ASSERT_EQ(run(build(map)).status, 0);
+  fs::create_symlink(map, path("link.db"));
+  const CommandResult appended = run(build(path("link.db"), " --append"));
+  ASSERT_EQ(appended.status, 0) << appended.err;
+  EXPECT_TRUE(fs::is_symlink(path("link.db")));
+  EXPECT_EQ(framesIn(map), 300);
+}
+
+}  // namespace
