@@ -80,7 +80,7 @@ ros::Time frameStamp(double start_seconds, long long index, double rate) {
 }
 
 sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,
-                                     const std::string& frame_id) {
+                                     const std::string& frame_id, std::uint32_t seq) {
   if (image.empty()) throw std::invalid_argument("cannot make a message of an empty image");
   if (encoding != sensor_msgs::image_encodings::BGR8 && encoding != sensor_msgs::image_encodings::MONO8) {
     throw std::invalid_argument("unsupported output encoding '" + encoding + "' (expected bgr8 or mono8)");
@@ -106,6 +106,7 @@ sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& en
     throw std::invalid_argument("unsupported number of channels: " + std::to_string(channels));
   }
   std_msgs::Header header;
+  header.seq = seq;
   header.stamp = stamp;
   header.frame_id = frame_id;
   return imageMessageOf(converted, encoding, header);

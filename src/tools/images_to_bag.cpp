@@ -102,7 +102,7 @@ int run(int argc, char** argv) {
     // Stamps from the frame number, not accumulated, so they never drift.
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start_time, index, rate);
     try {
-      bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(image, encoding, stamp, frame_id));
+      bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(image, encoding, stamp, frame_id, static_cast<std::uint32_t>(index)));
     } catch (const std::invalid_argument& error) {
       throw std::runtime_error("image '" + path + "': " + error.what());
     }

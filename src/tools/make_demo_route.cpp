@@ -46,7 +46,7 @@ void writeBag(const std::string& path, const std::string& topic, const std::vect
   bag.open(output.temporary(), rosbag::bagmode::Write);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start, static_cast<long long>(i), rate);
-    bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera"));
+    bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera", static_cast<std::uint32_t>(i)));
   }
   bag.close();
   output.commit();

@@ -270,6 +270,8 @@ int run(int argc, char** argv) {
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseEmptyPaths(variables,
+                                   {"images", "output", "ground-truth", "reference", "query", "places-from"});
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(seed));
   drive.seed = static_cast<std::uint64_t>(seed);
 

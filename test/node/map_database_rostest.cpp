@@ -58,7 +58,8 @@ mrs_vpr::Stamp referenceStamp(int i) { return mrs_vpr::node::stampOf(ros::Time(k
 
 sensor_msgs::ImagePtr referenceMessage(int i) {
   return mrs_vpr::bag::toImageMessage(defaultRouteImages().reference[static_cast<std::size_t>(i)], "bgr8",
-                                      ros::Time(kReferenceStart + i * kFramePeriod), "camera");
+                                      ros::Time(kReferenceStart + i * kFramePeriod), "camera",
+                                      static_cast<std::uint32_t>(i));
 }
 
 /// An mrs_vpr_node process named `name`, its output in `log`.
@@ -175,7 +176,8 @@ class MapDatabaseNodeTest : public ::testing::Test {
     for (int i = first; i < first + count; ++i) {
       srv.request.images.push_back(
           *mrs_vpr::bag::toImageMessage(defaultRouteImages().query[static_cast<std::size_t>(i)], "bgr8",
-                                        ros::Time(9000.0 + i * kFramePeriod), "camera"));
+                                        ros::Time(9000.0 + i * kFramePeriod), "camera",
+                                        static_cast<std::uint32_t>(i)));
     }
     srv.request.method = "seqslam";
     EXPECT_TRUE(mrs_vpr::testing_support::callService(node.service("query"), srv));

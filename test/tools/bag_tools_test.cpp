@@ -92,6 +92,9 @@ TEST_F(BagToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) 
     EXPECT_GT(images[i]->header.stamp, images[i - 1]->header.stamp);
   }
   EXPECT_NEAR(images[99]->header.stamp.toSec(), 1009.9, 1e-6);
+  // Numbered as in the folder: a node's map of the bag keeps these numbers, which mrs_vpr_eval's
+  // ground truth refers to (all 0, every frame of such a map was frame 0).
+  for (std::size_t i = 0; i < images.size(); ++i) EXPECT_EQ(images[i]->header.seq, i);
 
   // Same frames from bags as from folders: the same answers.
   const std::string common = " --ground-truth " + path("truth.csv") +
@@ -361,11 +364,17 @@ TEST_F(BagToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
             std::string::npos)
       << by_travel.err;
 
-  // Frames tf has no pose for are skipped, and the user is told why.
+  // Frames tf has no pose for are skipped, and the user is told why; when that is every frame (a frame
+  // name tf does not know), there is no map, not an empty one.
   const CommandResult unknown_frame = run(build + path("gripper.db") + " --min-travel 1 --base-frame gripper");
-  ASSERT_EQ(unknown_frame.status, 0) << unknown_frame.err;
-  EXPECT_NE(unknown_frame.err.find("0 frames added to 0"), std::string::npos) << unknown_frame.err;
-  EXPECT_NE(unknown_frame.err.find("warning: the first frame without a pose"), std::string::npos) << unknown_frame.err;
+  EXPECT_EQ(unknown_frame.status, 1) << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("no frame was kept: 0 keyframes of 51 frames at min_travel 1 m (0 too near, 51 "
+                                   "without a pose of 'gripper'"),
+            std::string::npos)
+      << unknown_frame.err;
+  EXPECT_NE(unknown_frame.err.find("the first frame without a pose: "), std::string::npos) << unknown_frame.err;
+  EXPECT_FALSE(fs::exists(path("gripper.db")));
+  EXPECT_FALSE(fs::exists(path("gripper.db.part")));
 }
 
 TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
@@ -578,7 +587,7 @@ TEST_F(BagToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStamp
     const cv::Mat image = cv::imread(path("reference/00000.png"));
     for (std::uint32_t i = 0; i < 3; ++i) {
       const ros::Time stamp(4294967295U, 999999997U + i);
-      writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+      writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera", i));
     }
   }
   const CommandResult built =
@@ -606,7 +615,7 @@ TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
   {
     rosbag::Bag writer(corrupt, rosbag::bagmode::Write);
     const ros::Time stamp(100, 0);
-    writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera"));
+    writer.write("/camera/image_raw", stamp, mrs_vpr::bag::toImageMessage(image, "bgr8", stamp, "camera", 0));
     writer.write("/camera/image_raw", stamp + ros::Duration(0.1), CorruptImage{{1, 2, 3, 4, 5, 6, 7}});
   }
   const CommandResult cut = run(buildMap() + " --bag " + corrupt + " --topic /camera/image_raw --output " +

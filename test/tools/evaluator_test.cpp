@@ -80,6 +80,11 @@ TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
               "sequence length 151 is larger than the reference of 150 keyframes");
   expectError(folders + " --method seqslam --sequence-length 10", "protocol");  // Missing flag.
+  // An unset shell variable is no option left out: not the identity ground truth, not a JSON unwritten.
+  for (const char* option : {"--ground-truth", "--output", "--plots"}) {
+    expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 " + option + " ''",
+                std::string(option) + " was given an empty path");
+  }
   // A word of no option (e.g. a second value) is refused, not silently dropped.
   expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 20", "unexpected argument '20'");
 

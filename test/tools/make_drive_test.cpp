@@ -221,6 +221,9 @@ TEST_F(MakeDriveTest, BadInputGivesOneLineAndExitCodeOne) {
               "cannot open drive file '" + path("summer") + "/drive.csv'");
   expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer"),
               "the ground truth needs --ground-truth, --reference and --query");
+  expectError("--ground-truth " + path("t.csv") + " --reference " + path("summer") + " --query " + path("winter") +
+                  " --places-from ''",
+              "--places-from was given an empty path");
   EXPECT_FALSE(fs::exists(path("x")));
   // Only the drive's own folder is created: a typo in its parent is an error, not a tree of folders.
   expectError("--images " + path("summer") + " --output " + path("nowhere/deep/x"),

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <functional>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -51,9 +52,11 @@ bool isBagPath(const std::string& path);
 ros::Time frameStamp(double start_seconds, long long index, double rate);
 
 /// An image message of an 8-bit image in `encoding` ("bgr8" or "mono8"), converting colour, alpha
-/// and 16-bit depth as needed. Throws std::invalid_argument for another encoding or an empty image.
+/// and 16-bit depth as needed, numbered `seq` (header.seq: the image's number in its recording, which
+/// the node keeps as a map frame's `sequence` and mrs_vpr_eval reads as its frame number). Throws
+/// std::invalid_argument for another encoding or an empty image.
 sensor_msgs::ImagePtr toImageMessage(const cv::Mat& image, const std::string& encoding, const ros::Time& stamp,
-                                     const std::string& frame_id);
+                                     const std::string& frame_id, std::uint32_t seq);
 
 }  // namespace bag
 }  // namespace mrs_vpr
