@@ -88,6 +88,7 @@ std::optional<Options> parse(int argc, char** argv) {
   mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, options.descriptor);
   for (const int length : options.lengths) {
     if (length < 2) throw std::invalid_argument("--lengths takes sequence lengths >= 2");
   }

@@ -77,6 +77,7 @@ std::optional<MapScaleOptions> parseMapScaleOptions(int argc, char** argv) {
   tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  tools::refuseOtherFrontEndsOptions(variables, options.descriptor);
   options.sizes.clear();
   for (const std::string& size : sizes) options.sizes.push_back(parseSize(size));
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");

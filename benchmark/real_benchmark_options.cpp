@@ -91,6 +91,7 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
   tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  tools::refuseOtherFrontEndsOptions(variables, options.descriptor);
   options.per_frame = !skip_per_frame;
   options.global = !skip_global;
   options.drives = !skip_drives;

@@ -92,6 +92,7 @@ std::optional<Options> parse(int argc, char** argv) {
   mrs_vpr::tools::addDescriptorOptions(description, options.descriptor);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, options.descriptor);
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0");
   options.seed = static_cast<std::uint64_t>(seed);
   if (options.reference_frames < 100) throw std::invalid_argument("--reference-frames must be >= 100");

@@ -166,6 +166,13 @@ void PlaceRecognizer::flush() {
   flushLocked();
 }
 
+bool PlaceRecognizer::tryFlush() {
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_, std::try_to_lock);
+  if (!map_lock.owns_lock()) return false;
+  flushLocked();
+  return true;
+}
+
 void PlaceRecognizer::reserveAhead() {
   constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);

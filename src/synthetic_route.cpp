@@ -77,20 +77,24 @@ class SmoothSignal {
 
 }  // namespace
 
-SyntheticRoute generateSyntheticRoute(const SyntheticRouteParams& params) {
+void SyntheticRouteParams::validate() const {
   // Upper bounds too: the route's world is one image some 8 px a reference frame wide.
   constexpr int kMostFrames = 1000000;
   constexpr int kLargestSide = 4096;
   const auto inside = [](int value, int low, int high) { return value >= low && value <= high; };
-  if (!inside(params.reference_frames, 2, kMostFrames) || !inside(params.query_frames, 1, kMostFrames) ||
-      !inside(params.image_width, 8, kLargestSide) || !inside(params.image_height, 8, kLargestSide)) {
+  if (!inside(reference_frames, 2, kMostFrames) || !inside(query_frames, 1, kMostFrames) ||
+      !inside(image_width, 8, kLargestSide) || !inside(image_height, 8, kLargestSide)) {
     throw std::invalid_argument("a synthetic route needs 2.." + std::to_string(kMostFrames) + " reference frames, 1.." +
                                 std::to_string(kMostFrames) + " query frames and images of 8.." +
                                 std::to_string(kLargestSide) + " px a side");
   }
-  if (!(params.speed_min > 0.0 && params.speed_min <= params.speed_max)) {
+  if (!(speed_min > 0.0 && speed_min <= speed_max)) {
     throw std::invalid_argument("synthetic route speeds must satisfy 0 < speed_min <= speed_max");
   }
+}
+
+SyntheticRoute generateSyntheticRoute(const SyntheticRouteParams& params) {
+  params.validate();
   std::mt19937_64 rng(params.seed);
   const cv::Size frame_size(params.image_width, params.image_height);
   const cv::Size world_size(

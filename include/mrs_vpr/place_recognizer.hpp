@@ -172,6 +172,9 @@ class PlaceRecognizer {
 
   /// Moves pending frames into the map, waiting for running queries.
   void flush();
+  /// The same unless a query (or another writer) holds the map: then returns false at once, and the
+  /// frames stay pending.
+  bool tryFlush();
   /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation. Only an
   /// optimisation: when the memory cannot be had, the map stays as it was and frames are added as before.
   void reserveAhead();

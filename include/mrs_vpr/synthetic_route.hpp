@@ -18,6 +18,9 @@ struct SyntheticRouteParams {
   double start_place = 0.0;     ///< Place where the second traversal starts.
   double noise_std = 6.0;       ///< Gaussian pixel noise of the second traversal [grey levels].
   std::uint64_t seed = 7;       ///< Same seed, same route.
+
+  /// Throws std::invalid_argument naming the bounds when a count, a size or the speeds are out of them.
+  void validate() const;
 };
 
 /// Two traversals of one route with known alignment; the second has another appearance.

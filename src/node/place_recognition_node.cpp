@@ -33,10 +33,13 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
       nh_(nh),
       private_nh_(private_nh),
       query_nh_(private_nh),
+      info_nh_(private_nh),
       image_transport_(nh) {
   openMap();  // First: a map database that cannot be used stops the node before it offers anything.
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);
+  // ~map_info on a third: it reports frames parked by a long query while that query runs.
+  info_nh_.setCallbackQueue(&info_queue_);
   loop_closure_pub_ = private_nh_.advertise<LoopClosure>("loop_closure", kAnswerQueue);
   loop_closure_stamps_pub_ = private_nh_.advertise<std_msgs::Float64MultiArray>("loop_closure_stamps", kAnswerQueue);
   map_info_pub_ = private_nh_.advertise<MapInfo>("map_info", 1, /*latch=*/true);
@@ -47,8 +50,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   load_map_srv_ = query_nh_.advertiseService("load_map", &PlaceRecognitionNode::loadMapCallback, this);
   // Wall-clock timers: they pace the node's own work, which goes on under use_sim_time whether or not
   // a /clock runs (before one starts, and after a replayed bag's clock stops, ROS time stands still).
-  map_info_timer_ = query_nh_.createWallTimer(ros::WallDuration(1.0 / params_.map_info_rate),
-                                              &PlaceRecognitionNode::mapInfoCallback, this);
+  map_info_timer_ = info_nh_.createWallTimer(ros::WallDuration(1.0 / params_.map_info_rate),
+                                             &PlaceRecognitionNode::mapInfoCallback, this);
   if (params_.auto_query_period > 0.0) {
     auto_query_timer_ = query_nh_.createWallTimer(ros::WallDuration(params_.auto_query_period),
                                                   &PlaceRecognitionNode::autoQueryCallback, this);
@@ -74,6 +77,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
 
   query_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &query_queue_);
   query_spinner_->start();
+  info_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &info_queue_);
+  info_spinner_->start();
   master_watch_ = std::make_unique<MasterWatch>();  // Last: it re-registers what is advertised above.
 
   ROS_INFO("mrs_vpr: listening on %s (transport %s); front end %s, default method %s%s", imageTopic().c_str(),
@@ -100,6 +105,9 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   reset_srv_.shutdown();
   save_map_srv_.shutdown();
   load_map_srv_.shutdown();
+  if (info_spinner_) {
+    info_spinner_->stop();
+  }
   if (query_spinner_) {
     query_spinner_->stop();
   }
@@ -147,6 +155,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
 }
 
 void PlaceRecognitionNode::publishMapInfoIfChanged() {
+  std::lock_guard<std::mutex> map_info_lock(map_info_mutex_);
   MapInfo info = makeMapInfo();
   // Republish only when the map or a counter changed; the header and timings alone do not count.
   MapInfo comparable = info;
@@ -164,8 +173,9 @@ void PlaceRecognitionNode::publishMapInfoIfChanged() {
   frame_time_max_ms_ = 0.0;
 }
 
-bool PlaceRecognitionNode::flushWaitingKeyframes() {
+bool PlaceRecognitionNode::flushWaitingKeyframes(bool wait) {
   try {
+    if (!wait) return recognizer_.tryFlush();
     recognizer_.flush();
     return true;
   } catch (const std::exception& error) {  // std::bad_alloc
@@ -176,9 +186,10 @@ bool PlaceRecognitionNode::flushWaitingKeyframes() {
 }
 
 void PlaceRecognitionNode::mapInfoCallback(const ros::WallTimerEvent&) {
-  // Frames parked during a query show up even when no new image arrives; reserveAhead gives up by itself
-  // when memory runs out.
-  if (flushWaitingKeyframes()) recognizer_.reserveAhead();
+  // Frames parked during a query join the map even when no new image arrives; reserveAhead gives up by
+  // itself when memory runs out.
+  // Not waiting for a running query: its parked frames are counted as pending until it ends.
+  if (flushWaitingKeyframes(/*wait=*/false)) recognizer_.reserveAhead();
   publishMapInfoIfChanged();
   reportWriteErrors();
 }

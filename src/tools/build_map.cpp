@@ -77,6 +77,7 @@ int run(int argc, char** argv) {
   mrs_vpr::tools::addDescriptorOptions(description, params);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, params);
   mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag", "output"});
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");

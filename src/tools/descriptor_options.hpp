@@ -49,5 +49,23 @@ inline bool descriptorOptionsGiven(const boost::program_options::variables_map& 
   return false;
 }
 
+/// Throws when the command line sets an option of the front end it does not use (--image-width with
+/// HOG, --hog-cell-size with the thumbnail), which would otherwise be ignored without a word.
+inline void refuseOtherFrontEndsOptions(const boost::program_options::variables_map& variables,
+                                        const DescriptorParams& params) {
+  for (const auto& spec : descriptorParameters()) {
+    const std::string& name = spec.info.name;
+    if (name == "descriptor/type") continue;
+    const auto found = variables.find(descriptorOption(name));
+    if (found == variables.end() || found->second.defaulted()) continue;
+    const std::string owner = name.find("/hog/") != std::string::npos ? kHogFrontEnd : kThumbnailFrontEnd;
+    if (owner != params.type) {
+      throw boost::program_options::error("--" + descriptorOption(name) + " is an option of the " + owner +
+                                          " front end, and the front end is " + params.type + " (add --descriptor " +
+                                          owner + ")");
+    }
+  }
+}
+
 }  // namespace tools
 }  // namespace mrs_vpr

@@ -118,6 +118,7 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
   addDescriptorOptions(description, params.descriptor);
   po::variables_map variables;
   if (!parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  refuseOtherFrontEndsOptions(variables, params.descriptor);
   refuseEmptyPaths(variables, {"reference", "query", "ground-truth", "output", "plots"});
   options.descriptor_given = descriptorOptionsGiven(variables);
 

@@ -1,6 +1,7 @@
 // make_demo_route: a generated route (two traversals with known alignment) as reference.bag,
 // query.bag and ground_truth.csv, optionally also as image folders for mrs_vpr_eval.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -52,13 +53,35 @@ void writeBag(const std::string& path, const std::string& topic, const std::vect
   output.commit();
 }
 
+/// The name of frame `index` in a traversal's folder.
+std::string frameName(std::size_t index) {
+  std::ostringstream name;
+  name << std::setw(6) << std::setfill('0') << index << ".png";
+  return name.str();
+}
+
+/// Removes an earlier route's traversal folder, which --force replaces: its frames would otherwise
+/// stay beside the new route's (or its bags). A folder with anything else in it is not ours to remove.
+void removeEarlierFrames(const fs::path& folder) {
+  if (!fs::exists(folder)) return;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    const bool frame = entry.is_regular_file() && name.size() == 10 && name.compare(6, 4, ".png") == 0 &&
+                       std::all_of(name.begin(), name.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
+    if (!frame) {
+      throw std::invalid_argument("'" + folder.string() + "' holds '" + name +
+                                  "', which make_demo_route did not write: it is not replaced");
+    }
+  }
+  fs::remove_all(folder);
+}
+
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
   fs::create_directories(folder);
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    std::ostringstream name;
-    name << std::setw(6) << std::setfill('0') << i << ".png";
-    if (!mrs_vpr::image_codecs::write((folder / name.str()).string(), frames[i])) {
-      throw std::runtime_error("cannot write '" + (folder / name.str()).string() + "'");
+    const fs::path file = folder / frameName(i);
+    if (!mrs_vpr::image_codecs::write(file.string(), frames[i])) {
+      throw std::runtime_error("cannot write '" + file.string() + "'");
     }
   }
 }
@@ -99,6 +122,7 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name" +
                                 (why.empty() ? "" : ": " + why));
   }
+  route_params.validate();  // Frame counts first: a stamp of frame -1 says nothing about them.
   // Both traversals' last stamps, before anything is written: the query one starts an hour later.
   try {
     mrs_vpr::bag::frameStamp(start_time, route_params.reference_frames - 1, rate);
@@ -116,6 +140,7 @@ int run(int argc, char** argv) {
       }
     }
   }
+  for (const char* traversal : {"reference", "query"}) removeEarlierFrames(folder / traversal);
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   fs::create_directories(folder);
   writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);

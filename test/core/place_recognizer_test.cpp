@@ -343,5 +343,28 @@ TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacit
   EXPECT_EQ(recognizer.pending(), 0);
 }
 
+TEST(PlaceRecognizer, TryFlushLeavesFramesPendingWhileTheMapIsHeldAndFlushesThemOnceFree) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 0;
+  PlaceRecognizer recognizer(routeParameters(), limits);
+  for (int i = 0; i < 20; ++i) recognizer.addFrame(route().reference[static_cast<std::size_t>(i)]);
+  // While the map is read (as a query reads it), a frame from another thread waits as pending, and a
+  // flush that may not wait leaves it so.
+  bool flushed_while_held = true;
+  recognizer.visitFrames(0, 1, [&](const cv::Mat&, Stamp) {
+    std::thread other([&] {
+      recognizer.addFrame(route().reference[20]);
+      flushed_while_held = recognizer.tryFlush();
+    });
+    other.join();
+  });
+  EXPECT_FALSE(flushed_while_held);
+  EXPECT_EQ(recognizer.pending(), 1);
+  EXPECT_EQ(recognizer.size(), 20);
+  EXPECT_TRUE(recognizer.tryFlush());
+  EXPECT_EQ(recognizer.pending(), 0);
+  EXPECT_EQ(recognizer.size(), 21);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

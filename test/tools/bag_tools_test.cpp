@@ -430,7 +430,10 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
                                                         {" --seed -1", "--seed must be >= 0, got -1"},
                                                         {" --topic 'bad topic'", "is not a valid ROS topic name"},
                                                         // The query traversal, an hour later, would not fit.
-                                                        {" --start-time 4294966000", "cannot all be stamped"}}) {
+                                                        {" --start-time 4294966000", "cannot all be stamped"},
+                                                        // Counts before stamps, which would name frame -1.
+                                                        {" --query-frames 0", "needs 2..1000000 reference frames"},
+                                                        {" --reference-frames -5", "needs 2..1000000 reference"}}) {
     const CommandResult refused = run(tool + options);
     EXPECT_EQ(refused.status, 1) << options;
     EXPECT_NE(refused.err.find(problem), std::string::npos) << refused.err;
@@ -451,6 +454,24 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
   EXPECT_EQ(fileContents(path("demo/reference.bag")), first_route);
   ASSERT_EQ(run(tool + " --reference-frames 40 --query-frames 20 --force").status, 0);
   EXPECT_NE(fileContents(path("demo/reference.bag")), first_route);
+  // Folders of frames are replaced whole: a shorter route leaves none of the longer one's frames.
+  ASSERT_EQ(run(tool + " --reference-frames 40 --query-frames 20 --force --images").status, 0);
+  ASSERT_EQ(run(tool + " --reference-frames 30 --query-frames 10 --force --images").status, 0);
+  const auto count = [&](const char* folder) {
+    return std::distance(fs::directory_iterator(path("demo/") + folder), fs::directory_iterator{});
+  };
+  EXPECT_EQ(count("reference"), 30);
+  EXPECT_EQ(count("query"), 10);
+  // And without --images, an earlier route's folders go with it.
+  ASSERT_EQ(run(tool + " --reference-frames 30 --query-frames 10 --force").status, 0);
+  EXPECT_FALSE(fs::exists(path("demo/reference")));
+  // A folder of other files is not the tool's to remove.
+  fs::create_directories(path("demo/query"));
+  std::ofstream(path("demo/query/notes.txt")) << "mine";
+  const CommandResult kept = run(tool + " --reference-frames 30 --query-frames 10 --force");
+  EXPECT_EQ(kept.status, 1);
+  EXPECT_NE(kept.err.find("holds 'notes.txt', which make_demo_route did not write"), std::string::npos) << kept.err;
+  EXPECT_TRUE(fs::exists(path("demo/query/notes.txt")));
 }
 
 TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {

@@ -80,6 +80,16 @@ TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
               "sequence length 151 is larger than the reference of 150 keyframes");
   expectError(folders + " --method seqslam --sequence-length 10", "protocol");  // Missing flag.
+  // An option of the front end not in use is refused, not ignored.
+  const CommandResult thumbnail_option =
+      run(std::string(MRS_VPR_EVAL_PATH) + " " + folders + " --protocol per-frame --image-width 16");
+  EXPECT_EQ(thumbnail_option.status, 1);
+  EXPECT_NE(thumbnail_option.err.find("--image-width is an option of the thumbnail front end, and the front end is "
+                                      "hog (add --descriptor thumbnail)"),
+            std::string::npos)
+      << thumbnail_option.err;
+  expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 --hog-cell-size 8",
+              "--hog-cell-size is an option of the hog front end, and the front end is thumbnail");
   // An unset shell variable is no option left out: not the identity ground truth, not a JSON unwritten.
   for (const char* option : {"--ground-truth", "--output", "--plots"}) {
     expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 " + option + " ''",

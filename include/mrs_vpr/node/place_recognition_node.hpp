@@ -118,8 +118,9 @@ class PlaceRecognitionNode {
   void autoQueryCallback(const ros::WallTimerEvent& event);
   void mapInfoCallback(const ros::WallTimerEvent& event);
   /// Moves the keyframes parked during a query into the map; false, logged, when memory ran out (a
-  /// timer callback must not throw: roscpp would end the node).
-  bool flushWaitingKeyframes();
+  /// timer callback must not throw: roscpp would end the node). Without `wait`, also false at once
+  /// while a query holds the map (the frames then wait for the next flush).
+  bool flushWaitingKeyframes(bool wait = true);
 
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
   PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
@@ -173,6 +174,8 @@ class PlaceRecognitionNode {
   };
   std::optional<AcceptedClosure> last_closure_;
   PendingRestatements pending_restatements_;
+  // Held while ~map_info is composed and published: its timer's thread and the map services both do.
+  std::mutex map_info_mutex_;
   MapInfo last_map_info_;
   bool map_info_published_ = false;
 
@@ -186,6 +189,8 @@ class PlaceRecognitionNode {
   ros::NodeHandle private_nh_;
   ros::CallbackQueue query_queue_;
   ros::NodeHandle query_nh_;  // private_nh_ bound to query_queue_
+  ros::CallbackQueue info_queue_;
+  ros::NodeHandle info_nh_;  // private_nh_ bound to info_queue_: ~map_info, never waiting for a query
   image_transport::ImageTransport image_transport_;
   image_transport::Subscriber image_sub_;       // every transport but `compressed`
   ros::Subscriber compressed_image_sub_;         // `compressed`
@@ -200,6 +205,7 @@ class PlaceRecognitionNode {
   ros::WallTimer auto_query_timer_;
   ros::WallTimer map_info_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
+  std::unique_ptr<ros::AsyncSpinner> info_spinner_;
   std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
 };
 
