@@ -1,6 +1,7 @@
 #include "mrs_vpr/store/map_database.hpp"
 
 #include <sqlite3.h>
+#include <unistd.h>
 
 #include <ctime>
 #include <filesystem>
@@ -43,6 +44,29 @@ std::string utcNow() {
   return text;
 }
 
+/// Whether this process may create files in the folder of `path`.
+bool folderIsWritable(const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::path folder = std::filesystem::absolute(path, ignored).parent_path();
+  return ::access(folder.c_str(), W_OK) == 0;
+}
+
+/// An SQLite URI that opens `path` as a file that cannot change: no lock, no index beside it.
+std::string immutableUri(const std::string& path) {
+  std::string uri = "file:";
+  for (const char c : path) {
+    if (c == '%' || c == '?' || c == '#') {
+      static const char kHex[] = "0123456789ABCDEF";
+      uri += '%';
+      uri += kHex[(static_cast<unsigned char>(c) >> 4) & 0xF];
+      uri += kHex[static_cast<unsigned char>(c) & 0xF];
+    } else {
+      uri += c;
+    }
+  }
+  return uri + "?immutable=1";
+}
+
 }  // namespace
 
 MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access)
@@ -62,8 +86,21 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
   const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
   if (!path_problem.empty()) fail(path_problem);
-  const int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+  int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
+  std::string name = path;
+  // A map in WAL mode is read with an index (-shm) that SQLite creates beside it: in a folder nobody
+  // may write to (a package's share/, a read-only mount) it must be read as the unchanging file it
+  // is there, unless it holds a log, which only that index can read.
+  if (read_only && !folderIsWritable(path)) {
+    std::error_code no_log;
+    if (std::filesystem::file_size(path + "-wal", no_log) > 0 && !no_log) {
+      fail("its write-ahead log '" + path + "-wal' can be read only where SQLite may write its index beside it, " +
+           "and its folder is read-only: copy the map and its log to a folder you may write to");
+    }
+    name = immutableUri(path);
+    flags |= SQLITE_OPEN_URI;
+  }
+  if (sqlite3_open_v2(name.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;

@@ -503,6 +503,66 @@ TEST_F(MapDatabaseTest, AMapIsCheckedBeforeItIsWritten) {
   EXPECT_EQ(fileContents(path("map.db")), before);
 }
 
+/// What opening `file` read-only tells a user who may not write to its folder: "N frames" or the
+/// error. Run as nobody when the test runs as root, whom no permission stops.
+std::string readWithoutWriteAccess(const std::string& file) {
+  const auto attempt = [&]() -> std::string {
+    try {
+      return std::to_string(MapDatabase(file, MapAccess::kReadOnly).size()) + " frames";
+    } catch (const MapDatabaseError& error) {
+      return error.what();
+    }
+  };
+  if (geteuid() != 0) return attempt();
+  int pipe_ends[2];
+  if (pipe(pipe_ends) != 0) return "(no pipe)";
+  const pid_t child = fork();
+  if (child == 0) {
+    close(pipe_ends[0]);
+    constexpr uid_t kNobody = 65534;
+    if (setgid(kNobody) != 0 || setuid(kNobody) != 0) _exit(1);
+    const std::string result = attempt();
+    const bool written = write(pipe_ends[1], result.data(), result.size()) == static_cast<ssize_t>(result.size());
+    _exit(written ? 0 : 1);
+  }
+  close(pipe_ends[1]);
+  std::string result;
+  char buffer[256];
+  for (ssize_t got; (got = read(pipe_ends[0], buffer, sizeof(buffer))) > 0;) result.append(buffer, got);
+  close(pipe_ends[0]);
+  waitpid(child, nullptr, 0);
+  return result;
+}
+
+TEST_F(MapDatabaseTest, AMapInAFolderNobodyMayWriteToIsReadAsItIs) {
+  // As a map installed in a package's share/ or on a read-only mount: SQLite cannot create the index
+  // that reading a map in WAL mode needs beside it.
+  fs::permissions(path(""), fs::perms::owner_all | fs::perms::group_read | fs::perms::group_exec |
+                                fs::perms::others_read | fs::perms::others_exec);
+  const auto readOnly = [&](const std::string& folder) {
+    fs::permissions(path(folder), fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                                      fs::perms::group_exec | fs::perms::others_read | fs::perms::others_exec);
+  };
+  fs::create_directory(path("shipped"));
+  {
+    MapDatabase database(path("shipped/map.db"), thumbnailParams());
+    database.append(frames(7));
+  }
+  readOnly("shipped");
+  EXPECT_EQ(readWithoutWriteAccess(path("shipped/map.db")), "7 frames");
+  // A log there can be read only through the index: said so, not "attempt to write a readonly database".
+  fs::create_directory(path("crashed"));
+  crashAfterCommitting(path("crashed/map.db"), frames(3));
+  readOnly("crashed");
+  const std::string message = readWithoutWriteAccess(path("crashed/map.db"));
+  EXPECT_NE(message.find("its write-ahead log '" + path("crashed/map.db") + "-wal' can be read only where SQLite may "
+                         "write its index beside it"),
+            std::string::npos)
+      << message;
+  fs::permissions(path("shipped"), fs::perms::owner_all, fs::perm_options::add);
+  fs::permissions(path("crashed"), fs::perms::owner_all, fs::perm_options::add);
+}
+
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
   {
     MapDatabase database(path("map.db"), thumbnailParams());
