@@ -3,6 +3,7 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -41,6 +42,13 @@ std::string utcNow() {
   const std::time_t now = std::time(nullptr);
   char text[32];
   std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+/// Every digit of `value` that tells it from its neighbours.
+std::string preciseNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
   return text;
 }
 
@@ -214,19 +222,30 @@ void MapDatabase::checkMetadata(bool params_given) {
   }
   const std::optional<DescriptorParams> written = frontEndOfMetadata(stored);
   if (!written) fail("its descriptor type or the parameters of its front end are missing or not numbers");
+  try {
+    written->validate();
+  } catch (const std::invalid_argument& error) {
+    fail(std::string("its front end is not valid: ") + error.what());
+  }
+  // Written with every map; a size that is not the front end's is a map edited or damaged by hand.
+  const std::string size = std::to_string(written->descriptorSize());
+  if (stored.count("descriptor_bytes") != 0 && stored["descriptor_bytes"] != size) {
+    fail("its descriptor_bytes is '" + stored["descriptor_bytes"] + "', but its front end's descriptors are " + size +
+         " bytes");
+  }
   if (!params_given) {
-    try {
-      written->validate();
-    } catch (const std::invalid_argument& error) {
-      fail(std::string("its front end is not valid: ") + error.what());
-    }
     params_ = *written;
     descriptor_bytes_ = params_.descriptorSize();
     return;
   }
   if (!written->sameFrontEnd(params_)) {
+    // Two blurs that differ beyond the digits a description shows would otherwise read as one.
+    const std::string beyond = written->describe() != params_.describe()
+                                   ? ""
+                                   : " (hog_blur " + preciseNumber(written->hog_blur) + " against " +
+                                         preciseNumber(params_.hog_blur) + ")";
     fail("it holds descriptors of the " + written->describe() + " front end, not of the " + params_.describe() +
-         " front end asked for");
+         " front end asked for" + beyond);
   }
 }
 
@@ -349,6 +368,14 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
   StoredFrame frame;
   int step = SQLITE_ROW;
   while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
+    // Types first: SQLite would read text as a descriptor and 'x' as the sequence number 0.
+    if (sqlite3_column_type(rows.get(), 4) != SQLITE_BLOB) {
+      fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " holds a descriptor that is not a blob");
+    }
+    if (sqlite3_column_type(rows.get(), 3) != SQLITE_INTEGER) {
+      fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " has a sequence number that is not an "
+           "integer");
+    }
     if (sqlite3_column_bytes(rows.get(), 4) != descriptor_bytes_) {
       fail("frame " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " holds a descriptor of " +
            std::to_string(sqlite3_column_bytes(rows.get(), 4)) + " bytes, not " + std::to_string(descriptor_bytes_));

@@ -563,6 +563,57 @@ TEST_F(MapDatabaseTest, AMapInAFolderNobodyMayWriteToIsReadAsItIs) {
   fs::permissions(path("crashed"), fs::perms::owner_all, fs::perm_options::add);
 }
 
+/// Runs `sql` on the database file `file`, as a user editing a map by hand would.
+void editByHand(const std::string& file, const std::string& sql) {
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+  char* error = nullptr;
+  EXPECT_EQ(sqlite3_exec(db, sql.c_str(), nullptr, nullptr, &error), SQLITE_OK) << (error ? error : "") << sql;
+  sqlite3_free(error);
+  sqlite3_close(db);
+}
+
+TEST_F(MapDatabaseTest, RowsAndMetadataOfTheWrongKindAreRefusedNamingThem) {
+  const auto damaged = [&](const std::string& name, const std::string& sql) {
+    {
+      MapDatabase database(path(name), thumbnailParams());
+      database.append(frames(3));
+    }
+    editByHand(path(name), sql);
+    try {
+      const MapDatabase database(path(name), thumbnailParams(), MapAccess::kReadOnly);
+      database.forEachFrame([](const StoredFrame&) {});
+    } catch (const MapDatabaseError& error) {
+      return std::string(error.what());
+    }
+    return std::string("(read)");
+  };
+  // SQLite reads 'x' as the number 0 and text as the bytes of a descriptor.
+  EXPECT_NE(damaged("sequence.db", "UPDATE frames SET sequence = 'x' WHERE id = 2")
+                .find("frame 2 has a sequence number that is not an integer"),
+            std::string::npos);
+  EXPECT_NE(damaged("text.db", "UPDATE frames SET descriptor = CAST(descriptor AS TEXT) WHERE id = 3")
+                .find("frame 3 holds a descriptor that is not a blob"),
+            std::string::npos);
+  EXPECT_NE(damaged("bytes.db", "UPDATE metadata SET value = '1234' WHERE key = 'descriptor_bytes'")
+                .find("its descriptor_bytes is '1234', but its front end's descriptors are 2048 bytes"),
+            std::string::npos);
+  // Front ends that differ beyond the digits shown, or a blur that is no number, are told apart.
+  DescriptorParams hog;
+  hog.hog_blur = 0.5;
+  {
+    MapDatabase database(path("blur.db"), hog);
+  }
+  DescriptorParams almost = hog;
+  almost.hog_blur = 0.5000000001;
+  EXPECT_NE(openingError(path("blur.db"), almost).find("front end asked for (hog_blur 0.5 against 0.50000000010000001)"),
+            std::string::npos)
+      << openingError(path("blur.db"), almost);
+  editByHand(path("blur.db"), "UPDATE metadata SET value = 'nan' WHERE key = 'hog_blur'");
+  EXPECT_NE(openingError(path("blur.db"), hog).find("its front end is not valid"), std::string::npos)
+      << openingError(path("blur.db"), hog);
+}
+
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
   {
     MapDatabase database(path("map.db"), thumbnailParams());
