@@ -38,14 +38,16 @@ const cv::Mat& toGrey(const cv::Mat& image, ChannelOrder order, cv::Mat& buffer)
     case CV_16UC1:
       return image;
     case CV_8UC3:
+    case CV_16UC3:  // 16-bit colour PNGs; grey stays 16-bit, as a 16UC1 image is.
       convertInBands(image, rgb ? cv::COLOR_RGB2GRAY : cv::COLOR_BGR2GRAY, buffer);
       return buffer;
     case CV_8UC4:
+    case CV_16UC4:
       convertInBands(image, rgb ? cv::COLOR_RGBA2GRAY : cv::COLOR_BGRA2GRAY, buffer);
       return buffer;
     default:
       throw std::invalid_argument("unsupported image type " + cv::typeToString(image.type()) +
-                                  " (supported: 8UC1, 16UC1, 8UC3, 8UC4)");
+                                  " (supported: 8UC1, 16UC1, 8UC3, 16UC3, 8UC4, 16UC4)");
   }
 }
 

@@ -13,7 +13,7 @@ class PlaceRecognizer(_bindings.PlaceRecognizer):
 
     Every parameter of the core is a keyword (mrs_vpr.parameter_reference() lists them); the rest keep
     their documented defaults. An unknown parameter or a value out of range raises ValueError with the
-    core's message. Images are NumPy arrays: H x W grey (uint8 or uint16) or H x W x 3 BGR uint8 (or
+    core's message. Images are NumPy arrays: H x W grey or H x W x 3 BGR, uint8 or uint16 (or
     RGB with channel_order="rgb"), strided or not. Stamps are seconds (float), kept to the nearest
     nanosecond. The map keeps a frame only once its view has changed by min_appearance_change (0.4 of
     the difference between unrelated views; 0 keeps every frame), as the node does; match() keyframes

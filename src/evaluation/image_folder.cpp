@@ -125,6 +125,10 @@ std::vector<cv::Mat> loadImageFolder(const std::string& folder) {
 }
 
 GroundTruth readGroundTruthCsv(const std::string& path) {
+  // An ifstream opens a folder and reads nothing from it: it would be "empty".
+  if (std::filesystem::is_directory(path)) {
+    throw std::invalid_argument("ground-truth file '" + path + "' is a folder (give the CSV file)");
+  }
   std::ifstream file(path);
   if (!file) throw std::runtime_error("cannot open ground-truth file '" + path + "'");
   const auto fail = [&path](int line, const std::string& what) {

@@ -48,7 +48,7 @@ Image imageFrom(const py::handle& object) {
   const int depth = depthOf(array.dtype());
   if (depth < 0) {
     throw std::invalid_argument("unsupported image dtype " + py::str(array.dtype()).cast<std::string>() +
-                                " (supported: uint8 grey, BGR or BGRA; uint16 grey)");
+                                " (supported: uint8 or uint16 grey, BGR or BGRA)");
   }
   if (array.size() == 0) throw std::invalid_argument("image is empty: an array of shape " + shapeText(array));
   const auto channels = array.ndim() == 3 ? array.shape(2) : 1;

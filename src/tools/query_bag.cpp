@@ -93,6 +93,10 @@ int run(int argc, char** argv) {
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = min_appearance_change;
   keyframing.validate();
+  // Checked now, not by the node after --timeout seconds of waiting for it ("": the node's default).
+  if (!method.empty() && method != "mrs" && method != "seqslam") {
+    throw std::invalid_argument("--method must be mrs or seqslam, got '" + method + "'");
+  }
   std::string why;
   if (service.empty()) throw std::invalid_argument("--service must not be empty");
   if (!ros::names::validate(service, why)) {

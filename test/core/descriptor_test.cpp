@@ -105,6 +105,24 @@ TEST(DescriptorExtractor, SixteenBitImageGivesTheSameDescriptorAsItsEightBitOrig
   EXPECT_LE(cv::norm(from_wide, extractor.compute(gray), cv::NORM_INF), 1.0);
 }
 
+TEST(DescriptorExtractor, SixteenBitColourGivesTheDescriptorOfItsEightBitOriginal) {
+  for (const DescriptorParams& params : {thumbnailParams(), DescriptorParams{}}) {
+    SCOPED_TRACE(params.type);
+    const DescriptorExtractor extractor{params};
+    const cv::Mat colour = colourImage(128, 64, 2);
+    cv::Mat alpha;
+    cv::cvtColor(colour, alpha, cv::COLOR_BGR2BGRA);
+    for (const cv::Mat& eight_bit : {colour, alpha}) {
+      cv::Mat wide;
+      eight_bit.convertTo(wide, CV_16U, 257.0);  // 255 -> 65535, as a 16-bit PNG of the same picture
+      const cv::Mat expected = extractor.compute(eight_bit);
+      // Rounding the grey level at 8 or at 16 bits may move a value by a level or two.
+      EXPECT_LE(cv::norm(extractor.compute(wide), expected, cv::NORM_INF), 2.0);
+      EXPECT_LE(cv::norm(extractor.compute(wide), expected, cv::NORM_L1), 0.05 * expected.total());
+    }
+  }
+}
+
 TEST(DescriptorExtractor, RgbOrderOfASwappedImageGivesTheBgrResult) {
   const DescriptorExtractor extractor{thumbnailParams()};
   const cv::Mat bgr = colourImage(128, 64, 3);

@@ -399,6 +399,9 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   const CommandResult recent = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --min-travel 1");
   EXPECT_EQ(recent.status, 1);
   EXPECT_NE(recent.err.find("--min-travel needs --bag, not --recent-frames"), std::string::npos) << recent.err;
+  const CommandResult method = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --method fastest");
+  EXPECT_EQ(method.status, 1);
+  EXPECT_NE(method.err.find("--method must be mrs or seqslam, got 'fastest'"), std::string::npos) << method.err;
   // Checked before the service is asked: a sequence of one frame is no sequence.
   const CommandResult one = run(std::string(QUERY_BAG_PATH) + " --recent-frames 1 --service /nope/query");
   EXPECT_EQ(one.status, 1);

@@ -80,6 +80,8 @@ TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
               "sequence length 151 is larger than the reference of 150 keyframes");
   expectError(folders + " --method seqslam --sequence-length 10", "protocol");  // Missing flag.
+  expectError(folders + " --method seqslam --protocol per-frame --sequence-length 10 --ground-truth " + path("query"),
+              "ground-truth file '" + path("query") + "' is a folder (give the CSV file)");
   // An option of the front end not in use is refused, not ignored.
   const CommandResult thumbnail_option =
       run(std::string(MRS_VPR_EVAL_PATH) + " " + folders + " --protocol per-frame --image-width 16");
