@@ -111,3 +111,31 @@ def test_the_tool_prints_no_traceback_for_deeply_nested_json(tmp_path):
     assert result.stderr == ("mrs_vpr_plot: error: %s is not JSON this tool reads: its arrays or objects nest too "
                              "deeply\n" % path)
     assert not (tmp_path / "x.png").exists()
+
+
+@pytest.mark.parametrize(
+    "argv, problem",
+    [
+        (["pr", "e.json", "-o", "x.png", "--dpi", "0"], "--dpi and --size must be positive"),
+        (["pr", "e.json", "-o", "x.png", "--colours", "1"], "--colours must be in 2..256"),
+        (["pr", "e.json", "-o", "x.png", "--size", "1e6", "1e6"],
+         "--size and --dpi make a picture over 65535 pixels a side"),
+        (["pr", "e.json"], "the following arguments are required: -o/--output"),
+    ],
+    ids=["dpi", "colours", "huge", "no output"],
+)
+def test_bad_arguments_are_one_line_and_exit_code_one(plot_tool, capsys, argv, problem):
+    with pytest.raises(SystemExit) as stop:
+        plot_tool.main(argv)
+    assert stop.value.code == 1
+    err = capsys.readouterr().err
+    assert err == "mrs_vpr_plot: error: %s (see --help)\n" % problem
+
+
+def test_a_mistyped_output_folder_is_refused_not_created(plot_tool, capsys, tmp_path):
+    path = tmp_path / "evaluation.json"
+    path.write_text(json.dumps(EVALUATION))
+    typo = tmp_path / "typo1" / "typo2" / "out"
+    err = error_of(plot_tool, capsys, ["eval", str(path), "-d", str(typo)])
+    assert err == "mrs_vpr_plot: error: -d %s: there is no folder %s\n" % (typo, typo.parent)
+    assert not (tmp_path / "typo1").exists()
