@@ -284,7 +284,18 @@ int run(int argc, char** argv) {
       document["difference_pictures"] = writeDifferencePictures(
           options.plots, plotted_query.view(), plotted_reference.view(), records, sequence.contrast_window);
     }
-    if (!options.output.empty()) writeJson(document, options.output);
+    if (!options.output.empty()) {
+      // Its pictures lie in the --plots folder, not beside it: named by their whole path there.
+      json output = document;
+      if (output.contains("difference_pictures")) {
+        for (auto& [key, picture] : output["difference_pictures"].items()) {
+          if (!picture.is_object()) continue;
+          const std::filesystem::path file = std::filesystem::path(options.plots) / picture["file"].get<std::string>();
+          picture["file"] = std::filesystem::absolute(file).lexically_normal().string();
+        }
+      }
+      writeJson(output, options.output);
+    }
     if (!options.plots.empty()) {
       const std::string evaluation = (std::filesystem::path(options.plots) / "evaluation.json").string();
       writeJson(document, evaluation);

@@ -103,6 +103,34 @@ TEST_F(PlotsTest, EvalWritesEveryPlotAndTheDifferencePictures) {
   expectPng(plots / band.at("file").get<std::string>(), 101, 91);
 }
 
+TEST_F(PlotsTest, AnOutputBesidePlotsNamesTheirPicturesWhereTheyAreAndAnotherRunsPictureIsRefused) {
+  // --output elsewhere than --plots: its pictures are named by their whole path, and draw.
+  const fs::path plots = root() / "with_output";
+  const fs::path output = root() / "run.json";
+  std::string err;
+  ASSERT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + output.string(), nullptr, &err), 0) << err;
+  const json document = json::parse(std::ifstream(output));
+  EXPECT_EQ(document.at("difference_pictures").at("band").at("file").get<std::string>(),
+            (plots / "difference_band_values.png").string());
+  ASSERT_EQ(exitStatus(plotTool() + " band " + output.string() + " -o " + (root() / "band.png").string(), nullptr,
+                       &err),
+            0)
+      << err;
+  // A picture of another run where this evaluation's should be: refused, not drawn under its truth.
+  fs::copy_file(plots / "difference_band_values.png", root() / "kept_band.png");
+  cv::imwrite((plots / "difference_band_values.png").string(), cv::Mat(5, 7, CV_8UC1, cv::Scalar(9)));
+  EXPECT_EQ(exitStatus(plotTool() + " band " + output.string() + " -o " + (root() / "other.png").string(), nullptr,
+                       &err),
+            1);
+  EXPECT_NE(err.find("is a picture of 5 x 7 cells, not the 91 x 101 that"), std::string::npos) << err;
+  fs::remove(plots / "difference_band_values.png");
+  EXPECT_EQ(exitStatus(plotTool() + " band " + output.string() + " -o " + (root() / "other.png").string(), nullptr,
+                       &err),
+            1);
+  EXPECT_NE(err.find("which does not exist"), std::string::npos) << err;
+  EXPECT_FALSE(fs::exists(root() / "other.png"));
+}
+
 TEST_F(PlotsTest, OutOfMapQueriesHaveNoBandAndNoErrorToDraw) {
   const fs::path plots = root() / "out_of_map";
   std::string err;
