@@ -31,12 +31,30 @@ import mrs_vpr
 IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pnm")
 
 
+def read_image(path):
+    """One image as the API takes it: 16-bit grey as uint16 (Pillow's RGB would clip it to white), any
+    other as RGB uint8. A file Pillow cannot read ends the script with one line naming it."""
+    try:
+        with Image.open(path) as image:
+            image.load()
+            if image.mode in ("I;16", "I;16L", "I;16B", "I"):
+                return np.asarray(image).astype(np.uint16)
+            return np.asarray(image.convert("RGB"))
+    except (OSError, ValueError) as error:
+        sys.exit("cannot read image '%s': %s" % (path, error))
+
+
 def read_folder(folder):
-    """The folder's images, in file-name order, as one N x H x W x 3 RGB uint8 array."""
+    """The folder's images, in file-name order, as one N x H x W (x 3) array."""
     files = sorted(path for path in glob.glob(os.path.join(folder, "*")) if path.lower().endswith(IMAGE_EXTENSIONS))
     if not files:
         sys.exit("no images in '%s'" % folder)
-    return np.stack([np.asarray(Image.open(path).convert("RGB")) for path in files])
+    images = [read_image(path) for path in files]
+    for path, image in zip(files, images):
+        if image.shape != images[0].shape:
+            sys.exit("image '%s' is %s, but '%s' is %s: a traversal's images must all be of one size and kind"
+                     % (path, "x".join(map(str, image.shape)), files[0], "x".join(map(str, images[0].shape))))
+    return np.stack(images)
 
 
 def frames_off(frame, first, last):
