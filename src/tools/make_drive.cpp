@@ -121,6 +121,9 @@ void writeDrive(const Options& options) {
     if (route_frame != loaded) {
       const std::string& file = files[static_cast<std::size_t>(options.begin + route_frame)];
       route_image = mrs_vpr::loadImage(file);
+      // A drive's noise and gain are in 8-bit grey levels: 16-bit frames are drawn as their 8-bit
+      // originals, as images_to_bag and the evaluator read them.
+      if (route_image.depth() == CV_16U) route_image.convertTo(route_image, CV_8U, 1.0 / 257.0);
       if (size.empty()) size = route_image.size();
       if (route_image.size() != size) {
         throw std::runtime_error("image '" + file + "' is " + std::to_string(route_image.cols) + "x" +

@@ -111,6 +111,24 @@ TEST_F(MakeDriveTest, WritesTheDriveAsImagesWithTheRouteFrameOfEach) {
   EXPECT_FALSE(fs::exists(path("part.part")));
 }
 
+TEST_F(MakeDriveTest, SixteenBitFramesAreDrawnAsTheirEightBitOriginals) {
+  // 16-bit PNGs of the same pictures, as a camera's raw frames may be stored.
+  fs::create_directories(path("summer16"));
+  for (const std::string& name : imagesIn(path("summer"))) {
+    cv::Mat wide;
+    cv::imread(path("summer/" + name), cv::IMREAD_UNCHANGED).convertTo(wide, CV_16U, 257.0);
+    ASSERT_TRUE(cv::imwrite(path("summer16/" + name), wide));
+  }
+  const CommandResult result = makeDrive("--images " + path("summer16") + " --begin 100 --end 300 --seed 4 --output " +
+                                         path("part16") + kSmallDrive);
+  ASSERT_EQ(result.status, 0) << result.err;
+  // A moving frame is the route's image itself, in 8 bits.
+  const cv::Mat first = cv::imread(path("part16/000000.png"), cv::IMREAD_UNCHANGED);
+  const cv::Mat original = cv::imread(path("summer/00100.png"), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(first.type(), original.type());
+  EXPECT_EQ(cv::norm(first, original, cv::NORM_INF), 0.0);
+}
+
 TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
   ASSERT_EQ(makeDrive("--images " + path("summer") + " --seed 1 --output " + path("map") + kSmallDrive).status, 0);
   ASSERT_EQ(makeDrive("--images " + path("winter") + " --begin 0 --end 250 --seed 2 --output " + path("revisit") +
