@@ -170,12 +170,17 @@ bool PlaceRecognizer::tryFlush() {
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_, std::try_to_lock);
   if (!map_lock.owns_lock()) return false;
   flushLocked();
+  reserveAheadLocked();  // Under the same lock: a query starting now is not waited for either.
   return true;
 }
 
 void PlaceRecognizer::reserveAhead() {
-  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  reserveAheadLocked();
+}
+
+void PlaceRecognizer::reserveAheadLocked() {
+  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
   const int frames = map_.size();
   if (frames < reserved_frames_ - reserved_frames_ / 4) return;
   int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));

@@ -31,7 +31,7 @@ class DescriptorExtractor {
   explicit DescriptorExtractor(const DescriptorParams& params);
 
   /**
-   * Describes one image: CV_8UC1, CV_16UC1, CV_8UC3 or CV_8UC4 of any size, strided or not.
+   * Describes one image: CV_8UC1, CV_16UC1, CV_8UC3, CV_16UC3, CV_8UC4 or CV_16UC4 of any size, strided or not.
    * Returns a continuous 1 x size() CV_8UC1 row. Buffers are kept per thread, so that a camera's
    * frames of one size allocate nothing but the descriptor.
    * Throws std::invalid_argument for an empty image, an unsupported type or an image of more than

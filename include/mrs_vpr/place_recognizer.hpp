@@ -70,7 +70,7 @@ class PlaceRecognizer {
   PlaceRecognizer(const PlaceRecognizer&) = delete;
   PlaceRecognizer& operator=(const PlaceRecognizer&) = delete;
 
-  /// The descriptor of an image (8UC1, 16UC1, 8UC3, 8UC4 in `order`), without touching the map.
+  /// The descriptor of an image (8UC1, 16UC1, 8UC3, 16UC3, 8UC4, 16UC4 in `order`), without touching the map.
   cv::Mat describe(const cv::Mat& image, ChannelOrder order = ChannelOrder::kBgr) const;
 
   /// Offers a camera frame (described here): it joins the map if it is a keyframe (offerDescriptor).
@@ -172,8 +172,8 @@ class PlaceRecognizer {
 
   /// Moves pending frames into the map, waiting for running queries.
   void flush();
-  /// The same unless a query (or another writer) holds the map: then returns false at once, and the
-  /// frames stay pending.
+  /// The same, and reserveAhead(), unless a query (or another writer) holds the map: then returns
+  /// false at once, and the frames stay pending.
   bool tryFlush();
   /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation. Only an
   /// optimisation: when the memory cannot be had, the map stays as it was and frames are added as before.
@@ -225,6 +225,8 @@ class PlaceRecognizer {
   void flushLocked();
   /// keyframes_.keep() of an admitted frame; the caller holds keyframes_mutex_.
   void keepKeyframeLocked(const cv::Mat& descriptor);
+  /// reserveAhead(); the caller holds map_mutex_ exclusively.
+  void reserveAheadLocked();
   /// Drops the first `stored` pending frames, which the map now holds.
   void forgetStored(std::size_t stored);
   /// addDescriptor without the keyframe bookkeeping.

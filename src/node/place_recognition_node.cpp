@@ -188,8 +188,9 @@ bool PlaceRecognitionNode::flushWaitingKeyframes(bool wait) {
 void PlaceRecognitionNode::mapInfoCallback(const ros::WallTimerEvent&) {
   // Frames parked during a query join the map even when no new image arrives; reserveAhead gives up by
   // itself when memory runs out.
-  // Not waiting for a running query: its parked frames are counted as pending until it ends.
-  if (flushWaitingKeyframes(/*wait=*/false)) recognizer_.reserveAhead();
+  // Not waiting for a running query (tryFlush reserves ahead too): its parked frames are counted as
+  // pending until it ends.
+  flushWaitingKeyframes(/*wait=*/false);
   publishMapInfoIfChanged();
   reportWriteErrors();
 }

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "mrs_vpr/store/map_hold.hpp"
 #include "front_end_metadata.hpp"
 #include "map_path.hpp"
 
@@ -448,22 +449,7 @@ void MapDatabase::removeCompanions(const std::string& path) {
   for (const char* suffix : kCompanionSuffixes) std::filesystem::remove(path + suffix, ignored);
 }
 
-void MapDatabase::checkNotHeld(const std::string& path) {
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
-    sqlite3_close(db);
-    return;  // Nothing SQLite can open is held by an owner of a map.
-  }
-  sqlite3_busy_timeout(db, 0);
-  // A write transaction needs the lock an owner keeps (exclusive locking mode) for as long as it runs.
-  const int begin = sqlite3_exec(db, "BEGIN IMMEDIATE", nullptr, nullptr, nullptr);
-  const int code = sqlite3_errcode(db);
-  sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
-  sqlite3_close(db);
-  if (begin != SQLITE_OK && (code == SQLITE_BUSY || code == SQLITE_LOCKED)) {
-    throw MapDatabaseError("map database '" + path + "': it is held by another process (a node or tool writing it)");
-  }
-}
+void MapDatabase::checkNotHeld(const std::string& path) { const MapHold hold(path); }
 
 void MapDatabase::makeSelfContained() {
   std::string mode;

@@ -17,6 +17,7 @@
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_hold.hpp"
 #include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
@@ -82,6 +83,9 @@ int run(int argc, char** argv) {
   if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  // A link names the map it points to: the new map replaces that file, not the link, and that file
+  // must be no input.
+  if (std::filesystem::is_symlink(output)) output = std::filesystem::weakly_canonical(output).string();
   mrs_vpr::tools::requireApartFromInputs({"--output", output}, {{"--images", images}, {"--bag", bag_path}});
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = min_appearance_change;
@@ -89,8 +93,6 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0 && bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
-  // A link names the map it points to: the new map replaces that file, not the link.
-  if (std::filesystem::is_symlink(output)) output = std::filesystem::weakly_canonical(output).string();
   // The output is checked before any work: a folder would otherwise be found only when the finished
   // map is renamed to it.
   if (std::filesystem::is_directory(output)) {
@@ -103,8 +105,10 @@ int run(int argc, char** argv) {
   }
   // Its folder, a name the file system allows, and no earlier map's log beside it.
   if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);
-  // A map a node is writing is not replaced (the node would go on writing the old file).
-  if (exists) mrs_vpr::MapDatabase::checkNotHeld(output);
+  // A map a node is writing is not replaced (the node would go on writing the old file), and none
+  // starts writing it until the new map has taken its place (its frames would be lost).
+  std::optional<mrs_vpr::MapHold> hold;
+  if (exists) hold.emplace(output);
   // A map is extended with its own front end, unless the command line names one (which must be the same).
   if (exists && append && !mrs_vpr::tools::descriptorOptionsGiven(variables)) {
     params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
@@ -115,8 +119,8 @@ int run(int argc, char** argv) {
   if (travel.min_travel != 0.0) keyframes.emplace(bag_path, travel);
 
   // Every map is built aside and renamed when complete; an extended one starts as a copy of the map,
-  // read without being written (an older format is converted in the copy). A failure leaves the map
-  // as it was.
+  // which is read, never written (an older format is converted in the copy), and held meanwhile. A
+  // failure leaves the map as it was.
   const bool extend = exists && append;
   const std::string target = output + ".part";
   // Another build_map writing the same map: its unfinished file is not ours to remove.
@@ -129,9 +133,14 @@ int run(int argc, char** argv) {
   };
   removePart();
   int stored = 0;
+  bool own_part = false;  // Until then, a failure may be another run's: its files are left alone.
   try {
-    if (extend) mrs_vpr::MapDatabase(output, params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
+    if (extend) {
+      mrs_vpr::MapDatabase(output, params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
+      own_part = true;
+    }
     mrs_vpr::MapDatabase map(target, params);
+    own_part = true;
     const std::int64_t before = map.size();
     // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
     // on from an appended map's last keyframes.
@@ -185,22 +194,14 @@ int run(int argc, char** argv) {
       }
     }
   } catch (...) {
-    removePart();
+    if (own_part) removePart();
     throw;
   }
+  // The old map's log would be read into the new file (its frames are in the copy extended).
+  if (exists) mrs_vpr::MapDatabase::removeCompanions(output);
   std::error_code error;
-  if (exists) {
-    // Opened by a node while the new map was written, it is left to that node.
-    try {
-      mrs_vpr::MapDatabase::checkNotHeld(output);
-    } catch (...) {
-      removePart();
-      throw;
-    }
-    // The old map's log would be read into the new file.
-    mrs_vpr::MapDatabase::removeCompanions(output);
-  }
   std::filesystem::rename(target, output, error);
+  hold.reset();
   if (error) {
     removePart();
     throw std::runtime_error("cannot replace '" + output + "' by the new map: " + error.message());

@@ -17,6 +17,7 @@
 #include <sqlite3.h>
 
 #include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_hold.hpp"
 #include "support/temporary_folder.hpp"
 #include "support/front_ends.hpp"
 
@@ -469,6 +470,27 @@ TEST_F(MapDatabaseTest, AHeldMapIsToldFromOneNobodyHolds) {
   crashAfterCommitting(path("crashed.db"), frames(4));
   EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("crashed.db")));
   EXPECT_EQ(MapDatabase(path("crashed.db"), MapAccess::kReadOnly).size(), 4);
+}
+
+TEST_F(MapDatabaseTest, AHoldKeepsWritersOutLetsReadersInAndChangesNothing) {
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(5));
+  }
+  {
+    const MapHold hold(path("map.db"));
+    EXPECT_NE(openingError(path("map.db")).find("locked by another process"), std::string::npos);
+    EXPECT_EQ(MapDatabase(path("map.db"), MapAccess::kReadOnly).size(), 5);
+    EXPECT_THROW(MapHold second(path("map.db")), MapDatabaseError);
+  }
+  EXPECT_EQ(openingError(path("map.db")), "(opened)");
+  // A killed writer's log stays as it was, and so does the file: a failed tool leaves the map's bytes.
+  crashAfterCommitting(path("crashed.db"), frames(4));
+  const std::string file = fileContents(path("crashed.db"));
+  const std::string log = fileContents(path("crashed.db-wal"));
+  { const MapHold hold(path("crashed.db")); }
+  EXPECT_EQ(fileContents(path("crashed.db")), file);
+  EXPECT_EQ(fileContents(path("crashed.db-wal")), log);
 }
 
 TEST_F(MapDatabaseTest, ASelfContainedMapIsOneFileThatCanBeRenamed) {

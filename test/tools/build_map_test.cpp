@@ -135,6 +135,15 @@ TEST_F(BuildMapTest, AFailedExtensionLeavesAMapOfAnEarlierFormatAsItWas) {
   EXPECT_EQ(framesIn(map), 153);
 }
 
+TEST_F(BuildMapTest, ALinkToAnInputIsNoOutput) {
+  // Through the link, the map would be written over one of the images it reads.
+  fs::create_symlink(path("reference/00000.png"), path("to_input.db"));
+  const CommandResult refused = run(build(path("to_input.db"), " --force"));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("lies inside the folder"), std::string::npos) << refused.err;
+  EXPECT_TRUE(fs::is_symlink(path("to_input.db")));
+}
+
 TEST_F(BuildMapTest, AMapNamedThroughALinkIsExtendedWhereTheLinkPoints) {
   const std::string map = path("linked.db");
   ASSERT_EQ(run(build(map)).status, 0);
