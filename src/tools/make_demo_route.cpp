@@ -60,9 +60,9 @@ std::string frameName(std::size_t index) {
   return name.str();
 }
 
-/// Removes an earlier route's traversal folder, which --force replaces: its frames would otherwise
-/// stay beside the new route's (or its bags). A folder with anything else in it is not ours to remove.
-void removeEarlierFrames(const fs::path& folder) {
+/// Throws unless `folder` is missing or holds only frames as writeFolder names them: an earlier
+/// route's traversal, which --force may replace. Anything else in it is not the tool's to remove.
+void requireEarlierFramesOnly(const fs::path& folder) {
   if (!fs::exists(folder)) return;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const std::string name = entry.path().filename().string();
@@ -73,7 +73,6 @@ void removeEarlierFrames(const fs::path& folder) {
                                   "', which make_demo_route did not write: it is not replaced");
     }
   }
-  fs::remove_all(folder);
 }
 
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
@@ -113,6 +112,7 @@ int run(int argc, char** argv) {
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseEmptyPaths(variables, {"output"});
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s");
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(seed));
@@ -140,7 +140,8 @@ int run(int argc, char** argv) {
       }
     }
   }
-  for (const char* traversal : {"reference", "query"}) removeEarlierFrames(folder / traversal);
+  // Both checked before anything is removed or written.
+  for (const char* traversal : {"reference", "query"}) requireEarlierFramesOnly(folder / traversal);
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   fs::create_directories(folder);
   writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
@@ -155,6 +156,9 @@ int run(int argc, char** argv) {
     if (!truth.flush()) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
   }
   truth_file.commit();
+  // An earlier route's frames go with it: they would stay beside the new route's (or its bags).
+  fs::remove_all(folder / "reference");
+  fs::remove_all(folder / "query");
   if (variables.count("images") > 0) {
     writeFolder(folder / "reference", route.reference);
     writeFolder(folder / "query", route.query);

@@ -468,13 +468,19 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
   // And without --images, an earlier route's folders go with it.
   ASSERT_EQ(run(tool + " --reference-frames 30 --query-frames 10 --force").status, 0);
   EXPECT_FALSE(fs::exists(path("demo/reference")));
-  // A folder of other files is not the tool's to remove.
-  fs::create_directories(path("demo/query"));
+  // A folder of other files is not the tool's to remove, and nothing is removed when one is found:
+  // not the other folder's frames either.
+  ASSERT_EQ(run(tool + " --reference-frames 30 --query-frames 10 --force --images").status, 0);
   std::ofstream(path("demo/query/notes.txt")) << "mine";
   const CommandResult kept = run(tool + " --reference-frames 30 --query-frames 10 --force");
   EXPECT_EQ(kept.status, 1);
   EXPECT_NE(kept.err.find("holds 'notes.txt', which make_demo_route did not write"), std::string::npos) << kept.err;
   EXPECT_TRUE(fs::exists(path("demo/query/notes.txt")));
+  EXPECT_EQ(count("reference"), 30);
+  // An unset shell variable is no folder: the working directory's own folders are not touched.
+  const CommandResult empty = run(std::string(MAKE_DEMO_ROUTE_PATH) + " --output '' --force");
+  EXPECT_EQ(empty.status, 1);
+  EXPECT_NE(empty.err.find("--output was given an empty path"), std::string::npos) << empty.err;
 }
 
 TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
