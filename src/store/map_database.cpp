@@ -100,13 +100,16 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   // A map in WAL mode is read with an index (-shm) that SQLite creates beside it: in a folder nobody
   // may write to (a package's share/, a read-only mount) it must be read as the unchanging file it
   // is there, unless it holds a log, which only that index can read.
-  if (read_only && !folderIsWritable(path)) {
+  // SQLite writes beside the file a link names: the folder that counts is that file's.
+  std::error_code no_file;
+  const std::string file = std::filesystem::weakly_canonical(path, no_file).string();
+  if (read_only && !no_file && !folderIsWritable(file)) {
     std::error_code no_log;
-    if (std::filesystem::file_size(path + "-wal", no_log) > 0 && !no_log) {
-      fail("its write-ahead log '" + path + "-wal' can be read only where SQLite may write its index beside it, " +
+    if (std::filesystem::file_size(file + "-wal", no_log) > 0 && !no_log) {
+      fail("its write-ahead log '" + file + "-wal' can be read only where SQLite may write its index beside it, " +
            "and its folder is read-only: copy the map and its log to a folder you may write to");
     }
-    name = immutableUri(path);
+    name = immutableUri(file);  // Absolute, with one leading slash: no URI authority.
     flags |= SQLITE_OPEN_URI;
   }
   if (sqlite3_open_v2(name.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
