@@ -71,7 +71,8 @@ SANITIZE_FLAGS := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sani
 SANITIZED_TESTS := mrs_vpr_core_test mrs_vpr_evaluation_test mrs_vpr_store_test mrs_vpr_allocation_failure_test
 FUZZ_SECONDS ?= 60
 # Installed by `make fuzz` only: the README's two commands do not need a second compiler.
-FUZZ_DEB_PACKAGES := clang-14 libfuzzer-14-dev
+# libclang-rt-14-dev holds the fuzzer's and sanitizers' runtimes, only recommended by clang-14.
+FUZZ_DEB_PACKAGES := clang-14 libfuzzer-14-dev libclang-rt-14-dev
 FUZZ_CMAKE_ARGUMENTS := -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DCATKIN_ENABLE_TESTING=ON \
   -DMRS_VPR_FUZZ=ON
 
@@ -114,8 +115,11 @@ bench-scale: build
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_map_scale_benchmark --data "$(DATA)" --sizes 10k,100k,1M --queries 5 --brute-queries 1
 
 # Checked on the workspace link, whose folder carries the package's name as catkin_lint expects.
-lint: deps link
-	@catkin_lint --strict -W2 $(PKG_LINK) 2>&1 | grep -v -e rosdep -e 'unknown dependencies will be ignored'; \
+# The package's own folder, not the workspace's links to it, whose folders catkin_lint does not enter;
+# the checkout's folder name is the user's to choose.
+lint: deps
+	@catkin_lint --strict -W2 --ignore package_path_name $(CURDIR) --skip-path $(WS) --skip-path $(SANITIZE_WS) \
+	  --skip-path $(FUZZ_WS) 2>&1 | grep -v -e rosdep -e 'unknown dependencies will be ignored'; \
 	  test $${PIPESTATUS[0]} -eq 0
 
 clean:

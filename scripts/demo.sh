@@ -12,6 +12,13 @@
 set -euo pipefail
 export PATH=/usr/bin:/bin:$PATH  # ROS tools need Debian's python3.
 
+if [ $# -gt 0 ]; then
+  case "$1" in
+    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "demo: no arguments expected, got '$1' (see --help)" >&2; exit 1 ;;
+  esac
+fi
+
 readonly TOPIC=/camera/image_raw
 readonly SERVICE=/mrs_vpr/query
 readonly RATE=20            # Frame rate of the generated traversals [Hz].
