@@ -114,9 +114,8 @@ bench-scale: build
 	@test -d "$(DATA)/nordland" || { echo "No real data at $(DATA): run make bench-scale DATA=/path/to/data"; exit 1; }
 	@$(SETUP) && rosrun mrs_vpr mrs_vpr_map_scale_benchmark --data "$(DATA)" --sizes 10k,100k,1M --queries 5 --brute-queries 1
 
-# Checked on the workspace link, whose folder carries the package's name as catkin_lint expects.
 # The package's own folder, not the workspace's links to it, whose folders catkin_lint does not enter;
-# the checkout's folder name is the user's to choose.
+# the checkout's folder name is the user's to choose (catkin_lint expects the package's name).
 lint: deps
 	@catkin_lint --strict -W2 --ignore package_path_name $(CURDIR) --skip-path $(WS) --skip-path $(SANITIZE_WS) \
 	  --skip-path $(FUZZ_WS) 2>&1 | grep -v -e rosdep -e 'unknown dependencies will be ignored'; \
