@@ -113,11 +113,10 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   }
   // The last commit now, while a failure can still be said: the frames it leaves out are lost.
   if (map_ && map_->persistent()) {
-    try {
-      map_->commit();
-    } catch (const std::exception& error) {
-      ROS_ERROR("mrs_vpr: %zu keyframes of the map are lost: they could not be committed to ~database (%s)",
-                map_->queued(), error.what());
+    const std::size_t lost = map_->close();
+    if (lost > 0) {
+      ROS_ERROR("mrs_vpr: %zu keyframes of the map are lost: the last commit to ~database failed (%s)", lost,
+                map_->writeError().c_str());
     }
   }
 }

@@ -20,13 +20,16 @@ MapWriter::MapWriter(MapDatabase& database, const CommitPolicy& policy)
   thread_ = std::thread(&MapWriter::run, this);
 }
 
-MapWriter::~MapWriter() {
+MapWriter::~MapWriter() { stop(); }
+
+std::size_t MapWriter::stop() {
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
     stopping_ = true;
   }
   wake_.notify_all();
-  thread_.join();
+  if (thread_.joinable()) thread_.join();
+  return queued();
 }
 
 void MapWriter::add(StoredFrame frame) {

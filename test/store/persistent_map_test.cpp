@@ -158,9 +158,16 @@ TEST_F(PersistentMapTest, QueuedCountsTheFramesNotYetCommitted) {
   map.commit();
   EXPECT_EQ(map.queued(), 0U);
   EXPECT_EQ(map.persisted(), 5U);
+  // Closing commits what is queued and says what it could not commit: here nothing.
+  addReference(map, 5, 8);
+  EXPECT_EQ(map.queued(), 3U);
+  EXPECT_EQ(map.close(), 0U);
+  EXPECT_EQ(map.persisted(), 8U);
+  EXPECT_EQ(map.close(), 0U);
   PlaceRecognizer in_memory_recognizer;
-  const PersistentMap in_memory(in_memory_recognizer);
+  PersistentMap in_memory(in_memory_recognizer);
   EXPECT_EQ(in_memory.queued(), 0U);
+  EXPECT_EQ(in_memory.close(), 0U);
 }
 
 TEST_F(PersistentMapTest, ResetEmptiesTheMapAndTheDatabase) {

@@ -33,7 +33,7 @@ class MapWriter {
  public:
   /// `database` must outlive the writer, and is used only through it from now on.
   MapWriter(MapDatabase& database, const CommitPolicy& policy);
-  /// Commits what is queued (one last try), then stops the thread.
+  /// stop().
   ~MapWriter();
 
   MapWriter(const MapWriter&) = delete;
@@ -43,6 +43,10 @@ class MapWriter {
   void add(StoredFrame frame);
   /// Commits every queued frame now; throws MapDatabaseError when that fails (the frames stay queued).
   void commit();
+  /// Commits what is queued (one last try) and stops the thread; returns the frames that try could not
+  /// commit (lastError() says why). Frames added later are never committed. Calling it again only
+  /// returns the count.
+  std::size_t stop();
   /**
    * Commits what is queued, then runs `task` on the database with no commit in between, so that it
    * sees every frame queued before the call; frames added meanwhile wait in the queue. persisted()

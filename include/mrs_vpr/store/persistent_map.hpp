@@ -76,6 +76,10 @@ class PersistentMap {
   std::string writeError() const { return writer_ ? writer_->lastError() : ""; }
   /// Frames of the map waiting for a commit (kept through failed commits); 0 in memory only.
   std::size_t queued() const { return writer_ ? writer_->queued() : 0; }
+  /// For a map that gets no frame any more (a node shutting down): commits what is queued, one last
+  /// try, and stops committing. Returns the frames that try could not commit, which are lost with the
+  /// process (writeError() says why); 0 in memory only.
+  std::size_t close() { return writer_ ? writer_->stop() : 0; }
 
  private:
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
