@@ -37,8 +37,10 @@ def read_image(path):
     try:
         with Image.open(path) as image:
             image.load()
-            if image.mode in ("I;16", "I;16L", "I;16B", "I"):
+            if image.mode in ("I;16", "I;16L", "I;16B"):
                 return np.asarray(image).astype(np.uint16)
+            if image.mode == "I":  # 32-bit integers, as Pillow reads some 16-bit PNGs: kept in 16 bits.
+                return np.clip(np.asarray(image), 0, 65535).astype(np.uint16)
             return np.asarray(image.convert("RGB"))
     except (OSError, ValueError) as error:
         sys.exit("cannot read image '%s': %s" % (path, error))
