@@ -96,7 +96,7 @@ fuzz-deps:
 # The map loader's libFuzzer target for FUZZ_SECONDS, from seeds written by the store at run time.
 fuzz: fuzz-deps
 	@$(call sanitized_build,$(FUZZ_WS),$(FUZZ_CMAKE_ARGUMENTS),map_database_fuzz_test map_database_fuzz_test_seeds)
-	@scripts/fuzz_map_loader.sh $(FUZZ_WS)/devel/lib/mrs_vpr $(FUZZ_WS)/fuzz $(FUZZ_SECONDS)
+	@bash scripts/fuzz_map_loader.sh $(FUZZ_WS)/devel/lib/mrs_vpr $(FUZZ_WS)/fuzz $(FUZZ_SECONDS)
 
 demo: build
 	@$(SETUP) && scripts/demo.sh

@@ -4,7 +4,7 @@
 # a leak or an input that takes longer than 10 s fails, and leaves the input in WORK/artifacts to
 # replay with `BIN_DIR/map_database_fuzz_test FILE`.
 #
-# Usage: scripts/fuzz_map_loader.sh BIN_DIR WORK SECONDS
+# Usage: bash scripts/fuzz_map_loader.sh BIN_DIR WORK SECONDS (make fuzz runs it)
 set -eu
 
 bin_dir=${1:?usage: fuzz_map_loader.sh BIN_DIR WORK SECONDS}

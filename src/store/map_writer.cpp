@@ -29,6 +29,13 @@ std::size_t MapWriter::stop() {
   }
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
+  // The thread may have ended on a commit that began before the stop and failed, with frames queued
+  // meanwhile never tried: one last try of everything, now that nothing else commits.
+  try {
+    commit();
+  } catch (const std::exception&) {
+    // lastError() says why; the caller is told how many frames are left.
+  }
   return queued();
 }
 

@@ -139,6 +139,8 @@ int run(int argc, char** argv) {
       mrs_vpr::MapDatabase(output, params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
       own_part = true;
     }
+    // Made by this run if it was not there (even when opening it then fails, a full disk say).
+    own_part = own_part || !std::filesystem::exists(target);
     mrs_vpr::MapDatabase map(target, params);
     own_part = true;
     const std::int64_t before = map.size();

@@ -156,7 +156,9 @@ int run(int argc, char** argv) {
     if (!truth.flush()) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
   }
   truth_file.commit();
-  // An earlier route's frames go with it: they would stay beside the new route's (or its bags).
+  // An earlier route's frames go with it: they would stay beside the new route's (or its bags). Checked
+  // again: something may have been put there while the route was made.
+  for (const char* traversal : {"reference", "query"}) requireEarlierFramesOnly(folder / traversal);
   fs::remove_all(folder / "reference");
   fs::remove_all(folder / "query");
   if (variables.count("images") > 0) {

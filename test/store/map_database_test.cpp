@@ -478,12 +478,17 @@ TEST_F(MapDatabaseTest, AHoldKeepsWritersOutLetsReadersInAndChangesNothing) {
     MapDatabase database(path("map.db"), thumbnailParams());
     database.append(frames(5));
   }
+  const std::string closed_cleanly = fileContents(path("map.db"));
   {
     const MapHold hold(path("map.db"));
     EXPECT_NE(openingError(path("map.db")).find("locked by another process"), std::string::npos);
     EXPECT_EQ(MapDatabase(path("map.db"), MapAccess::kReadOnly).size(), 5);
     EXPECT_THROW(MapHold second(path("map.db")), MapDatabaseError);
   }
+  // A map in WAL mode with no log beside it gets none from the hold: SQLite's empty log and index go.
+  EXPECT_EQ(fileContents(path("map.db")), closed_cleanly);
+  EXPECT_FALSE(fs::exists(path("map.db-wal")));
+  EXPECT_FALSE(fs::exists(path("map.db-shm")));
   EXPECT_EQ(openingError(path("map.db")), "(opened)");
   // A killed writer's log stays as it was, and so does the file: a failed tool leaves the map's bytes.
   crashAfterCommitting(path("crashed.db"), frames(4));

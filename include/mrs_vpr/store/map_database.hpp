@@ -120,7 +120,8 @@ class MapDatabase {
   /// must then not be replaced. A missing file, or one that is no SQLite database, is held by nobody.
   static void checkNotHeld(const std::string& path);
   /// Removes what an earlier database at `path` left beside it (path-wal, -shm, -journal), which
-  /// SQLite would otherwise read into a new file renamed to `path`. Only for a path nobody holds.
+  /// SQLite would otherwise read into a new file renamed to `path`. Only for a path no other process
+  /// holds (the caller's own MapHold keeps any writer out).
   static void removeCompanions(const std::string& path);
 
   /**
