@@ -440,13 +440,6 @@ namespace {
 
 }  // namespace
 
-namespace {
-
-/// What SQLite keeps beside a database, and reads into whatever file next bears its name.
-constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
-
-}  // namespace
-
 void MapDatabase::removeCompanions(const std::string& path) {
   std::error_code ignored;
   for (const char* suffix : kCompanionSuffixes) std::filesystem::remove(path + suffix, ignored);

@@ -4,16 +4,15 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <iterator>
 
 #include "mrs_vpr/store/map_database.hpp"
+#include "map_path.hpp"
 
 namespace mrs_vpr {
-namespace {
 
-/// What SQLite may create beside a map it opens (a WAL map without a log gets an empty log and index).
-constexpr const char* kCompanions[] = {"-wal", "-shm", "-journal"};
-
-}  // namespace
+// A WAL map opened without a log gets an empty log and index beside it: the hold notes which it made.
+static_assert(std::size(kCompanionSuffixes) == MapHold::kCompanionCount);
 
 MapHold::MapHold(const std::string& path) : path_(path) {
   struct stat file {};
@@ -22,7 +21,7 @@ MapHold::MapHold(const std::string& path) : path_(path) {
   inode_ = file.st_ino;
   for (std::size_t i = 0; i < kCompanionCount; ++i) {
     std::error_code ignored;
-    existed_[i] = std::filesystem::exists(path + kCompanions[i], ignored);
+    existed_[i] = std::filesystem::exists(path + kCompanionSuffixes[i], ignored);
   }
   if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
     sqlite3_close(db_);
@@ -56,7 +55,7 @@ void MapHold::release() {
   if (::stat(path_.c_str(), &file) != 0 || file.st_dev != device_ || file.st_ino != inode_) return;
   for (std::size_t i = 0; i < kCompanionCount; ++i) {
     std::error_code ignored;
-    if (!existed_[i]) std::filesystem::remove(path_ + kCompanions[i], ignored);
+    if (!existed_[i]) std::filesystem::remove(path_ + kCompanionSuffixes[i], ignored);
   }
 }
 

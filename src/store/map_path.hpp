@@ -13,6 +13,9 @@ constexpr std::size_t kDatabaseSuffix = sizeof("-journal") - 1;
 /// ... and to a saved map's: PersistentMap writes `path`.build, whose journal is `path`.build-journal.
 constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
 
+/// What SQLite keeps beside a database, and reads into whatever file next bears its name.
+inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
+
 /**
  * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
  * it); empty when it can. A file that exists must be a regular file; otherwise its folder must exist

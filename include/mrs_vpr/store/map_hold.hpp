@@ -28,9 +28,10 @@ class MapHold {
   MapHold(const MapHold&) = delete;
   MapHold& operator=(const MapHold&) = delete;
 
- private:
-  static constexpr std::size_t kCompanionCount = 3;  // -wal, -shm, -journal
+  /// The files SQLite keeps beside a map (-wal, -shm, -journal).
+  static constexpr std::size_t kCompanionCount = 3;
 
+ private:
   void release();
 
   std::string path_;
