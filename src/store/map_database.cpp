@@ -487,10 +487,14 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
 void MapDatabase::backupTo(const std::string& path) const {
   namespace fs = std::filesystem;
   const auto refuse = [&](const std::string& problem) { refuseSave(path, problem); };
-  std::error_code error;
   checkSaveTarget(path);
   const std::string part = path + ".part";
-  for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(part + suffix, error);
+  const auto removePart = [&] {
+    std::error_code ignored;
+    fs::remove(part, ignored);
+    removeCompanions(part);
+  };
+  removePart();
   sqlite3* copy = nullptr;
   std::string problem;
   if (sqlite3_open_v2(part.c_str(), &copy, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
@@ -512,11 +516,12 @@ void MapDatabase::backupTo(const std::string& path) const {
   }
   sqlite3_close(copy);
   if (problem.empty()) {
+    std::error_code error;
     fs::rename(part, path, error);
     if (error) problem = error.message();
   }
   if (!problem.empty()) {
-    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(part + suffix, error);
+    removePart();
     refuse(problem);
   }
 }

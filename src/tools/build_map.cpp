@@ -126,9 +126,11 @@ int run(int argc, char** argv) {
   // Another build_map writing the same map: its unfinished file is not ours to remove.
   mrs_vpr::MapDatabase::checkNotHeld(target);
   const auto removePart = [&] {
-    std::error_code ignored;
-    for (const char* leftover : {".part", ".part-wal", ".part-shm", ".part-journal", ".part.part"}) {
-      std::filesystem::remove(output + leftover, ignored);
+    // Also what backupTo() writes for an extended map, target + ".part", should it have stopped.
+    for (const std::string& file : {target, target + ".part"}) {
+      std::error_code ignored;
+      std::filesystem::remove(file, ignored);
+      mrs_vpr::MapDatabase::removeCompanions(file);
     }
   };
   removePart();
