@@ -19,12 +19,14 @@
 
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/store/map_hold.hpp"
-#include "support/temporary_folder.hpp"
+#include "support/crashed_writer.hpp"
 #include "support/front_ends.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace mrs_vpr {
 namespace {
 
+using testing_support::crashAfterCommitting;
 using testing_support::thumbnailParams;
 
 namespace fs = std::filesystem;
@@ -413,26 +415,10 @@ TEST_F(MapDatabaseTest, EveryCommittedFrameSurvivesAKillAtAnyMoment) {
   }
 }
 
-/// A writer of `count` frames at `file` that dies after its commit, as a node killed with kill -9:
-/// the frames are committed in the log left beside the file.
-void crashAfterCommitting(const std::string& file, const std::vector<StoredFrame>& committed) {
-  const pid_t child = fork();
-  ASSERT_GE(child, 0);
-  if (child == 0) {
-    MapDatabase database(file, thumbnailParams());
-    database.append(committed);
-    _exit(0);  // No close: no checkpoint, the log stays.
-  }
-  int status = 0;
-  waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  ASSERT_TRUE(fs::exists(file + "-wal"));
-}
-
 TEST_F(MapDatabaseTest, ASnapshotIsNotSavedWhereAnEarlierMapLeftItsLog) {
   // The log of a map killed at that path, whose file was then removed (as the refusal to overwrite
   // it says): SQLite would read the log into the snapshot saved there.
-  crashAfterCommitting(path("snapshot.db"), frames(5));
+  ASSERT_NO_FATAL_FAILURE(crashAfterCommitting(path("snapshot.db"), frames(5), thumbnailParams()));
   fs::remove(path("snapshot.db"));
   MapDatabase map(path("map.db"), thumbnailParams());
   map.append(frames(3, 10));
@@ -468,7 +454,7 @@ TEST_F(MapDatabaseTest, AHeldMapIsToldFromOneNobodyHolds) {
   }
   EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("map.db")));
   // A map whose writer was killed is held by nobody; its log is recovered, not lost.
-  crashAfterCommitting(path("crashed.db"), frames(4));
+  ASSERT_NO_FATAL_FAILURE(crashAfterCommitting(path("crashed.db"), frames(4), thumbnailParams()));
   EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("crashed.db")));
   EXPECT_EQ(MapDatabase(path("crashed.db"), MapAccess::kReadOnly).size(), 4);
 }
@@ -491,7 +477,7 @@ TEST_F(MapDatabaseTest, AHoldKeepsWritersOutLetsReadersInAndChangesNothing) {
   EXPECT_FALSE(fs::exists(path("map.db-shm")));
   EXPECT_EQ(openingError(path("map.db")), "(opened)");
   // A killed writer's log stays as it was, and so does the file: a failed tool leaves the map's bytes.
-  crashAfterCommitting(path("crashed.db"), frames(4));
+  ASSERT_NO_FATAL_FAILURE(crashAfterCommitting(path("crashed.db"), frames(4), thumbnailParams()));
   const std::string file = fileContents(path("crashed.db"));
   const std::string log = fileContents(path("crashed.db-wal"));
   { const MapHold hold(path("crashed.db")); }
@@ -595,7 +581,7 @@ TEST_F(MapDatabaseTest, AMapInAFolderNobodyMayWriteToIsReadAsItIs) {
   EXPECT_EQ(readWithoutWriteAccess("/" + path("shipped/map.db")), "7 frames");
   // A log there can be read only through the index: said so, not "attempt to write a readonly database".
   fs::create_directory(path("crashed"));
-  crashAfterCommitting(path("crashed/map.db"), frames(3));
+  ASSERT_NO_FATAL_FAILURE(crashAfterCommitting(path("crashed/map.db"), frames(3), thumbnailParams()));
   readOnly("crashed");
   const std::string message = readWithoutWriteAccess(path("crashed/map.db"));
   EXPECT_NE(message.find("its write-ahead log '" + path("crashed/map.db") + "-wal' can be read only where SQLite may "

@@ -2,8 +2,6 @@
 // it reports written is the one it wrote, and a failure leaves the map as it was.
 
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <string>
@@ -15,6 +13,7 @@
 #include "mrs_vpr/stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "route_tools_fixture.hpp"
+#include "support/crashed_writer.hpp"
 #include "support/format_one_map.hpp"
 #include "support/front_ends.hpp"
 
@@ -41,22 +40,6 @@ class BuildMapTest : public mrs_vpr::testing_support::RouteToolsTest {
     return result;
   }
 
-  /// A map of `count` frames at `file` whose writer died after its commit, as a node killed with
-  /// kill -9: the frames are in the log left beside the file.
-  static void crashAfterCommitting(const std::string& file, int count) {
-    const pid_t child = fork();
-    ASSERT_GE(child, 0);
-    if (child == 0) {
-      MapDatabase database(file, thumbnail());
-      database.append(frames(count));
-      _exit(0);  // No close: no checkpoint, the log stays.
-    }
-    int status = 0;
-    waitpid(child, &status, 0);
-    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    ASSERT_TRUE(fs::exists(file + "-wal"));
-  }
-
   static std::int64_t framesIn(const std::string& file) { return MapDatabase(file, MapAccess::kReadOnly).size(); }
 
   static std::string build(const std::string& output, const std::string& options = "") {
@@ -66,7 +49,7 @@ class BuildMapTest : public mrs_vpr::testing_support::RouteToolsTest {
 
 TEST_F(BuildMapTest, AMapReplacedWithForceTakesNothingFromTheOldOnesLog) {
   const std::string map = path("crashed.db");
-  crashAfterCommitting(map, 93);
+  ASSERT_NO_FATAL_FAILURE(mrs_vpr::testing_support::crashAfterCommitting(map, frames(93), thumbnail()));
   const CommandResult replaced = run(build(map, " --force"));
   ASSERT_EQ(replaced.status, 0) << replaced.err;
   EXPECT_NE(replaced.err.find("150 frames added to 0"), std::string::npos) << replaced.err;
@@ -76,7 +59,7 @@ TEST_F(BuildMapTest, AMapReplacedWithForceTakesNothingFromTheOldOnesLog) {
 
 TEST_F(BuildMapTest, ALogLeftWhereTheMapIsToGoIsRefused) {
   const std::string map = path("removed.db");
-  crashAfterCommitting(map, 5);
+  ASSERT_NO_FATAL_FAILURE(mrs_vpr::testing_support::crashAfterCommitting(map, frames(5), thumbnail()));
   fs::remove(map);
   const CommandResult refused = run(build(map));
   EXPECT_EQ(refused.status, 1);
