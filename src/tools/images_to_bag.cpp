@@ -57,6 +57,7 @@ int run(int argc, char** argv) {
   // clang-format on
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag"});
   if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
   if (topic.empty()) throw std::invalid_argument("--topic must not be empty");
   std::string why;
@@ -64,7 +65,6 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name: " + why);
   }
   // Checked before any work: a folder would be found only when the finished bag is renamed.
-  if (bag_path.empty()) throw std::invalid_argument("--bag must not be empty");
   mrs_vpr::tools::requireApartFromInputs({"--bag", bag_path}, {{"--images", images}});
   if (std::filesystem::is_directory(bag_path)) {
     throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");

@@ -89,6 +89,7 @@ int run(int argc, char** argv) {
   mrs_vpr::tools::addDescriptorOptions(description, front_end);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
+  mrs_vpr::tools::refuseEmptyPaths(variables, {"bag"});
   mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, front_end);
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = min_appearance_change;

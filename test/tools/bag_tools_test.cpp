@@ -159,7 +159,11 @@ TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
   const CommandResult no_bag =
       run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag '' --topic /t --rate 5");
   EXPECT_EQ(no_bag.status, 1);
-  EXPECT_NE(no_bag.err.find("--bag must not be empty"), std::string::npos) << no_bag.err;
+  EXPECT_NE(no_bag.err.find("--bag was given an empty path"), std::string::npos) << no_bag.err;
+  const CommandResult no_images =
+      run(std::string(IMAGES_TO_BAG_PATH) + " --images '' --bag " + path("x.bag") + " --topic /t --rate 5");
+  EXPECT_EQ(no_images.status, 1);
+  EXPECT_NE(no_images.err.find("--images was given an empty path"), std::string::npos) << no_images.err;
   const CommandResult no_bag_folder = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
                                           path("nowhere/x.bag") + " --topic /t --rate 5");
   EXPECT_EQ(no_bag_folder.status, 1);
@@ -421,6 +425,9 @@ TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
   const CommandResult unnamed = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service ''");
   EXPECT_EQ(unnamed.status, 1);
   EXPECT_NE(unnamed.err.find("--service must not be empty"), std::string::npos) << unnamed.err;
+  const CommandResult no_bag = run(std::string(QUERY_BAG_PATH) + " --bag '' --topic /t --count 5");
+  EXPECT_EQ(no_bag.status, 1);
+  EXPECT_NE(no_bag.err.find("--bag was given an empty path"), std::string::npos) << no_bag.err;
   const CommandResult invalid = run(std::string(QUERY_BAG_PATH) + " --recent-frames 10 --service 'my query'");
   EXPECT_EQ(invalid.status, 1);
   EXPECT_NE(invalid.err.find("--service 'my query' is not a valid ROS name"), std::string::npos) << invalid.err;
