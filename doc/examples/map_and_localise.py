@@ -14,11 +14,12 @@ Query frame i is taken to show the place of map frame i (as in the Nordland set)
 when the frame its stretch localises is among those its map keyframe stands for, give or take
 --tolerance frames. --parameter NAME=VALUE sets any parameter of the core
 (mrs_vpr.parameter_reference() lists them), e.g. min_appearance_change=0 to keep every frame.
+Exit code: 0 when the stretch was localised correctly, 1 when wrongly or on an error (one line), 2
+for bad arguments, 130 on Ctrl-C.
 """
 
 import argparse
 import ast
-import glob
 import os
 import sys
 import time
@@ -42,13 +43,17 @@ def read_image(path):
             if image.mode == "I":  # 32-bit integers, as Pillow reads some 16-bit PNGs: kept in 16 bits.
                 return np.clip(np.asarray(image), 0, 65535).astype(np.uint16)
             return np.asarray(image.convert("RGB"))
-    except (OSError, ValueError) as error:
+    except (OSError, ValueError, Image.DecompressionBombError) as error:
         sys.exit("cannot read image '%s': %s" % (path, error))
 
 
 def read_folder(folder):
     """The folder's images, in file-name order, as one N x H x W (x 3) array."""
-    files = sorted(path for path in glob.glob(os.path.join(folder, "*")) if path.lower().endswith(IMAGE_EXTENSIONS))
+    try:
+        names = os.listdir(folder)
+    except OSError as error:
+        sys.exit("cannot read folder '%s': %s" % (folder, error.strerror))
+    files = sorted(os.path.join(folder, name) for name in names if name.lower().endswith(IMAGE_EXTENSIONS))
     if not files:
         sys.exit("no images in '%s'" % folder)
     images = [read_image(path) for path in files]
@@ -104,6 +109,13 @@ def main():
     parser.add_argument("--parameter", type=parameter, action="append", default=[], metavar="NAME=VALUE",
                         help="a parameter of the core; repeat the option for several")
     args = parser.parse_args()
+    for name, value, least in (("--length", args.length, 2), ("--tolerance", args.tolerance, 0),
+                               ("--evaluate", args.evaluate, 0), ("--seed", args.seed, 0)):
+        if value < least:
+            parser.error("%s must be >= %d, got %d" % (name, least, value))
+    # Checked before any work, not after it.
+    if args.save is not None and (args.save == "" or os.path.lexists(args.save)):
+        parser.error("--save '%s': %s" % (args.save, "an empty path" if args.save == "" else "the file exists"))
 
     parameters = dict(args.parameter)
     for name in parameters:
@@ -127,7 +139,13 @@ def main():
           % (len(map_images), map_images.shape[2], map_images.shape[1], len(recognizer),
              time.perf_counter() - start, read_s, recognizer.front_end))
 
-    first = len(query_images) - args.length if args.first is None else args.first
+    if args.length > len(query_images):
+        sys.exit("--length %d is more than the %d query frames" % (args.length, len(query_images)))
+    last_first = len(query_images) - args.length
+    first = last_first if args.first is None else args.first
+    if not 0 <= first <= last_first:
+        sys.exit("--first must be in 0..%d (%d query frames, stretches of %d), got %d"
+                 % (last_first, len(query_images), args.length, first))
     try:
         answer, localised, stands_for, keyframes, elapsed_ms = localise(recognizer, map_keyframes, query_images,
                                                                         first, args.length, args.method)
@@ -147,21 +165,29 @@ def main():
         starts = np.random.default_rng(args.seed).choice(len(query_images) - args.length + 1,
                                                          size=min(args.evaluate, len(query_images) - args.length + 1),
                                                          replace=False)
-        correct = accepted = accepted_correct = largest = 0
+        correct = accepted = accepted_correct = largest = unasked = 0
         times = []
         for start_frame in sorted(int(s) for s in starts):
-            result, frame, frames, _, ms = localise(recognizer, map_keyframes, query_images, start_frame,
-                                                    args.length, args.method)
+            try:
+                result, frame, frames, _, ms = localise(recognizer, map_keyframes, query_images, start_frame,
+                                                        args.length, args.method)
+            except ValueError:  # A stretch within a stop keyframes to fewer than 2 frames: nothing to ask.
+                unasked += 1
+                continue
             off = frames_off(frame, *frames)
             largest = max(largest, off)
             correct += off <= args.tolerance
             accepted += result.accepted
             accepted_correct += result.accepted and off <= args.tolerance
             times.append(ms)
+        asked = len(times)
         print("%d stretches of %d frames at random positions: top-1 %.3f (within %d frames), largest error %d, "
               "accepted %d (precision %.3f), median %.1f ms"
-              % (len(times), args.length, correct / len(times), args.tolerance, largest, accepted,
-                 accepted_correct / accepted if accepted else float("nan"), float(np.median(times))))
+              % (asked + unasked, args.length, correct / (asked + unasked), args.tolerance, largest, accepted,
+                 accepted_correct / accepted if accepted else float("nan"),
+                 float(np.median(times)) if times else float("nan")))
+        if unasked:
+            print("%d of them held too few keyframes to be asked (counted as not correct)" % unasked)
 
     if args.save:
         try:
@@ -172,4 +198,8 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        sys.exit(130)

@@ -84,3 +84,38 @@ def test_the_example_refuses_a_sequence_length_other_than_its_length_option(tmp_
         assert result.stderr.splitlines()[-1] == ("map_and_localise.py: error: --parameter %s: the sequence length "
                                                   "is the stretch's, set it with --length" % name)
         assert "Traceback" not in result.stderr
+
+
+def test_the_example_refuses_bad_numbers_and_an_existing_save_target_before_any_work(tmp_path):
+    (tmp_path / "taken.db").write_text("")
+    for arguments, message in ((["--tolerance", "-1"], "--tolerance must be >= 0, got -1"),
+                               (["--evaluate", "-1"], "--evaluate must be >= 0, got -1"),
+                               (["--seed", "-1"], "--seed must be >= 0, got -1"),
+                               (["--length", "1"], "--length must be >= 2, got 1"),
+                               (["--save", ""], "--save '': an empty path"),
+                               (["--save", str(tmp_path / "taken.db")], "the file exists")):
+        # The folders hold no image: an argument checked only after reading them would say so instead.
+        result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path)] + arguments,
+                                capture_output=True, text=True)
+        assert result.returncode == 2, arguments
+        assert message in result.stderr.splitlines()[-1], result.stderr
+
+
+def test_the_example_refuses_a_stretch_outside_the_query_and_counts_stretches_it_cannot_ask(tmp_path):
+    route = mrs_vpr.synthetic_route(reference_frames=120, query_frames=120, speed_min=1.0, speed_max=1.0)
+    write_folder(tmp_path / "map", route["reference"])
+    # The query stands still for its first 40 frames: a stretch within them keyframes to one frame.
+    write_folder(tmp_path / "query", np.concatenate([np.repeat(route["query"][:1], 40, axis=0), route["query"][40:]]))
+    common = [sys.executable, str(SCRIPT), str(tmp_path / "map"), str(tmp_path / "query"), "--parameter",
+              "descriptor_type=thumbnail", "--length", "20"]
+    for first in ("-1", "101"):
+        result = subprocess.run(common + ["--first", first], capture_output=True, text=True)
+        assert result.returncode == 1
+        assert result.stderr.strip() == "--first must be in 0..100 (120 query frames, stretches of 20), got " + first
+    result = subprocess.run(common + ["--evaluate", "101"], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    assert "Traceback" not in result.stderr
+    lines = result.stdout.splitlines()
+    assert lines[3].startswith("101 stretches of 20 frames at random positions: top-1 ")
+    # The 21 stretches starting at frames 0..20 lie within the stop (frames 0..39).
+    assert lines[4] == "21 of them held too few keyframes to be asked (counted as not correct)"
