@@ -139,3 +139,44 @@ def test_a_mistyped_output_folder_is_refused_not_created(plot_tool, capsys, tmp_
     err = error_of(plot_tool, capsys, ["eval", str(path), "-d", str(typo)])
     assert err == "mrs_vpr_plot: error: -d %s: there is no folder %s\n" % (typo, typo.parent)
     assert not (tmp_path / "typo1").exists()
+
+
+@pytest.mark.parametrize(
+    "argv, problem",
+    [
+        (["pr", "{json}", "-o", ""], "-o was given an empty path"),
+        (["eval", "{json}", "-d", ""], "-d was given an empty path"),
+        (["pr", "{json}", "-o", "{folder}/c.jpg", "--colours", "16"],
+         "--colours makes a PNG of a few colours; -o {folder}/c.jpg is no .png file"),
+    ],
+    ids=["empty -o", "empty -d", "colours of a JPEG"],
+)
+def test_outputs_it_cannot_write_as_asked_are_refused_before_drawing(plot_tool, capsys, tmp_path, argv, problem):
+    path = tmp_path / "evaluation.json"
+    path.write_text(json.dumps(EVALUATION))
+    argv = [a.format(json=path, folder=tmp_path) for a in argv]
+    err = error_of(plot_tool, capsys, argv)
+    assert err == "mrs_vpr_plot: error: %s\n" % problem.format(folder=tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["evaluation.json"]
+
+
+def test_the_benchmark_curves_join_only_the_plain_global_rows(plot_tool, tmp_path, monkeypatch):
+    def row(setting, length, top1):
+        return {"setting": setting, "method": "mrs", "protocol": "global", "out_of_map": False,
+                "reference_frames": 1783, "sequence_length": length,
+                "summary": {"top1": top1, "median_time_ms": 1.0}}
+    bench = {"rows": [row("global N=100 M=1783", 100, 0.9), row("global winter backwards N=100 M=1783", 100, 0.0),
+                      row("global N=200 M=1783", 200, 1.0), row("global winter with stops N=200 M=1783", 200, 0.0)],
+             "tolerance": 2, "queries": 10, "part": "check", "threads": 1}
+    path = tmp_path / "bench.json"
+    path.write_text(json.dumps(bench))
+    drawn = []
+    original_plot = plot_tool.plt.Axes.plot
+
+    def record(axes, xs, ys, *rest, **options):
+        drawn.append((list(xs), list(ys)))
+        return original_plot(axes, xs, ys, *rest, **options)
+    monkeypatch.setattr(plot_tool.plt.Axes, "plot", record)
+    assert plot_tool.main(["benchmark", str(path)]) == 0
+    # Success against N: one line through the plain rows; time against M: one point for each N.
+    assert drawn == [([100, 200], [0.9, 1.0]), ([1783], [1.0]), ([1783], [1.0])]
