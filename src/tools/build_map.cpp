@@ -134,6 +134,7 @@ int run(int argc, char** argv) {
     }
   };
   removePart();
+  mrs_vpr::tools::catchInterruptions();
   int stored = 0;
   bool own_part = false;  // Until then, a failure may be another run's: its files are left alone.
   try {
@@ -179,6 +180,7 @@ int run(int argc, char** argv) {
         },
         images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
     flush();
+    mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.
     // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
     if (keyframes && stored == 0 && keyframes->withoutPose() > 0) {
       throw std::runtime_error("no frame was kept: " + keyframes->summary() +

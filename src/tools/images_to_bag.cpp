@@ -92,6 +92,7 @@ int run(int argc, char** argv) {
     throw std::invalid_argument(std::string("the images cannot all be stamped: ") + error.what() +
                                 "; use a higher --rate or an earlier --start-time");
   }
+  mrs_vpr::tools::catchInterruptions();
   mrs_vpr::tools::OutputInProgress output(bag_path);
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
@@ -99,6 +100,7 @@ int run(int argc, char** argv) {
   mrs_vpr::ProgressLine progress =
       mrs_vpr::ProgressLine::onStderr("  " + bag_path, "images", static_cast<long long>(files.size()));
   mrs_vpr::forEachImage(images, [&](int index, const std::string& path, const cv::Mat& image) {
+    mrs_vpr::tools::stopIfInterrupted();
     // Stamps from the frame number, not accumulated, so they never drift.
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start_time, index, rate);
     try {

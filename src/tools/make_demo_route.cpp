@@ -46,6 +46,7 @@ void writeBag(const std::string& path, const std::string& topic, const std::vect
   rosbag::Bag bag;
   bag.open(output.temporary(), rosbag::bagmode::Write);
   for (std::size_t i = 0; i < frames.size(); ++i) {
+    mrs_vpr::tools::stopIfInterrupted();
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start, static_cast<long long>(i), rate);
     bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera", static_cast<std::uint32_t>(i)));
   }
@@ -75,14 +76,19 @@ void requireEarlierFramesOnly(const fs::path& folder) {
   }
 }
 
+/// The folder appears under `folder` only once complete, as a bag does.
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
-  fs::create_directories(folder);
+  mrs_vpr::tools::OutputInProgress output(folder.string());
+  fs::remove_all(output.temporary());  // An interrupted earlier run's.
+  fs::create_directories(output.temporary());
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const fs::path file = folder / frameName(i);
+    mrs_vpr::tools::stopIfInterrupted();
+    const fs::path file = fs::path(output.temporary()) / frameName(i);
     if (!mrs_vpr::image_codecs::write(file.string(), frames[i])) {
       throw std::runtime_error("cannot write '" + file.string() + "'");
     }
   }
+  output.commit();
 }
 
 int run(int argc, char** argv) {
@@ -143,6 +149,7 @@ int run(int argc, char** argv) {
   // Both checked before anything is removed or written.
   for (const char* traversal : {"reference", "query"}) requireEarlierFramesOnly(folder / traversal);
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+  mrs_vpr::tools::catchInterruptions();
   fs::create_directories(folder);
   writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
   writeBag((folder / "query.bag").string(), topic, route.query, start_time + 3600.0, rate);

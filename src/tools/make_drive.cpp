@@ -108,6 +108,7 @@ void writeDrive(const Options& options) {
   checkOutputFolder(options.output, options.force);
   const mrs_vpr::CameraDrive drive(end - options.begin, options.drive);
 
+  mrs_vpr::tools::catchInterruptions();
   mrs_vpr::tools::OutputInProgress output(options.output);  // Removed on an error: no half-written drive.
   const fs::path part = output.temporary();
   fs::remove_all(part);
@@ -117,6 +118,7 @@ void writeDrive(const Options& options) {
   cv::Mat route_image;
   cv::Size size;
   for (int i = 0; i < drive.size(); ++i) {
+    mrs_vpr::tools::stopIfInterrupted();
     const int route_frame = drive.frames()[static_cast<std::size_t>(i)].route_frame;
     if (route_frame != loaded) {
       const std::string& file = files[static_cast<std::size_t>(options.begin + route_frame)];

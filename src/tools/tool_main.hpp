@@ -6,6 +6,8 @@
 
 #include <boost/program_options.hpp>
 
+#include "interruption.hpp"
+
 namespace mrs_vpr {
 namespace tools {
 
@@ -45,11 +47,15 @@ inline void refuseEmptyPaths(const boost::program_options::variables_map& variab
 }
 
 /// Runs a command-line tool's `run`, turning any exception into one line on stderr
-/// ("<name>: error: ...") and exit code 1, so that bad input never ends in a crash or a stack dump.
+/// ("<name>: error: ...") and exit code 1, so that bad input never ends in a crash or a stack dump;
+/// an interruption (interruption.hpp) ends it with 128 + the signal's number.
 template <typename Run>
 int runTool(const char* name, Run&& run, int argc, char** argv) {
   try {
     return run(argc, argv);
+  } catch (const Interrupted& interruption) {
+    std::cerr << name << ": " << interruption.what() << "; nothing unfinished was left behind" << std::endl;
+    return 128 + interruption.signalNumber();
   } catch (const boost::program_options::error& error) {
     std::cerr << name << ": error: " << error.what() << " (see --help)" << std::endl;
   } catch (const std::exception& error) {

@@ -7,6 +7,7 @@
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
+#include "interruption.hpp"
 
 namespace mrs_vpr {
 namespace tools {
@@ -21,6 +22,7 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;
   const auto add = [&](const cv::Mat& descriptor, Stamp stamp) {
+    stopIfInterrupted();
     append(descriptor, stamp);
     progress.update(++traversal.frames);
   };

@@ -26,5 +26,16 @@ inline CommandResult runCommand(const std::string& command, const TemporaryFolde
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, fileContents(out), fileContents(err)};
 }
 
+/**
+ * A shell command that starts `command` in the background and sends it SIGTERM, as a supervisor
+ * stopping it (or a user's Ctrl-C) would, once `started` exists (after 10 s at most); its status is
+ * the command's. SIGTERM, since a shell that is not interactive starts a background command with
+ * SIGINT ignored.
+ */
+inline std::string stoppedOnceExists(const std::string& command, const std::string& started) {
+  return "{ " + command + " & pid=$!; for i in $(seq 1000); do [ -e '" + started +
+         "' ] && break; sleep 0.01; done; kill -TERM $pid; wait $pid; }";
+}
+
 }  // namespace testing_support
 }  // namespace mrs_vpr

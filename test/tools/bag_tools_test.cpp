@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -170,6 +171,17 @@ TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
   EXPECT_NE(no_bag_folder.err.find("--bag '" + path("nowhere/x.bag") + "': there is no folder " + path("nowhere")),
             std::string::npos)
       << no_bag_folder.err;
+}
+
+TEST_F(BagToolsTest, AStoppedImagesToBagLeavesNoUnfinishedBag) {
+  const std::string bag = path("stopped.bag");
+  const CommandResult stopped = run(mrs_vpr::testing_support::stoppedOnceExists(
+      std::string(IMAGES_TO_BAG_PATH) + " --images " + manyFrames() + " --bag " + bag + " --topic /t --rate 30",
+      bag + ".part"));
+  EXPECT_EQ(stopped.status, 128 + SIGTERM) << stopped.err;
+  EXPECT_NE(stopped.err.find("images_to_bag: interrupted by SIGTERM"), std::string::npos) << stopped.err;
+  EXPECT_FALSE(fs::exists(bag));
+  EXPECT_FALSE(fs::exists(bag + ".part"));
 }
 
 TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChanged) {

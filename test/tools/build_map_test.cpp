@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <csignal>
+
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 #include "mrs_vpr/stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "route_tools_fixture.hpp"
+#include "support/command_run.hpp"
 #include "support/crashed_writer.hpp"
 #include "support/format_one_map.hpp"
 #include "support/front_ends.hpp"
@@ -116,6 +119,17 @@ TEST_F(BuildMapTest, AFailedExtensionLeavesAMapOfAnEarlierFormatAsItWas) {
   ASSERT_EQ(appended.status, 0) << appended.err;
   EXPECT_NE(appended.err.find("150 frames added to 3"), std::string::npos) << appended.err;
   EXPECT_EQ(framesIn(map), 153);
+}
+
+TEST_F(BuildMapTest, AStoppedBuildLeavesNoUnfinishedMap) {
+  const std::string map = path("stopped.db");
+  const CommandResult stopped = run(mrs_vpr::testing_support::stoppedOnceExists(
+      buildMap() + " --images " + manyFrames() + " --output " + map, map + ".part"));
+  EXPECT_EQ(stopped.status, 128 + SIGTERM) << stopped.err;
+  EXPECT_NE(stopped.err.find("build_map: interrupted by SIGTERM"), std::string::npos) << stopped.err;
+  for (const char* file : {"", ".part", ".part-journal", ".part-wal", ".part-shm"}) {
+    EXPECT_FALSE(fs::exists(map + file)) << map + file;
+  }
 }
 
 TEST_F(BuildMapTest, ALinkToAnInputIsNoOutput) {

@@ -41,6 +41,19 @@ class RouteToolsTest : public ::testing::Test {
   static std::string path(const std::string& child) { return folder_->path(child); }
   static const std::filesystem::path& root() { return folder_->root(); }
 
+  /// A folder of 20000 frames, one image under many names: a tool reading it is still at work a
+  /// moment after it began its output.
+  static std::string manyFrames() {
+    const std::string folder = path("many");
+    if (!std::filesystem::exists(folder)) {
+      std::filesystem::create_directory(folder);
+      for (int i = 0; i < 20000; ++i) {
+        std::filesystem::create_symlink(path("reference/00000.png"), folder + "/" + std::to_string(100000 + i) + ".png");
+      }
+    }
+    return folder;
+  }
+
   /// Expects exit code 1 and one error line on stderr, the last, that contains `text`. An error found
   /// only once the traversals are read (a sequence longer than the map) follows the tool's progress
   /// lines: its header and its indented lines about what it read.
