@@ -73,8 +73,9 @@ bool atVelocityBound(const Match& match, const SequenceParams& params);
 /// among too few rivals does, and match.at_velocity_bound).
 void applyAcceptance(Match& match, const SequenceParams& params);
 
-/// For the user: "accepted", or why not ("no match found", too few rivals, confidence below the
-/// threshold, or a trajectory at a velocity bound), naming the parameters involved.
+/// For the user: "accepted", or why not ("no match found", too few rivals, a test sequence showing
+/// one view again, confidence below the threshold, or a trajectory at a velocity bound), naming the
+/// parameters involved.
 std::string acceptanceVerdict(const Match& match, const SequenceParams& params);
 
 }  // namespace mrs_vpr

@@ -60,7 +60,7 @@ class DescriptorSequence {
   /// Appends a 1 x descriptor_size CV_8UC1 row. Throws std::invalid_argument on a size or type mismatch.
   void append(const cv::Mat& descriptor, Stamp stamp = Stamp());
   void reserve(int frames);
-  /// Forgets every frame (the pooling stride stays).
+  /// Forgets every frame and its cells; the kind of cells kept stays.
   void clear();
 
   /// Also keeps MRS's compact cells of strides 1, 2, 4, ..., 2^levels for descriptors of `geometry`

@@ -25,8 +25,10 @@ class MrsMatcher : public SequenceMatcher {
    * [0, reference_count), as matchRecent asks; `map` is the whole map. A sequence with no coarser
    * level reads and extends the rows `recent` keeps between queries (mrs/recent_rows.hpp): every end
    * is scored as the brute force scores it, for the cost of the trajectory sums and of the rows of
-   * frames no earlier query included. When most frames have no row yet (the first questions, or
-   * questions far apart), the search answers as match() does and the newest frames' rows are kept.
+   * frames no earlier query included. When more than a share of the frames lack a row and the
+   * questions do not keep pace (RecentRows::readsRows: the first questions, or questions far apart),
+   * the search answers as match() does and only notes the question (RecentRows::noteAsked): no row
+   * is computed for a question that would come too late to read it.
    */
   Match matchMapFrames(SequenceView map, int reference_count, int first, int count, RecentRows& recent,
                        std::vector<MrsLevelTrace>* trace = nullptr) const;

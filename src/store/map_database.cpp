@@ -153,8 +153,9 @@ void MapDatabase::open(MapAccess access, bool params_given) {
     // A map is written only when it is sound: SQLite reads a damaged b-tree without a word (wrong
     // frames in place of others) and fails every later commit. About 0.3 s for 100k frames.
     if (!create) checkIntegrity();
-    // A 2 KiB descriptor fills a default 4 KiB page alone; 64 KiB pages hold 31 frames, so a new map
-    // takes half the disk and loads in about half the reads. (Fixed when the file is first written.)
+    // A 2 KiB thumbnail descriptor fills a default 4 KiB page alone; 64 KiB pages hold 31 of them (about 80
+    // of HOG's), so a new map takes half the disk and loads in about half the reads. (Fixed when the
+    // file is first written.)
     if (create) execute("PRAGMA page_size = " + std::to_string(kPageSize));
     // Exclusive: the lock taken by the first write is kept until the database is closed.
     execute("PRAGMA locking_mode = EXCLUSIVE");

@@ -28,7 +28,8 @@ class HogFrontEnd : public FrontEnd {
   /// Quantisation steps per unit of a normalised histogram value: 0.5 is 255.
   static constexpr float kLevelsPerUnit = 510.0F;
 
-  /// Uses the HOG fields of `params` (hog_window_width, hog_window_height, hog_cell_size, hog_bins).
+  /// Uses the HOG fields of `params` (hog_window_width, hog_window_height, hog_cell_size, hog_bins,
+  /// hog_blur).
   explicit HogFrontEnd(const DescriptorParams& params);
 
   cv::Mat describeGrey(const cv::Mat& grey) const override;

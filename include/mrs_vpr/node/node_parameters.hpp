@@ -17,8 +17,8 @@ namespace node {
 struct NodeParameters {
   /// The core's parameters, read from ~descriptor/*, ~sequence/* and ~mrs/*.
   Parameters core;
-  /// The map's capacity and how queries are answered: ~max_frames, ~max_pending_frames,
-  /// ~recent_exclusion, ~default_method.
+  /// The map's capacity, its keyframes and how queries are answered: ~max_frames,
+  /// ~max_pending_frames, ~min_appearance_change, ~recent_exclusion, ~default_method.
   RecognizerParams recognizer;
 
   double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp); 0 = off.

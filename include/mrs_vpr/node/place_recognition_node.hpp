@@ -42,9 +42,10 @@ namespace node {
  * is set, and optionally queries on its own every `~auto_query_period` seconds.
  *
  * Threading: image callbacks run on the queue of `nh` (the caller spins it: ros::spin() in the node,
- * the manager's single-threaded queue in the nodelet). Services and timers run on a private callback
- * queue served by this object's own spinner thread, so a query that takes seconds never delays a
- * camera frame. The map, its locking and the search are the ROS-free PlaceRecognizer's: a query
+ * the manager's single-threaded queue in the nodelet). Services and timers run on private callback
+ * queues served by this object's own spinner threads (one for queries and the map services, one for
+ * ~map_info, which never waits for a query), so a query that takes seconds never delays a camera
+ * frame. The map, its locking and the search are the ROS-free PlaceRecognizer's: a query
  * reads the map under a shared lock, and a new keyframe never waits for one (it is parked in a small
  * pending buffer that the next writer moves into the map).
  */

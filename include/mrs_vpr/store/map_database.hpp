@@ -30,7 +30,7 @@ enum class MapAccess {
 
 /// One frame as stored: its descriptor and what is known of the image it came from.
 struct StoredFrame {
-  cv::Mat descriptor;        ///< 1 x (W*H) CV_8UC1, as DescriptorExtractor gives it.
+  cv::Mat descriptor;        ///< 1 x descriptorSize() CV_8UC1, as DescriptorExtractor gives it.
   Stamp stamp;               ///< Exact, as the camera gave it.
   std::string frame_id;      ///< Camera frame, empty when unknown.
   /// The image's number: the camera's header.seq for the node, the frame's index in its folder or on
@@ -66,7 +66,8 @@ class MapDatabase {
   static constexpr int kFormatVersion = 2;
   /// The oldest format still read (and converted when written).
   static constexpr int kOldestFormatVersion = 1;
-  /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are 2 KiB rows.
+  /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are rows of 0.75
+  /// (HOG) to 2 KiB (thumbnail).
   static constexpr int kPageSize = 65536;
   /// The log is copied into the map once it holds this many pages (SQLite's default of 1000 pages
   /// would let it reach 64 MiB at this page size)...
