@@ -88,7 +88,7 @@ std::vector<DriveCounts> continuousMode(const std::vector<const Drive*>& drives,
       }
       if ((i + 1) % period != 0) continue;
       const int size = recognizer.size();
-      const int first_size = 2 * recent + node.recognizer.recent_exclusion;
+      const int first_size = recognizer.fewestFramesForRecent(recent);
       if (size == asked_at_size || size < first_size) continue;
       // As the node asks (node/continuous_queries.hpp), with no time budget; or about the newest only.
       const std::vector<int> ends = each_keyframe

@@ -129,7 +129,7 @@ void runContinuous(const DescriptorSequence& summer, const DescriptorSequence& w
   for (const std::string& method : options.methods) {
     if (method == "mrs-first-pass") continue;  // Not a method of PlaceRecognizer, whose mrs takes it where it pays.
     mrs_vpr::PlaceRecognizer recognizer(continuous);
-    const int first_query = 2 * kLength + recognizer.recognizerParameters().recent_exclusion;
+    const int first_query = recognizer.fewestFramesForRecent(kLength);
     std::vector<QueryRecord> first_traversal;
     std::vector<QueryRecord> revisit;
     const int frames = route + part_end - part_begin;

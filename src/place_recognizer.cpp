@@ -459,7 +459,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     }
     const int recent = static_cast<int>(frames);
     const int searchable = size - recent - recognizer_.recent_exclusion;
-    if (searchable < recent) {
+    if (size < fewestFramesForRecent(recent)) {
       throw std::invalid_argument("recent_frames " + std::to_string(recent) + " leaves " +
                                   std::to_string(std::max(searchable, 0)) + " searchable frames (map " +
                                   std::to_string(size) + " - recent " + std::to_string(recent) +

@@ -132,6 +132,9 @@ class PlaceRecognizer {
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);
+  /// The fewest map frames with which matchRecent can ask about `frames` of them: the searched
+  /// older frames (all but those and recent_exclusion) must be at least as many.
+  int fewestFramesForRecent(int frames) const { return 2 * frames + recognizer_.recent_exclusion; }
 
   /// Frames in the map (not counting pending ones).
   int size() const { return map_frames_.load(); }

@@ -175,7 +175,7 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
     return;  // nothing new since the last answer
   }
   const int recent = params_.autoQueryFrames();
-  const int first_size = 2 * recent + params_.recognizer.recent_exclusion;
+  const int first_size = recognizer_.fewestFramesForRecent(recent);
   const int size = recognizer_.size();
   if (size < first_size) {
     return;  // too early: not enough older frames to search yet
