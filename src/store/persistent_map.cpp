@@ -147,7 +147,8 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path) {
   // the one-file snapshot, written aside and renamed like every saved map.
   const std::string scratch = path + ".build";
   const auto removeScratch = [&] {
-    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(scratch + suffix, ignored);
+    fs::remove(scratch, ignored);
+    MapDatabase::removeCompanions(scratch);
   };
   removeScratch();
   recognizer_.flush();
