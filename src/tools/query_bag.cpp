@@ -57,7 +57,7 @@ int run(int argc, char** argv) {
 
   std::string bag_path;
   std::string topic;
-  std::string method = "mrs";
+  std::string method;  // Empty: the node's ~default_method.
   std::string service = "/mrs_vpr/query";
   int start = 0;
   int count = 0;
@@ -82,7 +82,7 @@ int run(int argc, char** argv) {
        "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
        "~min_appearance_change keeps them (with the node's front end); 0 = consecutive frames")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
-      ("method", po::value(&method)->default_value(method), "mrs | seqslam")
+      ("method", po::value(&method), "mrs | seqslam (default: the node's ~default_method)")
       ("service", po::value(&service)->default_value(service), "the node's query service")
       ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service, (0, 3600]");
   // clang-format on
