@@ -86,12 +86,16 @@ TEST(HogFrontEnd, BrightnessOffsetsAndBlurredCopiesGiveNearlyTheSameDescriptor) 
   const cv::Mat image = texture(320, 240, 3);
   cv::Mat brighter;
   image.convertTo(brighter, CV_8U, 1.0, 20.0);
+  cv::Mat blurred;
+  cv::GaussianBlur(image, blurred, cv::Size(), 1.0);
   const cv::Mat a = extractor.compute(image);
-  const cv::Mat b = extractor.compute(brighter);
   const cv::Mat other = extractor.compute(texture(320, 240, 4));
-  const double same = cv::norm(a, b, cv::NORM_L1);
   const double different = cv::norm(a, other, cv::NORM_L1);
-  EXPECT_LT(same, 0.05 * different) << same << " vs " << different;
+  const double brighter_off = cv::norm(a, extractor.compute(brighter), cv::NORM_L1);
+  EXPECT_LT(brighter_off, 0.05 * different) << brighter_off << " vs " << different;
+  // A blur of one pixel (a slightly defocused or moving camera) changes far less than another place.
+  const double blurred_off = cv::norm(a, extractor.compute(blurred), cv::NORM_L1);
+  EXPECT_LT(blurred_off, 0.25 * different) << blurred_off << " vs " << different;
 }
 
 TEST(HogFrontEnd, BlurKeepsANoisyCopyNearerItsOriginal) {

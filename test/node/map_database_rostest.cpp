@@ -443,6 +443,7 @@ TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
     recent.request.recent_frames = 10;
     ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
     EXPECT_TRUE(recent.response.success) << recent.response.message;
+    EXPECT_EQ(recent.response.localised_stamp, latest);  // Causal alignment: the newest frame is localised.
     // query_bag reports both stamps of its answer exactly, in nanoseconds.
     {
       rosbag::Bag bag(path("late.bag"), rosbag::bagmode::Write);

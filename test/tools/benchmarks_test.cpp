@@ -250,6 +250,10 @@ TEST_F(BenchmarksTest, TheRealDataBenchmarkReplaysCameraDrivesThroughContinuousM
     for (const char* field : {"keyframes", "queries", "stretches", "stretches_keyframed", "stretches_with_right"}) {
       EXPECT_TRUE(row.contains(field)) << field;
     }
+    // None is asked about here: questions begin once the map holds 2 x 20 + recent_exclusion keyframes,
+    // more than both drives keep together (the next test asks).
+    EXPECT_GT(row.at("keyframes").get<int>(), 0);
+    EXPECT_EQ(row.at("queries").get<int>(), 0);
   }
   EXPECT_EQ(rows[0].at("setting"), "camera drive continuous map drive");
   EXPECT_EQ(rows[0].at("accepted_right"), 0);  // No place comes back on the first traversal.
@@ -284,7 +288,12 @@ TEST_F(BenchmarksTest, TheRealDataBenchmarksDrivesKeyframeAtTheThresholdGiven) {
   // At 0 every frame is a keyframe, stopped ones included (at the default, stops add almost none).
   for (std::size_t i = 0; i < 2; ++i) {
     EXPECT_EQ(rows[i].at("stopped_keyframes"), rows[i].at("drive").at("stopped_frames")) << rows[i].dump();
+    // With as many keyframes, continuous mode asks on both drives.
+    EXPECT_GT(rows[i].at("queries").get<int>(), 0) << rows[i].dump();
   }
+  // Each keyframe once at most (the revisit's first questions may be about the map drive's last ones).
+  EXPECT_LE(rows[0].at("queries").get<int>() + rows[1].at("queries").get<int>(),
+            rows[0].at("keyframes").get<int>() + rows[1].at("keyframes").get<int>());
 }
 
 TEST_F(BenchmarksTest, TheRealDataBenchmarksDrivesAcceptAtTheThresholdGiven) {
