@@ -13,6 +13,8 @@ from sensor_msgs.msg import Image
 
 
 def main():
+    if len(sys.argv) != 6:
+        sys.exit(__doc__)
     topic, width, height, rate, seconds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
     rospy.init_node("camera_stream", anonymous=True, disable_signals=True)
     publisher = rospy.Publisher(topic, Image, queue_size=int(rate) * 2)

@@ -3,6 +3,8 @@
 image_transport's compressed publisher does. Usage: compress_bag.py IN.bag OUT.bag jpeg|png"""
 import sys, cv2, numpy as np, rosbag
 from sensor_msgs.msg import CompressedImage
+if len(sys.argv) != 4 or sys.argv[3] not in ('jpeg', 'png'):
+    sys.exit(__doc__)
 src, dst, codec = sys.argv[1], sys.argv[2], sys.argv[3]
 with rosbag.Bag(src) as bag, rosbag.Bag(dst, 'w') as out:
     for topic, msg, t in bag.read_messages():
