@@ -20,6 +20,14 @@ std::string join(const std::vector<std::string>& words) {
 
 // --- The tables: every range of the core, written once ---------------------------------------------
 
+std::string frontEndOwning(const std::string& name) {
+  if (name.rfind("descriptor/hog/", 0) == 0) return kHogFrontEnd;
+  for (const char* thumbnail : {"descriptor/image_width", "descriptor/image_height", "descriptor/patch_size"}) {
+    if (name == thumbnail) return kThumbnailFrontEnd;
+  }
+  return "";
+}
+
 const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters() {
   using P = DescriptorParams;
   static const std::vector<ParameterSpec<P>> table = {

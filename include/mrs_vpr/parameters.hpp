@@ -205,6 +205,11 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters();
 const std::vector<ParameterSpec<MrsParams>>& mrsParameters();
 const std::vector<ParameterSpec<RecognizerParams>>& recognizerParameters();
 
+/// The front end a parameter belongs to ("descriptor/hog/bins": kHogFrontEnd, "descriptor/patch_size":
+/// kThumbnailFrontEnd); empty for one of every front end. Setting another front end's parameter
+/// changes nothing, and the tools and the Python API refuse it rather than ignore it.
+std::string frontEndOwning(const std::string& name);
+
 /// The entry of `specs` named `name`; throws std::logic_error when there is none.
 template <typename Group>
 const ParameterInfo& parameterInfo(const std::vector<ParameterSpec<Group>>& specs, const std::string& name) {

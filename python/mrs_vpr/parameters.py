@@ -34,6 +34,9 @@ def _keyword_table():
 
 
 _KEYWORDS = _keyword_table()
+_DEFAULTS = {row["name"]: row["default"] for row in _bindings.parameter_reference()}
+#: Exact name -> the front end it belongs to, for the parameters of one front end only.
+_FRONT_END_OF = {row["name"]: row["front_end"] for row in _bindings.parameter_reference() if row["front_end"]}
 
 
 def parameter_reference():
@@ -44,9 +47,11 @@ def parameter_reference():
     return rows
 
 
-def exact_names(parameters):
-    """`parameters` (keyword -> value) by exact name. Raises ValueError for an unknown keyword or a
-    parameter given twice."""
+def exact_names(parameters, whole=True):
+    """`parameters` (keyword -> value) by exact name. Raises ValueError for an unknown keyword, a
+    parameter given twice or, when they are the `whole` set, a parameter of a front end other than the
+    one they choose set to other than its default, which would change nothing (at its default it is
+    let through: PlaceRecognizer(**other.parameters) copies a recognizer's settings)."""
     resolved = {}
     given_as = {}
     for keyword, value in parameters.items():
@@ -60,4 +65,11 @@ def exact_names(parameters):
             raise ValueError("%s is given twice, as '%s' and '%s'" % (name, given_as[name], keyword))
         resolved[name] = value
         given_as[name] = keyword
+    front_end = resolved.get("descriptor/type", _DEFAULTS["descriptor/type"])
+    if whole and front_end in _FRONT_END_OF.values():
+        for name, keyword in given_as.items():
+            owner = _FRONT_END_OF.get(name, front_end)
+            if owner != front_end and resolved[name] != _DEFAULTS[name]:
+                raise ValueError("'%s' is a parameter of the %s front end, and the front end is %s (add "
+                                 "descriptor_type=%r)" % (keyword, owner, front_end, owner))
     return resolved

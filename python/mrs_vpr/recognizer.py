@@ -28,8 +28,11 @@ class PlaceRecognizer(_bindings.PlaceRecognizer):
     def from_map(cls, path, **parameters):
         """A recognizer holding the map database `path`, with the front end it was written with unless
         `parameters` choose another (which the map then refuses, naming both)."""
+        chosen = exact_names(parameters, whole=False)
         settings = _bindings.map_front_end(os.fspath(path))
-        settings.update(exact_names(parameters))
+        if chosen.get("descriptor/type", settings["descriptor/type"]) != settings["descriptor/type"]:
+            settings = {}  # Another front end, as chosen, whose recognizer the map then refuses.
+        settings.update(chosen)
         recognizer = cls(**settings)
         recognizer.load(path)
         return recognizer

@@ -36,9 +36,14 @@ PYBIND11_MODULE(_bindings, m) {
       [](const std::string& path) {
         Settings settings;
         settings.core.descriptor = MapDatabase(path, MapAccess::kReadOnly).descriptorParams();
-        return parameterValues(settings, "descriptor/");
+        py::dict own;  // The map's front end's parameters only: the others mean nothing for it.
+        for (const auto& [name, value] : parameterValues(settings, "descriptor/")) {
+          const std::string owner = frontEndOwning(name.cast<std::string>());
+          if (owner.empty() || owner == settings.core.descriptor.type) own[name] = value;
+        }
+        return own;
       },
-      py::arg("path"), "The descriptor parameters (exact names) a map database was written with.");
+      py::arg("path"), "The descriptor parameters (exact names) of the front end a map database was written with.");
 
   const SyntheticRouteParams defaults;
   m.def(

@@ -15,9 +15,8 @@ namespace {
 int depthOf(const py::dtype& dtype) {
   const char kind = dtype.kind();
   const auto size = dtype.itemsize();
+  // The depths the front ends take; any other is refused here in NumPy's words, not OpenCV's.
   if (kind == 'u') return size == 1 ? CV_8U : size == 2 ? CV_16U : -1;
-  if (kind == 'i') return size == 1 ? CV_8S : size == 2 ? CV_16S : size == 4 ? CV_32S : -1;
-  if (kind == 'f') return size == 2 ? CV_16F : size == 4 ? CV_32F : size == 8 ? CV_64F : -1;
   return -1;
 }
 
@@ -47,8 +46,12 @@ Image imageFrom(const py::handle& object) {
   }
   const int depth = depthOf(array.dtype());
   if (depth < 0) {
+    // Such as matplotlib's imread gives for a PNG.
+    const std::string floats = array.dtype().kind() == 'f'
+                                   ? "; scale an image of floats in 0..1 first: (image * 255).round().astype(np.uint8)"
+                                   : "";
     throw std::invalid_argument("unsupported image dtype " + py::str(array.dtype()).cast<std::string>() +
-                                " (supported: uint8 or uint16 grey, BGR or BGRA)");
+                                " (supported: uint8 or uint16 grey, BGR or BGRA)" + floats);
   }
   if (array.size() == 0) throw std::invalid_argument("image is empty: an array of shape " + shapeText(array));
   const auto channels = array.ndim() == 3 ? array.shape(2) : 1;

@@ -164,6 +164,8 @@ py::list parameterReference() {
           row["default"] = toPython(*field);
           row["allowed"] = entry.info->allowed();
           row["meaning"] = entry.info->meaning;
+          const std::string front_end = frontEndOwning(entry.info->name);
+          row["front_end"] = front_end.empty() ? py::object(py::none()) : py::object(py::str(front_end));
           reference.append(row);
         },
         entry.field(defaults));

@@ -55,11 +55,10 @@ inline void refuseOtherFrontEndsOptions(const boost::program_options::variables_
                                         const DescriptorParams& params) {
   for (const auto& spec : descriptorParameters()) {
     const std::string& name = spec.info.name;
-    if (name == "descriptor/type") continue;
     const auto found = variables.find(descriptorOption(name));
     if (found == variables.end() || found->second.defaulted()) continue;
-    const std::string owner = name.find("/hog/") != std::string::npos ? kHogFrontEnd : kThumbnailFrontEnd;
-    if (owner != params.type) {
+    const std::string owner = frontEndOwning(name);
+    if (!owner.empty() && owner != params.type) {
       throw boost::program_options::error("--" + descriptorOption(name) + " is an option of the " + owner +
                                           " front end, and the front end is " + params.type + " (add --descriptor " +
                                           owner + ")");

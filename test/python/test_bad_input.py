@@ -19,7 +19,9 @@ SUPPORTED_TYPES = "(supported: 8UC1, 16UC1, 8UC3, 16UC3, 8UC4, 16UC4)"
 @pytest.mark.parametrize(
     "image, message",
     [
-        (np.zeros((32, 64), np.float32), "unsupported image type CV_32FC1 " + SUPPORTED_TYPES),
+        (np.zeros((32, 64), np.float32), "unsupported image dtype float32 (supported: uint8 or uint16 grey, BGR or "
+         "BGRA); scale an image of floats in 0..1 first: (image * 255).round().astype(np.uint8)"),
+        (np.zeros((32, 64), np.int8), "unsupported image dtype int8 (supported: uint8 or uint16 grey, BGR or BGRA)"),
         (np.zeros((32, 64, 2), np.uint8), "unsupported image type CV_8UC2 " + SUPPORTED_TYPES),
         (np.zeros((32, 64), np.int64), "unsupported image dtype int64 (supported: uint8 or uint16 grey, BGR or BGRA)"),
         (np.zeros((32, 64), bool), "unsupported image dtype bool (supported: uint8 or uint16 grey, BGR or BGRA)"),
@@ -41,9 +43,9 @@ def test_a_bad_image_raises_value_error_and_adds_nothing(mapped, image, message)
 
 def test_a_bad_image_in_a_batch_adds_none_of_the_batch(route, mapped):
     images = list(route["query"][:5])
-    images[3] = np.zeros((32, 64), np.float32)
+    images[3] = np.zeros((32, 64, 2), np.uint8)
     assert message_of(lambda: mapped.add_frames(images)) == (
-        "image 3 of images: unsupported image type CV_32FC1 " + SUPPORTED_TYPES)
+        "image 3 of images: unsupported image type CV_8UC2 " + SUPPORTED_TYPES)
     assert len(mapped) == 600
 
 
@@ -61,7 +63,7 @@ def test_a_bad_test_sequence_raises_value_error_naming_the_image(route, mapped):
         "4 dimensions, shape (1, 2, 3, 4)")
     test[4] = np.zeros((32, 64), np.int8)
     assert message_of(lambda: mapped.match(test)) == (
-        "image 4 of the test sequence: unsupported image type CV_8SC1 " + SUPPORTED_TYPES)
+        "image 4 of the test sequence: unsupported image dtype int8 (supported: uint8 or uint16 grey, BGR or BGRA)")
 
 
 def test_one_image_is_not_a_test_sequence(route, mapped):

@@ -88,6 +88,22 @@ def test_an_unknown_parameter_raises_value_error_with_a_suggestion():
     assert str(error.value).startswith("unknown parameter 'sequence_lenght' (did you mean 'sequence_length'?)")
 
 
+def test_a_parameter_of_the_other_front_end_is_refused_unless_at_its_default():
+    for parameters, message in (({"hog_bins": 12, "descriptor_type": "thumbnail"},
+                                 "'hog_bins' is a parameter of the hog front end, and the front end is thumbnail "
+                                 "(add descriptor_type='hog')"),
+                                ({"image_width": 100},
+                                 "'image_width' is a parameter of the thumbnail front end, and the front end is hog "
+                                 "(add descriptor_type='thumbnail')")):
+        with pytest.raises(ValueError) as error:
+            mrs_vpr.PlaceRecognizer(**parameters)
+        assert str(error.value) == message
+    # At its default it changes nothing: a recognizer's settings copy into another.
+    thumbnail = mrs_vpr.PlaceRecognizer(descriptor_type="thumbnail", image_width=128, image_height=64)
+    assert mrs_vpr.PlaceRecognizer(**thumbnail.parameters).parameters == thumbnail.parameters
+    assert mrs_vpr.PlaceRecognizer(hog_bins=12).parameters["descriptor/hog/bins"] == 12
+
+
 def test_a_parameter_given_twice_raises_value_error():
     with pytest.raises(ValueError) as error:
         mrs_vpr.PlaceRecognizer(**{"tau": 2.0, "mrs/tau": 3.0})
@@ -101,3 +117,7 @@ def test_the_reference_describes_each_parameter():
     assert row["allowed"] == "1..16"
     assert row["keywords"] == ["mrs/tau", "tau", "mrs_tau"]
     assert "Particle overlap" in row["meaning"]
+    assert row["front_end"] is None
+    fronts = {row["name"]: row["front_end"] for row in mrs_vpr.parameter_reference()}
+    assert fronts["descriptor/hog/bins"] == "hog" and fronts["descriptor/patch_size"] == "thumbnail"
+    assert fronts["descriptor/type"] is None
