@@ -97,7 +97,8 @@ const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
 const std::vector<ParameterSpec<MrsParams>>& mrsParameters() {
   using P = MrsParams;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"mrs/levels", Range::closed(0, 8), {}, "", "Coarsest temporal stride is 2^levels."}, &P::levels},
+      {{"mrs/levels", Range::closed(0, MrsParams::kMaxLevels), {}, "", "Coarsest temporal stride is 2^levels."},
+       &P::levels},
       {{"mrs/min_coarse_frames", Range::closed(2, 1000), {}, "",
         "Fewer levels are used when the coarsest level would keep fewer test frames."},
        &P::min_coarse_frames},
@@ -276,7 +277,7 @@ void SequenceParams::validate() const {
                                     .rejection(numberText(velocity_max),
                                                "velocity_min " + numberText(velocity_min)));
   }
-  const double velocity_count = std::floor((velocity_max - velocity_min) / velocity_step + 1e-9) + 1.0;
+  const double velocity_count = velocityCount();
   if (velocity_count > kMaxVelocities) {
     throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_step")
                                     .rejection(numberText(velocity_step),

@@ -70,10 +70,8 @@ int finiteCosts(const float* __restrict costs, int count) {
 
 std::vector<double> velocities(const SequenceParams& params) {
   std::vector<double> result;
-  // Counting steps (not accumulating) keeps 0.8 + 4 * 0.1 from falling short of 1.2.
-  const int steps = static_cast<int>(
-      std::floor((params.velocity_max - params.velocity_min) / params.velocity_step + 1e-9));
-  for (int i = 0; i <= steps; ++i) {
+  const int count = static_cast<int>(params.velocityCount());  // Validated: at most kMaxVelocities.
+  for (int i = 0; i < count; ++i) {
     result.push_back(params.velocity_min + i * params.velocity_step);
   }
   return result;

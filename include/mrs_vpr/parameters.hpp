@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -93,12 +94,19 @@ struct SequenceParams {
   /// acceptance.hpp for its derivation and doc/acceptance.md and doc/results.md for checks.
   double accept_threshold = 3.0;
 
+  /// How many velocities velocity_min, + velocity_step, ... up to velocity_max are (a double: an
+  /// invalid step may make them more than an int holds). Counted in steps, not accumulated, and
+  /// rounding-safe, so that 0.8 + 4 x 0.1 reaches 1.2.
+  double velocityCount() const { return std::floor((velocity_max - velocity_min) / velocity_step + 1e-9) + 1.0; }
   void validate() const;
 };
 
 /// The coarse-to-fine particle search of MRS-VPR. Defaults follow the paper where it gives one.
 struct MrsParams {
-  int levels = 3;               ///< l_max: the coarsest stride is 2^levels.
+  int levels = 3;               ///< l_max: the coarsest stride is 2^levels, at most 2^kMaxLevels.
+  /// A coarse cell averages up to 2^levels frames from 16-bit sums of their bytes (compact_cells.cpp),
+  /// which hold 257 frames at most.
+  static constexpr int kMaxLevels = 8;
   /// Fewer levels are used when N / 2^levels would drop below this. Below about 64 coarse
   /// rows the true place is too often not the coarse level's first minimum (doc/paper_gaps.md, Levels).
   int min_coarse_frames = 64;

@@ -1,6 +1,7 @@
 #include "mrs_vpr/mrs/compact_cells.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -18,6 +19,7 @@ void sumFrames(SequenceView view, int first, int last, std::uint16_t* __restrict
   const int size = view.descriptor_size;
   std::fill(sum, sum + size, 0);
   // uint16 sums hold up to 257 frames of uint8; plain loops over restrict pointers vectorise.
+  static_assert((1 << MrsParams::kMaxLevels) * 255 <= UINT16_MAX, "a coarsest cell's sums overflow 16 bits");
   for (int f = first; f <= last; ++f) {
     const std::uint8_t* __restrict frame = view.frame(f);
     for (int i = 0; i < size; ++i) sum[i] = static_cast<std::uint16_t>(sum[i] + frame[i]);
