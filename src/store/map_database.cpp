@@ -122,10 +122,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
     if (!read_only && sqlite3_db_readonly(db_, "main") == 1) fail("it is read-only");
     // Not waiting for another writer: a map held by another node is an error to report, not to queue.
     sqlite3_busy_timeout(db_, 0);
-    // A map is read whole, once (its checks, a load) and appended to: hardly a page is read twice.
-    // SQLite's default cache of 2 MiB, freed at the close, stays with the process after a load
-    // (memory_reuse.hpp): 19 bytes a frame of a loaded 100k-frame map. Four 64 KiB pages.
-    execute("PRAGMA cache_size = -256");
+    execute("PRAGMA cache_size = -" + std::to_string(kCacheKiB));
     // Reading the schema is the first access to the file: this is where "not a database" shows.
     Statement tables(nullptr, sqlite3_finalize);
     sqlite3_stmt* raw = nullptr;
@@ -288,6 +285,7 @@ void MapDatabase::convertToCurrentFormat() {
   // A new table rather than a new column: the stamp column of format 1 is REAL, which would turn
   // every integer written into it back into a double.
   const std::string convert =
+      "PRAGMA cache_size = -" + std::to_string(kConversionCacheKiB) + ";"
       "BEGIN IMMEDIATE;"
       "CREATE TABLE frames_v2 (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
       " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
@@ -296,9 +294,12 @@ void MapDatabase::convertToCurrentFormat() {
       "ALTER TABLE frames_v2 RENAME TO frames;"
       "UPDATE metadata SET value = '" + std::to_string(kFormatVersion) + "' WHERE key = 'format_version';"
       "COMMIT";
-  if (sqlite3_exec(db_, convert.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
-    const std::string problem = lastProblem(db_);
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  const int converted = sqlite3_exec(db_, convert.c_str(), nullptr, nullptr, nullptr);
+  const std::string problem = converted == SQLITE_OK ? "" : lastProblem(db_);
+  if (converted != SQLITE_OK) sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+  // The usual cache again (its size changes only memory: a failure here would hide the one above).
+  sqlite3_exec(db_, ("PRAGMA cache_size = -" + std::to_string(kCacheKiB)).c_str(), nullptr, nullptr, nullptr);
+  if (converted != SQLITE_OK) {
     fail("cannot convert it from format " + std::to_string(format_version_) + " to " + std::to_string(kFormatVersion) +
          " (it is left as it was): " + problem);
   }

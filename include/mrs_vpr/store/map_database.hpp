@@ -74,6 +74,13 @@ class MapDatabase {
   static constexpr int kWalCheckpointPages = 64;
   /// ...and cut back to this size after each copy [bytes]; a larger transaction may grow it meanwhile.
   static constexpr std::int64_t kWalSizeLimit = std::int64_t{kWalCheckpointPages} * kPageSize;
+  /// SQLite's page cache [KiB]: four 64 KiB pages. A map is read whole, once (its checks, a load),
+  /// and appended to, so hardly a page is read twice; SQLite's default of 2 MiB, freed at the close,
+  /// stayed with the process after a load (memory_reuse.hpp): 19 bytes a frame of a 100k-frame map.
+  static constexpr int kCacheKiB = 256;
+  /// ...but a conversion to the current format rewrites the whole map in one transaction, whose
+  /// journal is synced each time the cache overflows: SQLite's default for it (13 times fewer syncs).
+  static constexpr int kConversionCacheKiB = 2000;
 
   /**
    * Opens `path`, creating an empty map there when no file exists. Throws MapDatabaseError naming the
