@@ -8,9 +8,11 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <boost/program_options.hpp>
 #include <ros/names.h>
@@ -39,19 +41,16 @@ constexpr const char* kUsage =
     "starts one hour later. --images also writes DIR/reference/ and DIR/query/ as PNG folders. The\n"
     "files of an earlier route in DIR are replaced only with --force.\n";
 
-/// The bag appears under `path` only once complete: a failure or Ctrl-C leaves no bag that looks whole.
 void writeBag(const std::string& path, const std::string& topic, const std::vector<cv::Mat>& frames, double start,
               double rate) {
-  mrs_vpr::tools::OutputInProgress output(path);
   rosbag::Bag bag;
-  bag.open(output.temporary(), rosbag::bagmode::Write);
+  bag.open(path, rosbag::bagmode::Write);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     mrs_vpr::tools::stopIfInterrupted();
     const ros::Time stamp = mrs_vpr::bag::frameStamp(start, static_cast<long long>(i), rate);
     bag.write(topic, stamp, mrs_vpr::bag::toImageMessage(frames[i], "bgr8", stamp, "camera", static_cast<std::uint32_t>(i)));
   }
   bag.close();
-  output.commit();
 }
 
 /// The name of frame `index` in a traversal's folder.
@@ -76,19 +75,16 @@ void requireEarlierFramesOnly(const fs::path& folder) {
   }
 }
 
-/// The folder appears under `folder` only once complete, as a bag does.
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
-  mrs_vpr::tools::OutputInProgress output(folder.string());
-  fs::remove_all(output.temporary());  // An interrupted earlier run's.
-  fs::create_directories(output.temporary());
+  fs::remove_all(folder);  // An interrupted earlier run's (requireEarlierFramesOnly checked it).
+  fs::create_directories(folder);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     mrs_vpr::tools::stopIfInterrupted();
-    const fs::path file = fs::path(output.temporary()) / frameName(i);
+    const fs::path file = folder / frameName(i);
     if (!mrs_vpr::image_codecs::write(file.string(), frames[i])) {
       throw std::runtime_error("cannot write '" + file.string() + "'");
     }
   }
-  output.commit();
 }
 
 int run(int argc, char** argv) {
@@ -146,14 +142,24 @@ int run(int argc, char** argv) {
       }
     }
   }
-  // Both checked before anything is removed or written.
-  for (const char* traversal : {"reference", "query"}) requireEarlierFramesOnly(folder / traversal);
+  // Checked before anything is removed or written, with the folders an interrupted run left aside.
+  const bool images = variables.count("images") > 0;
+  const std::vector<std::string> traversals = {"reference", "query"};
+  for (const std::string& traversal : traversals) {
+    requireEarlierFramesOnly(folder / traversal);
+    requireEarlierFramesOnly(folder / (traversal + ".part"));
+  }
   const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
   mrs_vpr::tools::catchInterruptions();
   fs::create_directories(folder);
-  writeBag((folder / "reference.bag").string(), topic, route.reference, start_time, rate);
-  writeBag((folder / "query.bag").string(), topic, route.query, start_time + 3600.0, rate);
-  mrs_vpr::tools::OutputInProgress truth_file((folder / "ground_truth.csv").string());
+  // Every file of the route is written aside and takes its name only once all are complete: a failure
+  // or Ctrl-C leaves an earlier route as it was, never half replaced.
+  using mrs_vpr::tools::OutputInProgress;
+  OutputInProgress reference_bag((folder / "reference.bag").string());
+  OutputInProgress query_bag((folder / "query.bag").string());
+  OutputInProgress truth_file((folder / "ground_truth.csv").string());
+  writeBag(reference_bag.temporary(), topic, route.reference, start_time, rate);
+  writeBag(query_bag.temporary(), topic, route.query, start_time + 3600.0, rate);
   {
     std::ofstream truth(truth_file.temporary());
     truth << "query_index,matching_ref_indices\n";
@@ -162,16 +168,20 @@ int run(int argc, char** argv) {
     }
     if (!truth.flush()) throw std::runtime_error("cannot write '" + (folder / "ground_truth.csv").string() + "'");
   }
-  truth_file.commit();
+  std::vector<std::unique_ptr<OutputInProgress>> frame_folders;
+  if (images) {
+    for (const std::string& traversal : traversals) {
+      frame_folders.push_back(std::make_unique<OutputInProgress>((folder / traversal).string()));
+      writeFolder(frame_folders.back()->temporary(), traversal == "reference" ? route.reference : route.query);
+    }
+  }
   // An earlier route's frames go with it: they would stay beside the new route's (or its bags). Checked
   // again: something may have been put there while the route was made.
-  for (const char* traversal : {"reference", "query"}) requireEarlierFramesOnly(folder / traversal);
-  fs::remove_all(folder / "reference");
-  fs::remove_all(folder / "query");
-  if (variables.count("images") > 0) {
-    writeFolder(folder / "reference", route.reference);
-    writeFolder(folder / "query", route.query);
-  }
+  for (const std::string& traversal : traversals) requireEarlierFramesOnly(folder / traversal);
+  mrs_vpr::tools::stopIfInterrupted();  // A signal from now on is only noted: the renames complete.
+  for (const std::string& traversal : traversals) fs::remove_all(folder / traversal);
+  for (OutputInProgress* output : {&reference_bag, &query_bag, &truth_file}) output->commit();
+  for (const auto& output : frame_folders) output->commit();
   std::cerr << "make_demo_route: " << route.reference.size() << " reference and " << route.query.size()
             << " query frames of " << route_params.image_width << "x" << route_params.image_height << " px in "
             << output << "\n";

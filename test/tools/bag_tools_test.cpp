@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -500,6 +501,34 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
   const CommandResult empty = run(std::string(MAKE_DEMO_ROUTE_PATH) + " --output '' --force");
   EXPECT_EQ(empty.status, 1);
   EXPECT_NE(empty.err.find("--output was given an empty path"), std::string::npos) << empty.err;
+}
+
+TEST_F(BagToolsTest, AStoppedMakeDemoRouteLeavesTheEarlierRouteWhole) {
+  const std::string tool = std::string(MAKE_DEMO_ROUTE_PATH) + " --output " + path("stopped_route") + " --images";
+  ASSERT_EQ(run(tool + " --reference-frames 30 --query-frames 20").status, 0);
+  std::map<std::string, std::string> earlier;
+  for (const char* file : {"reference.bag", "query.bag", "ground_truth.csv", "reference/000029.png"}) {
+    earlier[file] = fileContents(path("stopped_route/") + file);
+  }
+  // Stopped while writing the new route's frames, after its bags: everything is written aside first.
+  const CommandResult stopped = run(mrs_vpr::testing_support::stoppedOnceExists(
+      tool + " --reference-frames 3000 --query-frames 2000 --seed 2 --force", path("stopped_route/reference.part")));
+  EXPECT_EQ(stopped.status, 128 + SIGTERM) << stopped.err;
+  EXPECT_NE(stopped.err.find("make_demo_route: interrupted by SIGTERM"), std::string::npos) << stopped.err;
+  for (const auto& [file, contents] : earlier) {
+    EXPECT_EQ(fileContents(path("stopped_route/") + file), contents) << file;
+  }
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(path("stopped_route"))) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"ground_truth.csv", "query", "query.bag", "reference", "reference.bag"}));
+  // A folder of the user's where an interrupted run would have left its own is not removed.
+  fs::create_directory(path("stopped_route/query.part"));
+  std::ofstream(path("stopped_route/query.part/notes.txt")) << "mine";
+  const CommandResult kept = run(tool + " --reference-frames 30 --query-frames 20 --force");
+  EXPECT_EQ(kept.status, 1);
+  EXPECT_NE(kept.err.find("holds 'notes.txt', which make_demo_route did not write"), std::string::npos) << kept.err;
+  EXPECT_TRUE(fs::exists(path("stopped_route/query.part/notes.txt")));
 }
 
 TEST_F(BagToolsTest, ImagesToBagLeavesNoPartialBagAndOverwritesOnlyWithForce) {
