@@ -15,7 +15,8 @@ when the frame its stretch localises is among those its map keyframe stands for,
 --tolerance frames. --parameter NAME=VALUE sets any parameter of the core
 (mrs_vpr.parameter_reference() lists them), e.g. min_appearance_change=0 to keep every frame.
 Exit code: 0 when the stretch was localised correctly, 1 when wrongly or on an error (one line), 2
-for bad arguments, 130 on Ctrl-C.
+for bad arguments (--first and --length are checked against the query once it is read: 1), 130 on
+Ctrl-C.
 """
 
 import argparse
@@ -83,6 +84,24 @@ def localise(recognizer, map_keyframes, query_images, first, length, method):
     return answer, localised, map_keyframes[answer.reference_index], len(keyframes), elapsed_ms
 
 
+def save_target_problem(path):
+    """Why the map cannot be saved at `path` (empty when it can), found before any work rather than
+    after it: the checks of the map database's own (recognizer.save() makes them again)."""
+    if path == "":
+        return "an empty path"
+    if os.path.isdir(path):
+        return "a folder; give the map file to write"
+    if os.path.lexists(path):
+        return "the file exists"
+    folder = os.path.dirname(path) or "."
+    if not os.path.isdir(folder):
+        return "there is no folder %s" % folder
+    for suffix in ("-wal", "-shm", "-journal"):
+        if os.path.lexists(path + suffix):
+            return "an earlier map's %s lies beside it (remove it or choose another name)" % (path + suffix)
+    return ""
+
+
 def parameter(text):
     """NAME=VALUE, the value as a Python literal when it is one (30, 2.5), else as text (thumbnail)."""
     name, separator, value = text.partition("=")
@@ -113,9 +132,10 @@ def main():
                                ("--evaluate", args.evaluate, 0), ("--seed", args.seed, 0)):
         if value < least:
             parser.error("%s must be >= %d, got %d" % (name, least, value))
-    # Checked before any work, not after it.
-    if args.save is not None and (args.save == "" or os.path.lexists(args.save)):
-        parser.error("--save '%s': %s" % (args.save, "an empty path" if args.save == "" else "the file exists"))
+    if args.save is not None:
+        problem = save_target_problem(args.save)
+        if problem:
+            parser.error("--save '%s': %s" % (args.save, problem))
 
     parameters = dict(args.parameter)
     for name in parameters:

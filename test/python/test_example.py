@@ -88,12 +88,18 @@ def test_the_example_refuses_a_sequence_length_other_than_its_length_option(tmp_
 
 def test_the_example_refuses_bad_numbers_and_an_existing_save_target_before_any_work(tmp_path):
     (tmp_path / "taken.db").write_text("")
+    (tmp_path / "left.db-wal").write_text("")
     for arguments, message in ((["--tolerance", "-1"], "--tolerance must be >= 0, got -1"),
                                (["--evaluate", "-1"], "--evaluate must be >= 0, got -1"),
                                (["--seed", "-1"], "--seed must be >= 0, got -1"),
                                (["--length", "1"], "--length must be >= 2, got 1"),
                                (["--save", ""], "--save '': an empty path"),
-                               (["--save", str(tmp_path / "taken.db")], "the file exists")):
+                               (["--save", str(tmp_path / "taken.db")], "the file exists"),
+                               (["--save", str(tmp_path)], "a folder; give the map file to write"),
+                               (["--save", str(tmp_path / "nowhere" / "map.db")],
+                                "there is no folder %s" % (tmp_path / "nowhere")),
+                               (["--save", str(tmp_path / "left.db")], "an earlier map's %s-wal lies beside it"
+                                % (tmp_path / "left.db"))):
         # The folders hold no image: an argument checked only after reading them would say so instead.
         result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path)] + arguments,
                                 capture_output=True, text=True)
