@@ -61,7 +61,7 @@ const std::vector<ParameterSpec<DescriptorParams>>& descriptorParameters() {
 const std::vector<ParameterSpec<SequenceParams>>& sequenceParameters() {
   using P = SequenceParams;
   static const std::vector<ParameterSpec<P>> table = {
-      {{"sequence/sequence_length", Range::closed(2, 10000), {}, "",
+      {{"sequence/sequence_length", Range::closed(kMinSequenceFrames, 10000), {}, "",
         "Keyframes per test sequence in the per-frame protocol (continuous mode default)."},
        &P::sequence_length},
       {{"sequence/velocity_min", Range::open(0, 10), {}, "", "Slowest reference frames per test frame."},

@@ -349,9 +349,9 @@ PlaceAnswer PlaceRecognizer::matchKeyframesOf(const DescriptorSequence& frames, 
                                               MatchExplanation* explanation) {
   std::vector<int> kept;
   const DescriptorSequence keyframes = keyframesOf(frames, &kept);
-  if (frames.size() >= 2 && keyframes.size() < 2) {
-    throw std::invalid_argument("the test sequence's " + std::to_string(frames.size()) +
-                                " images hold fewer than 2 keyframes: the view hardly changes across them "
+  if (frames.size() >= kMinSequenceFrames && keyframes.size() < kMinSequenceFrames) {
+    throw std::invalid_argument("the test sequence's " + std::to_string(frames.size()) + " images hold fewer than " +
+                                std::to_string(kMinSequenceFrames) + " keyframes: the view hardly changes across them "
                                 "(min_appearance_change " + numberText(recognizer_.min_appearance_change) + ")");
   }
   PlaceAnswer answer = matchSequence(keyframes.view(), method, explanation, frames.size());
@@ -397,8 +397,9 @@ PlaceAnswer PlaceRecognizer::match(SequenceView test_sequence, const std::string
 PlaceAnswer PlaceRecognizer::matchSequence(SequenceView test_sequence, const std::string& method,
                                            MatchExplanation* explanation, int images) {
   matcherFor(method);  // An unknown method is reported before anything else.
-  if (test_sequence.count < 2) {
-    throw std::invalid_argument("a test sequence needs at least 2 images, got " + std::to_string(test_sequence.count));
+  if (test_sequence.count < kMinSequenceFrames) {
+    throw std::invalid_argument("a test sequence needs at least " + std::to_string(kMinSequenceFrames) +
+                                " images, got " + std::to_string(test_sequence.count));
   }
   PlaceAnswer result;
   {
@@ -435,7 +436,10 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
 PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method,
                                          MatchExplanation* explanation, int end) {
   matcherFor(method);
-  if (frames < 2) throw std::invalid_argument("recent_frames must be at least 2, got " + std::to_string(frames));
+  if (frames < kMinSequenceFrames) {
+    throw std::invalid_argument("recent_frames must be at least " + std::to_string(kMinSequenceFrames) + ", got " +
+                                std::to_string(frames));
+  }
   flush();  // The newest frames must be in the map before they can be the test sequence.
   // Judged on the scale of the camera that made both the map and these keyframes (repeated_views.hpp).
   const RepeatedViews repeated_views = repeatedViews();

@@ -20,8 +20,9 @@ void SequenceMatcher::checkInputs(SequenceView reference, SequenceView query) {
                                 " bytes but reference descriptors have " +
                                 std::to_string(reference.descriptor_size));
   }
-  if (query.count < 2) {
-    throw std::invalid_argument("a test sequence needs at least 2 frames, got " + std::to_string(query.count));
+  if (query.count < kMinSequenceFrames) {
+    throw std::invalid_argument("a test sequence needs at least " + std::to_string(kMinSequenceFrames) +
+                                " frames, got " + std::to_string(query.count));
   }
   if (query.count > reference.count) {
     throw std::invalid_argument("test sequence of " + std::to_string(query.count) +

@@ -61,6 +61,9 @@ enum class WindowAlignment {
   kCentred, ///< The query frame is in the middle of the sequence (OpenSeqSLAM).
 };
 
+/// The fewest frames of a test sequence: one frame has no trajectory.
+constexpr int kMinSequenceFrames = 2;
+
 /// Velocities a search may try: each one costs a pass over the difference matrix, and a step so fine
 /// that their count overflows would crash a search rather than just slow it.
 constexpr int kMaxVelocities = 1000;

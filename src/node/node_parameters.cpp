@@ -41,7 +41,7 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
         "Continuous mode: every this many seconds (wall-clock, also under use_sim_time), localise each "
         "keyframe that came since the last time (within a fifth of the period); 0 = off."},
        &P::auto_query_period},
-      {{"auto_query_frames", Range::closed(2, 1000000).orZero(), {}, "",
+      {{"auto_query_frames", Range::closed(kMinSequenceFrames, 1000000).orZero(), {}, "",
         "Test sequence length in continuous mode; 0 = sequence/sequence_length."},
        &P::auto_query_frames},
       {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz, wall-clock]."},

@@ -36,8 +36,9 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
                                     std::to_string(request.images.size()) + " images and recent_frames " +
                                     std::to_string(request.recent_frames) + ")");
       }
-      if (request.images.size() < 2) {
-        throw std::invalid_argument("a test sequence needs at least 2 images, got 1");
+      if (request.images.size() < static_cast<std::size_t>(kMinSequenceFrames)) {  // Before any is described.
+        throw std::invalid_argument("a test sequence needs at least " + std::to_string(kMinSequenceFrames) +
+                                    " images, got " + std::to_string(request.images.size()));
       }
       input.images = std::make_unique<DescriptorSequence>(recognizer_.extractor().size());
       input.images->reserve(static_cast<int>(request.images.size()));

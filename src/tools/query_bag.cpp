@@ -114,7 +114,10 @@ int run(int argc, char** argv) {
   if (variables.count("recent-frames") > 0) {
     if (variables.count("bag") > 0) throw std::invalid_argument("give either --bag or --recent-frames, not both");
     if (travel.min_travel != 0.0) throw std::invalid_argument("--min-travel needs --bag, not --recent-frames");
-    if (recent_frames < 2) throw std::invalid_argument("--recent-frames must be >= 2, as ~query takes it");
+    if (recent_frames < mrs_vpr::kMinSequenceFrames) {
+      throw std::invalid_argument("--recent-frames must be >= " + std::to_string(mrs_vpr::kMinSequenceFrames) +
+                                  ", as ~query takes it");
+    }
     query.request.recent_frames = static_cast<std::uint32_t>(recent_frames);
     request["recent_frames"] = recent_frames;
   } else {
