@@ -46,14 +46,17 @@ DescriptorSequence::DescriptorSequence(int descriptor_size) : descriptor_size_(d
   }
 }
 
-void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
-  if (descriptor.type() != CV_8UC1 || descriptor.total() != static_cast<std::size_t>(descriptor_size_) ||
+void requireDescriptorBytes(const cv::Mat& descriptor, int bytes, const std::string& what) {
+  if (descriptor.type() != CV_8UC1 || descriptor.total() != static_cast<std::size_t>(bytes) ||
       !descriptor.isContinuous()) {
-    throw std::invalid_argument("descriptor must be a continuous CV_8UC1 row of " +
-                                std::to_string(descriptor_size_) + " bytes, got " +
-                                cv::typeToString(descriptor.type()) + " with " +
-                                std::to_string(descriptor.total()) + " elements");
+    throw std::invalid_argument(what + " must be " + std::to_string(bytes) + " continuous bytes of CV_8UC1, got " +
+                                std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()) +
+                                (descriptor.isContinuous() ? "" : ", not continuous"));
   }
+}
+
+void DescriptorSequence::append(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptorBytes(descriptor, descriptor_size_);
   // A failed allocation part-way through leaves every array as it was, not one frame longer than another.
   const int frames = size();
   try {

@@ -56,19 +56,8 @@ FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, Stamp stamp, Chan
   return offerDescriptor(describe(image, order), stamp);  // Described before any lock is taken.
 }
 
-namespace {
-
-void requireDescriptor(const cv::Mat& descriptor, int size) {
-  if (descriptor.type() != CV_8UC1 || static_cast<int>(descriptor.total()) != size || !descriptor.isContinuous()) {
-    throw std::invalid_argument("a descriptor must be " + std::to_string(size) + " continuous bytes of CV_8UC1, got " +
-                                std::to_string(descriptor.total()) + " of type " + cv::typeToString(descriptor.type()));
-  }
-}
-
-}  // namespace
-
 FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp stamp) {
-  requireDescriptor(descriptor, extractor_.size());
+  requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   if (!keyframes_.wants(descriptor)) {
     keyframes_.skip(descriptor);
@@ -94,7 +83,7 @@ void PlaceRecognizer::keepKeyframeLocked(const cv::Mat& descriptor) {
 }
 
 FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, Stamp stamp) {
-  requireDescriptor(descriptor, extractor_.size());
+  requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   const FrameAdmission admission = append(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted) keepKeyframeLocked(descriptor);
@@ -235,7 +224,7 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
     throw std::invalid_argument(std::to_string(count) + " frames exceed max_frames (" +
                                 std::to_string(recognizer_.max_frames) + ")");
   }
-  for (const cv::Mat& descriptor : descriptors) requireDescriptor(descriptor, extractor_.size());
+  for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
   // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
   PreparedMap prepared(params_, recognizer_, extractor_.size());
   if (count > 0) prepared.map_.reserve(count);

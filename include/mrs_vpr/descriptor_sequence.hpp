@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -93,5 +94,9 @@ class DescriptorSequence {
   /// Shrinks every array to its first `frames` frames (never grows them, so it cannot throw).
   void trimTo(int frames);
 };
+
+/// Throws std::invalid_argument unless `descriptor` is `bytes` continuous bytes of CV_8UC1 (a front
+/// end's descriptor), naming what it is instead; `what` names the descriptor in the message.
+void requireDescriptorBytes(const cv::Mat& descriptor, int bytes, const std::string& what = "a descriptor");
 
 }  // namespace mrs_vpr

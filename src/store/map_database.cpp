@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/store/map_hold.hpp"
 #include "front_end_metadata.hpp"
 #include "map_path.hpp"
@@ -307,13 +308,7 @@ void MapDatabase::convertToCurrentFormat() {
 }
 
 void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
-  for (const StoredFrame& frame : frames) {
-    if (frame.descriptor.type() != CV_8UC1 || !frame.descriptor.isContinuous() ||
-        static_cast<int>(frame.descriptor.total()) != descriptor_bytes_) {
-      throw std::invalid_argument("a stored descriptor must be " + std::to_string(descriptor_bytes_) +
-                                  " continuous bytes of CV_8UC1");
-    }
-  }
+  for (const StoredFrame& frame : frames) requireDescriptorBytes(frame.descriptor, descriptor_bytes_, "a stored descriptor");
 }
 
 void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {

@@ -76,7 +76,7 @@ TEST(DescriptorSequence, AcceptsAnyContinuousEightBitMatrixOfTheRightSize) {
 TEST(DescriptorSequence, SizeOrTypeMismatchThrowsNamingTheExpectedDescriptor) {
   DescriptorSequence sequence(kSize);
   const std::string wrong_size = messageOf<std::invalid_argument>([&] { sequence.append(descriptorOf(0, 8)); });
-  EXPECT_NE(wrong_size.find("16 bytes"), std::string::npos) << wrong_size;
+  EXPECT_NE(wrong_size.find("must be 16 continuous bytes of CV_8UC1, got 8"), std::string::npos) << wrong_size;
   const std::string wrong_type =
       messageOf<std::invalid_argument>([&] { sequence.append(cv::Mat(1, kSize, CV_32F, cv::Scalar(0))); });
   EXPECT_NE(wrong_type.find("CV_8UC1"), std::string::npos) << wrong_type;
