@@ -177,7 +177,7 @@ TEST_F(PlotsTest, PlotToolDrawsTheBenchmarkCurves) {
     for (int frames : {1783, 9137}) {
       for (int length : {100, 300}) {
         const double time = (std::string(method) == "mrs" ? 0.05 : 1.0) * frames * length / 10000.0;
-        rows.push_back({{"setting", "global"},
+        rows.push_back({{"setting", "global N=" + std::to_string(length) + " M=" + std::to_string(frames)},
                         {"method", method},
                         {"protocol", "global"},
                         {"out_of_map", false},
