@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_tools_fixture.hpp"
@@ -162,6 +163,19 @@ TEST_F(PlotsTest, PlotToolDrawsTwoMethodsInOneFigureAtTheAskedSize) {
             0)
       << err;
   expectPng(both, 320, 240);
+  // What it draws: the curves in colour, and the second method's beside the first one's.
+  const fs::path one = root() / "pr_one.png";
+  ASSERT_EQ(exitStatus(plotTool() + " pr " + (mrs / "evaluation.json").string() + " -o " + one.string() + " --dpi 50"),
+            0);
+  const cv::Mat drawn_both = cv::imread(both.string(), cv::IMREAD_COLOR);
+  const cv::Mat drawn_one = cv::imread(one.string(), cv::IMREAD_COLOR);
+  ASSERT_EQ(drawn_both.size(), drawn_one.size());
+  EXPECT_GT(cv::norm(drawn_both, drawn_one, cv::NORM_L1), 0.0);
+  cv::Mat hsv;
+  cv::cvtColor(drawn_both, hsv, cv::COLOR_BGR2HSV);
+  std::vector<cv::Mat> channels;
+  cv::split(hsv, channels);
+  EXPECT_GT(cv::countNonZero(channels[1] > 100), 50) << "no coloured curve in " << both;
   // Alone, with another size.
   const fs::path error = root() / "error_small.png";
   ASSERT_EQ(exitStatus(plotTool() + " error " + (mrs / "evaluation.json").string() + " -o " + error.string() +
