@@ -13,6 +13,7 @@
 #include <ros/param.h>
 
 #include "mrs_vpr/node/travel_policy.hpp"
+#include "mrs_vpr/parameter_binding.hpp"
 #include "mrs_vpr/number_text.hpp"
 
 namespace mrs_vpr {
@@ -67,34 +68,15 @@ const std::vector<ParameterSpec<CommitPolicy>>& commitParameters() {
 
 namespace {
 
-/// A field of NodeParameters, whichever group it is in.
-using FieldPtr = std::variant<int*, double*, std::uint64_t*, WindowAlignment*, std::string*>;
-
 /// One row of the node's table: the description, written once in a table above or in the core, and
 /// where the value goes. The loader, `--help` and the unknown-parameter check are built from it.
-struct Entry {
-  const ParameterInfo* info;
-  std::function<FieldPtr(NodeParameters&)> field;
-};
-
-template <typename Group, typename Select>
-void append(std::vector<Entry>& entries, const std::vector<ParameterSpec<Group>>& specs, Select select) {
-  for (const auto& spec : specs) {
-    entries.push_back({&spec.info, [member = spec.member, select](NodeParameters& p) {
-                         return std::visit([&](auto m) -> FieldPtr { return &(select(p).*m); }, member);
-                       }});
-  }
-}
+using Entry = ParameterBinding<NodeParameters>;
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> table = [] {
-    std::vector<Entry> all;
-    append(all, descriptorParameters(), [](NodeParameters& p) -> DescriptorParams& { return p.core.descriptor; });
-    append(all, sequenceParameters(), [](NodeParameters& p) -> SequenceParams& { return p.core.sequence; });
-    append(all, mrsParameters(), [](NodeParameters& p) -> MrsParams& { return p.core.mrs; });
-    append(all, recognizerParameters(), [](NodeParameters& p) -> RecognizerParams& { return p.recognizer; });
-    append(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
-    append(all, commitParameters(), [](NodeParameters& p) -> CommitPolicy& { return p.commit; });
+    std::vector<Entry> all = coreParameterBindings<NodeParameters>();
+    bindParameters(all, nodeParameters(), [](NodeParameters& p) -> NodeParameters& { return p; });
+    bindParameters(all, commitParameters(), [](NodeParameters& p) -> CommitPolicy& { return p.commit; });
     return all;
   }();
   return table;

@@ -11,37 +11,18 @@
 #include <variant>
 #include <vector>
 
+#include "mrs_vpr/parameter_binding.hpp"
+
 namespace mrs_vpr {
 namespace python {
 namespace {
 
-using Field = std::variant<int*, double*, std::uint64_t*, WindowAlignment*, std::string*>;
-
 /// One parameter: its description in the core's tables and where its value goes.
-struct Entry {
-  const ParameterInfo* info;
-  std::function<Field(Settings&)> field;
-};
-
-template <typename Group, typename Select>
-void appendEntries(std::vector<Entry>& entries, const std::vector<ParameterSpec<Group>>& specs, Select select) {
-  for (const auto& spec : specs) {
-    entries.push_back({&spec.info, [member = spec.member, select](Settings& settings) {
-                         return std::visit([&](auto m) -> Field { return &(select(settings).*m); }, member);
-                       }});
-  }
-}
+using Entry = ParameterBinding<Settings>;
 
 /// The core's tables in the order of the parameter reference; a parameter added there is accepted here.
 const std::vector<Entry>& entries() {
-  static const std::vector<Entry> table = [] {
-    std::vector<Entry> all;
-    appendEntries(all, descriptorParameters(), [](Settings& s) -> DescriptorParams& { return s.core.descriptor; });
-    appendEntries(all, sequenceParameters(), [](Settings& s) -> SequenceParams& { return s.core.sequence; });
-    appendEntries(all, mrsParameters(), [](Settings& s) -> MrsParams& { return s.core.mrs; });
-    appendEntries(all, recognizerParameters(), [](Settings& s) -> RecognizerParams& { return s.recognizer; });
-    return all;
-  }();
+  static const std::vector<Entry> table = coreParameterBindings<Settings>();
   return table;
 }
 
