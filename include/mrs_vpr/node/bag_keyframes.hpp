@@ -17,8 +17,8 @@ namespace bag {
 /// Keyframes by travel, as the node's ~min_travel, ~odom_frame and ~base_frame choose them.
 struct TravelSettings {
   double min_travel = 0.0;              ///< Metres between keyframes; 0 keeps every frame.
-  std::string odom_frame = "odom";      ///< The frame the robot's positions are measured in.
-  std::string base_frame = "base_link"; ///< The robot's own frame.
+  std::string odom_frame = node::kDefaultOdomFrame;  ///< The frame the robot's positions are measured in.
+  std::string base_frame = node::kDefaultBaseFrame;  ///< The robot's own frame.
 };
 
 /**

@@ -5,6 +5,7 @@
 
 #include <ros/node_handle.h>
 
+#include "mrs_vpr/node/travel_policy.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/store/map_writer.hpp"
 
@@ -24,8 +25,8 @@ struct NodeParameters {
   double min_frame_interval = 0.0;  ///< Seconds between keyframes (by header stamp); 0 = off.
   int frame_stride = 1;             ///< Keep at most every n-th frame.
   double min_travel = 0.0;          ///< Metres travelled between keyframes (odometry by tf); 0 = off.
-  std::string odom_frame = "odom";  ///< Fixed frame in which min_travel is measured.
-  std::string base_frame = "base_link";  ///< The robot's frame, whose travel is measured.
+  std::string odom_frame = kDefaultOdomFrame;  ///< Fixed frame in which min_travel is measured.
+  std::string base_frame = kDefaultBaseFrame;  ///< The robot's frame, whose travel is measured.
   double tf_timeout = 0.1;          ///< Longest wait for the robot's pose at a frame's stamp [s].
   int image_queue_size = 10;        ///< Subscriber queue of the image topic.
   double auto_query_period = 0.0;   ///< Continuous mode period [s]; 0 = off.

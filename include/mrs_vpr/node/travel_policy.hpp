@@ -7,6 +7,11 @@
 namespace mrs_vpr {
 namespace node {
 
+/// The tf frames travel is measured in and of by default (~odom_frame, ~base_frame; the bag tools'
+/// --odom-frame, --base-frame): REP 105's names.
+inline constexpr const char* kDefaultOdomFrame = "odom";
+inline constexpr const char* kDefaultBaseFrame = "base_link";
+
 /**
  * Decides which frames become keyframes by the distance the robot has travelled: a frame is kept
  * when the robot is at least `min_travel` metres (straight line, in the odometry frame) from where
