@@ -30,26 +30,6 @@ int rivalExclusion(const SequenceParams& sequence, const MrsParams& mrs, int lev
 
 namespace {
 
-/// Differences between the test cells and columns [begin, end) of the reference grid of the
-/// coarsest level, on compact cells, into `differences`. The grid's cells come from the ones the
-/// reference's store keeps (complete cells only); the rest (all of them when it keeps none, else the
-/// last, partial one) are computed now.
-void coarseDifferences(SequenceView query_cells, SequenceView reference, const SamplingLevel& level,
-                       const CompactCells& compact, int begin, int end, cv::Mat& differences) {
-  const SequenceView kept = reference.coarseCells(level.stride, compact.geometry());
-  const int known_end = std::clamp(std::min(kept.count, level.grid_size), begin, end);
-  if (known_end > begin) {
-    cv::Mat columns = differences.colRange(0, known_end - begin);
-    computeDifferenceMatrix(query_cells, kept.slice(begin, known_end), columns);
-  }
-  if (known_end < end) {
-    const DescriptorSequence cells =
-        compact.cells(reference, known_end * level.stride, level.stride, end - known_end);
-    cv::Mat columns = differences.colRange(known_end - begin, end - begin);
-    computeDifferenceMatrix(query_cells, cells.view(), columns);
-  }
-}
-
 /// One query of MRS-VPR (Algorithm 1 of the paper), its state kept between the steps.
 class CoarseToFineSearch {
  public:
@@ -91,7 +71,8 @@ class CoarseToFineSearch {
     }
     std::atomic<long long> compared{0};
     const auto tile = [&](int begin, int end, cv::Mat& raw) {
-      coarseDifferences(cells, reference_, level_, compact_, begin, end, raw);
+      // The grid's cells from those the store keeps (complete cells only: below grid_size).
+      cellDifferences(cells, reference_, level_.stride, level_.grid_size, compact_, begin, end, raw);
       compared.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
     };
     coarse_costs_ = std::make_unique<EndCostTable>(

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mrs_vpr/difference_matrix.hpp"
 #include "mrs_vpr/mrs/hog_cells.hpp"
 #include "mrs_vpr/mrs/patch_frequencies.hpp"
 #include "simd/vector_kernel.hpp"
@@ -63,6 +64,21 @@ void CompactCells::requireDescriptorsOf(SequenceView view) const {
 std::shared_ptr<const CompactCells> makeCompactCells(const DescriptorParams& params) {
   if (params.isHog()) return std::make_shared<const HogCells>(params);
   return std::make_shared<const PatchFrequencies>(params);
+}
+
+void cellDifferences(SequenceView query_cells, SequenceView reference, int stride, int kept_limit,
+                     const CompactCells& compact, int begin, int end, cv::Mat& differences) {
+  const SequenceView kept = reference.coarseCells(stride, compact.geometry());
+  const int known_end = std::clamp(std::min(kept.count, kept_limit), begin, end);
+  if (known_end > begin) {
+    cv::Mat columns = differences.colRange(0, known_end - begin);
+    computeDifferenceMatrix(query_cells, kept.slice(begin, known_end), columns);
+  }
+  if (known_end < end) {
+    const DescriptorSequence cells = compact.cells(reference, known_end * stride, stride, end - known_end);
+    cv::Mat columns = differences.colRange(known_end - begin, end - begin);
+    computeDifferenceMatrix(query_cells, cells.view(), columns);
+  }
 }
 
 }  // namespace mrs_vpr

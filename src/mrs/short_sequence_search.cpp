@@ -44,19 +44,9 @@ struct QueryTables {
 void firstPass(SequenceView reference, SequenceView query_cells, const SequenceRows& rows,
                const std::vector<double>& speeds, int contrast_window, const CompactCells& compact,
                long long& comparisons, AnchorCosts& costs) {
-  const SequenceView kept = reference.coarseCells(1, compact.geometry());
   std::atomic<long long> counted{0};
   const auto tile = [&](int begin, int end, cv::Mat& raw) {
-    const int known_end = std::clamp(kept.count, begin, end);
-    if (known_end > begin) {
-      cv::Mat columns = raw.colRange(0, known_end - begin);
-      computeDifferenceMatrix(query_cells, kept.slice(begin, known_end), columns);
-    }
-    if (known_end < end) {
-      const DescriptorSequence cells = compact.cells(reference, known_end, 1, end - known_end);
-      cv::Mat columns = raw.colRange(known_end - begin, end - begin);
-      computeDifferenceMatrix(query_cells, cells.view(), columns);
-    }
+    cellDifferences(query_cells, reference, 1, reference.count, compact, begin, end, raw);
     counted.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
   };
   tiledCostsByAnchor(reference.count, rows, speeds, contrast_window, tile, costs);

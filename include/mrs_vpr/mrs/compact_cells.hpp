@@ -50,4 +50,13 @@ class CompactCells {
 /// The compact cells of the front end `params` chooses. Throws std::invalid_argument when invalid.
 std::shared_ptr<const CompactCells> makeCompactCells(const DescriptorParams& params);
 
+/**
+ * Differences between `query_cells` and the reference's cells [begin, end) at `stride` (cell i ends
+ * at frame i x stride), into `differences` (a column each): the cells the reference's store keeps,
+ * below `kept_limit`, are read; the rest (all when it keeps none, or a last, partial one beyond
+ * kept_limit) are computed now. Both of MRS's dense passes on compact cells read the map this way.
+ */
+void cellDifferences(SequenceView query_cells, SequenceView reference, int stride, int kept_limit,
+                     const CompactCells& compact, int begin, int end, cv::Mat& differences);
+
 }  // namespace mrs_vpr
