@@ -18,6 +18,7 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 #include "replayed_drive.hpp"
+#include "tools/eval_options.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {
@@ -31,7 +32,7 @@ constexpr double kQueryPeriod = 1.0;   // [s] launch/mrs_vpr.launch's auto_query
 /// stood are one place).
 constexpr int kRouteTolerance = 2;
 /// mrs_vpr_eval's --tolerance default [frames].
-constexpr int kEvaluatorTolerance = 2;
+constexpr int kEvaluatorTolerance = tools::kDefaultTolerance;
 
 /**
  * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,

@@ -11,6 +11,9 @@
 namespace mrs_vpr {
 namespace tools {
 
+/// --tolerance's default [frames]: an answer this near the truth is right.
+constexpr int kDefaultTolerance = 2;
+
 /// What an evaluation is asked to do.
 struct EvalOptions {
   std::string reference;
@@ -22,7 +25,7 @@ struct EvalOptions {
   std::string output;
   std::string plots;
   int queries = 200;
-  int tolerance = 2;
+  int tolerance = kDefaultTolerance;
   int threads = 0;
   bool out_of_map = false;
   std::int64_t seed = 42;  // Signed, so that a negative seed is seen and refused, not wrapped.
