@@ -84,24 +84,6 @@ def localise(recognizer, map_keyframes, query_images, first, length, method):
     return answer, localised, map_keyframes[answer.reference_index], len(keyframes), elapsed_ms
 
 
-def save_target_problem(path):
-    """Why the map cannot be saved at `path` (empty when it can), found before any work rather than
-    after it: the checks of the map database's own (recognizer.save() makes them again)."""
-    if path == "":
-        return "an empty path"
-    if os.path.isdir(path):
-        return "a folder; give the map file to write"
-    if os.path.lexists(path):
-        return "the file exists"
-    folder = os.path.dirname(path) or "."
-    if not os.path.isdir(folder):
-        return "there is no folder %s" % folder
-    for suffix in ("-wal", "-shm", "-journal"):
-        if os.path.lexists(path + suffix):
-            return "an earlier map's %s lies beside it (remove it or choose another name)" % (path + suffix)
-    return ""
-
-
 def parameter(text):
     """NAME=VALUE, the value as a Python literal when it is one (30, 2.5), else as text (thumbnail)."""
     name, separator, value = text.partition("=")
@@ -133,9 +115,10 @@ def main():
         if value < least:
             parser.error("%s must be >= %d, got %d" % (name, least, value))
     if args.save is not None:
-        problem = save_target_problem(args.save)
-        if problem:
-            parser.error("--save '%s': %s" % (args.save, problem))
+        try:
+            mrs_vpr.PlaceRecognizer.check_save_target(args.save)  # Before any work, not after it.
+        except ValueError as error:
+            parser.error("--save: %s" % error)
 
     parameters = dict(args.parameter)
     for name in parameters:

@@ -37,6 +37,13 @@ class PlaceRecognizer(_bindings.PlaceRecognizer):
         recognizer.load(path)
         return recognizer
 
+    @staticmethod
+    def check_save_target(path):
+        """Raises MapDatabaseError (a ValueError) naming the problem when save(path) would refuse `path`
+        (empty, a folder, a file that exists, no such folder, an earlier map's log beside it, a name
+        too long), so that a script can check it before its work, as the tools check their outputs."""
+        _bindings.check_save_target(os.fspath(path))
+
     def save(self, path):
         """Writes the map to the new SQLite map database `path` (never overwritten, written aside and
         renamed when complete); returns the frames written. Raises MapDatabaseError (a ValueError)."""

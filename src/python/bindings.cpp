@@ -29,6 +29,8 @@ PYBIND11_MODULE(_bindings, m) {
   bindRecognizer(m);
   bindEvaluation(m);
 
+  m.def("check_save_target", &MapDatabase::checkSaveTarget, py::arg("path"),
+        "Raises MapDatabaseError, naming the problem, when a map cannot be saved at `path`.");
   m.def("parameter_reference", &parameterReference,
         "Every parameter: name, type, default, allowed values and meaning (the core's tables).");
   m.def(

@@ -93,13 +93,16 @@ def test_the_example_refuses_bad_numbers_and_an_existing_save_target_before_any_
                                (["--evaluate", "-1"], "--evaluate must be >= 0, got -1"),
                                (["--seed", "-1"], "--seed must be >= 0, got -1"),
                                (["--length", "1"], "--length must be >= 2, got 1"),
-                               (["--save", ""], "--save '': an empty path"),
-                               (["--save", str(tmp_path / "taken.db")], "the file exists"),
-                               (["--save", str(tmp_path)], "a folder; give the map file to write"),
+                               # The map database's own words: the check is the one save() makes.
+                               (["--save", ""], "--save: cannot save the map to '': no path given"),
+                               (["--save", str(tmp_path / "taken.db")],
+                                "--save: cannot save the map to '%s': the file exists" % (tmp_path / "taken.db")),
+                               (["--save", str(tmp_path)],
+                                "--save: cannot save the map to '%s': it is a folder" % tmp_path),
                                (["--save", str(tmp_path / "nowhere" / "map.db")],
                                 "there is no folder %s" % (tmp_path / "nowhere")),
-                               (["--save", str(tmp_path / "left.db")], "an earlier map's %s-wal lies beside it"
-                                % (tmp_path / "left.db"))):
+                               (["--save", str(tmp_path / "left.db")],
+                                "'%s-wal' is left beside it by an earlier map of that name" % (tmp_path / "left.db"))):
         # The folders hold no image: an argument checked only after reading them would say so instead.
         result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path)] + arguments,
                                 capture_output=True, text=True)

@@ -62,3 +62,17 @@ def test_a_bad_map_raises_value_error_and_keeps_the_map(route, mapped, tmp_path)
         assert len(mapped) == 600
     with pytest.raises(mrs_vpr.MapDatabaseError):
         mrs_vpr.PlaceRecognizer.from_map(tmp_path / "missing.db")
+
+
+def test_a_save_target_is_checked_in_the_words_save_would_use(mapped, tmp_path):
+    (tmp_path / "taken.db").write_text("")
+    for path, problem in ((tmp_path / "taken.db", "the file exists"), (tmp_path / "no" / "map.db", "there is no folder"),
+                          (tmp_path, "it is a folder")):
+        with pytest.raises(mrs_vpr.MapDatabaseError) as checked:
+            mrs_vpr.PlaceRecognizer.check_save_target(path)
+        assert problem in str(checked.value)
+        with pytest.raises(mrs_vpr.MapDatabaseError) as saved:
+            mapped.save(path)
+        assert str(saved.value) == str(checked.value)
+    mrs_vpr.PlaceRecognizer.check_save_target(tmp_path / "new.db")  # A new file in a folder: no error.
+    assert not (tmp_path / "new.db").exists()
