@@ -24,19 +24,21 @@ def _candidates(name):
     return candidates
 
 
-def _keyword_table():
+def _keyword_table(reference):
     """Keyword -> exact name, for every keyword that names one parameter only."""
     claims = {}
-    for row in _bindings.parameter_reference():
+    for row in reference:
         for keyword in _candidates(row["name"]):
             claims.setdefault(keyword, set()).add(row["name"])
     return {keyword: names.pop() for keyword, names in claims.items() if len(names) == 1}
 
 
-_KEYWORDS = _keyword_table()
-_DEFAULTS = {row["name"]: row["default"] for row in _bindings.parameter_reference()}
+# Read once, when the module is imported: the core's tables do not change.
+_REFERENCE = _bindings.parameter_reference()
+_KEYWORDS = _keyword_table(_REFERENCE)
+_DEFAULTS = {row["name"]: row["default"] for row in _REFERENCE}
 #: Exact name -> the front end it belongs to, for the parameters of one front end only.
-_FRONT_END_OF = {row["name"]: row["front_end"] for row in _bindings.parameter_reference() if row["front_end"]}
+_FRONT_END_OF = {row["name"]: row["front_end"] for row in _REFERENCE if row["front_end"]}
 
 
 def parameter_reference():
