@@ -76,8 +76,6 @@ void requireEarlierFramesOnly(const fs::path& folder) {
 }
 
 void writeFolder(const fs::path& folder, const std::vector<cv::Mat>& frames) {
-  fs::remove_all(folder);  // An interrupted earlier run's (requireEarlierFramesOnly checked it).
-  fs::create_directories(folder);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     mrs_vpr::tools::stopIfInterrupted();
     const fs::path file = folder / frameName(i);
@@ -172,7 +170,8 @@ int run(int argc, char** argv) {
   if (images) {
     for (const std::string& traversal : traversals) {
       frame_folders.push_back(std::make_unique<OutputInProgress>((folder / traversal).string()));
-      writeFolder(frame_folders.back()->temporary(), traversal == "reference" ? route.reference : route.query);
+      // An interrupted earlier run's folder there is removed (requireEarlierFramesOnly checked it).
+      writeFolder(frame_folders.back()->emptyFolder(), traversal == "reference" ? route.reference : route.query);
     }
   }
   // An earlier route's frames go with it: they would stay beside the new route's (or its bags). Checked

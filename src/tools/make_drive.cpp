@@ -110,9 +110,7 @@ void writeDrive(const Options& options) {
 
   mrs_vpr::tools::catchInterruptions();
   mrs_vpr::tools::OutputInProgress output(options.output);  // Removed on an error: no half-written drive.
-  const fs::path part = output.temporary();
-  fs::remove_all(part);
-  fs::create_directories(part);
+  const fs::path part = output.emptyFolder();
   mrs_vpr::ProgressLine progress = mrs_vpr::ProgressLine::onStderr("  " + options.output, "frames", drive.size());
   int loaded = -1;  // The route frame whose image is in `route_image`: a stop draws it many times.
   cv::Mat route_image;

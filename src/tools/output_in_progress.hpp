@@ -23,6 +23,12 @@ class OutputInProgress {
   }
 
   const std::string& temporary() const { return temporary_; }
+  /// temporary() as a new, empty folder: what an interrupted earlier run left there is removed.
+  const std::string& emptyFolder() const {
+    std::filesystem::remove_all(temporary_);
+    std::filesystem::create_directories(temporary_);
+    return temporary_;
+  }
   void commit() {
     std::filesystem::rename(temporary_, path_);
     committed_ = true;
