@@ -38,7 +38,8 @@ void bindParameters(std::vector<ParameterBinding<Root>>& bindings, const std::ve
 template <typename Root>
 std::vector<ParameterBinding<Root>> coreParameterBindings() {
   std::vector<ParameterBinding<Root>> bindings;
-  bindParameters(bindings, descriptorParameters(), [](Root& root) -> DescriptorParams& { return root.core.descriptor; });
+  bindParameters(bindings, descriptorParameters(),
+                 [](Root& root) -> DescriptorParams& { return root.core.descriptor; });
   bindParameters(bindings, sequenceParameters(), [](Root& root) -> SequenceParams& { return root.core.sequence; });
   bindParameters(bindings, mrsParameters(), [](Root& root) -> MrsParams& { return root.core.mrs; });
   bindParameters(bindings, recognizerParameters(), [](Root& root) -> RecognizerParams& { return root.recognizer; });

@@ -308,7 +308,9 @@ void MapDatabase::convertToCurrentFormat() {
 }
 
 void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
-  for (const StoredFrame& frame : frames) requireDescriptorBytes(frame.descriptor, descriptor_bytes_, "a stored descriptor");
+  for (const StoredFrame& frame : frames) {
+    requireDescriptorBytes(frame.descriptor, descriptor_bytes_, "a stored descriptor");
+  }
 }
 
 void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {

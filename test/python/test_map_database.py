@@ -66,8 +66,8 @@ def test_a_bad_map_raises_value_error_and_keeps_the_map(route, mapped, tmp_path)
 
 def test_a_save_target_is_checked_in_the_words_save_would_use(mapped, tmp_path):
     (tmp_path / "taken.db").write_text("")
-    for path, problem in ((tmp_path / "taken.db", "the file exists"), (tmp_path / "no" / "map.db", "there is no folder"),
-                          (tmp_path, "it is a folder")):
+    for path, problem in ((tmp_path / "taken.db", "the file exists"),
+                          (tmp_path / "no" / "map.db", "there is no folder"), (tmp_path, "it is a folder")):
         with pytest.raises(mrs_vpr.MapDatabaseError) as checked:
             mrs_vpr.PlaceRecognizer.check_save_target(path)
         assert problem in str(checked.value)

@@ -48,7 +48,8 @@ class RouteToolsTest : public ::testing::Test {
     if (!std::filesystem::exists(folder)) {
       std::filesystem::create_directory(folder);
       for (int i = 0; i < 20000; ++i) {
-        std::filesystem::create_symlink(path("reference/00000.png"), folder + "/" + std::to_string(100000 + i) + ".png");
+        const std::string name = folder + "/" + std::to_string(100000 + i) + ".png";
+        std::filesystem::create_symlink(path("reference/00000.png"), name);
       }
     }
     return folder;
