@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <cstdint>
 #include <exception>
 #include <memory>
 #include <mutex>
@@ -114,6 +115,8 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.localised_stamp = input.header.stamp;
   response.accepted = match.accepted;
   response.message = acceptanceVerdict(match, params_.core.sequence);
+  response.method = answered.method;
+  response.query_length = static_cast<std::uint32_t>(answered.query_length);
   return answered;
 }
 

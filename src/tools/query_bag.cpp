@@ -43,8 +43,85 @@ constexpr const char* kUsage =
     "(--min-appearance-change, the front end's options as the node's; 0: N consecutive frames).\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
+/// Where the test sequence lies in a bag, and how its frames are chosen there.
+struct BagSequence {
+  std::string bag_path;
+  std::string topic;
+  int start = 0;
+  int count = 0;
+  mrs_vpr::bag::TravelSettings travel;
+  double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
+  mrs_vpr::DescriptorParams front_end;
+};
+
 /// A ROS time in integer nanoseconds, exact where seconds in a double are not (4294967295.999999999 s).
 std::int64_t exactNanoseconds(const ros::Time& time) { return static_cast<std::int64_t>(time.toNSec()); }
+
+/// The test sequence's images in the bag, chosen as the node would keep them; `request` records how.
+std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from_bag, json& request) {
+  const std::string& bag_path = from_bag.bag_path;
+  const std::string& topic = from_bag.topic;
+  const int start = from_bag.start;
+  const double min_appearance_change = from_bag.min_appearance_change;
+  const mrs_vpr::bag::TravelSettings& travel = from_bag.travel;
+  std::vector<sensor_msgs::ImageConstPtr> images;
+  if (travel.min_travel == 0.0 && min_appearance_change > 0.0) {
+    // As the node keeps a camera's frames without odometry: those whose view has changed.
+    const mrs_vpr::DescriptorExtractor extractor(from_bag.front_end);
+    mrs_vpr::AppearanceKeyframes keyframes(from_bag.front_end, min_appearance_change);
+    int offered = 0;
+    images = mrs_vpr::bag::readChosen(
+        bag_path, topic, start, from_bag.count,
+        [&](const sensor_msgs::ImageConstPtr& image) {
+          ++offered;
+          cv::Mat descriptor;
+          try {
+            descriptor = mrs_vpr::node::describeImage(extractor, *image);
+          } catch (const std::exception& error) {
+            throw std::invalid_argument("message " + std::to_string(start + offered - 1) + " of topic '" + topic +
+                                        "' in bag '" + bag_path + "': " + error.what());
+          }
+          if (!keyframes.wants(descriptor)) {
+            keyframes.skip(descriptor);
+            return false;
+          }
+          keyframes.keep(descriptor);
+          return true;
+        },
+        [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
+                     mrs_vpr::numberText(min_appearance_change); });
+    request["min_appearance_change"] = min_appearance_change;
+    request["frames_read"] = offered;
+  } else if (travel.min_travel == 0.0) {
+    images = mrs_vpr::bag::readImages(bag_path, topic, start, from_bag.count);
+  } else {
+    mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);
+    images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, from_bag.count, keyframes);
+    request["min_travel"] = travel.min_travel;
+    // Where the sequence ends in the bag: frames from --start on that were read to choose it.
+    request["frames_read"] = keyframes.frames();
+  }
+  return images;
+}
+
+/// The node's answer as the JSON object printed, with the time the call took and what was asked.
+json answerJson(const mrs_vpr::QuerySequence::Response& response, double round_trip_ms, const json& request) {
+  return {{"success", static_cast<bool>(response.success)},
+          {"message", response.message},
+          {"reference_index", response.reference_index},
+          {"reference_stamp", response.reference_stamp.toSec()},
+          {"reference_stamp_ns", exactNanoseconds(response.reference_stamp)},
+          {"localised_stamp", response.localised_stamp.toSec()},
+          {"localised_stamp_ns", exactNanoseconds(response.localised_stamp)},
+          {"score", response.score},
+          {"confidence", response.confidence},
+          {"accepted", static_cast<bool>(response.accepted)},
+          {"method", response.method},
+          {"query_length", response.query_length},
+          {"elapsed_ms", response.elapsed_ms},
+          {"round_trip_ms", round_trip_ms},
+          {"request", request}};
+}
 
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
@@ -55,30 +132,27 @@ int run(int argc, char** argv) {
     ros::console::notifyLoggerLevelsChanged();
   }
 
-  std::string bag_path;
-  std::string topic;
+  BagSequence from_bag;
   std::string method;  // Empty: the node's ~default_method.
   std::string service = "/mrs_vpr/query";
-  int start = 0;
-  int count = 0;
   int recent_frames = 0;
   double timeout = 10.0;
-  mrs_vpr::bag::TravelSettings travel;
-  double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
-  mrs_vpr::DescriptorParams front_end;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
       ("help,h", "print this help")
-      ("bag", po::value(&bag_path), "bag holding the test sequence")
-      ("topic", po::value(&topic), "image topic in the bag")
-      ("start", po::value(&start)->default_value(start), "first frame (index among the topic's messages)")
-      ("count", po::value(&count), "frames in the test sequence")
-      ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
+      ("bag", po::value(&from_bag.bag_path), "bag holding the test sequence")
+      ("topic", po::value(&from_bag.topic), "image topic in the bag")
+      ("start", po::value(&from_bag.start)->default_value(from_bag.start),
+       "first frame (index among the topic's messages)")
+      ("count", po::value(&from_bag.count), "frames in the test sequence")
+      ("min-travel", po::value(&from_bag.travel.min_travel)->default_value(from_bag.travel.min_travel),
        "metres between the sequence's frames, by the bag's /tf (0: consecutive frames)")
-      ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
-      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
-      ("min-appearance-change", mrs_vpr::tools::doubleOption(&min_appearance_change),
+      ("odom-frame", po::value(&from_bag.travel.odom_frame)->default_value(from_bag.travel.odom_frame),
+       "frame of the robot's positions")
+      ("base-frame", po::value(&from_bag.travel.base_frame)->default_value(from_bag.travel.base_frame),
+       "the robot's own frame")
+      ("min-appearance-change", mrs_vpr::tools::doubleOption(&from_bag.min_appearance_change),
        "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
        "~min_appearance_change keeps them (with the node's front end); 0 = consecutive frames")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
@@ -86,13 +160,13 @@ int run(int argc, char** argv) {
       ("service", po::value(&service)->default_value(service), "the node's query service")
       ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service, (0, 3600]");
   // clang-format on
-  mrs_vpr::tools::addDescriptorOptions(description, front_end);
+  mrs_vpr::tools::addDescriptorOptions(description, from_bag.front_end);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   mrs_vpr::tools::refuseEmptyPaths(variables, {"bag"});
-  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, front_end);
+  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, from_bag.front_end);
   mrs_vpr::RecognizerParams keyframing;
-  keyframing.min_appearance_change = min_appearance_change;
+  keyframing.min_appearance_change = from_bag.min_appearance_change;
   keyframing.validate();
   // Checked now, not by the node after --timeout seconds of waiting for it ("": the node's default).
   if (!method.empty() && method != "mrs" && method != "seqslam") {
@@ -113,7 +187,9 @@ int run(int argc, char** argv) {
   json request = {{"method", method}, {"service", service}};
   if (variables.count("recent-frames") > 0) {
     if (variables.count("bag") > 0) throw std::invalid_argument("give either --bag or --recent-frames, not both");
-    if (travel.min_travel != 0.0) throw std::invalid_argument("--min-travel needs --bag, not --recent-frames");
+    if (from_bag.travel.min_travel != 0.0) {
+      throw std::invalid_argument("--min-travel needs --bag, not --recent-frames");
+    }
     if (recent_frames < mrs_vpr::kMinSequenceFrames) {
       throw std::invalid_argument("--recent-frames must be >= " + std::to_string(mrs_vpr::kMinSequenceFrames) +
                                   ", as ~query takes it");
@@ -121,52 +197,16 @@ int run(int argc, char** argv) {
     query.request.recent_frames = static_cast<std::uint32_t>(recent_frames);
     request["recent_frames"] = recent_frames;
   } else {
-    if (bag_path.empty() || topic.empty() || variables.count("count") == 0) {
+    if (from_bag.bag_path.empty() || from_bag.topic.empty() || variables.count("count") == 0) {
       throw std::invalid_argument("--bag, --topic and --count are required (or --recent-frames)");
     }
-    if (start < 0) throw std::invalid_argument("--start must be >= 0");
-    if (count < 1) throw std::invalid_argument("--count must be >= 1");
-    request["bag"] = bag_path;
-    request["topic"] = topic;
-    request["start"] = start;
-    request["count"] = count;
-    std::vector<sensor_msgs::ImageConstPtr> images;
-    if (travel.min_travel == 0.0 && min_appearance_change > 0.0) {
-      // As the node keeps a camera's frames without odometry: those whose view has changed.
-      const mrs_vpr::DescriptorExtractor extractor(front_end);
-      mrs_vpr::AppearanceKeyframes keyframes(front_end, min_appearance_change);
-      int offered = 0;
-      images = mrs_vpr::bag::readChosen(
-          bag_path, topic, start, count,
-          [&](const sensor_msgs::ImageConstPtr& image) {
-            ++offered;
-            cv::Mat descriptor;
-            try {
-              descriptor = mrs_vpr::node::describeImage(extractor, *image);
-            } catch (const std::exception& error) {
-              throw std::invalid_argument("message " + std::to_string(start + offered - 1) + " of topic '" + topic +
-                                          "' in bag '" + bag_path + "': " + error.what());
-            }
-            if (!keyframes.wants(descriptor)) {
-              keyframes.skip(descriptor);
-              return false;
-            }
-            keyframes.keep(descriptor);
-            return true;
-          },
-          [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
-                       mrs_vpr::numberText(min_appearance_change); });
-      request["min_appearance_change"] = min_appearance_change;
-      request["frames_read"] = offered;
-    } else if (travel.min_travel == 0.0) {
-      images = mrs_vpr::bag::readImages(bag_path, topic, start, count);
-    } else {
-      mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);
-      images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes);
-      request["min_travel"] = travel.min_travel;
-      // Where the sequence ends in the bag: frames from --start on that were read to choose it.
-      request["frames_read"] = keyframes.frames();
-    }
+    if (from_bag.start < 0) throw std::invalid_argument("--start must be >= 0");
+    if (from_bag.count < 1) throw std::invalid_argument("--count must be >= 1");
+    request["bag"] = from_bag.bag_path;
+    request["topic"] = from_bag.topic;
+    request["start"] = from_bag.start;
+    request["count"] = from_bag.count;
+    const std::vector<sensor_msgs::ImageConstPtr> images = readTestSequence(from_bag, request);
     for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
     const ros::Time& last = query.request.images.back().header.stamp;
     request["last_stamp"] = last.toSec();
@@ -188,22 +228,9 @@ int run(int argc, char** argv) {
   const double round_trip_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
 
-  const auto& response = query.response;
-  const json answer = {{"success", static_cast<bool>(response.success)},
-                       {"message", response.message},
-                       {"reference_index", response.reference_index},
-                       {"reference_stamp", response.reference_stamp.toSec()},
-                       {"reference_stamp_ns", exactNanoseconds(response.reference_stamp)},
-                       {"localised_stamp", response.localised_stamp.toSec()},
-                       {"localised_stamp_ns", exactNanoseconds(response.localised_stamp)},
-                       {"score", response.score},
-                       {"confidence", response.confidence},
-                       {"accepted", static_cast<bool>(response.accepted)},
-                       {"elapsed_ms", response.elapsed_ms},
-                       {"round_trip_ms", round_trip_ms},
-                       {"request", request}};
+  const json answer = answerJson(query.response, round_trip_ms, request);
   std::cout << answer.dump(-1, ' ', false, json::error_handler_t::replace) << std::endl;  // Any bytes of a path.
-  return response.success ? 0 : 1;
+  return query.response.success ? 0 : 1;
 }
 
 }  // namespace

@@ -32,6 +32,7 @@
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
+#include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "support/format_one_map.hpp"
 #include "support/map_info_watch.hpp"
@@ -460,6 +461,9 @@ TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
     ASSERT_EQ(std::system(command.c_str()), 0) << fileContents(path("query_bag.log"));
     const nlohmann::json answer = nlohmann::json::parse(fileContents(path("answer.json")));
     EXPECT_EQ(answer.at("request").at("last_stamp_ns").get<std::int64_t>(), mrs_vpr::Stamp::kMaxNanoseconds);
+    EXPECT_EQ(answer.at("method").get<std::string>(), "seqslam");  // The method that answered.
+    EXPECT_GE(answer.at("query_length").get<int>(), mrs_vpr::kMinSequenceFrames);
+    EXPECT_LE(answer.at("query_length").get<int>(), 20);
     const int index = answer.at("reference_index").get<int>();
     ASSERT_GE(index, 0);
     EXPECT_EQ(answer.at("reference_stamp_ns").get<std::int64_t>(),

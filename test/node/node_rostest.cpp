@@ -138,6 +138,8 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
     EXPECT_GT(response.elapsed_ms, 0.0F);
 
     const std::string expected_method = method.empty() ? "mrs" : method;
+    EXPECT_EQ(response.method, expected_method);
+    EXPECT_EQ(response.query_length, static_cast<std::uint32_t>(count));
     mrs_vpr::LoopClosure closure;
     ASSERT_TRUE(loop_closures_.waitFor([](const mrs_vpr::LoopClosure&) { return true; }, closure, 5.0));
     EXPECT_EQ(closure.reference_index, response.reference_index);
