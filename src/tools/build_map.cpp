@@ -47,7 +47,8 @@ constexpr const char* kUsage =
 /// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
 constexpr std::size_t kBatch = 1000;
 
-int run(int argc, char** argv) {
+/// What the command line asks for.
+struct BuildOptions {
   std::string images;
   std::string bag_path;
   std::string topic;
@@ -57,42 +58,122 @@ int run(int argc, char** argv) {
   mrs_vpr::bag::TravelSettings travel;
   mrs_vpr::DescriptorParams params;
   double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
+  bool descriptor_given = false;  // A front end named on the command line.
+};
+
+/// The command line's options, checked against each other; nullopt after --help.
+std::optional<BuildOptions> parseOptions(int argc, char** argv) {
+  BuildOptions options;
   po::options_description description("Options");
   // clang-format off
   description.add_options()
       ("help,h", "print this help")
-      ("images", po::value(&images), "folder of images")
-      ("bag", po::value(&bag_path), "bag of images")
-      ("topic", po::value(&topic), "image topic in the bag")
-      ("output", po::value(&output)->required(), "map database to write (*.db)")
-      ("append", po::bool_switch(&append), "add to an existing map")
-      ("force", po::bool_switch(&force), "replace an existing map")
-      ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel),
+      ("images", po::value(&options.images), "folder of images")
+      ("bag", po::value(&options.bag_path), "bag of images")
+      ("topic", po::value(&options.topic), "image topic in the bag")
+      ("output", po::value(&options.output)->required(), "map database to write (*.db)")
+      ("append", po::bool_switch(&options.append), "add to an existing map")
+      ("force", po::bool_switch(&options.force), "replace an existing map")
+      ("min-travel", po::value(&options.travel.min_travel)->default_value(options.travel.min_travel),
        "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
-      ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
-      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
-      ("min-appearance-change", mrs_vpr::tools::doubleOption(&min_appearance_change),
+      ("odom-frame", po::value(&options.travel.odom_frame)->default_value(options.travel.odom_frame),
+       "frame of the robot's positions")
+      ("base-frame", po::value(&options.travel.base_frame)->default_value(options.travel.base_frame),
+       "the robot's own frame")
+      ("min-appearance-change", mrs_vpr::tools::doubleOption(&options.min_appearance_change),
        "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
        "0 = every frame");
   // clang-format on
-  mrs_vpr::tools::addDescriptorOptions(description, params);
+  mrs_vpr::tools::addDescriptorOptions(description, options.params);
   po::variables_map variables;
-  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
-  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, params);
+  if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
+  mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, options.params);
   mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag", "output"});
-  if (images.empty() == bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
-  if (!bag_path.empty() && topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
-  if (append && force) throw std::invalid_argument("--append and --force exclude each other");
+  if (options.images.empty() == options.bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
+  if (!options.bag_path.empty() && options.topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
+  if (options.append && options.force) throw std::invalid_argument("--append and --force exclude each other");
+  mrs_vpr::RecognizerParams keyframing;
+  keyframing.min_appearance_change = options.min_appearance_change;
+  keyframing.validate();
+  if (options.travel.min_travel != 0.0 && options.bag_path.empty()) {
+    throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
+  }
+  options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
+  return options;
+}
+
+/// Adds the traversal's keyframes to `map`, chosen as the node keeps a camera's frames: by travel
+/// (`keyframes`, when given), else by appearance change, which goes on from an appended map's last
+/// keyframes. Leaves the map self-contained and reports on stderr what was kept; returns the frames added.
+int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
+                 std::optional<mrs_vpr::bag::BagKeyframes>& keyframes) {
+  const mrs_vpr::DescriptorExtractor extractor(options.params);
+  const std::int64_t before = map.size();
+  mrs_vpr::AppearanceKeyframes appearance(options.params, keyframes ? 0.0 : options.min_appearance_change);
+  // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
+  // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame.
+  std::int64_t next_index = 0;
+  map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+    if (appearance.enabled()) appearance.keep(frame.descriptor);
+    next_index = frame.sequence + 1;
+  });
+  int stored = 0;
+  int too_similar = 0;
+  std::vector<mrs_vpr::StoredFrame> batch;
+  const auto flush = [&] {
+    map.append(batch);
+    stored += static_cast<int>(batch.size());
+    batch.clear();
+  };
+  const bool from_folder = !options.images.empty();
+  mrs_vpr::tools::readTraversal(
+      from_folder ? options.images : options.bag_path, options.topic, "map", extractor,
+      [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
+        const std::int64_t index = next_index++;
+        if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
+        if (!appearance.wants(descriptor)) {
+          appearance.skip(descriptor);
+          ++too_similar;
+          return;
+        }
+        appearance.keep(descriptor);
+        batch.push_back({descriptor.clone(), stamp, "", index});
+        if (batch.size() >= kBatch) flush();
+      },
+      from_folder ? mrs_vpr::tools::SourceKind::kFolder : mrs_vpr::tools::SourceKind::kBag);
+  flush();
+  mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.
+  // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
+  if (keyframes && stored == 0 && keyframes->withoutPose() > 0) {
+    throw std::runtime_error("no frame was kept: " + keyframes->summary() +
+                             "; the first frame without a pose: " + keyframes->firstMissingPose());
+  }
+  // The log copied in now, where a full disk is an error, not at the close, which cannot report it.
+  map.makeSelfContained();
+  std::cerr << "build_map: " << stored << " frames added to " << before << " in " << options.output << "\n";
+  if (appearance.enabled()) {
+    std::cerr << "build_map: " << too_similar << " frames too similar to a recent keyframe to be kept "
+              << "(--min-appearance-change " << options.min_appearance_change << ")\n";
+  }
+  if (keyframes) {
+    std::cerr << "build_map: " << keyframes->summary() << "\n";
+    if (keyframes->withoutPose() > 0) {
+      std::cerr << "build_map: warning: the first frame without a pose: " << keyframes->firstMissingPose() << "\n";
+    }
+  }
+  return stored;
+}
+
+int run(int argc, char** argv) {
+  std::optional<BuildOptions> parsed = parseOptions(argc, argv);
+  if (!parsed) return 0;
+  BuildOptions& options = *parsed;
+  std::string& output = options.output;
   // A link names the map it points to: the new map replaces that file, not the link, and that file
   // must be no input.
   if (std::filesystem::is_symlink(output)) output = std::filesystem::weakly_canonical(output).string();
-  mrs_vpr::tools::requireApartFromInputs({"--output", output}, {{"--images", images}, {"--bag", bag_path}});
-  mrs_vpr::RecognizerParams keyframing;
-  keyframing.min_appearance_change = min_appearance_change;
-  keyframing.validate();
-  if (travel.min_travel != 0.0 && bag_path.empty()) {
-    throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
-  }
+  mrs_vpr::tools::requireApartFromInputs({"--output", output},
+                                         {{"--images", options.images}, {"--bag", options.bag_path}});
   // The output is checked before any work: a folder would otherwise be found only when the finished
   // map is renamed to it.
   if (std::filesystem::is_directory(output)) {
@@ -100,7 +181,7 @@ int run(int argc, char** argv) {
                                 (std::filesystem::path(output) / "map.db").string() + ")");
   }
   const bool exists = std::filesystem::exists(output);
-  if (exists && !append && !force) {
+  if (exists && !options.append && !options.force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
   }
   // Its folder, a name the file system allows, and no earlier map's log beside it.
@@ -110,18 +191,16 @@ int run(int argc, char** argv) {
   std::optional<mrs_vpr::MapHold> hold;
   if (exists) hold.emplace(output);
   // A map is extended with its own front end, unless the command line names one (which must be the same).
-  if (exists && append && !mrs_vpr::tools::descriptorOptionsGiven(variables)) {
-    params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
+  if (exists && options.append && !options.descriptor_given) {
+    options.params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
   }
-  const mrs_vpr::DescriptorExtractor extractor(params);
   // Reads the bag's poses before anything is written, so that a bag without /tf leaves no file.
   std::optional<mrs_vpr::bag::BagKeyframes> keyframes;
-  if (travel.min_travel != 0.0) keyframes.emplace(bag_path, travel);
+  if (options.travel.min_travel != 0.0) keyframes.emplace(options.bag_path, options.travel);
 
   // Every map is built aside and renamed when complete; an extended one starts as a copy of the map,
   // which is read, never written (an older format is converted in the copy), and held meanwhile. A
   // failure leaves the map as it was.
-  const bool extend = exists && append;
   const std::string target = output + ".part";
   // Another build_map writing the same map: its unfinished file is not ours to remove.
   mrs_vpr::MapDatabase::checkNotHeld(target);
@@ -135,70 +214,17 @@ int run(int argc, char** argv) {
   };
   removePart();
   mrs_vpr::tools::catchInterruptions();
-  int stored = 0;
   bool own_part = false;  // Until then, a failure may be another run's: its files are left alone.
   try {
-    if (extend) {
-      mrs_vpr::MapDatabase(output, params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
+    if (exists && options.append) {
+      mrs_vpr::MapDatabase(output, options.params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
       own_part = true;
     }
     // Made by this run if it was not there (even when opening it then fails, a full disk say).
     own_part = own_part || !std::filesystem::exists(target);
-    mrs_vpr::MapDatabase map(target, params);
+    mrs_vpr::MapDatabase map(target, options.params);
     own_part = true;
-    const std::int64_t before = map.size();
-    // As the node keeps a camera's frames: by travel when asked, else by appearance change, which goes
-    // on from an appended map's last keyframes.
-    mrs_vpr::AppearanceKeyframes appearance(params, keyframes ? 0.0 : min_appearance_change);
-    // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
-    // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame.
-    std::int64_t next_index = 0;
-    map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
-      if (appearance.enabled()) appearance.keep(frame.descriptor);
-      next_index = frame.sequence + 1;
-    });
-    int too_similar = 0;
-    std::vector<mrs_vpr::StoredFrame> batch;
-    const auto flush = [&] {
-      map.append(batch);
-      stored += static_cast<int>(batch.size());
-      batch.clear();
-    };
-    mrs_vpr::tools::readTraversal(
-        images.empty() ? bag_path : images, topic, "map", extractor,
-        [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
-          const std::int64_t index = next_index++;
-          if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
-          if (!appearance.wants(descriptor)) {
-            appearance.skip(descriptor);
-            ++too_similar;
-            return;
-          }
-          appearance.keep(descriptor);
-          batch.push_back({descriptor.clone(), stamp, "", index});
-          if (batch.size() >= kBatch) flush();
-        },
-        images.empty() ? mrs_vpr::tools::SourceKind::kBag : mrs_vpr::tools::SourceKind::kFolder);
-    flush();
-    mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.
-    // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
-    if (keyframes && stored == 0 && keyframes->withoutPose() > 0) {
-      throw std::runtime_error("no frame was kept: " + keyframes->summary() +
-                               "; the first frame without a pose: " + keyframes->firstMissingPose());
-    }
-    // The log copied in now, where a full disk is an error, not at the close, which cannot report it.
-    map.makeSelfContained();
-    std::cerr << "build_map: " << stored << " frames added to " << before << " in " << output << "\n";
-    if (appearance.enabled()) {
-      std::cerr << "build_map: " << too_similar << " frames too similar to a recent keyframe to be kept "
-                << "(--min-appearance-change " << min_appearance_change << ")\n";
-    }
-    if (keyframes) {
-      std::cerr << "build_map: " << keyframes->summary() << "\n";
-      if (keyframes->withoutPose() > 0) {
-        std::cerr << "build_map: warning: the first frame without a pose: " << keyframes->firstMissingPose() << "\n";
-      }
-    }
+    addTraversal(map, options, keyframes);
   } catch (...) {
     if (own_part) removePart();
     throw;

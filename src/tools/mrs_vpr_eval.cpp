@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -135,6 +136,74 @@ std::optional<Keyframes> storedFrameNumbers(const std::vector<std::int64_t>& num
   return keyframes;
 }
 
+/// Offers a map database's keyframes to `add_to_map` and numbers `keyframes` by the frames of the
+/// traversal they were taken from, where the database stores increasing numbers (build_map's maps
+/// do); returns the traversal they stand for.
+Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const PlaceRecognizer& recognizer,
+                          Keyframes& keyframes, const std::function<void(const cv::Mat&, Stamp)>& add_to_map) {
+  std::vector<std::int64_t> stored_numbers;
+  map.forEachFrame([&](const StoredFrame& frame) {
+    const std::size_t kept = keyframes.frames.size();
+    add_to_map(frame.descriptor.clone(), frame.stamp);
+    if (keyframes.frames.size() > kept) stored_numbers.push_back(frame.sequence);
+  });
+  if (recognizer.size() == 0) throw std::invalid_argument("the map database " + options.reference + " holds no frame");
+  std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
+  if (const std::optional<Keyframes> numbered = storedFrameNumbers(stored_numbers)) {
+    keyframes = *numbered;
+    std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back()
+              << " of its traversal by the numbers it stores\n";
+    if (numbered->frames.front() > 0 && options.ground_truth.empty() && !options.out_of_map) {
+      std::cerr << "  query frames 0 to " << numbered->frames.front() - 1
+                << " show, by the identity ground truth, places before the map's first frame: places outside"
+                << " the map\n";
+    }
+  } else {
+    std::cerr << ", numbered 0 to " << recognizer.size() - 1 << " in order: it stores no increasing frame numbers"
+              << " (build_map's maps do), so frame i of the ground truth is its i-th keyframe\n";
+  }
+  Traversal traversal;
+  traversal.frames = keyframes.total;
+  return traversal;
+}
+
+/// The precision-recall curve of `records` as JSON points.
+json prCurveToJson(const std::vector<QueryRecord>& records, int tolerance) {
+  json pr_curve = json::array();
+  for (const PrPoint& point : precisionRecallCurve(records, tolerance)) {
+    pr_curve.push_back({{"threshold", point.threshold}, {"precision", point.precision}, {"recall", point.recall}});
+  }
+  return pr_curve;
+}
+
+/// Writes the evaluation `document` to --output and, with --plots, its pictures and plots to that folder.
+void writeEvaluation(json document, const EvalOptions& options, const DescriptorSequence& plotted_query,
+                     const DescriptorSequence& plotted_reference, const std::vector<QueryRecord>& records) {
+  if (!options.plots.empty()) {
+    std::filesystem::create_directories(options.plots);
+    document["difference_pictures"] =
+        writeDifferencePictures(options.plots, plotted_query.view(), plotted_reference.view(), records,
+                                options.params.sequence.contrast_window);
+  }
+  if (!options.output.empty()) {
+    // Its pictures lie in the --plots folder, not beside it: named by their whole path there.
+    json output = document;
+    if (output.contains("difference_pictures")) {
+      for (auto& [key, picture] : output["difference_pictures"].items()) {
+        if (!picture.is_object()) continue;
+        const std::filesystem::path file = std::filesystem::path(options.plots) / picture["file"].get<std::string>();
+        picture["file"] = std::filesystem::absolute(file).lexically_normal().string();
+      }
+    }
+    writeJson(output, options.output);
+  }
+  if (!options.plots.empty()) {
+    const std::string evaluation = (std::filesystem::path(options.plots) / "evaluation.json").string();
+    writeJson(document, evaluation);
+    runPlotTool({"eval", evaluation, "--directory", options.plots});
+  }
+}
+
 int run(int argc, char** argv) {
   const Clock::time_point start = Clock::now();
   const std::optional<EvalOptions> parsed = parseEvalOptions(argc, argv);
@@ -184,30 +253,7 @@ int run(int argc, char** argv) {
   };
   Traversal reference;
   if (map) {
-    std::vector<std::int64_t> stored_numbers;
-    map->forEachFrame([&](const StoredFrame& frame) {
-      const std::size_t kept = keyframes.reference.frames.size();
-      add_to_map(frame.descriptor.clone(), frame.stamp);
-      if (keyframes.reference.frames.size() > kept) stored_numbers.push_back(frame.sequence);
-    });
-    if (recognizer.size() == 0) {
-      throw std::invalid_argument("the map database " + options.reference + " holds no frame");
-    }
-    std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
-    if (const std::optional<Keyframes> numbered = storedFrameNumbers(stored_numbers)) {
-      keyframes.reference = *numbered;
-      std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back()
-                << " of its traversal by the numbers it stores\n";
-      if (numbered->frames.front() > 0 && options.ground_truth.empty() && !options.out_of_map) {
-        std::cerr << "  query frames 0 to " << numbered->frames.front() - 1
-                  << " show, by the identity ground truth, places before the map's first frame: places outside"
-                  << " the map\n";
-      }
-    } else {
-      std::cerr << ", numbered 0 to " << recognizer.size() - 1 << " in order: it stores no increasing frame numbers"
-                << " (build_map's maps do), so frame i of the ground truth is its i-th keyframe\n";
-    }
-    reference.frames = keyframes.reference.total;
+    reference = readMapDatabase(*map, options, recognizer, keyframes.reference, add_to_map);
     if (!options.plots.empty() && plotted_reference.size() != reference.frames) {
       throw std::invalid_argument("--plots draws every frame of the reference, and the map database " +
                                   options.reference + " holds " + std::to_string(plotted_reference.size()) + " of " +
@@ -257,10 +303,6 @@ int run(int argc, char** argv) {
   summary.total_time_s = secondsSince(start);  // The whole evaluation: reading, describing, matching.
 
   if (!options.output.empty() || !options.plots.empty()) {
-    json pr_curve = json::array();
-    for (const PrPoint& point : precisionRecallCurve(records, options.tolerance)) {
-      pr_curve.push_back({{"threshold", point.threshold}, {"precision", point.precision}, {"recall", point.recall}});
-    }
     json document = {
         {"method", options.method},
         {"protocol", options.protocol},
@@ -277,30 +319,9 @@ int run(int argc, char** argv) {
                        ? "per-frame time_ms is the matching time of all frames divided by their number"
                        : "time_ms is the matching time of each test sequence"}}},
         {"records", recordsToJson(records, options.tolerance)},
-        {"pr_curve", pr_curve},
+        {"pr_curve", prCurveToJson(records, options.tolerance)},
     };
-    if (!options.plots.empty()) {
-      std::filesystem::create_directories(options.plots);
-      document["difference_pictures"] = writeDifferencePictures(
-          options.plots, plotted_query.view(), plotted_reference.view(), records, sequence.contrast_window);
-    }
-    if (!options.output.empty()) {
-      // Its pictures lie in the --plots folder, not beside it: named by their whole path there.
-      json output = document;
-      if (output.contains("difference_pictures")) {
-        for (auto& [key, picture] : output["difference_pictures"].items()) {
-          if (!picture.is_object()) continue;
-          const std::filesystem::path file = std::filesystem::path(options.plots) / picture["file"].get<std::string>();
-          picture["file"] = std::filesystem::absolute(file).lexically_normal().string();
-        }
-      }
-      writeJson(output, options.output);
-    }
-    if (!options.plots.empty()) {
-      const std::string evaluation = (std::filesystem::path(options.plots) / "evaluation.json").string();
-      writeJson(document, evaluation);
-      runPlotTool({"eval", evaluation, "--directory", options.plots});
-    }
+    writeEvaluation(std::move(document), options, plotted_query, plotted_reference, records);
   }
   std::cout
       << jsonText(
