@@ -18,10 +18,9 @@ void validate(const TravelSettings& settings) {
     message << "min_travel must be a finite number of metres >= 0, got " << settings.min_travel;
     throw std::invalid_argument(message.str());
   }
-  if (settings.min_travel > 0.0 && !node::TravelPolicy::measurableBetween(settings.odom_frame, settings.base_frame)) {
-    throw std::invalid_argument("keyframes by travel need two different, non-empty frames without a leading '/' "
-                                "(tf2 refuses it); got odom frame '" +
-                                settings.odom_frame + "' and base frame '" + settings.base_frame + "'");
+  if (settings.min_travel > 0.0) {
+    node::TravelPolicy::requireMeasurable(settings.odom_frame, settings.base_frame, "the odom frame", "the base frame",
+                                          "min_travel");
   }
 }
 

@@ -226,10 +226,8 @@ void NodeParameters::validate() const {
   } catch (const std::invalid_argument& error) {
     throwPrivate(error);
   }
-  if (min_travel > 0.0 && !TravelPolicy::measurableBetween(odom_frame, base_frame)) {
-    throw std::invalid_argument("~odom_frame and ~base_frame must name two different tf frames, without a leading "
-                                "'/' (tf2 refuses it), when ~min_travel > 0 (got '" + odom_frame + "' and '" +
-                                base_frame + "')");
+  if (min_travel > 0.0) {
+    TravelPolicy::requireMeasurable(odom_frame, base_frame, "~odom_frame", "~base_frame", "~min_travel");
   }
 }
 

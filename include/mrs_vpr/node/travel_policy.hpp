@@ -1,5 +1,6 @@
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 #include <Eigen/Core>
@@ -28,6 +29,16 @@ class TravelPolicy {
   /// Whether travel can be measured between these frames: two different tf frame names.
   static bool measurableBetween(const std::string& odom_frame, const std::string& base_frame) {
     return isFrameName(odom_frame) && isFrameName(base_frame) && odom_frame != base_frame;
+  }
+  /// Throws std::invalid_argument, in the same words wherever the frames are set, unless
+  /// measurableBetween(); the names are those of the settings, e.g. "~odom_frame".
+  static void requireMeasurable(const std::string& odom_frame, const std::string& base_frame,
+                                const std::string& odom_name, const std::string& base_name,
+                                const std::string& travel_name) {
+    if (measurableBetween(odom_frame, base_frame)) return;
+    throw std::invalid_argument(odom_name + " and " + base_name + " must name two different tf frames, without a "
+                                "leading '/' (tf2 refuses it), when " + travel_name + " > 0 (got '" + odom_frame +
+                                "' and '" + base_frame + "')");
   }
   /// A name tf2 looks up: not empty, and without tf1's leading '/', which tf2 refuses in every lookup.
   static bool isFrameName(const std::string& frame) { return !frame.empty() && frame.front() != '/'; }
