@@ -85,7 +85,7 @@ std::optional<RealBenchmarkOptions> parseRealBenchmarkOptions(int argc, char** a
        "slowest reference frames per query frame, every row")
       ("velocity-max", tools::doubleOption(&options.velocity_max),
        "fastest reference frames per query frame, every row")
-      ("methods", listValue(&options.methods), "seqslam and/or mrs, comma-separated")
+      ("methods", listValue(&options.methods), "seqslam, mrs and/or mrs-first-pass, comma-separated")
       ("json", po::value(&options.json), "also write every row to this JSON file (for mrs_vpr_plot benchmark)");
   // clang-format on
   tools::addDescriptorOptions(description, options.descriptor);

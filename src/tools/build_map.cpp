@@ -75,7 +75,7 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
       ("append", po::bool_switch(&options.append), "add to an existing map")
       ("force", po::bool_switch(&options.force), "replace an existing map")
       ("min-travel", po::value(&options.travel.min_travel)->default_value(options.travel.min_travel),
-       "with --bag: metres between kept frames, by the bag's /tf (0: every frame)")
+       "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)")
       ("odom-frame", po::value(&options.travel.odom_frame)->default_value(options.travel.odom_frame),
        "frame of the robot's positions")
       ("base-frame", po::value(&options.travel.base_frame)->default_value(options.travel.base_frame),

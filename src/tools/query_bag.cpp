@@ -147,7 +147,7 @@ int run(int argc, char** argv) {
        "first frame (index among the topic's messages)")
       ("count", po::value(&from_bag.count), "frames in the test sequence")
       ("min-travel", po::value(&from_bag.travel.min_travel)->default_value(from_bag.travel.min_travel),
-       "metres between the sequence's frames, by the bag's /tf (0: consecutive frames)")
+       "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)")
       ("odom-frame", po::value(&from_bag.travel.odom_frame)->default_value(from_bag.travel.odom_frame),
        "frame of the robot's positions")
       ("base-frame", po::value(&from_bag.travel.base_frame)->default_value(from_bag.travel.base_frame),
