@@ -75,7 +75,12 @@ FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, cons
   const FrameAdmission admission =
       offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted && writer_) {
-    writer_->add({descriptor, stamp, frame_id, sequence});  // Shares the descriptor's bytes, never changed.
+    StoredFrame frame{descriptor, stamp, frame_id, sequence};  // Shares the descriptor's bytes, never changed.
+    if (rewriting_) {
+      held_back_.push_back(std::move(frame));
+    } else {
+      writer_->add(std::move(frame));
+    }
   }
   return admission;
 }
@@ -119,13 +124,43 @@ int PersistentMap::load(const std::string& path) {
     stamps.push_back(frame.stamp);
   }
   PlaceRecognizer::PreparedMap prepared = recognizer_.prepareMap(descriptors, stamps);
-  std::lock_guard<std::mutex> lock(add_mutex_);
-  // ... then the database, in one transaction: on failure the old map stays in both ...
-  if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
+  if (writer_) replaceDatabase(frames);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
-  // the new one.
+  // the new one. The frames that came while the database was rewritten follow the new map's.
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  std::vector<StoredFrame> arrived;
+  arrived.swap(held_back_);
+  rewriting_ = false;
   recognizer_.install(std::move(prepared));
+  for (StoredFrame& frame : arrived) {
+    FrameAdmission admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
+    if (admission == FrameAdmission::kPendingFull) {
+      recognizer_.flush();  // A query holds the map: wait for it rather than drop a frame the camera gave.
+      admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
+    }
+    if (admission == FrameAdmission::kAdmitted) writer_->add(std::move(frame));  // Else full: in neither.
+  }
   return static_cast<int>(frames.size());
+}
+
+void PersistentMap::replaceDatabase(const std::vector<StoredFrame>& frames) {
+  // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
+  // frames go on joining the old map meanwhile, held back from the database so that it holds the old
+  // map or the new one; load() puts them after the new map's frames ...
+  {
+    std::lock_guard<std::mutex> lock(add_mutex_);
+    rewriting_ = true;
+  }
+  try {
+    writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
+  } catch (...) {
+    // ... or, when the rewrite fails, the old map stays in both, and its new frames go to its database.
+    std::lock_guard<std::mutex> lock(add_mutex_);
+    rewriting_ = false;
+    for (StoredFrame& frame : held_back_) writer_->add(std::move(frame));
+    held_back_.clear();
+    throw;
+  }
 }
 
 std::int64_t PersistentMap::save(const std::string& path) {

@@ -246,6 +246,53 @@ TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {
   expectSameFrames(framesOf(path("saved.db")), expectedFrames(200, 260));  // Only read.
 }
 
+TEST_F(PersistentMapTest, FramesArrivingWhileLoadRewritesTheDatabaseJoinTheLoadedMapWithoutWaiting) {
+  // A saved map large enough that rewriting the database by it takes a while.
+  constexpr int kSaved = 20000;
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap saved(recognizer, path("saved.db"), CommitPolicy{});
+    for (int i = 0; i < kSaved; ++i) {
+      ASSERT_EQ(saved.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)], secondsStamp(i)),
+                FrameAdmission::kAdmitted);
+    }
+  }
+  PlaceRecognizer recognizer;
+  std::vector<std::pair<cv::Mat, Stamp>> in_map;
+  constexpr int kCameraStart = 1000000;  // The camera's frame i has stamp kCameraStart + i.
+  std::atomic<bool> loaded{false};
+  int last_before_load_returned = -1;  // The camera's last frame whose add() returned before load() did.
+  {
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{0.05, 20});
+    addReference(map, 0, 10);
+    std::thread camera([&] {
+      for (int i = 0; i < 200000 && !loaded; ++i) {
+        map.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)], secondsStamp(kCameraStart + i));
+        if (!loaded) last_before_load_returned = i;
+      }
+    });
+    EXPECT_EQ(map.load(path("saved.db")), kSaved);
+    loaded = true;
+    camera.join();
+    in_map = framesOf(recognizer);
+  }
+  // The database holds what the map holds, in the same order ...
+  const std::vector<std::pair<cv::Mat, Stamp>> in_database = framesOf(path("map.db"));
+  ASSERT_EQ(in_database.size(), in_map.size());
+  for (std::size_t i = 0; i < in_map.size(); ++i) ASSERT_EQ(in_database[i].second, in_map[i].second) << i;
+  // ... the saved map's frames, then the camera's from some moment of the load on, none left out.
+  ASSERT_GT(in_map.size(), static_cast<std::size_t>(kSaved));
+  for (int i = 0; i < kSaved; ++i) ASSERT_EQ(in_map[static_cast<std::size_t>(i)].second, secondsStamp(i)) << i;
+  const std::int64_t first = in_map[kSaved].second.nanoseconds() / 1000000000 - kCameraStart;
+  for (std::size_t i = kSaved; i < in_map.size(); ++i) {
+    ASSERT_EQ(in_map[i].second, secondsStamp(kCameraStart + static_cast<int>(first) + static_cast<int>(i - kSaved)))
+        << "map frame " << i;
+  }
+  // Frames kept that were added while the database was being rewritten: the camera did not wait for
+  // the rewrite (when it did, only frames added after the swap were kept).
+  EXPECT_GE(last_before_load_returned - first, 10) << "first camera frame kept " << first;
+}
+
 TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
   writeMap(path("big.db"), 0, 50);
   {

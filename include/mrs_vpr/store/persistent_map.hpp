@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include <opencv2/core.hpp>
 
@@ -19,10 +20,12 @@ namespace mrs_vpr {
  * see MapWriter). Without a database the map lives in memory only, and save() still writes one.
  *
  * reset(), load() and save() replace or copy the whole map consistently while add() goes on from
- * another thread: add() waits only while reset() or load() empties or rewrites the database (load()
- * reads and checks the new map before that), so that no frame reaches one of map and database
- * without the other. Errors throw MapDatabaseError naming the file and the problem; the map and the
- * database are then as they were. Every member is thread-safe.
+ * another thread, so that no frame reaches one of map and database without the other: add() waits
+ * only while reset() empties the database and while load() swaps the maps. While load() rewrites the
+ * database (after it has read and checked the new map), added frames join the old map and are held
+ * back from the database; they follow the new map's frames in both once it is in place. Errors throw
+ * MapDatabaseError naming the file and the problem; the map and the database are then as they were.
+ * Every member is thread-safe.
  */
 class PersistentMap {
  public:
@@ -42,7 +45,7 @@ class PersistentMap {
   PersistentMap& operator=(const PersistentMap&) = delete;
 
   /// Adds a keyframe (one chosen by travel, say) to the map and, when admitted, queues it for the
-  /// database. Cheap: never waits for the disk or a query (only for reset() and load(), see above).
+  /// database. Cheap: never waits for the disk or a query (only for reset() and a map swap, see above).
   FrameAdmission add(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id = "",
                      std::int64_t sequence = -1);
   /// The same for a camera frame that joins the map only if its view has changed enough
@@ -85,6 +88,8 @@ class PersistentMap {
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
                        bool offered);
   std::int64_t saveFromMemory(const std::string& path);
+  /// load()'s rewrite of the database by `frames`, during which added frames are held back.
+  void replaceDatabase(const std::vector<StoredFrame>& frames);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
@@ -94,6 +99,10 @@ class PersistentMap {
   std::mutex add_mutex_;
   // One whole-map operation (reset, load, save) at a time.
   std::mutex whole_map_mutex_;
+  // While load() rewrites the database, add() holds the admitted frames back here instead of queuing
+  // them for it. Both guarded by add_mutex_.
+  bool rewriting_ = false;
+  std::vector<StoredFrame> held_back_;
 };
 
 }  // namespace mrs_vpr
