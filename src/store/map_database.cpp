@@ -1,9 +1,12 @@
 #include "mrs_vpr/store/map_database.hpp"
 
 #include <sqlite3.h>
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <map>
@@ -114,7 +117,10 @@ void MapDatabase::open(MapAccess access, bool params_given) {
     flags |= SQLITE_OPEN_URI;
   }
   if (sqlite3_open_v2(name.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
-    const std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
+    std::string problem = db_ != nullptr ? sqlite3_errmsg(db_) : "out of memory";
+    // SQLite's "unable to open database file" says nothing of why; the system's error does.
+    const int reason = db_ != nullptr ? sqlite3_system_errno(db_) : 0;
+    if (reason != 0) problem += " (" + std::string(std::strerror(reason)) + ")";
     sqlite3_close(db_);
     db_ = nullptr;
     throw MapDatabaseError("cannot open map database '" + path + "': " + problem);
@@ -498,6 +504,16 @@ void MapDatabase::backupTo(const std::string& path) const {
     removeCompanions(part);
   };
   removePart();
+  // Created here, not by SQLite, whose only word for every reason is "unable to open database file".
+  const int created = ::open(part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (created < 0) {
+    const int reason = errno;
+    refuse(fs::exists(part) ? "'" + part + "', where the map is written before it is renamed, is in the way and cannot "
+                              "be removed (a folder with files in it?): remove it or choose another name"
+                            : "cannot create '" + part + "', where the map is written before it is renamed: " +
+                                  std::strerror(reason));
+  }
+  ::close(created);
   sqlite3* copy = nullptr;
   std::string problem;
   if (sqlite3_open_v2(part.c_str(), &copy, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {

@@ -437,6 +437,40 @@ TEST_F(MapDatabaseTest, ASnapshotIsNotSavedWhereAnEarlierMapLeftItsLog) {
   EXPECT_EQ(MapDatabase(path("snapshot.db"), MapAccess::kReadOnly).size(), 3);
 }
 
+TEST_F(MapDatabaseTest, AMapOrSnapshotThatCannotBeCreatedSaysWhy) {
+  MapDatabase map(path("map.db"), thumbnailParams());
+  map.append(frames(3));
+  const auto messageOf = [&](const std::string& target) {
+    try {
+      map.backupTo(target);
+    } catch (const MapDatabaseError& error) {
+      return std::string(error.what());
+    }
+    return std::string("(no error)");
+  };
+  // A folder of the user's where the snapshot is written before it is renamed: named, and left alone.
+  fs::create_directories(path("snapshot.db.part"));
+  std::ofstream(path("snapshot.db.part/notes.txt")) << "mine\n";
+  const std::string in_the_way = messageOf(path("snapshot.db"));
+  EXPECT_NE(in_the_way.find("'" + path("snapshot.db.part") + "', where the map is written before it is renamed, is in "
+                            "the way"),
+            std::string::npos)
+      << in_the_way;
+  EXPECT_TRUE(fs::exists(path("snapshot.db.part/notes.txt")));
+  EXPECT_FALSE(fs::exists(path("snapshot.db")));
+  // A folder where no file can be created: the system's reason, not SQLite's "unable to open".
+  const std::string not_created = messageOf("/proc/snapshot.db");
+  EXPECT_NE(not_created.find("cannot create '/proc/snapshot.db.part'"), std::string::npos) << not_created;
+  EXPECT_EQ(not_created.find("unable to open database file"), std::string::npos) << not_created;
+  // Nor is a map that cannot be created there opened with SQLite's words alone.
+  try {
+    MapDatabase("/proc/new.db", thumbnailParams());
+    ADD_FAILURE() << "a map was created in /proc";
+  } catch (const MapDatabaseError& error) {
+    EXPECT_NE(std::string(error.what()).find("(No such file or directory)"), std::string::npos) << error.what();
+  }
+}
+
 TEST_F(MapDatabaseTest, AHeldMapIsToldFromOneNobodyHolds) {
   EXPECT_NO_THROW(MapDatabase::checkNotHeld(path("missing.db")));
   std::ofstream(path("notes.db")) << "my notes, not a map\n";
