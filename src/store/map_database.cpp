@@ -9,6 +9,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -456,6 +457,28 @@ void MapDatabase::removeCompanions(const std::string& path) {
 
 void MapDatabase::checkNotHeld(const std::string& path) { const MapHold hold(path); }
 
+void MapDatabase::removeUnfinished(const std::string& part, const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::symlink_status(part, error);
+  if (fs::exists(status)) {
+    static constexpr char kSqliteHeader[] = "SQLite format 3";  // With its NUL: the first 16 bytes.
+    std::string head(sizeof(kSqliteHeader), '\0');
+    bool unfinished = fs::is_regular_file(status);
+    if (unfinished && fs::file_size(part, error) > 0) {
+      std::ifstream file(part, std::ios::binary);
+      unfinished = file.read(head.data(), static_cast<std::streamsize>(head.size())) &&
+                   head == std::string(kSqliteHeader, sizeof(kSqliteHeader));
+    }
+    if (!unfinished) {
+      refuseSave(path, "'" + part + "', where the map is written before it is renamed, holds something else than " +
+                           "an unfinished map (remove it or choose another name)");
+    }
+    fs::remove(part, error);
+  }
+  removeCompanions(part);
+}
+
 void MapDatabase::makeSelfContained() {
   std::string mode;
   char* error = nullptr;
@@ -503,15 +526,12 @@ void MapDatabase::backupTo(const std::string& path) const {
     fs::remove(part, ignored);
     removeCompanions(part);
   };
-  removePart();
+  removeUnfinished(part, path);
   // Created here, not by SQLite, whose only word for every reason is "unable to open database file".
   const int created = ::open(part.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (created < 0) {
     const int reason = errno;
-    refuse(fs::exists(part) ? "'" + part + "', where the map is written before it is renamed, is in the way and cannot "
-                              "be removed (a folder with files in it?): remove it or choose another name"
-                            : "cannot create '" + part + "', where the map is written before it is renamed: " +
-                                  std::strerror(reason));
+    refuse("cannot create '" + part + "', where the map is written before it is renamed: " + std::strerror(reason));
   }
   ::close(created);
   sqlite3* copy = nullptr;

@@ -212,7 +212,7 @@ int run(int argc, char** argv) {
       mrs_vpr::MapDatabase::removeCompanions(file);
     }
   };
-  removePart();
+  mrs_vpr::MapDatabase::removeUnfinished(target, output);
   mrs_vpr::tools::catchInterruptions();
   bool own_part = false;  // Until then, a failure may be another run's: its files are left alone.
   try {

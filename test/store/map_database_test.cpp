@@ -448,16 +448,26 @@ TEST_F(MapDatabaseTest, AMapOrSnapshotThatCannotBeCreatedSaysWhy) {
     }
     return std::string("(no error)");
   };
-  // A folder of the user's where the snapshot is written before it is renamed: named, and left alone.
-  fs::create_directories(path("snapshot.db.part"));
-  std::ofstream(path("snapshot.db.part/notes.txt")) << "mine\n";
-  const std::string in_the_way = messageOf(path("snapshot.db"));
-  EXPECT_NE(in_the_way.find("'" + path("snapshot.db.part") + "', where the map is written before it is renamed, is in "
-                            "the way"),
-            std::string::npos)
-      << in_the_way;
-  EXPECT_TRUE(fs::exists(path("snapshot.db.part/notes.txt")));
-  EXPECT_FALSE(fs::exists(path("snapshot.db")));
+  // Where the snapshot is written before it is renamed, a folder or a file of the user's: named, and
+  // left alone. An unfinished snapshot an earlier save left there is replaced.
+  fs::create_directories(path("folder.db.part"));
+  std::ofstream(path("notes.db.part")) << "mine\n";
+  for (const std::string& name : {"folder.db", "notes.db"}) {
+    const std::string in_the_way = messageOf(path(name));
+    EXPECT_NE(in_the_way.find("'" + path(name + ".part") + "', where the map is written before it is renamed, "
+                              "holds something else than an unfinished map"),
+              std::string::npos)
+        << in_the_way;
+    EXPECT_FALSE(fs::exists(path(name)));
+  }
+  EXPECT_TRUE(fs::is_directory(path("folder.db.part")));
+  EXPECT_EQ(fileContents(path("notes.db.part")), "mine\n");
+  map.backupTo(path("unfinished.db.part"));  // An earlier snapshot's copy, as if it had stopped there.
+  std::ofstream(path("empty.db.part")).close();
+  for (const std::string& name : {"unfinished.db", "empty.db"}) {
+    EXPECT_NO_THROW(map.backupTo(path(name))) << name;
+    EXPECT_EQ(MapDatabase(path(name), MapAccess::kReadOnly).size(), 3) << name;
+  }
   // A folder where no file can be created: the system's reason, not SQLite's "unable to open".
   const std::string not_created = messageOf("/proc/snapshot.db");
   EXPECT_NE(not_created.find("cannot create '/proc/snapshot.db.part'"), std::string::npos) << not_created;

@@ -6,6 +6,7 @@
 #include <csignal>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,18 @@ TEST_F(BuildMapTest, AnotherRunsUnfinishedMapIsLeftToIt) {
     EXPECT_TRUE(fs::exists(map + ".part"));
     other.append(frames(1));  // Its file is still its own.
   }
+  EXPECT_FALSE(fs::exists(map));
+}
+
+TEST_F(BuildMapTest, AFileOfTheUsersWhereTheMapIsWrittenAsideIsLeftAlone) {
+  const std::string map = path("notes.db");
+  std::ofstream(map + ".part") << "my notes\n";
+  const CommandResult refused = run(build(map));
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find(map + ".part', where the map is written before it is renamed, holds something else"),
+            std::string::npos)
+      << refused.err;
+  EXPECT_EQ(fileContents(map + ".part"), "my notes\n");
   EXPECT_FALSE(fs::exists(map));
 }
 

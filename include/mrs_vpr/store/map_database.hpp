@@ -131,6 +131,10 @@ class MapDatabase {
   /// SQLite would otherwise read into a new file renamed to `path`. Only for a path no other process
   /// holds (the caller's own MapHold keeps any writer out).
   static void removeCompanions(const std::string& path);
+  /// Removes `part`, the unfinished copy of the map `path` that an earlier run left (an empty file or
+  /// an SQLite database), with its companions. Throws MapDatabaseError naming `path` when anything
+  /// else is there (a folder, a file of the user's), which is left alone.
+  static void removeUnfinished(const std::string& part, const std::string& path);
 
   /**
    * Copies the write-ahead log into the map and leaves it in rollback-journal mode: one
