@@ -185,7 +185,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path) {
     fs::remove(scratch, ignored);
     MapDatabase::removeCompanions(scratch);
   };
-  removeScratch();
+  MapDatabase::removeUnfinished(scratch, path);  // What a save that stopped left; nothing of the user's.
   recognizer_.flush();
   const int frames = recognizer_.size();  // Frames added later are after the snapshot's moment.
   try {

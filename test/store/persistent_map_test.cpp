@@ -229,6 +229,12 @@ TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
   EXPECT_EQ(map.save(path("memory.db")), 120);
   expectSameFrames(framesOf(path("memory.db")), expectedFrames(0, 120));
   EXPECT_FALSE(fs::exists(path("memory.db.build")));
+  // The scratch file's name holding a file of the user's: refused, and the file left alone.
+  std::ofstream(path("notes.db.build")) << "mine\n";
+  const std::string refused = errorOf([&] { map.save(path("notes.db")); });
+  EXPECT_NE(refused.find("'" + path("notes.db.build") + "'"), std::string::npos) << refused;
+  EXPECT_EQ(fileContents(path("notes.db.build")), "mine\n");
+  EXPECT_FALSE(fs::exists(path("notes.db")));
 }
 
 TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {
