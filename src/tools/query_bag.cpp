@@ -20,6 +20,7 @@
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
+#include "mrs_vpr/node/node_parameters.hpp"
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "tool_main.hpp"
@@ -39,8 +40,9 @@ constexpr const char* kUsage =
     "(oldest first), or with the node's own K most recent frames, and prints the response as JSON.\n"
     "With --min-travel, the test sequence is the N frames from I on that are M metres apart by the\n"
     "bag's own /tf (B in F), as the node's ~min_travel keeps them: a map spaced so is queried alike.\n"
-    "Without it, the N frames are keyframes by appearance change, as the node keeps a camera's frames\n"
-    "(--min-appearance-change, the front end's options as the node's; 0: N consecutive frames).\n"
+    "Without it, the N frames are keyframes by appearance change, as the node keeps a camera's frames:\n"
+    "by the node's own ~min_appearance_change and front end (read from its parameters, the namespace of\n"
+    "--service), unless --min-appearance-change or front-end options are given (0: N consecutive frames).\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
 /// Where the test sequence lies in a bag, and how its frames are chosen there.
@@ -56,6 +58,33 @@ struct BagSequence {
 
 /// A ROS time in integer nanoseconds, exact where seconds in a double are not (4294967295.999999999 s).
 std::int64_t exactNanoseconds(const ros::Time& time) { return static_cast<std::int64_t>(time.toNSec()); }
+
+/// Keyframes as the node serving `service` keeps them: its front end and ~min_appearance_change, read
+/// from its parameters as it read them at start-up (its private namespace is the service's). Options
+/// given on the command line stay as given. Warns when the node keyframes by travel instead.
+void keyframeAsTheNode(const std::string& service, const po::variables_map& variables, BagSequence& from_bag,
+                       json& request) {
+  const bool options_given =
+      mrs_vpr::tools::descriptorOptionsGiven(variables) || !variables["min-appearance-change"].defaulted();
+  // Without a master (checked first: a NodeHandle would wait for one) the service call fails anyway.
+  if (from_bag.travel.min_travel != 0.0 || options_given || !ros::master::check()) {
+    request["keyframing"] = "command line";
+    return;
+  }
+  const std::string node = ros::names::parentNamespace(service);
+  // Started by hand, now that the master answers (ros::start() would wait for one): started by the
+  // NodeHandle below instead, roscpp would stop when it ends, before the service is called.
+  ros::start();
+  const mrs_vpr::node::NodeParameters params = mrs_vpr::node::loadParameters(ros::NodeHandle(node));
+  from_bag.front_end = params.core.descriptor;
+  from_bag.min_appearance_change = params.recognizer.min_appearance_change;
+  request["keyframing"] = "the parameters of " + node;
+  request["front_end"] = from_bag.front_end.describe();
+  if (params.min_travel > 0.0) {
+    std::cerr << "query_bag: warning: " << node << " keyframes by travel (~min_travel "
+              << mrs_vpr::numberText(params.min_travel) << " m): give --min-travel to space the frames as its map's\n";
+  }
+}
 
 /// The test sequence's images in the bag, chosen as the node would keep them; `request` records how.
 std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from_bag, json& request) {
@@ -154,7 +183,7 @@ int run(int argc, char** argv) {
        "the robot's own frame")
       ("min-appearance-change", mrs_vpr::tools::doubleOption(&from_bag.min_appearance_change),
        "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
-       "~min_appearance_change keeps them (with the node's front end); 0 = consecutive frames")
+       "~min_appearance_change keeps them (default: the node's own; 0 = consecutive frames)")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method), "mrs | seqslam (default: the node's ~default_method)")
       ("service", po::value(&service)->default_value(service), "the node's query service")
@@ -206,6 +235,7 @@ int run(int argc, char** argv) {
     request["topic"] = from_bag.topic;
     request["start"] = from_bag.start;
     request["count"] = from_bag.count;
+    keyframeAsTheNode(service, variables, from_bag, request);
     const std::vector<sensor_msgs::ImageConstPtr> images = readTestSequence(from_bag, request);
     for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
     const ros::Time& last = query.request.images.back().header.stamp;

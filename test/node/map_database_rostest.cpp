@@ -498,6 +498,18 @@ TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
   EXPECT_NE(load.response.message.find("the current map is kept"), std::string::npos) << load.response.message;
   EXPECT_TRUE(thumbnails->running());
   EXPECT_EQ(thumbnail_info.latest().frames, 5U);
+  // query_bag chooses a bag's frames as this node keeps a camera's: by its front end, which it reads
+  // from the node's parameters. (5 map frames answer no question: only the record counts.)
+  const std::string ask = std::string(QUERY_BAG_PATH) + " --bag " + path("late.bag") + " --topic " + kTopic +
+                          " --start 0 --count 4 --service " + thumbnails->service("query") + " > " +
+                          path("thumbnail_answer.json") + " 2> " + path("thumbnail_query_bag.log");
+  EXPECT_GE(std::system(ask.c_str()), 0);
+  const std::string answer_text = fileContents(path("thumbnail_answer.json"));
+  ASSERT_FALSE(answer_text.empty()) << fileContents(path("thumbnail_query_bag.log"));
+  const nlohmann::json asked = nlohmann::json::parse(answer_text);
+  EXPECT_EQ(asked.at("request").at("keyframing").get<std::string>(), "the parameters of /" + thumbnails->name());
+  EXPECT_NE(asked.at("request").at("front_end").get<std::string>().find("thumbnail"), std::string::npos)
+      << asked.dump();
   EXPECT_EQ(thumbnails->stop(), 0);
   NodeProcess old("old_map", {"database:=" + path("old.db"), "descriptor/type:=thumbnail"}, path("old_map.log"));
   EXPECT_EQ(old.waitForExit(30.0), 1);
