@@ -36,7 +36,7 @@ void PlaceRecognitionNode::openMap() {
 bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
   try {
     const int cleared = map_->reset();
-    startOverOnNewMap();
+    startOverOnNewMap(0);
     response.success = true;
     response.message = map_->persistent() ? "cleared " + std::to_string(cleared) +
                                                 " frames from the map and from the database '" +
@@ -52,7 +52,7 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
   return true;  // Failures are reported in the response.
 }
 
-void PlaceRecognitionNode::startOverOnNewMap() {
+void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     keyframe_policy_.reset();
@@ -62,9 +62,9 @@ void PlaceRecognitionNode::startOverOnNewMap() {
   }
   last_closure_.reset();
   ++map_version_;
-  // Continuous mode's test sequences end in keyframes the camera adds from now on, not in a loaded
-  // map's own. The services and continuous mode run on the query thread.
-  auto_query_size_ = recognizer_.size();
+  // Continuous mode's test sequences end in keyframes the camera added after the new map's frames, not
+  // in a loaded map's own. The services and continuous mode run on the query thread.
+  auto_query_size_ = map_frames;
   auto_query_version_ = map_version_;
 }
 
@@ -86,7 +86,7 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
   try {
     if (request.path.empty()) throw std::invalid_argument("load_map needs a path");
     const int loaded = map_->load(request.path);
-    startOverOnNewMap();
+    startOverOnNewMap(loaded);
     response.frames = static_cast<std::uint64_t>(loaded);
     response.success = true;
     response.message = "loaded " + std::to_string(loaded) + " frames from '" + absolutePath(request.path) + "'" +

@@ -471,8 +471,8 @@ void MapDatabase::removeUnfinished(const std::string& part, const std::string& p
                    head == std::string(kSqliteHeader, sizeof(kSqliteHeader));
     }
     if (!unfinished) {
-      refuseSave(path, "'" + part + "', where the map is written before it is renamed, holds something else than " +
-                           "an unfinished map (remove it or choose another name)");
+      refuseSave(path, "'" + part + "', which the map is written to on its way there, is a folder or a file " +
+                           "other than an unfinished map (remove it or choose another name)");
     }
     fs::remove(part, error);
   }

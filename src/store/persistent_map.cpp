@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <exception>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -72,6 +73,8 @@ FrameAdmission PersistentMap::offer(const cv::Mat& descriptor, Stamp stamp, cons
 FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id,
                                     std::int64_t sequence, bool offered) {
   std::lock_guard<std::mutex> lock(add_mutex_);
+  // Frames held back during a load's rewrite are for the new map: no more than it has room for.
+  if (rewriting_ && held_back_.size() >= rewrite_room_) return FrameAdmission::kMapFull;
   const FrameAdmission admission =
       offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
   if (admission == FrameAdmission::kAdmitted && writer_) {
@@ -132,13 +135,21 @@ int PersistentMap::load(const std::string& path) {
   arrived.swap(held_back_);
   rewriting_ = false;
   recognizer_.install(std::move(prepared));
-  for (StoredFrame& frame : arrived) {
-    FrameAdmission admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
-    if (admission == FrameAdmission::kPendingFull) {
-      recognizer_.flush();  // A query holds the map: wait for it rather than drop a frame the camera gave.
-      admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
+  // The new map is in place in both: nothing may throw from here on. The frames fit (store() held back
+  // no more than the new map has room for); only a failure to get memory would leave some out, of both.
+  try {
+    if (!arrived.empty()) recognizer_.reserve(static_cast<int>(frames.size() + arrived.size()));
+    for (StoredFrame& frame : arrived) {
+      FrameAdmission admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
+      if (admission == FrameAdmission::kPendingFull) {
+        recognizer_.flush();  // A query holds the map: wait for it rather than drop a frame the camera gave.
+        admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
+      }
+      if (admission != FrameAdmission::kAdmitted) break;
+      writer_->add(std::move(frame));
     }
-    if (admission == FrameAdmission::kAdmitted) writer_->add(std::move(frame));  // Else full: in neither.
+  } catch (const std::exception&) {
+    // Out of memory: the frames not yet added are in neither, and the map still matches its database.
   }
   return static_cast<int>(frames.size());
 }
@@ -150,6 +161,9 @@ void PersistentMap::replaceDatabase(const std::vector<StoredFrame>& frames) {
   {
     std::lock_guard<std::mutex> lock(add_mutex_);
     rewriting_ = true;
+    const int capacity = recognizer_.recognizerParameters().max_frames;
+    rewrite_room_ = capacity > 0 ? static_cast<std::size_t>(capacity) - frames.size()
+                                 : std::numeric_limits<std::size_t>::max();
   }
   try {
     writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });

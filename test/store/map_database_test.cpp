@@ -454,8 +454,8 @@ TEST_F(MapDatabaseTest, AMapOrSnapshotThatCannotBeCreatedSaysWhy) {
   std::ofstream(path("notes.db.part")) << "mine\n";
   for (const std::string& name : {"folder.db", "notes.db"}) {
     const std::string in_the_way = messageOf(path(name));
-    EXPECT_NE(in_the_way.find("'" + path(name + ".part") + "', where the map is written before it is renamed, "
-                              "holds something else than an unfinished map"),
+    EXPECT_NE(in_the_way.find("'" + path(name + ".part") + "', which the map is written to on its way there, is a "
+                              "folder or a file other than an unfinished map"),
               std::string::npos)
         << in_the_way;
     EXPECT_FALSE(fs::exists(path(name)));

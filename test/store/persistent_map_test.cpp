@@ -3,7 +3,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -252,51 +254,92 @@ TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {
   expectSameFrames(framesOf(path("saved.db")), expectedFrames(200, 260));  // Only read.
 }
 
-TEST_F(PersistentMapTest, FramesArrivingWhileLoadRewritesTheDatabaseJoinTheLoadedMapWithoutWaiting) {
-  // A saved map large enough that rewriting the database by it takes a while.
-  constexpr int kSaved = 20000;
-  {
+/// What a camera thread saw while a PersistentMap loaded a large map: the map's and the database's
+/// frames after the load, and each added frame's admission.
+struct LoadWhileFramesArrive {
+  static constexpr int kSaved = 20000;          // Large enough that rewriting the database takes a while.
+  static constexpr int kCameraStart = 1000000;  // The camera's frame i has stamp kCameraStart + i.
+  std::vector<std::pair<cv::Mat, Stamp>> in_map;
+  std::vector<std::pair<cv::Mat, Stamp>> in_database;
+  std::vector<FrameAdmission> admissions;  // Of the camera's frames, in order.
+  int last_before_load_returned = -1;      // The camera's last frame whose add() returned before load() did.
+
+  /// The camera's frame that `frame` is, or -1 for a frame of the saved map.
+  static int cameraFrame(const std::pair<cv::Mat, Stamp>& frame) {
+    const std::int64_t seconds = frame.second.nanoseconds() / 1000000000;
+    return seconds >= kCameraStart ? static_cast<int>(seconds - kCameraStart) : -1;
+  }
+};
+
+LoadWhileFramesArrive loadWhileFramesArrive(const std::string& folder, int max_frames) {
+  const std::string saved_path = folder + "/saved.db";
+  if (!fs::exists(saved_path)) {
     PlaceRecognizer recognizer;
-    PersistentMap saved(recognizer, path("saved.db"), CommitPolicy{});
-    for (int i = 0; i < kSaved; ++i) {
-      ASSERT_EQ(saved.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)], secondsStamp(i)),
-                FrameAdmission::kAdmitted);
+    PersistentMap saved(recognizer, saved_path, CommitPolicy{});
+    for (int i = 0; i < LoadWhileFramesArrive::kSaved; ++i) {
+      saved.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)], secondsStamp(i));
     }
   }
-  PlaceRecognizer recognizer;
-  std::vector<std::pair<cv::Mat, Stamp>> in_map;
-  constexpr int kCameraStart = 1000000;  // The camera's frame i has stamp kCameraStart + i.
-  std::atomic<bool> loaded{false};
-  int last_before_load_returned = -1;  // The camera's last frame whose add() returned before load() did.
+  LoadWhileFramesArrive seen;
+  const std::string map_path = folder + "/map" + std::to_string(max_frames) + ".db";
+  RecognizerParams capacity;
+  capacity.max_frames = max_frames;
+  PlaceRecognizer recognizer(Parameters{}, capacity);
   {
-    PersistentMap map(recognizer, path("map.db"), CommitPolicy{0.05, 20});
-    addReference(map, 0, 10);
+    PersistentMap map(recognizer, map_path, CommitPolicy{0.05, 20});
+    std::atomic<bool> loaded{false};
     std::thread camera([&] {
-      for (int i = 0; i < 200000 && !loaded; ++i) {
-        map.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)], secondsStamp(kCameraStart + i));
-        if (!loaded) last_before_load_returned = i;
+      for (int i = 0; !loaded; ++i) {
+        seen.admissions.push_back(map.add(referenceDescriptors()[static_cast<std::size_t>(i % 300)],
+                                          secondsStamp(LoadWhileFramesArrive::kCameraStart + i)));
+        if (!loaded) seen.last_before_load_returned = i;
+        std::this_thread::sleep_for(std::chrono::microseconds(100));  // A fast camera, not a flood.
       }
     });
-    EXPECT_EQ(map.load(path("saved.db")), kSaved);
+    EXPECT_EQ(map.load(saved_path), LoadWhileFramesArrive::kSaved);
     loaded = true;
     camera.join();
-    in_map = framesOf(recognizer);
+    seen.in_map = framesOf(recognizer);
   }
-  // The database holds what the map holds, in the same order ...
-  const std::vector<std::pair<cv::Mat, Stamp>> in_database = framesOf(path("map.db"));
-  ASSERT_EQ(in_database.size(), in_map.size());
-  for (std::size_t i = 0; i < in_map.size(); ++i) ASSERT_EQ(in_database[i].second, in_map[i].second) << i;
-  // ... the saved map's frames, then the camera's from some moment of the load on, none left out.
-  ASSERT_GT(in_map.size(), static_cast<std::size_t>(kSaved));
-  for (int i = 0; i < kSaved; ++i) ASSERT_EQ(in_map[static_cast<std::size_t>(i)].second, secondsStamp(i)) << i;
-  const std::int64_t first = in_map[kSaved].second.nanoseconds() / 1000000000 - kCameraStart;
-  for (std::size_t i = kSaved; i < in_map.size(); ++i) {
-    ASSERT_EQ(in_map[i].second, secondsStamp(kCameraStart + static_cast<int>(first) + static_cast<int>(i - kSaved)))
-        << "map frame " << i;
+  seen.in_database = framesOf(map_path);
+  return seen;
+}
+
+/// The saved map's frames, then each of the camera's frames admitted from the first one kept on, in
+/// both the map and the database.
+void expectLoadedThenAdmitted(const LoadWhileFramesArrive& seen) {
+  ASSERT_EQ(seen.in_database.size(), seen.in_map.size());
+  for (std::size_t i = 0; i < seen.in_map.size(); ++i) ASSERT_EQ(seen.in_database[i].second, seen.in_map[i].second);
+  ASSERT_GT(seen.in_map.size(), static_cast<std::size_t>(LoadWhileFramesArrive::kSaved));
+  for (int i = 0; i < LoadWhileFramesArrive::kSaved; ++i) {
+    ASSERT_EQ(seen.in_map[static_cast<std::size_t>(i)].second, secondsStamp(i)) << i;
   }
+  std::vector<int> kept;
+  for (std::size_t i = LoadWhileFramesArrive::kSaved; i < seen.in_map.size(); ++i) {
+    kept.push_back(LoadWhileFramesArrive::cameraFrame(seen.in_map[i]));
+  }
+  std::vector<int> admitted;
+  for (int i = kept.front(); i < static_cast<int>(seen.admissions.size()); ++i) {
+    if (seen.admissions[static_cast<std::size_t>(i)] == FrameAdmission::kAdmitted) admitted.push_back(i);
+  }
+  EXPECT_EQ(kept, admitted);
+}
+
+TEST_F(PersistentMapTest, FramesArrivingWhileLoadRewritesTheDatabaseJoinTheLoadedMapWithoutWaiting) {
+  const LoadWhileFramesArrive seen = loadWhileFramesArrive(folder_.path(""), 0);
+  ASSERT_NO_FATAL_FAILURE(expectLoadedThenAdmitted(seen));
   // Frames kept that were added while the database was being rewritten: the camera did not wait for
   // the rewrite (when it did, only frames added after the swap were kept).
-  EXPECT_GE(last_before_load_returned - first, 10) << "first camera frame kept " << first;
+  const int first = LoadWhileFramesArrive::cameraFrame(seen.in_map[LoadWhileFramesArrive::kSaved]);
+  EXPECT_GE(seen.last_before_load_returned - first, 10) << "first camera frame kept " << first;
+}
+
+TEST_F(PersistentMapTest, FramesArrivingWhileLoadRewritesTheDatabaseAreAdmittedOnlyAsTheNewMapHasRoom) {
+  constexpr int kRoom = 5;
+  const LoadWhileFramesArrive seen = loadWhileFramesArrive(folder_.path(""), LoadWhileFramesArrive::kSaved + kRoom);
+  ASSERT_NO_FATAL_FAILURE(expectLoadedThenAdmitted(seen));  // Every frame said admitted is in both.
+  EXPECT_LE(seen.in_map.size(), static_cast<std::size_t>(LoadWhileFramesArrive::kSaved + kRoom));
+  EXPECT_NE(std::count(seen.admissions.begin(), seen.admissions.end(), FrameAdmission::kMapFull), 0);
 }
 
 TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {

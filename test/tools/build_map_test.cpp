@@ -110,7 +110,7 @@ TEST_F(BuildMapTest, AFileOfTheUsersWhereTheMapIsWrittenAsideIsLeftAlone) {
   std::ofstream(map + ".part") << "my notes\n";
   const CommandResult refused = run(build(map));
   EXPECT_EQ(refused.status, 1);
-  EXPECT_NE(refused.err.find(map + ".part', where the map is written before it is renamed, holds something else"),
+  EXPECT_NE(refused.err.find(map + ".part', which the map is written to on its way there, is a folder or a file"),
             std::string::npos)
       << refused.err;
   EXPECT_EQ(fileContents(map + ".part"), "my notes\n");

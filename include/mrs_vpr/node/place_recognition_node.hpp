@@ -113,7 +113,9 @@ class PlaceRecognitionNode {
   bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
   bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);
   /// After ~reset or ~load_map: the keyframe policies, the standing frames and continuous mode start over.
-  void startOverOnNewMap();
+  /// Continuous mode asks about the keyframes after the new map's `map_frames` (those added while a
+  /// load rewrote the database too).
+  void startOverOnNewMap(int map_frames);
   /// Logs (throttled) why commits to ~database fail, while they do.
   void reportWriteErrors();
   void autoQueryCallback(const ros::WallTimerEvent& event);

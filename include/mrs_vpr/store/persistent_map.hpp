@@ -23,7 +23,8 @@ namespace mrs_vpr {
  * another thread, so that no frame reaches one of map and database without the other: add() waits
  * only while reset() empties the database and while load() swaps the maps. While load() rewrites the
  * database (after it has read and checked the new map), added frames join the old map and are held
- * back from the database; they follow the new map's frames in both once it is in place. Errors throw
+ * back from the database, as many as the new map has room for (kMapFull after that); they follow the
+ * new map's frames in both once it is in place, which add() waits for. Errors throw
  * MapDatabaseError naming the file and the problem; the map and the database are then as they were.
  * Every member is thread-safe.
  */
@@ -103,6 +104,7 @@ class PersistentMap {
   // them for it. Both guarded by add_mutex_.
   bool rewriting_ = false;
   std::vector<StoredFrame> held_back_;
+  std::size_t rewrite_room_ = 0;  // Frames the new map has room for after its own.
 };
 
 }  // namespace mrs_vpr
