@@ -22,6 +22,7 @@
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "tool_main.hpp"
+#include "travel_options.hpp"
 #include "traversal_reader.hpp"
 
 namespace po = boost::program_options;
@@ -73,13 +74,11 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
       ("topic", po::value(&options.topic), "image topic in the bag")
       ("output", po::value(&options.output)->required(), "map database to write (*.db)")
       ("append", po::bool_switch(&options.append), "add to an existing map")
-      ("force", po::bool_switch(&options.force), "replace an existing map")
-      ("min-travel", po::value(&options.travel.min_travel)->default_value(options.travel.min_travel),
-       "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)")
-      ("odom-frame", po::value(&options.travel.odom_frame)->default_value(options.travel.odom_frame),
-       "frame of the robot's positions")
-      ("base-frame", po::value(&options.travel.base_frame)->default_value(options.travel.base_frame),
-       "the robot's own frame")
+      ("force", po::bool_switch(&options.force), "replace an existing map");
+  mrs_vpr::tools::addTravelOptions(
+      description, options.travel,
+      "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)");
+  description.add_options()
       ("min-appearance-change", mrs_vpr::tools::doubleOption(&options.min_appearance_change),
        "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
        "0 = every frame");

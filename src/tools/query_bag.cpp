@@ -24,6 +24,7 @@
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "tool_main.hpp"
+#include "travel_options.hpp"
 
 namespace po = boost::program_options;
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
@@ -174,13 +175,11 @@ int run(int argc, char** argv) {
       ("topic", po::value(&from_bag.topic), "image topic in the bag")
       ("start", po::value(&from_bag.start)->default_value(from_bag.start),
        "first frame (index among the topic's messages)")
-      ("count", po::value(&from_bag.count), "frames in the test sequence")
-      ("min-travel", po::value(&from_bag.travel.min_travel)->default_value(from_bag.travel.min_travel),
-       "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)")
-      ("odom-frame", po::value(&from_bag.travel.odom_frame)->default_value(from_bag.travel.odom_frame),
-       "frame of the robot's positions")
-      ("base-frame", po::value(&from_bag.travel.base_frame)->default_value(from_bag.travel.base_frame),
-       "the robot's own frame")
+      ("count", po::value(&from_bag.count), "frames in the test sequence");
+  mrs_vpr::tools::addTravelOptions(
+      description, from_bag.travel,
+      "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)");
+  description.add_options()
       ("min-appearance-change", mrs_vpr::tools::doubleOption(&from_bag.min_appearance_change),
        "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
        "~min_appearance_change keeps them (default: the node's own; 0 = consecutive frames)")
