@@ -86,12 +86,18 @@ bool isCorrect(const QueryRecord& record, int tolerance) {
   return error >= 0 && error <= tolerance;
 }
 
+int queriesInMap(const std::vector<QueryRecord>& records) {
+  return static_cast<int>(
+      std::count_if(records.begin(), records.end(), [](const QueryRecord& r) { return !r.true_indices.empty(); }));
+}
+
 double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance) {
   checkTolerance(tolerance);
-  if (records.empty()) return 0.0;
+  const int in_map = queriesInMap(records);
+  if (in_map == 0) return std::numeric_limits<double>::quiet_NaN();
   const auto correct = std::count_if(records.begin(), records.end(),
                                      [tolerance](const QueryRecord& r) { return isCorrect(r, tolerance); });
-  return static_cast<double>(correct) / static_cast<double>(records.size());
+  return static_cast<double>(correct) / in_map;
 }
 
 QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& match, double time_ms) {
@@ -126,7 +132,9 @@ std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& record
             [](const QueryRecord* a, const QueryRecord* b) { return a->confidence > b->confidence; });
 
   std::vector<PrPoint> curve;
-  const double all_queries = static_cast<double>(records.size());
+  // Over the queries whose place is in the map; NaN when there is none.
+  const int queries_in_map = queriesInMap(records);
+  const double in_map = queries_in_map > 0 ? queries_in_map : std::numeric_limits<double>::quiet_NaN();
   int accepted = 0;
   int correct = 0;
   // Queries of equal confidence are accepted together: a threshold cannot separate them.
@@ -139,7 +147,7 @@ std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& record
     PrPoint point;
     point.threshold = threshold;
     point.precision = static_cast<double>(correct) / accepted;
-    point.recall = correct / all_queries;
+    point.recall = correct / in_map;
     curve.push_back(point);
   }
   return curve;
@@ -177,10 +185,12 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   EvaluationSummary summary;
   summary.tolerance = tolerance;
   summary.queries = static_cast<int>(records.size());
+  summary.queries_in_map = queriesInMap(records);
   summary.top1 = top1Accuracy(records, tolerance);
   const std::vector<PrPoint> curve = precisionRecallCurve(records, tolerance);
-  summary.pr_auc = averagePrecision(curve);
-  summary.recall_at_100_precision = recallAtFullPrecision(curve);
+  const double none_in_map = std::numeric_limits<double>::quiet_NaN();
+  summary.pr_auc = summary.queries_in_map > 0 ? averagePrecision(curve) : none_in_map;
+  summary.recall_at_100_precision = summary.queries_in_map > 0 ? recallAtFullPrecision(curve) : none_in_map;
 
   std::vector<double> errors;
   std::vector<double> times;
@@ -203,7 +213,9 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   }
   if (!records.empty()) {
     summary.accepted_rate = static_cast<double>(summary.accepted) / static_cast<double>(records.size());
-    summary.accepted_recall = static_cast<double>(accepted_correct) / static_cast<double>(records.size());
+    summary.accepted_recall = summary.queries_in_map > 0
+                                  ? static_cast<double>(accepted_correct) / summary.queries_in_map
+                                  : std::numeric_limits<double>::quiet_NaN();
   }
   if (summary.accepted > 0) summary.accepted_precision = static_cast<double>(accepted_correct) / summary.accepted;
   if (largest_wrong_error >= 0) summary.largest_wrong_accepted_error = largest_wrong_error;

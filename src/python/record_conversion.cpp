@@ -81,6 +81,7 @@ py::dict summaryDict(const EvaluationSummary& summary) {
   py::dict row;
   row["tolerance"] = summary.tolerance;
   row["queries"] = summary.queries;
+  row["queries_in_map"] = summary.queries_in_map;
   row["top1"] = summary.top1;
   row["pr_auc"] = summary.pr_auc;
   row["recall_at_100_precision"] = summary.recall_at_100_precision;

@@ -92,8 +92,34 @@ TEST(Evaluation, TopOneAccuracy) {
                                             record(2, {2}, 3, 0.1F), record(3, {3}, -1, 0.0F)};
   EXPECT_DOUBLE_EQ(top1Accuracy(records, 0), 0.25);
   EXPECT_DOUBLE_EQ(top1Accuracy(records, 1), 0.5);
-  EXPECT_DOUBLE_EQ(top1Accuracy({}, 1), 0.0);
+  EXPECT_TRUE(std::isnan(top1Accuracy({}, 1)));
   EXPECT_THROW(top1Accuracy(records, -1), std::invalid_argument);
+}
+
+TEST(Evaluation, TopOneAndRecallAreOverTheQueriesAboutPlacesInTheMap) {
+  // Two queries about places outside the map (no true frame), one of them answered confidently: it
+  // counts against precision, not against top-1 or recall, which a refusal would not change.
+  std::vector<QueryRecord> records = {record(0, {0}, 0, 9.0F), record(1, {1}, 1, 8.0F), record(2, {2}, 30, 7.0F),
+                                      record(3, {}, 40, 9.5F), record(4, {}, 50, 1.0F)};
+  records[0].accepted = true;
+  records[1].accepted = true;
+  records[3].accepted = true;
+  const EvaluationSummary summary = summarise(records, 1);
+  EXPECT_EQ(summary.queries, 5);
+  EXPECT_EQ(summary.queries_in_map, 3);
+  EXPECT_DOUBLE_EQ(summary.top1, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(summary.accepted_recall, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(summary.accepted_precision, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(summary.accepted_rate, 0.6);
+  // Curve: 9.5 wrong (P 0, R 0), 9 right (P .5, R 1/3), 8 right (P 2/3, R 2/3), 7 wrong, 1 wrong.
+  EXPECT_NEAR(summary.pr_auc, 0.5 / 3.0 + (2.0 / 3.0) / 3.0, 1e-12);
+  EXPECT_DOUBLE_EQ(precisionRecallCurve(records, 1).back().recall, 2.0 / 3.0);
+  // With none in the map, they mean nothing: NaN (null in the JSON), not 0.
+  const EvaluationSummary outside = summarise({record(3, {}, 40, 9.5F), record(4, {}, 50, 1.0F)}, 1);
+  EXPECT_EQ(outside.queries_in_map, 0);
+  for (const double figure : {outside.top1, outside.pr_auc, outside.recall_at_100_precision, outside.accepted_recall}) {
+    EXPECT_TRUE(std::isnan(figure));
+  }
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -217,7 +243,7 @@ TEST(Evaluation, AcceptedPrecisionRecallAndRate) {
   EXPECT_EQ(summary.accepted, 2);
   EXPECT_DOUBLE_EQ(summary.accepted_rate, 0.5);
   EXPECT_DOUBLE_EQ(summary.accepted_precision, 0.5);
-  EXPECT_DOUBLE_EQ(summary.accepted_recall, 0.25);
+  EXPECT_DOUBLE_EQ(summary.accepted_recall, 1.0 / 3.0);  // Of the 3 queries about places in the map.
   EXPECT_DOUBLE_EQ(summary.largest_wrong_accepted_error, 4.0);
   records[3].accepted = true;  // An answer about a place outside the map is always false ...
   EXPECT_DOUBLE_EQ(summarise(records, 1).accepted_precision, 1.0 / 3.0);

@@ -49,6 +49,10 @@ struct PrPoint {
 struct EvaluationSummary {
   int tolerance = 0;
   int queries = 0;
+  /// Queries whose place is in the map (with true reference frames): the denominator of top1 and of
+  /// every recall, as in VPR's Recall@1 (a query about a place outside the map has no right answer,
+  /// and refusing it is right). top1, pr_auc and the recalls are NaN when there is none.
+  int queries_in_map = 0;
   double top1 = 0.0;
   double pr_auc = 0.0;
   double recall_at_100_precision = 0.0;
@@ -56,7 +60,7 @@ struct EvaluationSummary {
   double accepted_rate = 0.0;      ///< accepted / queries: for queries outside the map, the false-closure rate.
   /// Correct accepted / accepted: NaN when nothing was accepted.
   double accepted_precision = std::numeric_limits<double>::quiet_NaN();
-  double accepted_recall = 0.0;    ///< Correct accepted / queries.
+  double accepted_recall = 0.0;    ///< Correct accepted / queries_in_map.
   /// How far the wrong accepted answers lie: the largest distance of one from its nearest true frame
   /// [frames]. NaN when no accepted answer about a place in the map is wrong (an answer about a place
   /// outside it has no distance; accepted_rate counts those).
@@ -92,14 +96,19 @@ int nearestTrueIndex(const QueryRecord& record);
 /// A prediction is correct when it lies within `tolerance` frames of any true index.
 bool isCorrect(const QueryRecord& record, int tolerance);
 
-/// Fraction of queries whose prediction is correct (0 for no queries).
+/// Queries whose place is in the map: those with true reference frames.
+int queriesInMap(const std::vector<QueryRecord>& records);
+
+/// Fraction of the queries in the map whose prediction is correct (VPR's Recall@1); NaN when no
+/// query's place is in the map.
 double top1Accuracy(const std::vector<QueryRecord>& records, int tolerance);
 
 /**
  * Precision-recall curve over a threshold on confidence, one point per distinct confidence, from
  * the highest threshold down. Queries without a prediction are never accepted. Recall is correct
- * accepted / records.size(), over every query as VPR benchmarks count it: those without a prediction
- * and those whose truth lies outside the map (no true index, never correct) stay in the denominator.
+ * accepted / queriesInMap(): a query without a prediction or answered wrongly counts against it, one
+ * whose place lies outside the map (no true index) only against precision, when it is accepted, as
+ * VPR benchmarks count false positives and negatives. NaN when no query's place is in the map.
  * Throws std::invalid_argument when tolerance < 0.
  */
 std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& records, int tolerance);
@@ -107,7 +116,7 @@ std::vector<PrPoint> precisionRecallCurve(const std::vector<QueryRecord>& record
 /**
  * Area under the PR curve as average precision: sum over the curve's points of (R_k - R_{k-1}) * P_k,
  * with R_0 = 0, the step-wise formula of scikit-learn's average_precision_score. The recall is the
- * curve's, over every query, so the area never exceeds top-1. average_precision_score fed "is this
+ * curve's, over the queries in the map, so the area never exceeds top-1. average_precision_score fed "is this
  * answer right" as labels divides by the right answers only and gives a much higher figure (0.997
  * where this gives 0.814: doc/results.md's thumbnail Nordland run, ds = 10).
  * No interpolation, so it does not reward the optimistic straight lines of the trapezoidal rule.
