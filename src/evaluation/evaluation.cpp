@@ -188,9 +188,13 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   summary.queries_in_map = queriesInMap(records);
   summary.top1 = top1Accuracy(records, tolerance);
   const std::vector<PrPoint> curve = precisionRecallCurve(records, tolerance);
-  const double none_in_map = std::numeric_limits<double>::quiet_NaN();
-  summary.pr_auc = summary.queries_in_map > 0 ? averagePrecision(curve) : none_in_map;
-  summary.recall_at_100_precision = summary.queries_in_map > 0 ? recallAtFullPrecision(curve) : none_in_map;
+  // A curve of one point ranks nothing (every confidence equal, such as the 0 of a map too small for
+  // the acceptance rule): its area would be top-1 times the precision of all answers, a figure of
+  // no threshold.
+  const bool ranked = summary.queries_in_map > 0 && curve.size() >= 2;
+  const double unranked = std::numeric_limits<double>::quiet_NaN();
+  summary.pr_auc = ranked ? averagePrecision(curve) : unranked;
+  summary.recall_at_100_precision = ranked ? recallAtFullPrecision(curve) : unranked;
 
   std::vector<double> errors;
   std::vector<double> times;

@@ -114,6 +114,12 @@ TEST(Evaluation, TopOneAndRecallAreOverTheQueriesAboutPlacesInTheMap) {
   // Curve: 9.5 wrong (P 0, R 0), 9 right (P .5, R 1/3), 8 right (P 2/3, R 2/3), 7 wrong, 1 wrong.
   EXPECT_NEAR(summary.pr_auc, 0.5 / 3.0 + (2.0 / 3.0) / 3.0, 1e-12);
   EXPECT_DOUBLE_EQ(precisionRecallCurve(records, 1).back().recall, 2.0 / 3.0);
+  // Every confidence equal (the 0 of a map too small for the acceptance rule): no ranking, no area.
+  for (QueryRecord& tied : records) tied.confidence = 0.0F;
+  const EvaluationSummary unranked = summarise(records, 1);
+  EXPECT_TRUE(std::isnan(unranked.pr_auc));
+  EXPECT_TRUE(std::isnan(unranked.recall_at_100_precision));
+  EXPECT_DOUBLE_EQ(unranked.top1, 2.0 / 3.0);
   // With none in the map, they mean nothing: NaN (null in the JSON), not 0.
   const EvaluationSummary outside = summarise({record(3, {}, 40, 9.5F), record(4, {}, 50, 1.0F)}, 1);
   EXPECT_EQ(outside.queries_in_map, 0);

@@ -54,6 +54,8 @@ struct EvaluationSummary {
   /// and refusing it is right). top1, pr_auc and the recalls are NaN when there is none.
   int queries_in_map = 0;
   double top1 = 0.0;
+  /// Average precision of the curve of precisionRecallCurve(); NaN (as recall_at_100_precision) when
+  /// the curve has fewer than 2 points: every confidence equal ranks nothing.
   double pr_auc = 0.0;
   double recall_at_100_precision = 0.0;
   int accepted = 0;                ///< Answers that passed the acceptance rule.
