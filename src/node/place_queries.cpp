@@ -202,8 +202,9 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
                          input.header.stamp);  // warns itself when stamps cannot go out
       publishStandingClosures(input.header, answered, response);
     } catch (const std::exception& error) {
+      // Each keyframe's question stands alone: the next ones are still asked.
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());
-      return;
+      continue;
     }
     auto_query_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
