@@ -20,9 +20,8 @@
 #include "mrs_vpr/store/map_hold.hpp"
 #include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
-#include "double_option.hpp"
+#include "keyframing_options.hpp"
 #include "tool_main.hpp"
-#include "travel_options.hpp"
 #include "traversal_reader.hpp"
 
 namespace po = boost::program_options;
@@ -75,14 +74,12 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
       ("output", po::value(&options.output)->required(), "map database to write (*.db)")
       ("append", po::bool_switch(&options.append), "add to an existing map")
       ("force", po::bool_switch(&options.force), "replace an existing map");
-  mrs_vpr::tools::addTravelOptions(
-      description, options.travel,
-      "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)");
-  description.add_options()
-      ("min-appearance-change", mrs_vpr::tools::doubleOption(&options.min_appearance_change),
-       "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
-       "0 = every frame");
   // clang-format on
+  mrs_vpr::tools::addKeyframingOptions(
+      description, options.travel, options.min_appearance_change,
+      "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)",
+      "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
+      "0 = every frame");
   mrs_vpr::tools::addDescriptorOptions(description, options.params);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;

@@ -1,26 +1,30 @@
 #pragma once
 
-// The options of keyframes by travel, as the node's ~min_travel, ~odom_frame and ~base_frame, which
-// build_map and query_bag share.
+// The options that choose keyframes as the node does (~min_travel, ~odom_frame, ~base_frame and
+// ~min_appearance_change), which build_map and query_bag share.
 
 #include <string>
 
 #include <boost/program_options.hpp>
 
 #include "mrs_vpr/node/bag_keyframes.hpp"
+#include "double_option.hpp"
 
 namespace mrs_vpr {
 namespace tools {
 
-/// Adds --min-travel (described by `min_travel_help`), --odom-frame and --base-frame, read into `travel`.
-inline void addTravelOptions(boost::program_options::options_description& description, bag::TravelSettings& travel,
-                             const std::string& min_travel_help) {
+/// Adds --min-travel, --odom-frame and --base-frame, read into `travel`, and --min-appearance-change,
+/// read into `min_appearance_change`; the two texts describe what the first and the last mean to the tool.
+inline void addKeyframingOptions(boost::program_options::options_description& description, bag::TravelSettings& travel,
+                                 double& min_appearance_change, const std::string& min_travel_help,
+                                 const std::string& min_appearance_change_help) {
   namespace po = boost::program_options;
   // clang-format off
   description.add_options()
       ("min-travel", po::value(&travel.min_travel)->default_value(travel.min_travel), min_travel_help.c_str())
       ("odom-frame", po::value(&travel.odom_frame)->default_value(travel.odom_frame), "frame of the robot's positions")
-      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame");
+      ("base-frame", po::value(&travel.base_frame)->default_value(travel.base_frame), "the robot's own frame")
+      ("min-appearance-change", doubleOption(&min_appearance_change), min_appearance_change_help.c_str());
   // clang-format on
 }
 

@@ -22,9 +22,8 @@
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "descriptor_options.hpp"
-#include "double_option.hpp"
+#include "keyframing_options.hpp"
 #include "tool_main.hpp"
-#include "travel_options.hpp"
 
 namespace po = boost::program_options;
 using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
@@ -176,13 +175,14 @@ int run(int argc, char** argv) {
       ("start", po::value(&from_bag.start)->default_value(from_bag.start),
        "first frame (index among the topic's messages)")
       ("count", po::value(&from_bag.count), "frames in the test sequence");
-  mrs_vpr::tools::addTravelOptions(
-      description, from_bag.travel,
-      "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)");
+  // clang-format on
+  mrs_vpr::tools::addKeyframingOptions(
+      description, from_bag.travel, from_bag.min_appearance_change,
+      "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)",
+      "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
+      "~min_appearance_change keeps them (default: the node's own; 0 = consecutive frames)");
+  // clang-format off
   description.add_options()
-      ("min-appearance-change", mrs_vpr::tools::doubleOption(&from_bag.min_appearance_change),
-       "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
-       "~min_appearance_change keeps them (default: the node's own; 0 = consecutive frames)")
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
       ("method", po::value(&method), "mrs | seqslam (default: the node's ~default_method)")
       ("service", po::value(&service)->default_value(service), "the node's query service")
