@@ -42,7 +42,7 @@ QueryRecord queryRecordOf(int query_index, std::vector<int> truth, const Match& 
 struct PrPoint {
   double threshold = 0.0;  ///< Queries with confidence >= threshold are accepted.
   double precision = 1.0;  ///< Correct accepted / accepted.
-  double recall = 0.0;     ///< Correct accepted / all queries.
+  double recall = 0.0;     ///< Correct accepted / queries about places in the map (queriesInMap()).
 };
 
 /// The figures of an evaluation (NaN where undefined, e.g. the median of nothing).
