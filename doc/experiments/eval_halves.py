@@ -4,8 +4,9 @@
   doc/experiments/eval_halves.py EVALUATION.json [SPLIT]
 
 Prints top-1, PR-AUC (average precision, as mrs_vpr_eval computes it), and the precision and recall of
-accepted answers over every record, and with SPLIT also over the records whose query_index is below
-SPLIT ("tune") and from SPLIT on ("check"). For the Nordland halves the split is 891. Needs python3-numpy.
+accepted answers over every record (top-1 and recall over those about places in the map), and with
+SPLIT also over the records whose query_index is below SPLIT ("tune") and from SPLIT on ("check"). For
+the Nordland halves the split is 891. Needs python3-numpy.
 """
 
 import argparse
@@ -14,12 +15,16 @@ import json
 import numpy as np
 
 
-def average_precision(correct, confidence, answered):
+def average_precision(correct, confidence, answered, in_map):
     """Area under the precision-recall curve as mrs_vpr_eval computes it (precisionRecallCurve and
     averagePrecision in src/evaluation/evaluation.cpp): records without an answer are never accepted
-    but count in the recall's denominator, and ties form one step."""
-    all_records = len(correct)
+    but count in the recall's denominator, which holds the records about places in the map; ties form
+    one step, and a curve of one step ranks nothing (NaN)."""
+    if in_map == 0:
+        return float("nan")
     correct, confidence = correct[answered], confidence[answered]
+    if len(np.unique(confidence)) < 2:
+        return float("nan")
     order = np.argsort(-confidence, kind="stable")
     correct, confidence = correct[order], confidence[order]
     area, previous_recall, true_positives, i = 0.0, 0.0, 0, 0
@@ -28,7 +33,7 @@ def average_precision(correct, confidence, answered):
         while j < len(correct) and confidence[j] == confidence[i]:
             j += 1
         true_positives += correct[i:j].sum()
-        recall = true_positives / all_records
+        recall = true_positives / in_map
         area += (recall - previous_recall) * (true_positives / j)
         previous_recall, i = recall, j
     return area
@@ -41,10 +46,13 @@ def summary(records):
     confidence = np.array([r["confidence"] for r in records])
     accepted = np.array([r["accepted"] for r in records])
     answered = np.array([r["predicted_index"] >= 0 for r in records])
+    in_map = sum(1 for r in records if r["true_indices"])
     precision = (accepted & correct).sum() / accepted.sum() if accepted.any() else float("nan")
-    pr_auc = average_precision(correct, confidence, answered)
-    return (f"queries {len(records):5d}  top-1 {correct.mean():.3f}  PR-AUC {pr_auc:.3f}  "
-            f"accepted {accepted.sum():5d}  precision {precision:.3f}  recall {(accepted & correct).sum() / len(records):.3f}")
+    pr_auc = average_precision(correct, confidence, answered, in_map)
+    top1 = correct.sum() / in_map if in_map else float("nan")
+    recall = (accepted & correct).sum() / in_map if in_map else float("nan")
+    return (f"queries {len(records):5d} ({in_map} in the map)  top-1 {top1:.3f}  PR-AUC {pr_auc:.3f}  "
+            f"accepted {accepted.sum():5d}  precision {precision:.3f}  recall {recall:.3f}")
 
 
 def main():
