@@ -105,21 +105,19 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   reset_srv_.shutdown();
   save_map_srv_.shutdown();
   load_map_srv_.shutdown();
-  // The last commit now, before waiting for a running question, which may outlast roslaunch's patience
-  // (SIGTERM after 15 s), and while a failure can still be said: the frames it leaves out are lost. No
-  // camera frame comes any more; the question only reads the map.
+  if (info_spinner_) {
+    info_spinner_->stop();
+  }
+  if (query_spinner_) {
+    query_spinner_->stop();
+  }
+  // The last commit now, while a failure can still be said: the frames it leaves out are lost.
   if (map_ && map_->persistent()) {
     const std::size_t lost = map_->close();
     if (lost > 0) {
       ROS_ERROR("mrs_vpr: %zu keyframes of the map are lost: the last commit to ~database failed (%s)", lost,
                 map_->writeError().c_str());
     }
-  }
-  if (info_spinner_) {
-    info_spinner_->stop();
-  }
-  if (query_spinner_) {
-    query_spinner_->stop();
   }
 }
 
