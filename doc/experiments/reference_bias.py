@@ -108,8 +108,9 @@ def remove_bias(differences, last, method):
 
 def average_precision(correct, confidence):
     """Area under the precision-recall curve as mrs_vpr_eval computes it (ties form one step). Every
-    query here has an answer (answer() always names an end), so none has to be kept out of acceptance
-    as mrs_vpr_eval keeps out queries without one."""
+    query here has an answer (answer() always names an end) and a place in the map, so none has to be
+    kept out of acceptance or of the recall's denominator as mrs_vpr_eval keeps them out, and the
+    confidences are never all equal (where mrs_vpr_eval gives no area)."""
     order = np.argsort(-confidence, kind="stable")
     correct, confidence = correct[order], confidence[order]
     area, previous_recall, true_positives, i = 0.0, 0.0, 0, 0

@@ -217,10 +217,9 @@ EvaluationSummary summarise(const std::vector<QueryRecord>& records, int toleran
   }
   if (!records.empty()) {
     summary.accepted_rate = static_cast<double>(summary.accepted) / static_cast<double>(records.size());
-    summary.accepted_recall = summary.queries_in_map > 0
-                                  ? static_cast<double>(accepted_correct) / summary.queries_in_map
-                                  : std::numeric_limits<double>::quiet_NaN();
   }
+  summary.accepted_recall = summary.queries_in_map > 0 ? static_cast<double>(accepted_correct) / summary.queries_in_map
+                                                       : std::numeric_limits<double>::quiet_NaN();
   if (summary.accepted > 0) summary.accepted_precision = static_cast<double>(accepted_correct) / summary.accepted;
   if (largest_wrong_error >= 0) summary.largest_wrong_accepted_error = largest_wrong_error;
   summary.median_abs_error = median(errors);

@@ -126,6 +126,7 @@ TEST(Evaluation, TopOneAndRecallAreOverTheQueriesAboutPlacesInTheMap) {
   for (const double figure : {outside.top1, outside.pr_auc, outside.recall_at_100_precision, outside.accepted_recall}) {
     EXPECT_TRUE(std::isnan(figure));
   }
+  EXPECT_TRUE(std::isnan(summarise({}, 1).accepted_recall));  // Nor with no query at all.
 }
 
 // ------------------------------------------------------------------------------------------------
