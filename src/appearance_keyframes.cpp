@@ -85,6 +85,15 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
          std::none_of(joined_.begin(), joined_.end(), unchanged_from);
 }
 
+bool AppearanceKeyframes::offer(const cv::Mat& descriptor) {
+  if (!wants(descriptor)) {
+    skip(descriptor);
+    return false;
+  }
+  keep(descriptor);
+  return true;
+}
+
 void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
   std::vector<float> values = asFloats(descriptor);
   if (static_cast<int>(recent_keyframes_.size()) == kUnrelatedGap) {

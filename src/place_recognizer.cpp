@@ -362,11 +362,7 @@ DescriptorSequence PlaceRecognizer::keyframesOf(const DescriptorSequence& frames
   if (chosen != nullptr) chosen->clear();
   for (int i = 0; i < frames.size(); ++i) {
     const cv::Mat descriptor = frames.descriptorRow(i);
-    if (!keyframes.wants(descriptor)) {
-      keyframes.skip(descriptor);
-      continue;
-    }
-    keyframes.keep(descriptor);
+    if (!keyframes.offer(descriptor)) continue;
     kept.append(descriptor, frames.stamp(i));
     if (chosen != nullptr) chosen->push_back(i);
   }

@@ -92,6 +92,8 @@ class AppearanceKeyframes {
   bool wants(const cv::Mat& descriptor);
   /// Records a keyframe.
   void keep(const cv::Mat& descriptor);
+  /// wants(), then keep() or skip() as it says: true when `descriptor` became a keyframe.
+  bool offer(const cv::Mat& descriptor);
   /// Records a frame that was not kept: it joins the mean the next frames are compared with when it
   /// lies within kReferenceShare of `min_change` of the keyframe.
   void skip(const cv::Mat& descriptor);

@@ -127,12 +127,10 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
       [&](const cv::Mat& descriptor, mrs_vpr::Stamp stamp) {
         const std::int64_t index = next_index++;
         if (keyframes && !keyframes->keep(mrs_vpr::node::rosTimeOf(stamp))) return;
-        if (!appearance.wants(descriptor)) {
-          appearance.skip(descriptor);
+        if (!appearance.offer(descriptor)) {
           ++too_similar;
           return;
         }
-        appearance.keep(descriptor);
         batch.push_back({descriptor.clone(), stamp, "", index});
         if (batch.size() >= kBatch) flush();
       },

@@ -91,6 +91,7 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
   const std::string& bag_path = from_bag.bag_path;
   const std::string& topic = from_bag.topic;
   const int start = from_bag.start;
+  const int count = from_bag.count;
   const double min_appearance_change = from_bag.min_appearance_change;
   const mrs_vpr::bag::TravelSettings& travel = from_bag.travel;
   std::vector<sensor_msgs::ImageConstPtr> images;
@@ -100,7 +101,7 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
     mrs_vpr::AppearanceKeyframes keyframes(from_bag.front_end, min_appearance_change);
     int offered = 0;
     images = mrs_vpr::bag::readChosen(
-        bag_path, topic, start, from_bag.count,
+        bag_path, topic, start, count,
         [&](const sensor_msgs::ImageConstPtr& image) {
           ++offered;
           cv::Mat descriptor;
@@ -110,22 +111,17 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
             throw std::invalid_argument("message " + std::to_string(start + offered - 1) + " of topic '" + topic +
                                         "' in bag '" + bag_path + "': " + error.what());
           }
-          if (!keyframes.wants(descriptor)) {
-            keyframes.skip(descriptor);
-            return false;
-          }
-          keyframes.keep(descriptor);
-          return true;
+          return keyframes.offer(descriptor);
         },
         [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
                      mrs_vpr::numberText(min_appearance_change); });
     request["min_appearance_change"] = min_appearance_change;
     request["frames_read"] = offered;
   } else if (travel.min_travel == 0.0) {
-    images = mrs_vpr::bag::readImages(bag_path, topic, start, from_bag.count);
+    images = mrs_vpr::bag::readImages(bag_path, topic, start, count);
   } else {
     mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);
-    images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, from_bag.count, keyframes);
+    images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes);
     request["min_travel"] = travel.min_travel;
     // Where the sequence ends in the bag: frames from --start on that were read to choose it.
     request["frames_read"] = keyframes.frames();

@@ -47,13 +47,7 @@ int keyframesOf(AppearanceKeyframes& keyframes, const DescriptorExtractor& extra
                 const std::vector<cv::Mat>& views) {
   int kept = 0;
   for (const cv::Mat& view : views) {
-    const cv::Mat descriptor = extractor.compute(view);
-    if (keyframes.wants(descriptor)) {
-      keyframes.keep(descriptor);
-      ++kept;
-    } else {
-      keyframes.skip(descriptor);
-    }
+    if (keyframes.offer(extractor.compute(view))) ++kept;
   }
   return kept;
 }
