@@ -14,6 +14,9 @@
 namespace mrs_vpr {
 namespace {
 
+// Frames of spare storage a map gets ahead of need: over two minutes of a 30 Hz camera.
+constexpr int kMinimumReserve = 4096;
+
 /// `text` with control characters written as \xNN, so that a message quoting user input is never
 /// cut short by a NUL on its way to the user (ROS strings, C strings).
 std::string printable(const std::string& text) {
@@ -169,7 +172,6 @@ void PlaceRecognizer::reserveAhead() {
 }
 
 void PlaceRecognizer::reserveAheadLocked() {
-  constexpr int kMinimumReserve = 4096;  // frames: over two minutes of a 30 Hz camera
   const int frames = map_.size();
   if (frames < reserved_frames_ - reserved_frames_ / 4) return;
   int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));
@@ -227,7 +229,11 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
   for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
   // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
   PreparedMap prepared(params_, recognizer_, extractor_.size());
-  if (count > 0) prepared.map_.reserve(count);
+  // Room for the camera's next frames too: the first of them must not copy the whole map on the
+  // camera's thread. Growing further is reserveAhead()'s, which the node runs off the camera's path.
+  const int room = recognizer_.max_frames > 0 ? recognizer_.max_frames - count : kMinimumReserve;
+  prepared.reserved_frames_ = count + std::min(kMinimumReserve, room);
+  prepared.map_.reserve(prepared.reserved_frames_);
   for (std::size_t i = 0; i < descriptors.size(); ++i) {
     prepared.map_.append(descriptors[i], stamps[i]);
     prepared.keyframes_.keep(descriptors[i]);
@@ -261,7 +267,7 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   recent_rows_->clear();
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
-  reserved_frames_ = map_.size();
+  reserved_frames_ = prepared.reserved_frames_;
   return cleared;
 }
 

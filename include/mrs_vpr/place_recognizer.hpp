@@ -161,6 +161,7 @@ class PlaceRecognizer {
     DescriptorParams descriptor_;
     DescriptorSequence map_;
     AppearanceKeyframes keyframes_;
+    int reserved_frames_ = 0;  // frames map_ holds storage for
   };
   /// replace() in two steps, for a caller with its own step in between (a database to rewrite): builds
   /// the map aside, with no lock held and nothing changed, and throws as replace() does ...
@@ -181,8 +182,8 @@ class PlaceRecognizer {
   /// Grows the map's storage ahead of need, so that no addFrame pays for a reallocation. Only an
   /// optimisation: when the memory cannot be had, the map stays as it was and frames are added as before.
   void reserveAhead();
-  /// Grows the map's storage to hold `frames` frames (at most max_frames) at once, so that loading a
-  /// map of known size copies nothing and holds no spare capacity.
+  /// Grows the map's storage to hold `frames` frames (at most max_frames) at once, so that adding
+  /// frames of known number copies the map at most once.
   void reserve(int frames);
 
   /// A consistent look at the map.

@@ -129,8 +129,10 @@ TEST(PlaceRecognizer, QuestionsAboutTheNewestFramesReadKeptRowsWithTheBruteForce
   // 20 rows of 4 bytes for each of about 640 map frames, and the room each keeps to grow.
   const std::size_t with_rows = recognizer.state().memory_bytes;
   EXPECT_GE(with_rows, map_bytes + 20 * 4 * 600);
-  recognizer.reset();  // The map keeps its storage for the next frames; the rows go.
-  EXPECT_LE(recognizer.state().memory_bytes + 20 * 4 * 600, with_rows);
+  recognizer.reset();  // The rows go; the empty map holds what any reset map does, room for new frames.
+  PlaceRecognizer never_asked(globalSearchParams(), limits);
+  never_asked.reset();
+  EXPECT_EQ(recognizer.state().memory_bytes, never_asked.state().memory_bytes);
 }
 
 TEST(PlaceRecognizer, ACentredAnswerLocalisesTheMiddleFrameAndCarriesItsStamp) {
@@ -302,6 +304,36 @@ TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
   // Never beyond max_frames.
   recognizer.reserve(1000000);
   EXPECT_LT(recognizer.state().memory_bytes - empty, 300 * (frame_bytes + coarse_bytes));
+}
+
+// A loaded map leaves room for the camera's next frames: the first of them copied the whole map on
+// the camera's thread (0.2-0.8 s for 60k frames), the next growth being reserveAhead()'s.
+TEST(PlaceRecognizer, AReplacedMapTakesTheCamerasNextFramesWithoutGrowing) {
+  PlaceRecognizer built(routeParameters());
+  mapReference(built);
+  std::vector<cv::Mat> descriptors;
+  std::vector<Stamp> stamps;
+  built.visitFrames(0, 300, [&](const cv::Mat& descriptor, Stamp stamp) {
+    descriptors.push_back(descriptor.clone());
+    stamps.push_back(stamp);
+  });
+  PlaceRecognizer recognizer(routeParameters());
+  recognizer.replace(descriptors, stamps);
+  const std::size_t loaded = recognizer.state().memory_bytes;
+  int added = 0;
+  for (int i = 300; i < 600; ++i) {
+    if (recognizer.addFrame(route().reference[static_cast<std::size_t>(i)]) == FrameAdmission::kAdmitted) ++added;
+  }
+  EXPECT_GT(added, 200);
+  EXPECT_EQ(recognizer.size(), 300 + added);
+  EXPECT_EQ(recognizer.state().memory_bytes, loaded);
+  // The room stops at max_frames.
+  RecognizerParams limits;
+  limits.max_frames = 310;
+  PlaceRecognizer limited(routeParameters(), limits);
+  limited.replace(descriptors, stamps);
+  const auto frame_bytes = static_cast<std::size_t>(limited.extractor().size()) + sizeof(double);
+  EXPECT_LT(limited.state().memory_bytes, 310 * (frame_bytes + 256));
 }
 
 TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacity) {
