@@ -61,11 +61,11 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
     pending_restatements_.clear();
   }
   last_closure_.reset();
-  ++map_version_;
   // Continuous mode's test sequences end in keyframes the camera added after the new map's frames, not
-  // in a loaded map's own. The services and continuous mode run on the query thread.
+  // in a loaded map's own. The services and continuous mode run on the query thread. The new version
+  // makes its next period look, also at the frames a load held back, when no keyframe follows them.
   auto_query_size_ = map_frames;
-  auto_query_version_ = map_version_;
+  ++map_version_;
 }
 
 bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::Response& response) {
