@@ -10,9 +10,12 @@
  * added nothing measurable). The core is built with -ffp-contract=off, so that both clones compute
  * the same floats: elementwise loops, no fused multiply-adds.
  *
- * Only GCC on x86-64 with glibc: other compilers and targets get the plain function.
+ * Only GCC on x86-64 with glibc: other compilers and targets get the plain function. So do builds
+ * under ThreadSanitizer, which instruments the ifunc's resolver: run by the dynamic loader before the
+ * sanitizer's runtime is ready, it crashed every program before main().
  */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__)
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__GLIBC__) && \
+    !defined(__SANITIZE_THREAD__)
 #define MRS_VPR_VECTOR_KERNEL __attribute__((target_clones("avx2", "default")))
 #else
 #define MRS_VPR_VECTOR_KERNEL
