@@ -6,18 +6,22 @@ namespace mrs_vpr {
 
 cv::Mat QueryBuffer::matrix(int rows, int cols) {
   const std::size_t cells = static_cast<std::size_t>(std::max(0, rows)) * static_cast<std::size_t>(std::max(0, cols));
-  if (cells > storage_.capacity()) {
+  if (cells > capacity_) {
     // Room for a growing map: no reallocation for the next frames' columns.
-    std::vector<float> larger;
-    larger.reserve(std::max(cells, cells + cells / 8));
-    storage_.swap(larger);
+    const std::size_t capacity = std::max(cells, cells + cells / 8);
+    storage_.reset();  // The old storage goes first: both may not fit.
+    capacity_ = 0;
+    storage_.reset(new float[capacity]);  // default-initialised: not zeroed
+    capacity_ = capacity;
   }
-  storage_.resize(cells);
-  return cv::Mat(rows, cols, CV_32F, storage_.data());
+  return cv::Mat(rows, cols, CV_32F, storage_.get());
 }
 
 void QueryBuffer::release() {
-  if (capacityBytes() > kKeptQueryBufferBytes) std::vector<float>().swap(storage_);
+  if (capacityBytes() > kKeptQueryBufferBytes) {
+    storage_.reset();
+    capacity_ = 0;
+  }
 }
 
 }  // namespace mrs_vpr

@@ -12,17 +12,15 @@ SeqSlamMatcher::SeqSlamMatcher(const SequenceParams& params) : SequenceMatcher(p
 
 Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query);
-  // Kept by the querying thread (the node's service or timer thread) for its next query.
-  thread_local QueryBuffer difference_buffer;
-  thread_local QueryBuffer enhanced_buffer;
-  cv::Mat differences = difference_buffer.matrix(query.count, reference.count);
+  // Kept by the querying thread (the node's service or timer thread) for its next query. One matrix,
+  // enhanced in place: a 1000-frame question on 200k frames needs 0.8 GB, not 1.6.
+  thread_local QueryBuffer buffer;
+  cv::Mat differences = buffer.matrix(query.count, reference.count);
   computeDifferenceMatrix(query, reference, differences);
-  cv::Mat enhanced = enhanced_buffer.matrix(query.count, reference.count);
-  enhanceContrast(differences, sequence_.contrast_window, enhanced);
+  enhanceContrastInPlace(differences, sequence_.contrast_window);
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
-  Match match = searchTrajectories(enhanced, rows, sequence_);
-  difference_buffer.release();
-  enhanced_buffer.release();
+  Match match = searchTrajectories(differences, rows, sequence_);
+  buffer.release();
   placeAnswer(match, reference, query, rows);
   applyAcceptance(match, sequence_);
   return match;

@@ -17,6 +17,10 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window);
 /// The same into `enhanced`, a CV_32FC1 matrix of the differences' size (e.g. kept between queries).
 void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced);
 
+/// The same in place: `matrix` holds the raw differences and gets the enhanced ones, so that a large
+/// query needs one matrix, not two.
+void enhanceContrastInPlace(cv::Mat& matrix, int window);
+
 /// Enhances columns [begin, end) of one row of `columns` raw differences into `out`, exactly as
 /// enhanceContrast does, to the bit, from the raw differences their windows see: `raw` holds columns
 /// [max(0, begin - window / 2), min(columns, end + window / 2)), and `first_difference` is the row's

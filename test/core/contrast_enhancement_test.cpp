@@ -96,6 +96,21 @@ TEST(EnhanceContrast, RowsAreEnhancedIndependently) {
   EXPECT_EQ(cv::norm(enhanced.row(1), enhanceContrast(b, 4), cv::NORM_INF), 0.0);
 }
 
+TEST(EnhanceContrast, InPlaceGivesTheSameMatrixToTheBit) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> difference(0.0F, 3.0F);
+  cv::Mat raw(37, 301, CV_32F);
+  for (int r = 0; r < raw.rows; ++r) {
+    for (int c = 0; c < raw.cols; ++c) raw.at<float>(r, c) = difference(random);
+  }
+  raw.row(5).setTo(1.0F);  // a constant row: no contrast
+  for (const int window : {0, 1, 10, 300, 1000}) {
+    cv::Mat in_place = raw.clone();
+    enhanceContrastInPlace(in_place, window);
+    EXPECT_EQ(cv::norm(in_place, enhanceContrast(raw, window), cv::NORM_INF), 0.0) << "window " << window;
+  }
+}
+
 TEST(EnhanceContrast, WindowZeroReturnsAnIndependentCopy) {
   const cv::Mat row = rowOf({3, 1, 2});
   cv::Mat copy = enhanceContrast(row, 0);
