@@ -208,19 +208,20 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) 
   });
 }
 
-void enhanceContrastInPlace(cv::Mat& matrix, int window) {
+void enhanceContrastInPlace(cv::Mat& matrix, int window, const QueryStop* stop) {
   CV_Assert(matrix.type() == CV_32FC1);
   if (window == 0) return;
   cv::parallel_for_(cv::Range(0, matrix.rows), [&](const cv::Range& rows) {
     // A row's windows read raw differences on both sides of each cell: the row is enhanced from a copy.
     std::vector<float> raw(static_cast<std::size_t>(matrix.cols));
-    for (int row = rows.start; row < rows.end; ++row) {
+    for (int row = rows.start; row < rows.end && !stopRequested(stop); ++row) {
       float* cells = matrix.ptr<float>(row);
       std::copy(cells, cells + matrix.cols, raw.begin());
       const float first_difference = matrix.cols > 0 ? raw[0] : 0.0F;
       enhanceRowSpan(raw.data(), matrix.cols, 0, matrix.cols, window, first_difference, cells);
     }
   });
+  throwIfStopped(stop);
 }
 
 }  // namespace mrs_vpr

@@ -43,7 +43,8 @@ cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference) {
   return differences;
 }
 
-void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences) {
+void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences,
+                             const QueryStop* stop) {
   if (query.descriptor_size != reference.descriptor_size) {
     throw std::invalid_argument("query descriptors have " + std::to_string(query.descriptor_size) +
                                 " bytes but reference descriptors have " +
@@ -55,7 +56,7 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
   const int blocks = (reference.count + kBlock - 1) / kBlock;
   const int size = query.descriptor_size;
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
-    for (int block = range.start; block < range.end; ++block) {
+    for (int block = range.start; block < range.end && !stopRequested(stop); ++block) {
       const int begin = block * kBlock;
       const int end = std::min(reference.count, begin + kBlock);
       for (int t = 0; t < query.count; ++t) {
@@ -64,6 +65,7 @@ void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat
       }
     }
   });
+  throwIfStopped(stop);
 }
 
 }  // namespace mrs_vpr

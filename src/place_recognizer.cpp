@@ -44,7 +44,10 @@ PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParam
       map_(extractor_.size()) {
   params_.validate();
   recognizer_.validate();
-  for (const char* method : {"mrs", "seqslam"}) matchers_[method] = makeMatcher(method, params_);
+  for (const char* method : {"mrs", "seqslam"}) {
+    matchers_[method] = makeMatcher(method, params_);
+    matchers_[method]->stopWith(&stop_);
+  }
   // The map keeps MRS's coarse cells up to date as frames arrive, so that a query does not
   // transform the whole map again.
   map_.keepCoarseCells(params_.mrs.levels, params_.descriptor);
@@ -303,6 +306,7 @@ const SequenceMatcher& PlaceRecognizer::matcherFor(const std::string& method) co
 
 PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, const std::string& method,
                                     MatchExplanation* explanation, const MapFrames* map_frames) const {
+  stop_.throwIfRequested();
   const SequenceMatcher& matcher = matcherFor(method);
   PlaceAnswer answer;
   answer.method = matcher.name();

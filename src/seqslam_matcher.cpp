@@ -16,11 +16,11 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   // enhanced in place: a 1000-frame question on 200k frames needs 0.8 GB, not 1.6.
   thread_local QueryBuffer buffer;
   cv::Mat differences = buffer.matrix(query.count, reference.count);
-  computeDifferenceMatrix(query, reference, differences);
-  enhanceContrastInPlace(differences, sequence_.contrast_window);
+  const QueryBuffer::ReleaseAtExit release(buffer);  // also when the query stops or fails
+  computeDifferenceMatrix(query, reference, differences, stop_);
+  enhanceContrastInPlace(differences, sequence_.contrast_window, stop_);
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
-  Match match = searchTrajectories(differences, rows, sequence_);
-  buffer.release();
+  Match match = searchTrajectories(differences, rows, sequence_, stop_);
   placeAnswer(match, reference, query, rows);
   applyAcceptance(match, sequence_);
   return match;

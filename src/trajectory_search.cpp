@@ -157,17 +157,18 @@ std::vector<int> distinctMinima(const std::vector<float>& cost_by_anchor, int se
   return chosen;
 }
 
-AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities) {
+AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities,
+                          const QueryStop* stop) {
   CV_Assert(enhanced.type() == CV_32FC1);
   std::vector<const float*> row_data(static_cast<std::size_t>(enhanced.rows));
   for (int t = 0; t < enhanced.rows; ++t) row_data[static_cast<std::size_t>(t)] = enhanced.ptr<float>(t);
   AnchorCosts costs;
-  costsByAnchor(row_data, enhanced.cols, rows, velocities, costs);
+  costsByAnchor(row_data, enhanced.cols, rows, velocities, costs, stop);
   return costs;
 }
 
 void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, const SequenceRows& rows,
-                   const std::vector<double>& velocities, AnchorCosts& costs) {
+                   const std::vector<double>& velocities, AnchorCosts& costs, const QueryStop* stop) {
   if (rows.first < 0 || rows.last >= static_cast<int>(enhanced_rows.size()) || rows.first > rows.last ||
       rows.anchor < rows.first || rows.anchor > rows.last) {
     throw std::invalid_argument("test sequence rows are outside the difference matrix");
@@ -190,7 +191,7 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
   cv::parallel_for_(cv::Range(0, blocks), [&](const cv::Range& range) {
     std::vector<float> sums(kBlock);
     std::vector<const float*> row_starts(static_cast<std::size_t>(length));
-    for (int block = range.start; block < range.end; ++block) {
+    for (int block = range.start; block < range.end && !stopRequested(stop); ++block) {
       const int block_begin = block * kBlock;
       const int block_end = std::min(columns, block_begin + kBlock);
       for (std::size_t v = 0; v < velocities.size(); ++v) {
@@ -211,10 +212,12 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
       }
     }
   });
+  throwIfStopped(stop);
 }
 
-Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params) {
-  Match match = scoreAnchorCosts(costsByAnchor(enhanced, rows, velocities(params)), params.match_exclusion);
+Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params,
+                         const QueryStop* stop) {
+  Match match = scoreAnchorCosts(costsByAnchor(enhanced, rows, velocities(params), stop), params.match_exclusion);
   match.comparisons = static_cast<long long>(rows.last - rows.first + 1) * enhanced.cols;
   return match;
 }

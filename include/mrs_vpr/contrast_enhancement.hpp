@@ -2,6 +2,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/query_stop.hpp"
+
 namespace mrs_vpr {
 
 /**
@@ -18,8 +20,8 @@ cv::Mat enhanceContrast(const cv::Mat& differences, int window);
 void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced);
 
 /// The same in place: `matrix` holds the raw differences and gets the enhanced ones, so that a large
-/// query needs one matrix, not two.
-void enhanceContrastInPlace(cv::Mat& matrix, int window);
+/// query needs one matrix, not two. Throws QueryStopped, some rows enhanced, when `stop` asks to stop.
+void enhanceContrastInPlace(cv::Mat& matrix, int window, const QueryStop* stop = nullptr);
 
 /// Enhances columns [begin, end) of one row of `columns` raw differences into `out`, exactly as
 /// enhanceContrast does, to the bit, from the raw differences their windows see: `raw` holds columns

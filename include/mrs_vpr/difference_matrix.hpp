@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/query_stop.hpp"
 
 namespace mrs_vpr {
 
@@ -23,7 +24,9 @@ void descriptorDifferences(const std::uint8_t* query, const std::uint8_t* cells,
 cv::Mat computeDifferenceMatrix(SequenceView query, SequenceView reference);
 
 /// The same into `differences`, an existing CV_32FC1 matrix (or region of one) of query.count x
-/// reference.count, so that columns from different sources can fill one matrix without copies.
-void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences);
+/// reference.count, so that columns from different sources can fill one matrix without copies. Throws
+/// QueryStopped, the matrix part filled, when `stop` asks to stop (checked before each block of columns).
+void computeDifferenceMatrix(SequenceView query, SequenceView reference, cv::Mat& differences,
+                             const QueryStop* stop = nullptr);
 
 }  // namespace mrs_vpr

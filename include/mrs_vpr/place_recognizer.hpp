@@ -18,6 +18,7 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/query_stop.hpp"
 #include "mrs_vpr/repeated_views.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/stamp.hpp"
@@ -136,6 +137,11 @@ class PlaceRecognizer {
   /// older frames (all but those and recent_exclusion) must be at least as many.
   int fewestFramesForRecent(int frames) const { return 2 * frames + recognizer_.recent_exclusion; }
 
+  /// Makes a running query throw QueryStopped within a block of its work (the brute force's columns,
+  /// rows or anchors), and every later one at once: for a shutdown that need not wait for a long
+  /// question. Frames are still added. Safe to call from a signal handler; cannot be undone.
+  void stopQueries() noexcept { stop_.request(); }
+
   /// Frames in the map (not counting pending ones).
   int size() const { return map_frames_.load(); }
   /// Frames waiting for the map.
@@ -239,6 +245,7 @@ class PlaceRecognizer {
   Parameters params_;
   RecognizerParams recognizer_;
   DescriptorExtractor extractor_;
+  QueryStop stop_;  // before the matchers, which point to it
   std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
 
   // Held while a frame is offered, so that frames are decided and added one at a time, in order.

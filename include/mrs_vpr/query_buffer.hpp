@@ -24,6 +24,18 @@ class QueryBuffer {
   /// Bytes held.
   std::size_t capacityBytes() const { return capacity_ * sizeof(float); }
 
+  /// Calls release() as it goes out of scope, also when the query throws.
+  class ReleaseAtExit {
+   public:
+    explicit ReleaseAtExit(QueryBuffer& buffer) : buffer_(buffer) {}
+    ~ReleaseAtExit() { buffer_.release(); }
+    ReleaseAtExit(const ReleaseAtExit&) = delete;
+    ReleaseAtExit& operator=(const ReleaseAtExit&) = delete;
+
+   private:
+    QueryBuffer& buffer_;
+  };
+
  private:
   // Not zeroed: every query writes its matrix whole before reading it, and zeroing a fresh buffer
   // was a third of a 1000 x 200k brute-force question's time.

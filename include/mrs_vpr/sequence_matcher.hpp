@@ -7,6 +7,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/query_stop.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -32,6 +33,10 @@ class SequenceMatcher {
 
   virtual std::string name() const = 0;
 
+  /// Queries of this matcher that can take long (the brute force over a large map) stop with
+  /// QueryStopped once `stop` (which outlives the matcher) asks to; null: never.
+  void stopWith(const QueryStop* stop) { stop_ = stop; }
+
  protected:
   explicit SequenceMatcher(const SequenceParams& sequence);
   /// Throws std::invalid_argument with a clear message when the inputs cannot be matched.
@@ -41,6 +46,7 @@ class SequenceMatcher {
   void placeAnswer(Match& match, SequenceView reference, SequenceView query, const SequenceRows& rows) const;
 
   SequenceParams sequence_;
+  const QueryStop* stop_ = nullptr;
 };
 
 /// "seqslam" (brute force) or "mrs"; throws std::invalid_argument for any other name or bad parameters.

@@ -6,6 +6,7 @@
 
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/query_stop.hpp"
 
 namespace mrs_vpr {
 
@@ -34,12 +35,13 @@ struct AnchorCosts {
 };
 
 /// Costs of all straight trajectories through `enhanced` (see searchTrajectories), per anchor column.
-AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities);
+AnchorCosts costsByAnchor(const cv::Mat& enhanced, const SequenceRows& rows, const std::vector<double>& velocities,
+                          const QueryStop* stop = nullptr);
 
 /// The same through rows held apart (`enhanced_rows[t]`: `columns` values of row t) into `costs`,
-/// whose storage is reused.
+/// whose storage is reused. Throws QueryStopped when `stop` asks to stop (checked per block of anchors).
 void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, const SequenceRows& rows,
-                   const std::vector<double>& velocities, AnchorCosts& costs);
+                   const std::vector<double>& velocities, AnchorCosts& costs, const QueryStop* stop = nullptr);
 
 /**
  * Brute-force straight-trajectory search through an enhanced difference matrix (test frames x
@@ -48,7 +50,8 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
  * trajectories that stay inside the matrix count. Returns the best anchor column scored by
  * scoreFromCosts (runner-up outside +-match_exclusion/2 of the best); acceptance is the caller's.
  */
-Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params);
+Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params,
+                         const QueryStop* stop = nullptr);
 
 /// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
 /// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all), 0

@@ -22,6 +22,12 @@
 
 namespace mrs_vpr {
 namespace node {
+namespace {
+
+// A question ended by stopQueries(): said in the response, not warned about.
+const char* const kStoppedQueryMessage = "the node is shutting down: the query was stopped";
+
+}  // namespace
 
 bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QuerySequence::Response& response) {
   const auto start = std::chrono::steady_clock::now();
@@ -65,7 +71,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     response.success = true;
   } catch (const std::exception& error) {
     response.success = false;
-    response.message = error.what();
+    response.message = dynamic_cast<const QueryStopped*>(&error) != nullptr ? kStoppedQueryMessage : error.what();
     response.reference_index = -1;
     response.accepted = false;
   }
@@ -76,7 +82,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     if (!input.images) publishStandingClosures(input.header, answered, response);
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
-  } else {
+  } else if (response.message != kStoppedQueryMessage) {
     ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"
@@ -201,6 +207,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
       publishLoopClosure(input.header, answered, response,
                          input.header.stamp);  // warns itself when stamps cannot go out
       publishStandingClosures(input.header, answered, response);
+    } catch (const QueryStopped&) {
+      return;  // The node is shutting down.
     } catch (const std::exception& error) {
       // Each keyframe's question stands alone: the next ones are still asked.
       ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: continuous query failed: %s", error.what());

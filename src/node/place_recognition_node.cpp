@@ -96,7 +96,11 @@ std::unique_ptr<PlaceRecognitionNode> PlaceRecognitionNode::start(const ros::Nod
 }
 
 PlaceRecognitionNode::~PlaceRecognitionNode() {
-  // Stop feeding callbacks first, then join the query thread, so no callback outlives the members.
+  // A running question ends at once (its caller is told that the node is shutting down): joining
+  // the query thread below would wait for it, and a brute-force one on a large map can take longer
+  // than roslaunch's 15 s before SIGTERM. Then stop feeding callbacks, and join the query thread, so
+  // that no callback outlives the members.
+  recognizer_.stopQueries();
   image_sub_.shutdown();
   compressed_image_sub_.shutdown();
   auto_query_timer_.stop();

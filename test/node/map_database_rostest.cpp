@@ -30,6 +30,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/SaveMap.h"
+#include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/parameters.hpp"
@@ -515,6 +516,51 @@ TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
   EXPECT_EQ(old.waitForExit(30.0), 1);
   const std::string log = fileContents(path("old_map.log"));
   EXPECT_NE(log.find("frame 2 has an unusable stamp"), std::string::npos) << log;
+}
+
+TEST_F(MapDatabaseNodeTest, CtrlCEndsARunningQuestionInsteadOfWaitingForIt) {
+  // The node's shutdown joins its query thread: it stops a running question first rather than wait
+  // for it. A brute-force question about 2000 keyframes of 100k frames takes seconds.
+  const std::string database = path("large.db");
+  {
+    const mrs_vpr::DescriptorParams params;
+    const int size = mrs_vpr::DescriptorExtractor(params).size();
+    cv::RNG random(5);
+    std::vector<mrs_vpr::StoredFrame> frames;
+    for (int i = 0; i < 100000; ++i) {
+      cv::Mat descriptor(1, size, CV_8UC1);
+      random.fill(descriptor, cv::RNG::UNIFORM, 0, 256);
+      frames.push_back({descriptor, referenceStamp(i), "camera", i});
+    }
+    mrs_vpr::MapDatabase(database, params).append(frames);
+  }
+  auto node = startNode("stopper", database);
+  mrs_vpr::QuerySequence whole;
+  whole.request.recent_frames = 2000;
+  whole.request.method = "seqslam";
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), whole));
+  ASSERT_TRUE(whole.response.success) << whole.response.message;
+  const double question_s = whole.response.elapsed_ms / 1000.0;
+
+  // The same question again, and Ctrl-C a second into it.
+  mrs_vpr::QuerySequence stopped;
+  stopped.request = whole.request;
+  bool answered = false;
+  std::thread asking([&] { answered = mrs_vpr::testing_support::callService(node->service("query"), stopped); });
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const auto sigint = std::chrono::steady_clock::now();
+  const int exit_code = node->stop();
+  const double exit_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - sigint).count();
+  asking.join();
+  std::printf("[ figures  ] the question took %.1f s; Ctrl-C a second into it ended the node in %.1f s\n", question_s,
+              exit_s);
+  EXPECT_EQ(exit_code, 0);
+  EXPECT_LT(exit_s, question_s - 1.0) << "the node waited for the question to end";
+  if (answered) {  // The reply can be lost as the node's connections close.
+    EXPECT_FALSE(stopped.response.success);
+    EXPECT_NE(stopped.response.message.find("shutting down"), std::string::npos) << stopped.response.message;
+  }
+  EXPECT_EQ(storedFrames(database).size(), 100000U);
 }
 
 TEST_F(MapDatabaseNodeTest, AnUnusableDatabaseStopsTheNodeAtStartUpNamingIt) {
