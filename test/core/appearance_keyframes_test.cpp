@@ -357,6 +357,17 @@ TEST(RepeatedViews, AMovingCameraRepeatsNoView) {
   EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, partly).view()));
 }
 
+// "Mostly" is more than half: a sequence that stands for exactly half its keyframes is still judged
+// on its views. The stop comes first, as judging ends once the distinct views reach half.
+TEST(RepeatedViews, ASequenceHalfOfOneViewIsNotMostlyRepeated) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(7);
+  const AppearanceKeyframes keyframes = hogKeyframes(extractor, rng);
+  std::vector<cv::Mat> half = darkStop(2500.0, 10, rng);
+  for (const cv::Mat& view : drive(2000.0, 12.0, 10, rng)) half.push_back(view);
+  EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, half).view()));
+}
+
 TEST(RepeatedViews, JudgesNothingWithoutKeyframesByAppearance) {
   const DescriptorExtractor extractor{DescriptorParams{}};
   cv::RNG rng(5);

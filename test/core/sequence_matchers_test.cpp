@@ -36,6 +36,19 @@ TEST_P(EveryMethod, RecoversThePlantedAlignmentOfGlobalQueries) {
   }
 }
 
+// A test sequence as long as the reference is searched; only a longer one is refused.
+TEST_P(EveryMethod, SearchesATestSequenceAsLongAsTheReference) {
+  const auto& route = standardRoute();
+  const auto matcher = makeMatcher(GetParam(), globalSearchParams());
+  for (const int frames : {120, 300}) {
+    const Match match = matcher->match(route.reference.view(0, frames), route.query.view(0, frames));
+    EXPECT_GE(match.reference_index, 0) << frames << " frames";
+    EXPECT_THROW(matcher->match(route.reference.view(0, frames), route.query.view(0, frames + 1)),
+                 std::invalid_argument)
+        << frames << " frames";
+  }
+}
+
 TEST_P(EveryMethod, CentredAlignmentReportsTheMiddleFrame) {
   const auto& route = standardRoute();
   Parameters params = globalSearchParams();

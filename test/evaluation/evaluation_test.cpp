@@ -87,6 +87,27 @@ TEST(Evaluation, AbsoluteErrorIsToTheNearestTrueIndex) {
   EXPECT_EQ(absoluteError(record(0, {}, 4, 0.5F)), -1);
 }
 
+// A keyframe stands for the frames up to the next keyframe: an answer naming it is right for any of
+// them, and its error is counted from the nearest of them.
+TEST(Evaluation, AKeyframeAnswerIsRightAnywhereInTheFramesItStandsFor) {
+  Keyframes reference;
+  reference.frames = {0, 10, 20};
+  reference.total = 30;
+  Match match;
+  match.reference_index = 1;  // the keyframe at frame 10, standing for frames 10 to 19
+  const QueryRecord inside = keyframeRecordOf(0, {15}, match, reference, 0.0);
+  EXPECT_EQ(inside.predicted_index, 10);
+  EXPECT_EQ(inside.predicted_last, 19);
+  EXPECT_EQ(absoluteError(inside), 0);
+  EXPECT_TRUE(isCorrect(inside, 0));
+  const QueryRecord after = keyframeRecordOf(0, {22}, match, reference, 0.0);
+  EXPECT_EQ(absoluteError(after), 3);  // from frame 19
+  EXPECT_FALSE(isCorrect(after, 2));
+  EXPECT_TRUE(isCorrect(after, 3));
+  match.reference_index = 2;  // the last keyframe stands for the traversal's last frames
+  EXPECT_EQ(keyframeRecordOf(0, {29}, match, reference, 0.0).predicted_last, 29);
+}
+
 TEST(Evaluation, TopOneAccuracy) {
   const std::vector<QueryRecord> records = {record(0, {0}, 0, 0.9F), record(1, {1}, 9, 0.8F),
                                             record(2, {2}, 3, 0.1F), record(3, {3}, -1, 0.0F)};

@@ -171,6 +171,21 @@ TEST_F(MapDatabaseTest, AMapOfOtherDescriptorsIsRefusedNamingTheMismatch) {
   EXPECT_EQ(MapDatabase(path("map.db"), thumbnailParams()).size(), 3);  // Untouched.
 }
 
+// Patches of another size give descriptors of the same size that mean something else.
+TEST_F(MapDatabaseTest, AThumbnailMapOfOtherPatchesIsRefusedThoughItsDescriptorsHaveTheSameSize) {
+  {
+    MapDatabase database(path("map.db"), thumbnailParams());
+    database.append(frames(3));
+  }
+  DescriptorParams other = thumbnailParams();
+  other.patch_size = 4;
+  ASSERT_EQ(other.descriptorSize(), thumbnailParams().descriptorSize());
+  const std::string message = openingError(path("map.db"), other);
+  EXPECT_NE(message.find("(64 x 32, patches of 8 px) front end, not of the thumbnail (64 x 32, patches of 4 px)"),
+            std::string::npos)
+      << message;
+}
+
 TEST_F(MapDatabaseTest, AHogMapRecordsItsFrontEndAndAThumbnailReaderIsRefusedNamingBoth) {
   DescriptorParams hog;
   hog.hog_blur = 1.5;

@@ -120,6 +120,21 @@ class PersistentMapTest : public ::testing::Test {
   testing_support::TemporaryFolder folder_{"mrs_vpr_persistent_map_test"};
 };
 
+TEST_F(PersistentMapTest, AMapOfExactlyMaxFramesStartsAndLoads) {
+  writeMap(path("full.db"), 0, 40);
+  RecognizerParams capacity;
+  capacity.max_frames = 40;
+  {
+    PlaceRecognizer recognizer(Parameters{}, capacity);
+    PersistentMap map(recognizer, path("full.db"), CommitPolicy{});
+    expectSameFrames(framesOf(recognizer), expectedFrames(0, 40));
+  }
+  PlaceRecognizer recognizer(Parameters{}, capacity);
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+  EXPECT_EQ(map.load(path("full.db")), 40);
+  expectSameFrames(framesOf(recognizer), expectedFrames(0, 40));
+}
+
 TEST_F(PersistentMapTest, ARestartedMapHoldsEveryFrameInOrderAndAnswersAboutThem) {
   {
     PlaceRecognizer recognizer;
