@@ -3,6 +3,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
+#include "mrs_vpr/memory_budget.hpp"
 #include "mrs_vpr/query_buffer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -15,6 +16,14 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   // Kept by the querying thread (the node's service or timer thread) for its next query. One matrix,
   // enhanced in place: a 1000-frame question on 200k frames needs 0.8 GB, not 1.6.
   thread_local QueryBuffer buffer;
+  const std::uint64_t bytes = static_cast<std::uint64_t>(query.count) * static_cast<std::uint64_t>(reference.count) *
+                              sizeof(float);
+  if (bytes > buffer.capacityBytes()) {
+    requireAvailableMemory(bytes,
+                           "the difference matrix of a seqslam question about " + std::to_string(query.count) +
+                               " frames of a map of " + std::to_string(reference.count),
+                           "ask about fewer frames, or use mrs");
+  }
   cv::Mat differences = buffer.matrix(query.count, reference.count);
   const QueryBuffer::ReleaseAtExit release(buffer);  // also when the query stops or fails
   computeDifferenceMatrix(query, reference, differences, stop_);
