@@ -34,9 +34,10 @@ namespace {
 class CoarseToFineSearch {
  public:
   CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
-                     const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact)
+                     const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
+                     const QueryStop* stop)
       : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
-        compact_(compact),
+        compact_(compact), stop_(stop),
         velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
   Match run(std::vector<MrsLevelTrace>* trace) {
@@ -63,10 +64,12 @@ class CoarseToFineSearch {
     const SequenceView cells = levelQuery(query_cells);
     if (level_.stride == 1) {
       // No coarser level: the brute force's own dense search, so that the answers are its answers.
-      const cv::Mat differences = computeDifferenceMatrix(cells, reference_);
-      result_.comparisons += static_cast<long long>(differences.total());
-      const cv::Mat matrix = enhanceContrast(differences, sequence_.contrast_window);
-      coarse_costs_ = std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_), level_);
+      cv::Mat matrix(cells.count, reference_.count, CV_32F);
+      computeDifferenceMatrix(cells, reference_, matrix, stop_);
+      result_.comparisons += static_cast<long long>(matrix.total());
+      enhanceContrastInPlace(matrix, sequence_.contrast_window, stop_);
+      coarse_costs_ =
+          std::make_unique<EndCostTable>(costsByAnchor(matrix, level_.sequenceRows(), velocities_, stop_), level_);
       return;
     }
     std::atomic<long long> compared{0};
@@ -76,7 +79,8 @@ class CoarseToFineSearch {
       compared.fetch_add(static_cast<long long>(raw.total()), std::memory_order_relaxed);
     };
     coarse_costs_ = std::make_unique<EndCostTable>(
-        tiledCostsByAnchor(level_.grid_size, level_.sequenceRows(), velocities_, sequence_.contrast_window, tile),
+        tiledCostsByAnchor(level_.grid_size, level_.sequenceRows(), velocities_, sequence_.contrast_window, tile,
+                           stop_),
         level_);
     result_.comparisons += std::llround(static_cast<double>(compared.load()) * cellShare());
   }
@@ -313,6 +317,7 @@ class CoarseToFineSearch {
   const SequenceParams& sequence_;
   const MrsParams& mrs_;
   const CompactCells& compact_;
+  const QueryStop* stop_;
   std::vector<double> velocities_;
   std::mt19937_64 rng_;
 
@@ -329,8 +334,8 @@ class CoarseToFineSearch {
 
 Match coarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                          const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
-                         std::vector<MrsLevelTrace>* trace) {
-  return CoarseToFineSearch(reference, query, rows, levels, sequence, mrs, compact).run(trace);
+                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop) {
+  return CoarseToFineSearch(reference, query, rows, levels, sequence, mrs, compact, stop).run(trace);
 }
 
 }  // namespace mrs_vpr

@@ -53,7 +53,7 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<
     return firstPass(reference, query, trace);
   }
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
-  Match match = coarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_, trace);
+  Match match = coarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_, trace, stop_);
   placeAnswer(match, reference, query, rows);  // As the brute force places its answer.
   return match;
 }

@@ -33,14 +33,15 @@ Reach trajectoryReach(const SequenceRows& rows, const std::vector<double>& veloc
 }  // namespace
 
 AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
-                               int contrast_window, const DifferenceTile& tile) {
+                               int contrast_window, const DifferenceTile& tile, const QueryStop* stop) {
   AnchorCosts costs;
-  tiledCostsByAnchor(columns, rows, velocities, contrast_window, tile, costs);
+  tiledCostsByAnchor(columns, rows, velocities, contrast_window, tile, costs, stop);
   return costs;
 }
 
 void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
-                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs) {
+                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs,
+                        const QueryStop* stop) {
   costs.cost.assign(static_cast<std::size_t>(std::max(0, columns)), std::numeric_limits<float>::infinity());
   costs.velocity.assign(costs.cost.size(), 0.0F);
   const Reach reach = trajectoryReach(rows, velocities);
@@ -55,7 +56,7 @@ void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector
     // changes, as it does at the map's edges).
     thread_local std::vector<float> raw_storage;
     thread_local std::vector<float> enhanced_storage;
-    for (int t = range.start; t < range.end; ++t) {
+    for (int t = range.start; t < range.end && !stopRequested(stop); ++t) {
       const int anchor_begin = t * kTileAnchors;
       const int anchor_end = std::min(columns, anchor_begin + kTileAnchors);
       // Columns the tile's trajectories visit, and the raw columns their contrast windows see.
@@ -83,6 +84,7 @@ void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector
       }
     }
   });
+  throwIfStopped(stop);
 }
 
 }  // namespace mrs_vpr

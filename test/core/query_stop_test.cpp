@@ -92,6 +92,22 @@ TEST(QueryStop, ARunningBruteForceQuestionEndsWhenAsked) {
   EXPECT_TRUE(stopped);
 }
 
+// MRS stops in its coarsest level, most of a long question: the tiled one of a query with coarser
+// levels, and the dense one of a query without.
+TEST(QueryStop, AnMrsQuestionStopsInItsCoarsestLevel) {
+  const auto& route = standardRoute();
+  const auto matcher = makeMatcher("mrs", globalSearchParams());
+  QueryStop stop;
+  matcher->stopWith(&stop);
+  for (const int frames : {300, 100}) {
+    EXPECT_GE(matcher->match(route.reference.view(), route.query.view(0, frames)).reference_index, 0);
+  }
+  stop.request();
+  for (const int frames : {300, 100}) {
+    EXPECT_THROW(matcher->match(route.reference.view(), route.query.view(0, frames)), QueryStopped) << frames;
+  }
+}
+
 TEST(QueryStop, AStoppedRecognizerRefusesQuestionsAndStillTakesFrames) {
   const auto& images = testing_support::standardRouteImages();
   PlaceRecognizer recognizer(globalSearchParams());

@@ -26,10 +26,11 @@ int rivalExclusion(const SequenceParams& sequence, const MrsParams& mrs, int lev
  * table, then mrs.hypotheses of its distinct minima settled level by level down to the frames. The
  * answer is the best end at full resolution, its confidence read on the coarsest table, and
  * acceptance applied; the caller places it (SequenceMatcher::placeAnswer). Each level is recorded
- * into `trace` when it is not null. `levels` 0 is the brute force's own dense search.
+ * into `trace` when it is not null. `levels` 0 is the brute force's own dense search. Throws
+ * QueryStopped when `stop` asks to while the coarsest level is scored, which is most of a long query.
  */
 Match coarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                          const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
-                         std::vector<MrsLevelTrace>* trace);
+                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop = nullptr);
 
 }  // namespace mrs_vpr

@@ -24,11 +24,13 @@ using DifferenceTile = std::function<void(int begin, int end, cv::Mat& raw)>;
  * column 0, which `tile` gives once for all rows).
  */
 AnchorCosts tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
-                               int contrast_window, const DifferenceTile& tile);
+                               int contrast_window, const DifferenceTile& tile, const QueryStop* stop = nullptr);
 
 /// The same into `costs`, whose storage is reused: a search that keeps it between queries does not
 /// fault in a map-sized table (8 MB at a million frames) per query. Each thread keeps its tile buffers.
+/// Throws QueryStopped when `stop` asks to (checked before each tile).
 void tiledCostsByAnchor(int columns, const SequenceRows& rows, const std::vector<double>& velocities,
-                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs);
+                        int contrast_window, const DifferenceTile& tile, AnchorCosts& costs,
+                        const QueryStop* stop = nullptr);
 
 }  // namespace mrs_vpr
