@@ -14,8 +14,10 @@
 namespace mrs_vpr {
 namespace {
 
-// Frames of spare storage a map gets ahead of need: over two minutes of a 30 Hz camera.
+// Frames of spare storage a map gets ahead of need: over two minutes of a 30 Hz camera, unless
+// descriptors are so large that this would hold more than kMaxSpareBytes of them.
 constexpr int kMinimumReserve = 4096;
+constexpr std::size_t kMaxSpareBytes = 64UL * 1024 * 1024;
 
 /// `text` with control characters written as \xNN, so that a message quoting user input is never
 /// cut short by a NUL on its way to the user (ROS strings, C strings).
@@ -174,10 +176,16 @@ void PlaceRecognizer::reserveAhead() {
   reserveAheadLocked();
 }
 
+int PlaceRecognizer::spareFrames() const {
+  const auto frame_bytes = static_cast<std::size_t>(std::max(1, extractor_.size()));
+  const std::size_t fitting = std::max<std::size_t>(1, kMaxSpareBytes / frame_bytes);
+  return static_cast<int>(std::min<std::size_t>(kMinimumReserve, fitting));
+}
+
 void PlaceRecognizer::reserveAheadLocked() {
   const int frames = map_.size();
   if (frames < reserved_frames_ - reserved_frames_ / 4) return;
-  int target = std::max(kMinimumReserve, 2 * std::max(reserved_frames_, frames));
+  int target = std::max(spareFrames(), 2 * std::max(reserved_frames_, frames));
   if (recognizer_.max_frames > 0) target = std::min(target, recognizer_.max_frames);
   if (target <= reserved_frames_) return;
   // Copying a large map takes a while; meanwhile addFrame parks frames in the pending buffer.
@@ -232,11 +240,16 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
   for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
   // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
   PreparedMap prepared(params_, recognizer_, extractor_.size());
-  // Room for the camera's next frames too: the first of them must not copy the whole map on the
-  // camera's thread. Growing further is reserveAhead()'s, which the node runs off the camera's path.
-  const int room = recognizer_.max_frames > 0 ? recognizer_.max_frames - count : kMinimumReserve;
-  prepared.reserved_frames_ = count + std::min(kMinimumReserve, room);
-  prepared.map_.reserve(prepared.reserved_frames_);
+  prepared.map_.reserve(count);
+  prepared.reserved_frames_ = count;
+  // Room for the camera's next frames too, where memory allows: the first of them must not copy the
+  // whole map on the camera's thread. Growing further is reserveAhead()'s, off the camera's path.
+  const int room = recognizer_.max_frames > 0 ? std::min(spareFrames(), recognizer_.max_frames - count) : spareFrames();
+  try {
+    prepared.map_.reserve(count + room);
+    prepared.reserved_frames_ = count + room;
+  } catch (const std::bad_alloc&) {
+  }
   for (std::size_t i = 0; i < descriptors.size(); ++i) {
     prepared.map_.append(descriptors[i], stamps[i]);
     prepared.keyframes_.keep(descriptors[i]);

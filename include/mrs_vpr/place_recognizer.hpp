@@ -237,6 +237,8 @@ class PlaceRecognizer {
   void keepKeyframeLocked(const cv::Mat& descriptor);
   /// reserveAhead(); the caller holds map_mutex_ exclusively.
   void reserveAheadLocked();
+  /// Frames of spare storage a map gets ahead of need.
+  int spareFrames() const;
   /// Drops the first `stored` pending frames, which the map now holds.
   void forgetStored(std::size_t stored);
   /// addDescriptor without the keyframe bookkeeping.

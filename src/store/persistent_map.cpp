@@ -94,10 +94,12 @@ void PersistentMap::commit() {
 
 int PersistentMap::reset() {
   std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  // The empty map is made first, then the database emptied: if either fails, the map stays as it is
+  // and still matches its database. Putting the empty map in place cannot fail.
+  PlaceRecognizer::PreparedMap empty = recognizer_.prepareMap({}, {});
   std::lock_guard<std::mutex> lock(add_mutex_);
-  // The database first: if it cannot be emptied, the map stays as it is and still matches it.
   if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
-  return recognizer_.reset();
+  return recognizer_.install(std::move(empty));
 }
 
 int PersistentMap::load(const std::string& path) {

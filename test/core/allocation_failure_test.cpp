@@ -289,5 +289,38 @@ TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
   EXPECT_EQ(databaseFrames(), 45);
 }
 
+// ~reset empties the database only once the empty map is made: a failure keeps both whole.
+TEST(AllocationFailure, AFailedResetLeavesTheDatabaseAndTheMapAsTheyWere) {
+  const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
+  RecognizerParams every_frame;
+  every_frame.min_appearance_change = 0.0;
+  cv::RNG random(19);
+  PlaceRecognizer recognizer(Parameters{}, every_frame);
+  PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{});
+  for (int frame = 0; frame < 30; ++frame) {
+    map.add(randomDescriptor(recognizer.extractor().size(), random), Stamp::fromNanoseconds(frame));
+  }
+  map.commit();
+  int copies = 0;
+  const auto databaseFrames = [&] { return map.save(folder.path("copy" + std::to_string(++copies) + ".db")); };
+  int failures = 0;
+  bool emptied = false;
+  for (long allocation = 0; allocation < 2000 && !emptied; ++allocation) {
+    try {
+      FailingAllocation failing(allocation);
+      map.reset();
+      emptied = true;
+    } catch (const std::bad_alloc&) {
+      ++failures;
+      ASSERT_EQ(recognizer.size(), 30) << "allocation " << allocation;
+      ASSERT_EQ(databaseFrames(), 30) << "allocation " << allocation;
+    }
+  }
+  ASSERT_TRUE(emptied);
+  EXPECT_GT(failures, 0);
+  EXPECT_EQ(recognizer.size(), 0);
+  EXPECT_EQ(databaseFrames(), 0);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

@@ -336,6 +336,20 @@ TEST(PlaceRecognizer, AReplacedMapTakesTheCamerasNextFramesWithoutGrowing) {
   EXPECT_LT(limited.state().memory_bytes, 310 * (frame_bytes + 256));
 }
 
+// The room is frames of over two minutes of a camera, but never more than 64 MB of descriptors:
+// large ones (a 512 x 512 thumbnail's 256 KB) made an emptied map hold a gigabyte.
+TEST(PlaceRecognizer, TheRoomForNewFramesHoldsAt64MegabytesOfDescriptorsWhateverTheirSize) {
+  Parameters large = routeParameters();
+  large.descriptor.type = kThumbnailFrontEnd;
+  large.descriptor.image_width = 512;
+  large.descriptor.image_height = 512;
+  PlaceRecognizer recognizer(large);
+  recognizer.reset();
+  const std::size_t descriptors = 64U * 1024 * 1024;
+  EXPECT_GE(recognizer.state().memory_bytes, descriptors);
+  EXPECT_LT(recognizer.state().memory_bytes, descriptors + descriptors / 4);  // with stamps and MRS's cells
+}
+
 TEST(PlaceRecognizer, FramesArrivingDuringQueriesAreKeptAndNeverExceedTheCapacity) {
   // One thread adds frames while another queries without pause: every frame is either in the map or
   // reported dropped, and the map never grows past max_frames, however the two interleave.
