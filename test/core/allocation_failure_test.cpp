@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <new>
 #include <string>
 #include <vector>
@@ -248,6 +249,35 @@ TEST(AllocationFailure, AQuestionThatFailedLeavesNoKeptRowWrong) {
   EXPECT_GT(failures, 8);
 }
 
+/// Frames in `map`'s database, counted through a copy in `folder` (the database is open for writing).
+int databaseFrames(PersistentMap& map, const testing_support::TemporaryFolder& folder) {
+  static int copies = 0;
+  return map.save(folder.path("copy" + std::to_string(++copies) + ".db"));
+}
+
+/// Makes `change` fail at each allocation in turn until it succeeds; after each failure the map and
+/// its database must still hold `frames` frames. Returns the failures, -1 when the map changed.
+int failEachAllocationOf(const std::function<void()>& change, const PlaceRecognizer& recognizer, PersistentMap& map,
+                         const testing_support::TemporaryFolder& folder, int frames) {
+  int failures = 0;
+  for (long allocation = 0; allocation < 2000; ++allocation) {
+    try {
+      FailingAllocation failing(allocation);
+      change();
+      return failures;
+    } catch (const std::bad_alloc&) {
+      ++failures;
+      if (recognizer.size() != frames || databaseFrames(map, folder) != frames) {
+        ADD_FAILURE() << "allocation " << allocation << " changed the map: " << recognizer.size() << " frames, "
+                      << databaseFrames(map, folder) << " in its database, " << frames << " before";
+        return -1;
+      }
+    }
+  }
+  ADD_FAILURE() << "still failing after 2000 allocations";
+  return -1;
+}
+
 TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
   const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
   RecognizerParams every_frame;
@@ -267,26 +297,10 @@ TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
   PlaceRecognizer recognizer(Parameters{}, every_frame);
   PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{});
   mapOf(recognizer, map, 30);
-  // The node's database is open for writing: its frames are counted by a copy of it.
-  int copies = 0;
-  const auto databaseFrames = [&] { return map.save(folder.path("copy" + std::to_string(++copies) + ".db")); };
-  int failures = 0;
-  bool loaded = false;
-  for (long allocation = 0; allocation < 2000 && !loaded; ++allocation) {  // a load makes about 300
-    try {
-      FailingAllocation failing(allocation);
-      map.load(folder.path("saved.db"));
-      loaded = true;
-    } catch (const std::bad_alloc&) {
-      ++failures;
-      ASSERT_EQ(recognizer.size(), 30) << "allocation " << allocation;
-      ASSERT_EQ(databaseFrames(), 30) << "allocation " << allocation;
-    }
-  }
-  ASSERT_TRUE(loaded);
-  EXPECT_GT(failures, 5);
+  // A load makes about 300 allocations.
+  EXPECT_GT(failEachAllocationOf([&] { map.load(folder.path("saved.db")); }, recognizer, map, folder, 30), 5);
   EXPECT_EQ(recognizer.size(), 45);
-  EXPECT_EQ(databaseFrames(), 45);
+  EXPECT_EQ(databaseFrames(map, folder), 45);
 }
 
 // ~reset empties the database only once the empty map is made: a failure keeps both whole.
@@ -301,25 +315,9 @@ TEST(AllocationFailure, AFailedResetLeavesTheDatabaseAndTheMapAsTheyWere) {
     map.add(randomDescriptor(recognizer.extractor().size(), random), Stamp::fromNanoseconds(frame));
   }
   map.commit();
-  int copies = 0;
-  const auto databaseFrames = [&] { return map.save(folder.path("copy" + std::to_string(++copies) + ".db")); };
-  int failures = 0;
-  bool emptied = false;
-  for (long allocation = 0; allocation < 2000 && !emptied; ++allocation) {
-    try {
-      FailingAllocation failing(allocation);
-      map.reset();
-      emptied = true;
-    } catch (const std::bad_alloc&) {
-      ++failures;
-      ASSERT_EQ(recognizer.size(), 30) << "allocation " << allocation;
-      ASSERT_EQ(databaseFrames(), 30) << "allocation " << allocation;
-    }
-  }
-  ASSERT_TRUE(emptied);
-  EXPECT_GT(failures, 0);
+  EXPECT_GT(failEachAllocationOf([&] { map.reset(); }, recognizer, map, folder, 30), 0);
   EXPECT_EQ(recognizer.size(), 0);
-  EXPECT_EQ(databaseFrames(), 0);
+  EXPECT_EQ(databaseFrames(map, folder), 0);
 }
 
 }  // namespace
