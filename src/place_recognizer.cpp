@@ -298,8 +298,9 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
       state.first_stamp = map_.stamp(0);
       state.last_stamp = map_.stamp(map_.size() - 1);
     }
+    // Under the map's lock, which every flush holds: no frame is counted twice or missed in between.
+    state.pending = pending();
   }
-  state.pending = pending();
   return state;
 }
 
