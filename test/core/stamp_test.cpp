@@ -92,5 +92,15 @@ TEST(Stamp, TheMapAndItsAnswersCarryTheLatestStampExactly) {
   EXPECT_EQ(recent.reference_stamp.nanoseconds(), Stamp::kMaxNanoseconds - 59 + recent.match.reference_index);
 }
 
+TEST(Stamp, AFractionJustBelowAWholeNanosecondRoundsUpNotDown) {
+  // 12.345678901 s is the double 12.3456789009999994...: its nanoseconds are 345678901, not 345678900.
+  EXPECT_EQ(Stamp::fromSeconds(12.345678901).nanoseconds(), 12345678901LL);
+  // A stamp of today in seconds: the double 1700000000.2000000476... is nearest to ...200000048 ns.
+  EXPECT_EQ(Stamp::fromSeconds(1700000000.2).nanoseconds(), 1700000000200000048LL);
+  // So a stamp of whole nanoseconds survives the trip through seconds where a double holds it exactly enough.
+  const Stamp stamp = Stamp::fromSecondsAndNanoseconds(12U, 345678901U);
+  EXPECT_EQ(Stamp::fromSeconds(stamp.seconds()), stamp);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

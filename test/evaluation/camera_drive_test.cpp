@@ -311,5 +311,31 @@ TEST(DriveGroundTruth, AQueryFrameMatchesTheReferenceFramesOfItsRouteFrameWithin
   EXPECT_THROW(driveGroundTruth(reference, query, -1), std::invalid_argument);
 }
 
+TEST(CameraDrive, AStopOfNoFramesIsRefused) {
+  CameraDriveSettings settings;
+  settings.stop_frames_min = 0;
+  EXPECT_NE(invalidArgumentMessage([&] { CameraDrive(1000, settings); }).find("stop_frames_min must be >= 1, got 0"),
+            std::string::npos);
+  settings.stops = 0;  // without stops their length does not matter
+  EXPECT_NO_THROW(CameraDrive(1000, settings));
+}
+
+TEST(CameraDrive, StretchesOfDifferentLengthsLieApartWithinTheRoute) {
+  for (std::uint64_t seed = 0; seed < 40; ++seed) {
+    CameraDriveSettings settings;
+    settings.seed = seed;
+    settings.stops = 0;
+    settings.slow_frames = 30;
+    settings.fast_frames = 10;
+    const CameraDrive drive(100, settings);
+    const int slow_end = drive.slowBegin() + settings.slow_frames;
+    const int fast_end = drive.fastBegin() + settings.fast_frames;
+    EXPECT_TRUE(slow_end <= drive.fastBegin() || fast_end <= drive.slowBegin()) << "seed " << seed;
+    EXPECT_LE(std::max(slow_end, fast_end), 100) << "seed " << seed;
+    // Every route frame once, those of the slow stretch twice, every other one of the fast stretch.
+    EXPECT_EQ(drive.size(), 100 + 30 - 5) << "seed " << seed;
+  }
+}
+
 }  // namespace
 }  // namespace mrs_vpr

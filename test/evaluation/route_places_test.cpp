@@ -79,5 +79,17 @@ TEST(RoutePlaces, RejectsBadInput) {
   EXPECT_THROW(routePlaces({&floats}), std::invalid_argument);
 }
 
+TEST(RoutePlaces, AStandingShareOfZeroMakesEveryFrameAPlaceEvenIdenticalOnes) {
+  // Exact copies of a frame (a driver that repeats its last image): at share 0 nothing is standing.
+  std::vector<cv::Mat> images = route(6, {}, 0, 5);
+  images.insert(images.begin() + 3, images[2].clone());
+  images.insert(images.begin() + 3, images[2].clone());
+  const std::vector<int> places = routePlaces({&images}, 0.0);
+  ASSERT_EQ(places.size(), 8U);
+  for (int i = 0; i < 8; ++i) EXPECT_EQ(places[static_cast<std::size_t>(i)], i) << i;
+  // At the default share the copies are one place.
+  EXPECT_EQ(routePlaces({&images}), (std::vector<int>{0, 1, 2, 2, 2, 3, 4, 5}));
+}
+
 }  // namespace
 }  // namespace mrs_vpr

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -215,6 +216,49 @@ TEST(CompressedImage, RefusesImagesLargerThanThePixelLimitBeforeDecoding) {
   sensor_msgs::CompressedImage zero_png = compress(bgr, "png");
   forgeSize(zero_png, CompressedCodec::kPng, 0, 120);
   EXPECT_NE(errorOf(zero_png).find("empty PNG image (0 x 120 px)"), std::string::npos) << errorOf(zero_png);
+}
+
+/// The same JPEG with its Huffman tables (DHT, 0xC4) moved before its frame header, as some camera encoders write them.
+std::vector<std::uint8_t> huffmanTablesFirst(const std::vector<std::uint8_t>& jpeg) {
+  std::vector<std::vector<std::uint8_t>> segments;  // from SOI to the start of scan
+  std::size_t at = 2;
+  while (at + 4 <= jpeg.size() && jpeg[at] == 0xFF && jpeg[at + 1] != 0xDA) {
+    const std::size_t length = (static_cast<std::size_t>(jpeg[at + 2]) << 8) | jpeg[at + 3];
+    segments.emplace_back(jpeg.begin() + static_cast<std::ptrdiff_t>(at),
+                          jpeg.begin() + static_cast<std::ptrdiff_t>(at + 2 + length));
+    at += 2 + length;
+  }
+  std::stable_partition(segments.begin(), segments.end(),
+                        [](const std::vector<std::uint8_t>& segment) { return segment[1] == 0xC4; });
+  std::vector<std::uint8_t> moved(jpeg.begin(), jpeg.begin() + 2);
+  for (const auto& segment : segments) moved.insert(moved.end(), segment.begin(), segment.end());
+  moved.insert(moved.end(), jpeg.begin() + static_cast<std::ptrdiff_t>(at), jpeg.end());
+  return moved;
+}
+
+TEST(CompressedImage, ReadsTheSizeFromTheFrameHeaderWhenHuffmanTablesComeFirst) {
+  sensor_msgs::CompressedImage message = compress(texturedBgr(200, 80), "jpeg");
+  const std::vector<std::uint8_t> moved = huffmanTablesFirst(message.data);
+  ASSERT_EQ(moved.size(), message.data.size());
+  ASSERT_NE(moved, message.data) << "imencode already wrote its tables first: nothing is tested";
+  message.data = moved;
+  EXPECT_EQ(compressedImageSize(message.data, CompressedCodec::kJpeg), cv::Size(200, 80));
+  EXPECT_EQ(errorOf(message), "");
+  EXPECT_EQ(decodeCompressedImage(message).image().size(), cv::Size(200, 80));
+}
+
+
+TEST(CompressedImage, APngHeightBeyondTheRangeOfAnIntIsCorruptData) {
+  sensor_msgs::CompressedImage tall = compress(texturedBgr(), "png");
+  forgeSize(tall, CompressedCodec::kPng, 160, 0x80000000U);
+  try {
+    const cv::Size size = compressedImageSize(tall.data, CompressedCodec::kPng);
+    ADD_FAILURE() << "read as " << size.width << " x " << size.height;
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("corrupt data: PNG size 160 x 2147483648"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_NE(errorOf(tall).find("corrupt data: PNG size 160 x 2147483648"), std::string::npos) << errorOf(tall);
 }
 
 }  // namespace

@@ -140,6 +140,18 @@ TEST(ImageConversion, RejectsEmptyAndTruncatedImages) {
   EXPECT_NE(errorOf(bad_step).find("step 10"), std::string::npos) << errorOf(bad_step);
 }
 
+TEST(ImageConversion, AStepShorterThanARowOfItsEncodingIsRefused) {
+  // More bytes than pixels, but fewer than the encoding's bytes per pixel need: rows would overlap.
+  sensor_msgs::Image bgr = makeImage(texturedBgr(), "bgr8");  // 160 px, 480 bytes a row
+  bgr.step = 320;
+  EXPECT_NE(errorOf(bgr).find("step 320 is less than width 160 x 3 bytes of bgr8"), std::string::npos)
+      << errorOf(bgr);
+  sensor_msgs::Image deep = makeImage(cv::Mat(8, 8, CV_16UC1, cv::Scalar(1)), "mono16");
+  deep.step = 8;  // one byte a pixel
+  EXPECT_NE(errorOf(deep).find("step 8 is less than width 8 x 2 bytes of mono16"), std::string::npos)
+      << errorOf(deep);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

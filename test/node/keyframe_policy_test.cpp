@@ -108,6 +108,20 @@ TEST(KeyframePolicy, ResetForgetsTheLastKeyframe) {
   EXPECT_TRUE(policy.wants(2.0));
 }
 
+TEST(KeyframePolicy, TheSlackIsHalfAFramePeriodSoTheFrameNearerTheIntervalIsKept) {
+  // A camera of 0.15 s period, interval 1 s: half a period is 0.075 s, less than a tenth of the interval.
+  KeyframePolicy policy(1.0, 1);
+  policy.keep(10.0);
+  policy.skip(10.76);
+  EXPECT_FALSE(policy.wants(10.91));  // 0.09 s early: the next frame, 0.06 s late, is nearer
+  policy.skip(10.91);
+  EXPECT_TRUE(policy.wants(11.06));
+  KeyframePolicy near(1.0, 1);
+  near.keep(10.0);
+  near.skip(10.79);
+  EXPECT_TRUE(near.wants(10.94));  // 0.06 s early, within half a period: nearer than the next one
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

@@ -72,6 +72,20 @@ TEST(SequenceGaps, AJumpTheStampsDoNotBearOutIsAnotherRecording) {
   EXPECT_EQ(gaps.record(6000), 899U);
 }
 
+TEST(SequenceGaps, ALossLongerThanTheInterleavedStepIsStillCountedOnTheNewestStream) {
+  // A camera at 10 Hz whose subscriber stalls for 150 s: 1500 frames lost, the stamps bear it out.
+  SequenceGaps gaps;
+  const double start = 1600000000.0;
+  for (std::uint32_t i = 0; i <= 10; ++i) EXPECT_EQ(gaps.record(100 + i, start + 0.1 * i), 0U) << i;
+  EXPECT_EQ(gaps.record(1611, start + 1.0 + 150.1), 1500U);
+  EXPECT_EQ(gaps.record(1612, start + 1.0 + 150.2), 0U);
+  // Without stamps the seq alone tells it.
+  SequenceGaps unstamped;
+  EXPECT_EQ(unstamped.record(5), 0U);
+  EXPECT_EQ(unstamped.record(6), 0U);
+  EXPECT_EQ(unstamped.record(2007), 2000U);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

@@ -727,5 +727,22 @@ TEST_F(MapDatabaseTest, BadDescriptorsAreRefusedBeforeAnythingIsWritten) {
   EXPECT_EQ(database.size(), 0);
 }
 
+TEST_F(MapDatabaseTest, ALongFileOfTheUsersWhereTheSnapshotIsWrittenFirstIsLeftAlone) {
+  MapDatabase map(path("map.db"), thumbnailParams());
+  map.append(frames(3));
+  // Longer than SQLite's 16-byte header, but not an SQLite file: the user's, not an unfinished map.
+  const std::string notes = "These notes are not a map, and longer than sixteen bytes.\n";
+  std::ofstream(path("notes.db.part")) << notes;
+  try {
+    map.backupTo(path("notes.db"));
+    ADD_FAILURE() << "the snapshot was written over notes.db.part";
+  } catch (const MapDatabaseError& error) {
+    EXPECT_NE(std::string(error.what()).find("is a folder or a file other than an unfinished map"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(fileContents(path("notes.db.part")), notes);
+  EXPECT_FALSE(fs::exists(path("notes.db")));
+}
+
 }  // namespace
 }  // namespace mrs_vpr

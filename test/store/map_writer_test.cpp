@@ -116,5 +116,19 @@ TEST_F(MapWriterTest, PersistedStartsAtTheFramesAlreadyStored) {
   EXPECT_EQ(writer.persisted(), 0U);
 }
 
+TEST_F(MapWriterTest, ABatchFilledWhileTheWriterWaitsIsCommittedAsSoonAsItIsFull) {
+  // Keyframes come one by one, so the writer is already waiting for the period when the batch fills.
+  MapDatabase database(path(), thumbnailParams());
+  MapWriter writer(database, CommitPolicy{3600.0, 10});
+  for (int batch = 1; batch <= 2; ++batch) {
+    for (int i = 0; i < 10; ++i) {
+      writer.add(frame(10 * (batch - 1) + i));
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    EXPECT_TRUE(waitPersisted(writer, 10U * batch, 10.0)) << "batch " << batch << " waited for the hour-long period";
+  }
+  EXPECT_EQ(writer.queued(), 0U);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

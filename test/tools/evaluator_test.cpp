@@ -260,6 +260,7 @@ TEST_F(EvaluatorTest, AcceptanceOptionsAreChecked) {
   expectError(folders + " --threads -1", "--threads must be in 0..1024");
   expectError(folders + " --threads 100000", "--threads must be in 0..1024");  // Crashed at exit before.
   expectError(folders + " --queries 1000000", "--queries must be in 1..100000");
+  expectError(folders + " --queries 0", "--queries must be in 1..100000");  // a global protocol of no test sequence
   expectError(folders + " --accept-threshold -1", "sequence/accept_threshold");
   expectError(folders + " --accept-threshold 1001", "sequence/accept_threshold");
   // Nothing is written for rejected options.
