@@ -186,6 +186,30 @@ void enhanceRowSpan(const float* raw, int columns, int begin, int end, int windo
   }
 }
 
+namespace {
+
+/// Every row of `differences` enhanced into the same row of `enhanced`, which may be `differences`
+/// itself; rows left once `stop` asks to stop.
+void enhanceRows(const cv::Mat& differences, int window, cv::Mat& enhanced, const QueryStop* stop) {
+  const bool in_place = differences.data == enhanced.data;
+  cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
+    // A row's windows read raw differences on both sides of each cell: in place, from a copy.
+    std::vector<float> copy(in_place ? static_cast<std::size_t>(differences.cols) : 0);
+    for (int row = rows.start; row < rows.end && !stopRequested(stop); ++row) {
+      const float* raw = differences.ptr<float>(row);
+      if (in_place) {
+        std::copy(raw, raw + differences.cols, copy.begin());
+        raw = copy.data();
+      }
+      const float first_difference = differences.cols > 0 ? raw[0] : 0.0F;
+      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, first_difference,
+                     enhanced.ptr<float>(row));
+    }
+  });
+}
+
+}  // namespace
+
 cv::Mat enhanceContrast(const cv::Mat& differences, int window) {
   cv::Mat enhanced(differences.size(), CV_32F);
   enhanceContrast(differences, window, enhanced);
@@ -198,29 +222,13 @@ void enhanceContrast(const cv::Mat& differences, int window, cv::Mat& enhanced) 
     differences.copyTo(enhanced);
     return;
   }
-  cv::parallel_for_(cv::Range(0, differences.rows), [&](const cv::Range& rows) {
-    for (int row = rows.start; row < rows.end; ++row) {
-      const float* raw = differences.ptr<float>(row);
-      const float first_difference = differences.cols > 0 ? raw[0] : 0.0F;
-      enhanceRowSpan(raw, differences.cols, 0, differences.cols, window, first_difference,
-                     enhanced.ptr<float>(row));
-    }
-  });
+  enhanceRows(differences, window, enhanced, nullptr);
 }
 
 void enhanceContrastInPlace(cv::Mat& matrix, int window, const QueryStop* stop) {
   CV_Assert(matrix.type() == CV_32FC1);
   if (window == 0) return;
-  cv::parallel_for_(cv::Range(0, matrix.rows), [&](const cv::Range& rows) {
-    // A row's windows read raw differences on both sides of each cell: the row is enhanced from a copy.
-    std::vector<float> raw(static_cast<std::size_t>(matrix.cols));
-    for (int row = rows.start; row < rows.end && !stopRequested(stop); ++row) {
-      float* cells = matrix.ptr<float>(row);
-      std::copy(cells, cells + matrix.cols, raw.begin());
-      const float first_difference = matrix.cols > 0 ? raw[0] : 0.0F;
-      enhanceRowSpan(raw.data(), matrix.cols, 0, matrix.cols, window, first_difference, cells);
-    }
-  });
+  enhanceRows(matrix, window, matrix, stop);
   throwIfStopped(stop);
 }
 

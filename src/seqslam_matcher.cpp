@@ -38,8 +38,8 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
 std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query.slice(0, std::min(query.count, sequence_.sequence_length)));
   // Contrast enhancement works per query frame, so one matrix serves every test sequence.
-  const cv::Mat enhanced =
-      enhanceContrast(computeDifferenceMatrix(query, reference), sequence_.contrast_window);
+  cv::Mat enhanced = computeDifferenceMatrix(query, reference);
+  enhanceContrastInPlace(enhanced, sequence_.contrast_window);
   std::vector<Match> matches(query.count);
   cv::parallel_for_(cv::Range(0, query.count), [&](const cv::Range& range) {
     for (int frame = range.start; frame < range.end; ++frame) {

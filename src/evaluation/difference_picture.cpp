@@ -21,7 +21,8 @@ DifferenceOverview differenceOverview(SequenceView query, SequenceView reference
   const SequenceView rows = query.subsample(0, overview.query_stride);
   // Enhanced at full resolution, as the methods see it, then pooled: pooling first would blur the
   // local contrast that makes a place stand out.
-  const cv::Mat full = enhanceContrast(computeDifferenceMatrix(rows, reference), contrast_window);
+  cv::Mat full = computeDifferenceMatrix(rows, reference);
+  enhanceContrastInPlace(full, contrast_window);
   const int columns = (reference.count + overview.reference_stride - 1) / overview.reference_stride;
   overview.values.create(rows.count, columns, CV_32F);
   for (int c = 0; c < columns; ++c) {
