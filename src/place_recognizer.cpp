@@ -240,8 +240,6 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
   for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
   // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
   PreparedMap prepared(params_, recognizer_, extractor_.size());
-  prepared.map_.reserve(count);
-  prepared.reserved_frames_ = count;
   // Room for the camera's next frames too, where memory allows: the first of them must not copy the
   // whole map on the camera's thread. Growing further is reserveAhead()'s, off the camera's path.
   const int room = recognizer_.max_frames > 0 ? std::min(spareFrames(), recognizer_.max_frames - count) : spareFrames();
@@ -249,6 +247,8 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
     prepared.map_.reserve(count + room);
     prepared.reserved_frames_ = count + room;
   } catch (const std::bad_alloc&) {
+    prepared.map_.reserve(count);
+    prepared.reserved_frames_ = count;
   }
   for (std::size_t i = 0; i < descriptors.size(); ++i) {
     prepared.map_.append(descriptors[i], stamps[i]);

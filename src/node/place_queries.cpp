@@ -22,12 +22,6 @@
 
 namespace mrs_vpr {
 namespace node {
-namespace {
-
-// A question ended by stopQueries(): said in the response, not warned about.
-const char* const kStoppedQueryMessage = "the node is shutting down: the query was stopped";
-
-}  // namespace
 
 bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QuerySequence::Response& response) {
   const auto start = std::chrono::steady_clock::now();
@@ -36,6 +30,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   QueryInput input;
   input.method = request.method;  // Empty: the recognizer's default method.
   PlaceAnswer answered;
+  bool stopped = false;  // by the node's shutdown: said in the response, not warned about
   try {
     if (!request.images.empty()) {
       if (request.recent_frames > 0) {
@@ -71,7 +66,8 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     response.success = true;
   } catch (const std::exception& error) {
     response.success = false;
-    response.message = dynamic_cast<const QueryStopped*>(&error) != nullptr ? kStoppedQueryMessage : error.what();
+    stopped = dynamic_cast<const QueryStopped*>(&error) != nullptr;
+    response.message = stopped ? "the node is shutting down: the query was stopped" : error.what();
     response.reference_index = -1;
     response.accepted = false;
   }
@@ -82,7 +78,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     if (!input.images) publishStandingClosures(input.header, answered, response);
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
-  } else if (response.message != kStoppedQueryMessage) {
+  } else if (!stopped) {
     ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"
