@@ -1,5 +1,9 @@
 #include "mrs_vpr/seqslam_matcher.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/contrast_enhancement.hpp"
 #include "mrs_vpr/difference_matrix.hpp"
@@ -37,6 +41,11 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
 
 std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, SequenceView query) const {
   checkInputs(reference, query.slice(0, std::min(query.count, sequence_.sequence_length)));
+  requireAvailableMemory(static_cast<std::uint64_t>(query.count) * static_cast<std::uint64_t>(reference.count) *
+                             sizeof(float),
+                         "the difference matrix of every frame of " + std::to_string(query.count) +
+                             " query frames against a map of " + std::to_string(reference.count),
+                         "split the query frames into parts and run each");
   // Contrast enhancement works per query frame, so one matrix serves every test sequence.
   cv::Mat enhanced = computeDifferenceMatrix(query, reference);
   enhanceContrastInPlace(enhanced, sequence_.contrast_window);

@@ -45,5 +45,22 @@ TEST(MemoryBudget, ABruteForceQuestionBeyondTheMemoryIsRefusedNamingTheRemedy) {
   EXPECT_NE(message.find("ask about fewer frames, or use mrs"), std::string::npos) << message;
 }
 
+// The per-frame protocol (mrs_vpr_eval, query_bag) holds one matrix of every query frame against the
+// map: one it cannot hold is refused with the remedy, by either method (MRS shares the brute force's).
+TEST(MemoryBudget, APerFrameRunBeyondTheMemoryIsRefusedNamingTheRemedy) {
+  const std::vector<std::uint8_t> frame(64, 7);
+  const SequenceView map{frame.data(), 2'000'000'000, 64, 0};
+  const SequenceView query{frame.data(), 100'000, 64, 0};
+  for (const std::string method : {"seqslam", "mrs"}) {
+    const auto matcher = makeMatcher(method, testing_support::routeParameters());
+    const std::string message = invalidArgumentMessage([&] { matcher->matchEveryFrame(map, query); });
+    EXPECT_NE(message.find("the difference matrix of every frame of 100000 query frames against a map of "
+                           "2000000000 needs 800000.0 GB"),
+              std::string::npos)
+        << method << ": " << message;
+    EXPECT_NE(message.find("split the query frames into parts"), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace mrs_vpr
