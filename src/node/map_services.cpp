@@ -29,6 +29,7 @@ void PlaceRecognitionNode::openMap() {
   // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
   // starting empty over a map it could not read.
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
+  session_start_size_ = recognizer_.size();
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
            params_.database.c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
 }
@@ -61,10 +62,11 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
     pending_restatements_.clear();
   }
   last_closure_.reset();
-  // Continuous mode's test sequences end in keyframes the camera added after the new map's frames, not
-  // in a loaded map's own. The services and continuous mode run on the query thread. The new version
+  // Continuous mode's test sequences hold keyframes the camera added after the new map's frames only,
+  // none of a loaded map's own. The services and continuous mode run on the query thread. The new version
   // makes its next period look, also at the frames a load held back, when no keyframe follows them.
   auto_query_size_ = map_frames;
+  session_start_size_ = map_frames;
   ++map_version_;
 }
 

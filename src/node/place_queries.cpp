@@ -1,6 +1,7 @@
 // The node's answers: ~query, and continuous mode's loop closures (with the closures restated for a
 // stop), published on ~loop_closure and ~loop_closure_stamps.
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
@@ -181,7 +182,9 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
     return;  // nothing new since the last answer
   }
   const int recent = params_.autoQueryFrames();
-  const int first_size = recognizer_.fewestFramesForRecent(recent);
+  // A test sequence holds the camera's keyframes of this run only: one reaching back into a loaded
+  // map would join two drives, and its centre could be a keyframe of the file.
+  const int first_size = std::max(recognizer_.fewestFramesForRecent(recent), session_start_size_ + recent);
   const int size = recognizer_.size();
   if (size < first_size) {
     return;  // too early: not enough older frames to search yet

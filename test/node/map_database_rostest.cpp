@@ -164,6 +164,26 @@ class MapDatabaseNodeTest : public ::testing::Test {
     }
   }
 
+  /// Publishes reference frames [begin, end) after a map of `begin` frames was loaded, and expects
+  /// every closure continuous mode publishes to localise the newest keyframe (causal alignment) of a
+  /// sequence that holds published frames only.
+  void expectSequencesOfCameraKeyframesOnly(TopicInbox<mrs_vpr::LoopClosure>& closures, int begin, int end,
+                                            MapInfoWatch& info,
+                                            std::chrono::milliseconds interval = std::chrono::milliseconds(2)) {
+    for (int i = begin; i < end; ++i) {
+      image_pub_.publish(referenceMessage(i));
+      std::this_thread::sleep_for(interval);
+    }
+    waitPersisted(info, static_cast<std::uint32_t>(end));
+    const auto published = closures.waitForCount(1);
+    ASSERT_FALSE(published.empty());
+    for (const mrs_vpr::LoopClosure& closure : published) {
+      const int oldest_localised = begin + static_cast<int>(closure.query_length) - 1;
+      EXPECT_GE(closure.localised_keyframe_stamp.toSec(), kReferenceStart + oldest_localised * kFramePeriod - 1e-6)
+          << "a sequence of " << closure.query_length << " keyframes reached into the loaded map";
+    }
+  }
+
   /// Waits until the node's map holds `frames` frames, all committed to its database.
   static void waitPersisted(MapInfoWatch& info, std::uint32_t frames) {
     ASSERT_TRUE(info.waitFor(
@@ -375,14 +395,19 @@ TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
   std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // five periods
   EXPECT_TRUE(closures.received().empty()) << closures.received().size() << " closures, the first about "
                                            << closures.received().front().localised_keyframe_stamp;
-  // The camera's next keyframes are asked about (causal alignment: each localises its newest frame).
-  publishReference(200, 220);
-  waitPersisted(info, 220);
-  const auto published = closures.waitForCount(1);
-  ASSERT_FALSE(published.empty());
-  for (const mrs_vpr::LoopClosure& closure : published) {
-    EXPECT_GE(closure.localised_keyframe_stamp.toSec(), kReferenceStart + 200 * kFramePeriod - 1e-6);
-  }
+  // The camera's next keyframes are asked about, with sequences of the camera's keyframes only: one
+  // reaching back into the loaded map would join two drives (causal alignment: each question
+  // localises its sequence's newest keyframe).
+  expectSequencesOfCameraKeyframesOnly(closures, 200, 240, info);
+  // The same after a restart on the database, whose map is loaded at start-up. Frames come slowly,
+  // so that questions are asked while the first sequence fills.
+  EXPECT_EQ(node->stop(), 0);
+  node = startNode("watcher", path("watcher.db"), {"auto_query_period:=0.2"});
+  MapInfoWatch restarted(nh_, "/" + node->name());
+  waitPersisted(restarted, 240);
+  TopicInbox<mrs_vpr::LoopClosure> after_restart(nh_, "/" + node->name() + "/loop_closure");
+  ASSERT_TRUE(after_restart.waitConnected());
+  expectSequencesOfCameraKeyframesOnly(after_restart, 240, 280, restarted, std::chrono::milliseconds(20));
   EXPECT_EQ(node->stop(), 0);
 }
 

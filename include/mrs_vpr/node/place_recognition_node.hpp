@@ -167,6 +167,7 @@ class PlaceRecognitionNode {
   std::atomic<std::uint64_t> map_version_{0};  // bumped whenever frames are added or the map is reset
   std::uint64_t auto_query_version_ = 0;      // map_version_ at the last continuous-mode query
   int auto_query_size_ = 0;                   // map frames at the last continuous-mode query
+  int session_start_size_ = 0;  // map frames before the camera's of this run: a map loaded at start-up or by ~load_map
   double auto_query_ms_ = 0.0;                // what its last query took
   /// Continuous mode's last accepted answer and its stamp, restated for its keyframe's standing frames
   /// (query thread only; the frames under state_mutex_).
