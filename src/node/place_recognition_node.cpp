@@ -3,6 +3,7 @@
 
 #include "mrs_vpr/node/place_recognition_node.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -130,6 +131,9 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
 
 MapInfo PlaceRecognitionNode::makeMapInfo() {
   MapInfo info;
+  // Persisted first: a map's frames only grow meanwhile, so persisted <= frames. A ~reset or ~load_map
+  // between the two reads leaves the old map's count, capped at the new map's frames until the next.
+  const std::uint64_t persisted = map_->persisted();
   const PlaceRecognizer::MapState state = recognizer_.state();
   info.frames = static_cast<std::uint32_t>(state.frames);
   info.memory_bytes = state.memory_bytes;
@@ -140,7 +144,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   }
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);
-  info.frames_persisted = map_->persisted();
+  info.frames_persisted = std::min<std::uint64_t>(persisted, state.frames);
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     info.frame_time_mean_ms =
