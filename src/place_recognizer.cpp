@@ -1,6 +1,8 @@
 #include "mrs_vpr/place_recognizer.hpp"
 
 #include <algorithm>
+#include <cstring>
+#include <limits>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -232,29 +234,53 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
     throw std::invalid_argument(std::to_string(stamps.size()) + " stamps for " + std::to_string(descriptors.size()) +
                                 " descriptors");
   }
-  const auto count = static_cast<int>(descriptors.size());
-  if (recognizer_.max_frames > 0 && count > recognizer_.max_frames) {
-    throw std::invalid_argument(std::to_string(count) + " frames exceed max_frames (" +
+  if (descriptors.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
+    throw std::invalid_argument(std::to_string(descriptors.size()) + " frames are more than a map can hold");
+  }
+  // Checked before the map's storage is allocated.
+  for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
+  PreparedMap prepared = prepareMap(static_cast<int>(descriptors.size()));
+  for (std::size_t i = 0; i < descriptors.size(); ++i) prepared.append(descriptors[i], stamps[i]);
+  return prepared;
+}
+
+PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(int frames) const {
+  if (frames < 0 || (recognizer_.max_frames > 0 && frames > recognizer_.max_frames)) {
+    throw std::invalid_argument(std::to_string(frames) + " frames exceed max_frames (" +
                                 std::to_string(recognizer_.max_frames) + ")");
   }
-  for (const cv::Mat& descriptor : descriptors) requireDescriptorBytes(descriptor, extractor_.size());
   // Built aside, without any lock: queries and new frames go on with the old map meanwhile.
   PreparedMap prepared(params_, recognizer_, extractor_.size());
+  prepared.expected_frames_ = frames;
   // Room for the camera's next frames too, where memory allows: the first of them must not copy the
   // whole map on the camera's thread. Growing further is reserveAhead()'s, off the camera's path.
-  const int room = recognizer_.max_frames > 0 ? std::min(spareFrames(), recognizer_.max_frames - count) : spareFrames();
+  const int room =
+      recognizer_.max_frames > 0 ? std::min(spareFrames(), recognizer_.max_frames - frames) : spareFrames();
   try {
-    prepared.map_.reserve(count + room);
-    prepared.reserved_frames_ = count + room;
+    prepared.map_.reserve(frames + room);
+    prepared.reserved_frames_ = frames + room;
   } catch (const std::bad_alloc&) {
-    prepared.map_.reserve(count);
-    prepared.reserved_frames_ = count;
-  }
-  for (std::size_t i = 0; i < descriptors.size(); ++i) {
-    prepared.map_.append(descriptors[i], stamps[i]);
-    prepared.keyframes_.keep(descriptors[i]);
+    prepared.map_.reserve(frames);
+    prepared.reserved_frames_ = frames;
   }
   return prepared;
+}
+
+void PlaceRecognizer::PreparedMap::append(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptorBytes(descriptor, map_.descriptorSize());
+  if (map_.size() >= expected_frames_) {
+    throw std::invalid_argument("a map prepared for " + std::to_string(expected_frames_) +
+                                " frames was given more");
+  }
+  map_.append(descriptor, stamp);
+  keyframes_.keep(descriptor);
+}
+
+bool PlaceRecognizer::PreparedMap::holds(int index, const cv::Mat& descriptor, Stamp stamp) const {
+  if (index < 0 || index >= map_.size() || !(map_.stamp(index) == stamp)) return false;
+  const auto bytes = static_cast<std::size_t>(map_.descriptorSize());
+  return descriptor.isContinuous() && descriptor.total() * descriptor.elemSize() == bytes &&
+         std::memcmp(map_.descriptorRow(index).data, descriptor.data, bytes) == 0;
 }
 
 PlaceRecognizer::PreparedMap::PreparedMap(const Parameters& params, const RecognizerParams& recognizer,

@@ -160,6 +160,11 @@ class PlaceRecognizer {
   class PreparedMap {
    public:
     int size() const { return map_.size(); }
+    /// Appends a keyframe (its bytes are copied). Throws std::invalid_argument when the descriptor is
+    /// not of the front end's size, or when the map already holds the frames it was prepared for.
+    void append(const cv::Mat& descriptor, Stamp stamp);
+    /// Whether frame `index` holds exactly these bytes and this stamp.
+    bool holds(int index, const cv::Mat& descriptor, Stamp stamp) const;
 
    private:
     friend class PlaceRecognizer;
@@ -167,11 +172,15 @@ class PlaceRecognizer {
     DescriptorParams descriptor_;
     DescriptorSequence map_;
     AppearanceKeyframes keyframes_;
+    int expected_frames_ = 0;  // frames it was prepared for
     int reserved_frames_ = 0;  // frames map_ holds storage for
   };
   /// replace() in two steps, for a caller with its own step in between (a database to rewrite): builds
   /// the map aside, with no lock held and nothing changed, and throws as replace() does ...
   PreparedMap prepareMap(const std::vector<cv::Mat>& descriptors, const std::vector<Stamp>& stamps) const;
+  /// ... or an empty map with storage for `frames` frames, to fill by PreparedMap::append (a map read
+  /// from a file, frame by frame, is not held twice). Throws std::invalid_argument beyond max_frames.
+  PreparedMap prepareMap(int frames) const;
   /// ... then puts it in place by moving it, which cannot fail for want of memory. Returns the frames
   /// it cleared (pending ones included). Throws std::invalid_argument for another front end's map.
   int install(PreparedMap&& prepared);

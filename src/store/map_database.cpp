@@ -320,14 +320,15 @@ void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const
   }
 }
 
-void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {
+void MapDatabase::insertFrames(const FrameSource& source) {
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
                          &raw, nullptr) != SQLITE_OK) {
     fail(lastProblem(db_));
   }
   const Statement insert(raw, sqlite3_finalize);
-  for (const StoredFrame& frame : frames) {
+  source([&](const StoredFrame& frame) {
+    requireDescriptorBytes(frame.descriptor, descriptor_bytes_, "a stored descriptor");
     sqlite3_bind_int64(insert.get(), 1, frame.stamp.nanoseconds());
     sqlite3_bind_text(insert.get(), 2, frame.frame_id.c_str(), static_cast<int>(frame.frame_id.size()),
                       SQLITE_TRANSIENT);
@@ -335,14 +336,16 @@ void MapDatabase::insertFrames(const std::vector<StoredFrame>& frames) {
     sqlite3_bind_blob(insert.get(), 4, frame.descriptor.data, descriptor_bytes_, SQLITE_STATIC);
     if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
     sqlite3_reset(insert.get());
-  }
+  });
 }
 
 void MapDatabase::append(const std::vector<StoredFrame>& frames) {
-  checkDescriptors(frames);
+  checkDescriptors(frames);  // All of them before the transaction begins.
   execute("BEGIN IMMEDIATE");
   try {
-    insertFrames(frames);
+    insertFrames([&](const auto& insert) {
+      for (const StoredFrame& frame : frames) insert(frame);
+    });
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -350,12 +353,11 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames) {
   }
 }
 
-void MapDatabase::replace(const std::vector<StoredFrame>& frames) {
-  checkDescriptors(frames);
+void MapDatabase::replace(const FrameSource& source) {
   execute("BEGIN IMMEDIATE");
   try {
     execute("DELETE FROM frames");
-    insertFrames(frames);
+    insertFrames(source);
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
@@ -417,6 +419,17 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
 }
 
 void MapDatabase::clear() { execute("DELETE FROM frames"); }
+
+void MapDatabase::readAtOneMoment(const std::function<void()>& read) const {
+  execute("BEGIN");  // Deferred: the first read takes the snapshot that the others see.
+  try {
+    read();
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  execute("COMMIT");
+}
 
 void MapDatabase::checkIntegrity() const {
   sqlite3_stmt* raw = nullptr;

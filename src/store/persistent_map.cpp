@@ -4,6 +4,7 @@
 #include <exception>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -23,6 +24,10 @@ void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path,
                            " frames, more than max_frames (" + std::to_string(capacity) +
                            "): raise max_frames to at least that, or to 0 (unbounded)");
   }
+}
+
+MapDatabaseError changedWhileLoaded(const std::string& path) {
+  return MapDatabaseError("map database '" + path + "': it changed while it was loaded; load it again");
 }
 
 /// Hands one frame to the recognizer, which must take it (the caller checked the capacity).
@@ -108,30 +113,25 @@ int PersistentMap::load(const std::string& path) {
   if (database_ && fs::equivalent(path, database_->path(), ignored)) {
     throw MapDatabaseError("map database '" + path + "': it is this map's own database, already loaded");
   }
-  // Everything is read and checked before anything changes.
-  std::vector<StoredFrame> frames;
-  {
+  // Everything is read and checked before anything changes: the recognizer's new map is built aside,
+  // frame by frame as the file is read (a million-frame map is not held twice, as rows and as a map) ...
+  PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
     saved.checkIntegrity();
-    requireCapacity(recognizer_, path, saved.size());
-    frames.reserve(static_cast<std::size_t>(saved.size()));
-    saved.forEachFrame([&](const StoredFrame& frame) {
-      frames.push_back({frame.descriptor.clone(), frame.stamp, frame.frame_id, frame.sequence});
+    std::optional<PlaceRecognizer::PreparedMap> map;
+    saved.readAtOneMoment([&] {
+      const std::int64_t frames = saved.size();
+      requireCapacity(recognizer_, path, frames);
+      map = recognizer_.prepareMap(static_cast<int>(frames));
+      saved.forEachFrame([&](const StoredFrame& frame) { map->append(frame.descriptor, frame.stamp); });
     });
-  }
-  // The recognizer's new map is built aside, before anything changes ...
-  std::vector<cv::Mat> descriptors;
-  std::vector<Stamp> stamps;
-  descriptors.reserve(frames.size());
-  stamps.reserve(frames.size());
-  for (const StoredFrame& frame : frames) {
-    descriptors.push_back(frame.descriptor);
-    stamps.push_back(frame.stamp);
-  }
-  PlaceRecognizer::PreparedMap prepared = recognizer_.prepareMap(descriptors, stamps);
-  if (writer_) replaceDatabase(frames);
+    return std::move(*map);
+  }();
+  // ... the database rewritten from the file ...
+  if (writer_) replaceDatabase(path, prepared);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
   // the new one. The frames that came while the database was rewritten follow the new map's.
+  const int loaded = prepared.size();
   std::lock_guard<std::mutex> lock(add_mutex_);
   std::vector<StoredFrame> arrived;
   arrived.swap(held_back_);
@@ -140,7 +140,7 @@ int PersistentMap::load(const std::string& path) {
   // The new map is in place in both: nothing may throw from here on. The frames fit (store() held back
   // no more than the new map has room for); only a failure to get memory would leave some out, of both.
   try {
-    if (!arrived.empty()) recognizer_.reserve(static_cast<int>(frames.size() + arrived.size()));
+    if (!arrived.empty()) recognizer_.reserve(static_cast<int>(loaded + arrived.size()));
     for (StoredFrame& frame : arrived) {
       FrameAdmission admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
       if (admission == FrameAdmission::kPendingFull) {
@@ -153,10 +153,10 @@ int PersistentMap::load(const std::string& path) {
   } catch (const std::exception&) {
     // Out of memory: the frames not yet added are in neither, and the map still matches its database.
   }
-  return static_cast<int>(frames.size());
+  return loaded;
 }
 
-void PersistentMap::replaceDatabase(const std::vector<StoredFrame>& frames) {
+void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared) {
   // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
   // frames go on joining the old map meanwhile, held back from the database so that it holds the old
   // map or the new one; load() puts them after the new map's frames ...
@@ -164,11 +164,24 @@ void PersistentMap::replaceDatabase(const std::vector<StoredFrame>& frames) {
     std::lock_guard<std::mutex> lock(add_mutex_);
     rewriting_ = true;
     const int capacity = recognizer_.recognizerParameters().max_frames;
-    rewrite_room_ = capacity > 0 ? static_cast<std::size_t>(capacity) - frames.size()
+    rewrite_room_ = capacity > 0 ? static_cast<std::size_t>(capacity - prepared.size())
                                  : std::numeric_limits<std::size_t>::max();
   }
   try {
-    writer_->withDatabase([&](MapDatabase& database) { database.replace(frames); });
+    // The file is read a second time, rather than held in memory since the first, and must hold the
+    // frames the new map was built from: else the database is left as it was.
+    const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
+    writer_->withDatabase([&](MapDatabase& database) {
+      database.replace([&](const auto& insert) {
+        int index = 0;
+        saved.forEachFrame([&](const StoredFrame& frame) {
+          if (!prepared.holds(index, frame.descriptor, frame.stamp)) throw changedWhileLoaded(path);
+          insert(frame);
+          ++index;
+        });
+        if (index != prepared.size()) throw changedWhileLoaded(path);
+      });
+    });
   } catch (...) {
     // ... or, when the rewrite fails, the old map stays in both, and its new frames go to its database.
     std::lock_guard<std::mutex> lock(add_mutex_);

@@ -336,6 +336,34 @@ TEST(PlaceRecognizer, AReplacedMapTakesTheCamerasNextFramesWithoutGrowing) {
   EXPECT_LT(limited.state().memory_bytes, 310 * (frame_bytes + 256));
 }
 
+// A map read from a file is built frame by frame (PersistentMap::load), never given more frames than
+// it was prepared for, and tells whether a second read of the file gave the same frames.
+TEST(PlaceRecognizer, AMapPreparedFrameByFrameHoldsWhatItWasGivenAndNoMore) {
+  PlaceRecognizer built(routeParameters());
+  mapReference(built);
+  std::vector<cv::Mat> descriptors;
+  std::vector<Stamp> stamps;
+  built.visitFrames(0, 3, [&](const cv::Mat& descriptor, Stamp stamp) {
+    descriptors.push_back(descriptor.clone());
+    stamps.push_back(stamp);
+  });
+  PlaceRecognizer recognizer(routeParameters());
+  PlaceRecognizer::PreparedMap prepared = recognizer.prepareMap(2);
+  prepared.append(descriptors[0], stamps[0]);
+  prepared.append(descriptors[1], stamps[1]);
+  EXPECT_THROW(prepared.append(descriptors[2], stamps[2]), std::invalid_argument);
+  EXPECT_THROW(recognizer.prepareMap(1).append(cv::Mat(1, 3, CV_8UC1), stamps[0]), std::invalid_argument);
+  EXPECT_TRUE(prepared.holds(1, descriptors[1], stamps[1]));
+  EXPECT_FALSE(prepared.holds(1, descriptors[1], stamps[0]));  // another stamp
+  EXPECT_FALSE(prepared.holds(1, descriptors[0], stamps[1]));  // other bytes
+  EXPECT_FALSE(prepared.holds(2, descriptors[2], stamps[2]));  // beyond its frames
+  EXPECT_EQ(recognizer.install(std::move(prepared)), 0);
+  EXPECT_EQ(recognizer.size(), 2);
+  RecognizerParams limits;
+  limits.max_frames = 2;
+  EXPECT_THROW(PlaceRecognizer(routeParameters(), limits).prepareMap(3), std::invalid_argument);
+}
+
 // The room is frames of over two minutes of a camera, but never more than 64 MB of descriptors:
 // large ones (a 512 x 512 thumbnail's 256 KB) made an emptied map hold a gigabyte.
 TEST(PlaceRecognizer, TheRoomForNewFramesHoldsAt64MegabytesOfDescriptorsWhateverTheirSize) {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <random>
 #include <string>
 #include <thread>
@@ -355,6 +356,43 @@ TEST_F(PersistentMapTest, FramesArrivingWhileLoadRewritesTheDatabaseAreAdmittedO
   ASSERT_NO_FATAL_FAILURE(expectLoadedThenAdmitted(seen));  // Every frame said admitted is in both.
   EXPECT_LE(seen.in_map.size(), static_cast<std::size_t>(LoadWhileFramesArrive::kSaved + kRoom));
   EXPECT_NE(std::count(seen.admissions.begin(), seen.admissions.end(), FrameAdmission::kMapFull), 0);
+}
+
+// load() reads the file twice (once for the map, once for the database) rather than holding it in
+// memory: while another program appends to the file, each load either gives the map and the database
+// the same frames or is refused, naming the file, and leaves both as they were.
+TEST_F(PersistentMapTest, AFileThatChangesWhileItIsLoadedLeavesTheMapEqualToItsDatabase) {
+  writeMap(path("growing.db"), 0, 200);
+  PlaceRecognizer recognizer;
+  std::atomic<bool> done{false};
+  std::thread writer([&] {  // Another program, say sqlite3: a node's own database is locked for others.
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(path("growing.db").c_str(), &db), SQLITE_OK);
+    sqlite3_busy_timeout(db, 1000);
+    while (!done) {
+      sqlite3_exec(db,
+                   "INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) "
+                   "SELECT stamp_ns + 1000000000000, frame_id, sequence, descriptor FROM frames WHERE id = 1",
+                   nullptr, nullptr, nullptr);
+    }
+    sqlite3_close(db);
+  });
+  int refused = 0;
+  {
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    addReference(map, 0, 30);
+    for (int attempt = 0; attempt < 20; ++attempt) {
+      const std::string message = errorOf([&] { map.load(path("growing.db")); });
+      if (message == "(no error)") continue;
+      ++refused;
+      EXPECT_NE(message.find(path("growing.db") + "': it changed while it was loaded"), std::string::npos) << message;
+    }
+  }
+  done = true;
+  writer.join();
+  expectSameFrames(framesOf(path("map.db")), framesOf(recognizer));
+  EXPECT_TRUE(recognizer.size() == 30 || recognizer.size() >= 200) << recognizer.size();  // its own, or a load's
+  std::cout << refused << " of 20 loads refused" << std::endl;
 }
 
 TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {

@@ -104,10 +104,16 @@ class MapDatabase {
   std::int64_t size() const;
   /// Calls `visit` for every frame in map order. Throws MapDatabaseError on a corrupt or foreign row.
   void forEachFrame(const std::function<void(const StoredFrame& frame)>& visit) const;
+  /// Calls `read` inside one read transaction: all it reads of this database (its size, its frames) is
+  /// the file at one moment, whatever another program writes meanwhile.
+  void readAtOneMoment(const std::function<void()>& read) const;
   /// Removes every frame (the metadata stays).
   void clear();
-  /// Replaces every frame by `frames` in one transaction: on any failure the old frames stay.
-  void replace(const std::vector<StoredFrame>& frames);
+  /// Where replace() takes its frames from: it calls `insert` once for each frame, in map order.
+  using FrameSource = std::function<void(const std::function<void(const StoredFrame& frame)>& insert)>;
+  /// Replaces every frame by those `source` gives, in one transaction: on any failure (a throw from
+  /// `source` too) the old frames stay. The new frames need not all be in memory at once.
+  void replace(const FrameSource& source);
   /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
   /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
@@ -159,8 +165,8 @@ class MapDatabase {
   /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
   void convertToCurrentFormat();
   void checkDescriptors(const std::vector<StoredFrame>& frames) const;
-  /// Inserts `frames` inside a transaction the caller has begun.
-  void insertFrames(const std::vector<StoredFrame>& frames);
+  /// Inserts the frames of `source` inside a transaction the caller has begun.
+  void insertFrames(const FrameSource& source);
 
   std::string path_;
   DescriptorParams params_;

@@ -89,8 +89,9 @@ class PersistentMap {
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
                        bool offered);
   std::int64_t saveFromMemory(const std::string& path);
-  /// load()'s rewrite of the database by `frames`, during which added frames are held back.
-  void replaceDatabase(const std::vector<StoredFrame>& frames);
+  /// load()'s rewrite of the database by the frames of the map saved at `path`, which must be those of
+  /// `prepared`; added frames are held back meanwhile.
+  void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
