@@ -15,7 +15,10 @@
 //
 //   mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]
 //                               [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2] [--threads 1]
-//                               [--periods 20] [--keyframes-per-period 3] [--seed 42]
+//                               [--periods 20] [--keyframes-per-period 3] [--seed 42] [--load-map]
+//
+// With --load-map, last: a node's persistent map of the same frames replaced by them (~load_map), and
+// how far that raised the process's peak memory.
 
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -38,6 +41,8 @@
 #include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_writer.hpp"
+#include "mrs_vpr/store/persistent_map.hpp"
 #include "tools/tool_main.hpp"
 #include "map_scale_options.hpp"
 #include "map_scale_rows.hpp"
@@ -52,6 +57,44 @@ using tools::Clock;
 using tools::secondsSince;
 
 namespace {
+
+/// ~load_map's memory: a node's persistent map (a scratch database beside `path`) loads the map at
+/// `path` (into an empty map), then again (replacing a map of the same frames, as ~load_map replaces a
+/// node's map). Prints how far each raised the process's peak resident memory, and what stayed
+/// resident after the first, per frame.
+void measureLoadMap(const std::string& path, const mrs_vpr::DescriptorParams& descriptor) {
+  const std::string scratch = path + ".load_map.db";
+  const auto removeScratch = [&] {
+    std::remove(scratch.c_str());
+    mrs_vpr::MapDatabase::removeCompanions(scratch);
+  };
+  removeScratch();
+  mrs_vpr::RecognizerParams limits;
+  limits.max_frames = 0;
+  mrs_vpr::PlaceRecognizer recognizer(paramsFor(10, descriptor), limits);
+  {
+    mrs_vpr::PersistentMap node_map(recognizer, scratch, mrs_vpr::CommitPolicy{});
+    // Each load's peak over the resident memory before it [B a frame], and the seconds it took.
+    const auto load = [&](double& peak_per_frame, double& seconds) {
+      resetPeakResident();
+      const auto before = residentBytes();
+      const auto start = Clock::now();
+      const int frames = node_map.load(path);
+      seconds = secondsSince(start);
+      peak_per_frame = static_cast<double>(residentBytes().second - before.first) / frames;
+      return frames;
+    };
+    double first_peak = 0.0, first_s = 0.0, again_peak = 0.0, again_s = 0.0;
+    const long long resident_before = residentBytes().first;
+    const int frames = load(first_peak, first_s);
+    const double kept = static_cast<double>(residentBytes().first - resident_before) / frames;
+    load(again_peak, again_s);
+    std::printf("%9s  ~load_map of %d frames into a node's empty map: %.2f s, peak +%.0f B a frame, %.0f B a frame "
+                "resident after; again, replacing them: %.2f s, peak +%.0f B a frame\n",
+                sizeName(frames).c_str(), frames, first_s, first_peak, kept, again_s, again_peak);
+  }
+  removeScratch();
+}
 
 /// The child: loads one map and answers the queries; prints its rows.
 int measure(const MapScaleOptions& options) {
@@ -106,6 +149,7 @@ int measure(const MapScaleOptions& options) {
     std::printf("%9s recent rows skipped: they need %d frames of the route in winter after continuous mode's %d, "
                 "of %zu\n", sizeName(frames).c_str(), recent_frames, continuous_frames, winter.size());
     measureMapStream(recognizer, frames);
+    if (options.load_map) measureLoadMap(options.measure, descriptor);
     return 0;
   }
   for (int length : options.lengths) {
@@ -115,6 +159,7 @@ int measure(const MapScaleOptions& options) {
     }
   }
   measureMapStream(recognizer, frames);
+  if (options.load_map) measureLoadMap(options.measure, descriptor);
   return 0;
 }
 
@@ -181,7 +226,7 @@ int run(int argc, char** argv) {
     const pid_t child = fork();
     if (child == 0) {
       const std::string exe = "/proc/self/exe";
-      const std::vector<std::string> args = {"mrs_vpr_map_scale_benchmark",
+      std::vector<std::string> args = {"mrs_vpr_map_scale_benchmark",
                                              "--data",
                                              options.data,
                                              "--measure",
@@ -202,6 +247,7 @@ int run(int argc, char** argv) {
                                              std::to_string(options.keyframes_per_period),
                                              "--seed",
                                              std::to_string(options.seed)};  // The map records its front end.
+      if (options.load_map) args.push_back("--load-map");
       std::vector<char*> argv_child;
       for (const std::string& arg : args) argv_child.push_back(const_cast<char*>(arg.c_str()));
       argv_child.push_back(nullptr);

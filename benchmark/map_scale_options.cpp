@@ -36,6 +36,7 @@ constexpr const char* kUsage =
     "Usage: mrs_vpr_map_scale_benchmark --data DIR [--sizes 10k,100k,1M] [--dir /tmp/mrs_vpr_map_scale]\n"
     "                                   [--lengths 10,50,100,300] [--queries 5] [--brute-queries 2]\n"
     "                                   [--threads 1] [--periods 20] [--keyframes-per-period 3] [--seed 42]\n"
+    "                                   [--load-map]\n"
     "Writes map databases of real frames (DIR: the shared data folder) once, then loads each in a fresh\n"
     "process and prints load time, resident bytes a frame and both methods' query times.\n";
 
@@ -69,6 +70,8 @@ std::optional<MapScaleOptions> parseMapScaleOptions(int argc, char** argv) {
       ("keyframes-per-period", po::value(&options.keyframes_per_period)->default_value(options.keyframes_per_period),
        "continuous mode: keyframes joining the map between two queries")
       ("seed", po::value(&seed)->default_value(seed), "seed of the maps and of the queries")
+      ("load-map", po::bool_switch(&options.load_map),
+       "also ~load_map's memory: a node's map of the same frames replaced by the map")
       // The parent runs one child per map, with these two: the map to measure and where its true places are.
       ("measure", po::value(&options.measure), "internal: measure this map database in this process")
       ("truth-offset", po::value(&options.truth_offset)->default_value(options.truth_offset),

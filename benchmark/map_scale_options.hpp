@@ -24,6 +24,7 @@ struct MapScaleOptions {
   int periods = 20;
   int keyframes_per_period = 3;
   std::uint64_t seed = 42;
+  bool load_map = false;  ///< Also ~load_map's memory: a node's map replaced by the measured one.
   // Internal: measure one map in this process (the parent runs one child per size).
   std::string measure;
   DescriptorParams descriptor;  ///< The front end of the maps written.

@@ -19,6 +19,10 @@ std::pair<long long, long long> residentBytes() {
   return {rss, hwm};
 }
 
+void resetPeakResident() {
+  std::ofstream("/proc/self/clear_refs") << "5";  // Linux: "5" resets VmHWM
+}
+
 double processCpuSeconds() {
   timespec now{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);

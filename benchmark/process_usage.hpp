@@ -10,6 +10,9 @@ namespace benchmark {
 /// Resident and peak resident memory of this process [bytes], from /proc/self/status.
 std::pair<long long, long long> residentBytes();
 
+/// Lowers the peak resident memory to the resident memory now, so that a later peak is one step's.
+void resetPeakResident();
+
 /// CPU time of this process (every thread) [s].
 double processCpuSeconds();
 

@@ -397,10 +397,16 @@ TEST_F(BenchmarksTest, TheMapScaleBenchmarkRunsWithTheGivenOptions) {
   const CommandResult result = run(std::string(MRS_VPR_MAP_SCALE_BENCHMARK_PATH) + " --data " + data.string() +
                                    " --sizes 2k,2.5k --dir " + maps.string() +
                                    " --lengths 10 --queries 2 --brute-queries 1 --threads 1 --periods 2"
-                                   " --keyframes-per-period 1 --seed 4");
+                                   " --keyframes-per-period 1 --seed 4 --load-map");
   ASSERT_EQ(result.status, 0) << result.err;
   EXPECT_NE(result.out.find("queries of N = 10, 2 per map (1 for brute force), threads 1, seed 4"), std::string::npos)
       << result.out;
+  // --load-map reaches each child: a node's map loads each map, then again.
+  EXPECT_NE(result.out.find("       2k  ~load_map of 2000 frames into a node's empty map: "), std::string::npos)
+      << result.out;
+  EXPECT_NE(result.out.find("     2500  ~load_map of 2500 frames into a node's empty map: "), std::string::npos)
+      << result.out;
+  EXPECT_FALSE(fs::exists(maps / "map-2k-hog-seed4.db.load_map.db")) << "the node's scratch map was left";
   // Each map is measured by a child process that gets the options again: one row per map and kind of
   // query, with 2 queries of mrs and 1 of brute force.
   for (const std::string size : {"2k", "2500"}) {
