@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -51,20 +52,22 @@ void expectMeansOfBins(const DescriptorParams& params) {
   std::vector<std::uint8_t> cell(static_cast<std::size_t>(cells.cellSize()));
   cells.cell(frames.view(), 0, 1, cell.data());
   const std::uint8_t* descriptor = frames.descriptor(0);
+  const int width = (params.hog_bins + 2) / 3;  // bins per group, the last group's fewer
+  const int groups = (params.hog_bins + width - 1) / width;
   for (int cx = 0; cx < hog.cellsX(); ++cx) {
     for (int cy = 0; cy < hog.cellsY(); ++cy) {
-      for (int group = 0; group < 3; ++group) {
+      for (int group = 0; group < groups; ++group) {
         double sum = 0.0;
         int count = 0;
         for (int bx = std::max(0, cx - 1); bx <= std::min(hog.blocksX() - 1, cx); ++bx) {
           for (int by = std::max(0, cy - 1); by <= std::min(hog.blocksY() - 1, cy); ++by) {
-            for (int bin = 3 * group; bin < 3 * group + 3; ++bin) {
+            for (int bin = width * group; bin < std::min(params.hog_bins, width * group + width); ++bin) {
               sum += descriptor[hog.offset(bx, by, cx - bx, cy - by) + bin];
               ++count;
             }
           }
         }
-        const int byte = (cx * hog.cellsY() + cy) * 3 + group;
+        const int byte = (cx * hog.cellsY() + cy) * groups + group;
         EXPECT_NEAR(cell[static_cast<std::size_t>(byte)], sum / count, 0.5 + 1e-3) << cx << ", " << cy << ", " << group;
       }
     }
@@ -72,6 +75,16 @@ void expectMeansOfBins(const DescriptorParams& params) {
 }
 
 TEST(HogCells, AByteIsTheMeanOfItsCellsBinsOverTheBlocksThatHoldIt) { expectMeansOfBins(DescriptorParams{}); }
+
+// The default 9 bins are pooled by code of their own; other counts by the general loops.
+TEST(HogCells, OtherBinCountsArePooledIntoTheirGroupsToo) {
+  for (const int bins : {2, 8, 12}) {
+    SCOPED_TRACE(bins);
+    DescriptorParams params;
+    params.hog_bins = bins;
+    expectMeansOfBins(params);
+  }
+}
 
 TEST(HogCells, CellsOfMoreThan256BytesAreTheMeansToo) {
   DescriptorParams large;

@@ -31,10 +31,16 @@ class HogCells : public CompactCells {
   void project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const override;
 
  private:
-  /// Per descriptor byte: the cell byte it is pooled into. One table lookup a byte, rather than
-  /// loops over histograms and groups, makes a cell about three times cheaper to compute; the query's
-  /// cells are computed anew for every query.
-  std::vector<int> target_;
+  /// One HOG cell's histogram in one block: where its bins lie in the descriptor, and the first of the
+  /// cell bytes its groups of bins are pooled into.
+  struct Histogram {
+    int first_byte = 0;
+    int first_cell_byte = 0;
+  };
+  std::vector<Histogram> histograms_;
+  int bins_ = 0;
+  int group_width_ = 0;  ///< Neighbouring bins per group (the last group may have fewer).
+  int groups_ = 0;
   std::vector<float> scale_;  ///< Per cell byte: 1 / the descriptor bytes pooled into it.
 };
 
