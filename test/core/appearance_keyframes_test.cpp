@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -366,6 +367,62 @@ TEST(RepeatedViews, ASequenceHalfOfOneViewIsNotMostlyRepeated) {
   std::vector<cv::Mat> half = darkStop(2500.0, 10, rng);
   for (const cv::Mat& view : drive(2000.0, 12.0, 10, rng)) half.push_back(view);
   EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(sequenceOf(extractor, half).view()));
+}
+
+/// Keyframes of `size` bytes, each of one value throughout: two differ by the difference of their values.
+DescriptorSequence flatKeyframes(int size, const std::vector<int>& values) {
+  DescriptorSequence sequence(size);
+  for (int value : values) sequence.append(cv::Mat(1, size, CV_8UC1, cv::Scalar(value)));
+  return sequence;
+}
+
+/// What two keyframes showing one view differ by at most, as RepeatedViews measures it on `keyframes`.
+double sameView(const AppearanceKeyframes& keyframes) {
+  return AppearanceKeyframes::kStrayShare * keyframes.minChange() * keyframes.scale();
+}
+
+// RepeatedViews::kMinGap, written out: the sequences below are built for a gap of 3 keyframes.
+constexpr int kGap = 3;
+
+// A slow camera's keyframes one and two apart look alike, but it moves on: they are not compared,
+// or every slow drive would be refused as a stop.
+TEST(RepeatedViews, KeyframesCloserThanTheMinimumGapAreNotComparedAsOneView) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(8);
+  const AppearanceKeyframes keyframes = hogKeyframes(extractor, rng);
+  const double same_view = sameView(keyframes);
+  // Each keyframe moves on by `step`: within one view of its neighbours closer than kGap only.
+  const int step = static_cast<int>(std::ceil(same_view / kGap + 0.1));
+  ASSERT_LT((kGap - 1) * step, same_view);
+  ASSERT_GT(kGap * step, same_view);
+  std::vector<int> slow;
+  for (int i = 0; i < 12; ++i) slow.push_back(20 + i * step);
+  ASSERT_LE(slow.back(), 255);
+  EXPECT_FALSE(RepeatedViews(keyframes).mostlyRepeated(flatKeyframes(extractor.size(), slow).view()));
+}
+
+// Keyframes exactly kGap apart are compared: a view shown again after two others (A B C A B) is a
+// repeat of most of the sequence, though no other pair of its keyframes is alike.
+TEST(RepeatedViews, KeyframesExactlyTheMinimumGapApartAreCompared) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(9);
+  const AppearanceKeyframes keyframes = hogKeyframes(extractor, rng);
+  const int apart = static_cast<int>(std::ceil(2.0 * sameView(keyframes)));
+  ASSERT_LE(20 + 2 * apart, 255);
+  const int a = 20;
+  const int b = a + apart;
+  const int c = b + apart;
+  EXPECT_TRUE(RepeatedViews(keyframes).mostlyRepeated(flatKeyframes(extractor.size(), {a, b, c, a, b}).view()));
+}
+
+// A sequence of at most kGap keyframes has no pair far enough apart to compare, however alike they
+// are; an empty one is judged without dividing by its zero keyframes.
+TEST(RepeatedViews, SequencesNoLongerThanTheMinimumGapRepeatNothing) {
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::RNG rng(10);
+  const RepeatedViews views(hogKeyframes(extractor, rng));
+  EXPECT_FALSE(views.mostlyRepeated(flatKeyframes(extractor.size(), {}).view()));
+  EXPECT_FALSE(views.mostlyRepeated(flatKeyframes(extractor.size(), std::vector<int>(kGap, 20)).view()));
 }
 
 TEST(RepeatedViews, JudgesNothingWithoutKeyframesByAppearance) {

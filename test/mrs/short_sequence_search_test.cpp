@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -238,6 +239,93 @@ TEST(MrsMatcher, MatchByFirstPassSearchesAnyMap) {
   EXPECT_EQ(static_cast<int>(trace[0].candidates.size()), kShortSearchHypotheses);
   // Its inputs are checked as match() checks them.
   EXPECT_THROW(mrs.matchByFirstPass(query, keptMap().view(), nullptr), std::invalid_argument);
+}
+
+/// Compact cells that see only the first half of a descriptor (its mean over the cell's frames).
+class FirstHalfCells : public CompactCells {
+ public:
+  explicit FirstHalfCells(const DescriptorParams& geometry) : CompactCells(geometry) {}
+  int cellSize() const override { return descriptorSize() / 2; }
+  void project(const std::uint16_t* sums, int frames, std::uint8_t* cell) const override {
+    for (int i = 0; i < cellSize(); ++i) cell[i] = static_cast<std::uint8_t>((sums[i] + frames / 2) / frames);
+  }
+};
+
+// The full descriptors score every end within match_exclusion of the first pass's minimum, and then
+// of the answer, the edges included. Each place holds the query's frames three times: alike in the
+// half the cells see (the first pass's minimum); next to them, ending exactly match_exclusion after
+// A's or before B's, alike throughout but noisy (the answer, which the first pass ranks far below the
+// minimum, too near it to be a distinct minimum of its own); and beyond that, ending exactly
+// match_exclusion further, noisier (the rival). One hypothesis leaves no other window to cover them.
+TEST(ShortSequenceSearch, ScoresTheEndsExactlyMatchExclusionFromTheMinimumAndTheAnswer) {
+  const DescriptorParams front_end = tinyThumbnail();
+  const int size = front_end.descriptorSize();
+  Parameters params = routeParameters();
+  params.descriptor = front_end;
+  const int exclusion = params.sequence.match_exclusion;
+  const int length = 10;
+  ASSERT_EQ(exclusion, length);  // the copies lie right next to each other
+  cv::RNG rng(12);
+  const auto randomFrame = [&] {
+    cv::Mat frame(1, size, CV_8U);
+    rng.fill(frame, cv::RNG::UNIFORM, 0, 256);
+    return frame;
+  };
+  std::vector<cv::Mat> frames;
+  for (int i = 0; i < 500; ++i) frames.push_back(randomFrame());
+  const auto noisyCopy = [&](const cv::Mat& frame, double noise, int at) {
+    cv::Mat values;
+    cv::Mat deviation(1, size, CV_16S);
+    rng.fill(deviation, cv::RNG::NORMAL, 0, noise);
+    frame.convertTo(values, CV_16S);
+    values += deviation;
+    values.convertTo(frames[static_cast<std::size_t>(at)], CV_8U);
+  };
+  struct Place {
+    int minimum;  ///< The last of the half-alike frames.
+    int answer;   ///< The noisy copy's end.
+    int rival;    ///< The noisier copy's end.
+    DescriptorSequence query;
+  };
+  std::vector<Place> places;
+  for (const int side : {1, -1}) {
+    const int minimum = side > 0 ? 109 : 310;
+    Place place{minimum, minimum + side * exclusion, minimum + 2 * side * exclusion, DescriptorSequence(size)};
+    for (int i = 0; i < length; ++i) {
+      const cv::Mat frame = randomFrame();
+      place.query.append(frame);
+      cv::Mat& half_alike = frames[static_cast<std::size_t>(place.minimum - length + 1 + i)];
+      frame.colRange(0, size / 2).copyTo(half_alike.colRange(0, size / 2));
+      noisyCopy(frame, 20.0, place.answer - length + 1 + i);
+      noisyCopy(frame, 30.0, place.rival - length + 1 + i);
+    }
+    places.push_back(place);
+  }
+  DescriptorSequence map(size);
+  for (const cv::Mat& frame : frames) map.append(frame);
+  const FirstHalfCells cells(front_end);
+  const SeqSlamMatcher brute(params.sequence);
+  for (const Place& place : places) {
+    const std::string where = "minimum " + std::to_string(place.minimum);
+    // Not computed as one of the spread's sample either.
+    ASSERT_NE(place.answer % kSpreadThinning, 0) << where;
+    ASSERT_NE(place.rival % kSpreadThinning, 0) << where;
+    MrsLevelTrace trace;
+    const Match found = searchShortSequence(map.view(), place.query.view(), params.sequence, cells, 1, &trace);
+    const Match expected = brute.match(map.view(), place.query.view());
+    ASSERT_EQ(trace.candidates, std::vector<int>{place.minimum}) << where;
+    EXPECT_EQ(expected.reference_index, place.answer) << where;
+    EXPECT_EQ(found.reference_index, place.answer) << where;
+    EXPECT_NEAR(found.sequence_difference, expected.sequence_difference, 1e-5F) << where;
+    // The brute force's rival is the noisier copy, and so is the search's.
+    const ChosenEndCosts chosen(map.view(), place.query.view(), wholeSequenceRows(length, params.sequence.alignment),
+                                velocities(params.sequence), params.sequence.contrast_window);
+    float rival_cost = 0.0F;
+    float rival_velocity = 0.0F;
+    chosen.compute(place.rival, place.rival + 1, &rival_cost, &rival_velocity);
+    EXPECT_NEAR(expected.score, expected.sequence_difference / rival_cost, 1e-5F) << where;
+    EXPECT_NEAR(found.score, expected.score, 1e-5F) << where;
+  }
 }
 
 }  // namespace
