@@ -20,6 +20,7 @@
 // With --load-map, last: a node's persistent map of the same frames replaced by them (~load_map), and
 // how far that raised the process's peak memory.
 
+#include <malloc.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -76,7 +77,7 @@ void measureLoadMap(const std::string& path, const mrs_vpr::DescriptorParams& de
     mrs_vpr::PersistentMap node_map(recognizer, scratch, mrs_vpr::CommitPolicy{});
     // Each load's peak over the resident memory before it [B a frame], and the seconds it took.
     const auto load = [&](double& peak_per_frame, double& seconds) {
-      resetPeakResident();
+      if (!resetPeakResident()) throw std::runtime_error("--load-map: this system cannot reset the peak memory");
       const auto before = residentBytes();
       const auto start = Clock::now();
       const int frames = node_map.load(path);
@@ -85,6 +86,7 @@ void measureLoadMap(const std::string& path, const mrs_vpr::DescriptorParams& de
       return frames;
     };
     double first_peak = 0.0, first_s = 0.0, again_peak = 0.0, again_s = 0.0;
+    malloc_trim(0);
     const long long resident_before = residentBytes().first;
     const int frames = load(first_peak, first_s);
     const double kept = static_cast<double>(residentBytes().first - resident_before) / frames;

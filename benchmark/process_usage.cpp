@@ -1,5 +1,6 @@
 #include "process_usage.hpp"
 
+#include <malloc.h>
 #include <time.h>
 
 #include <fstream>
@@ -19,8 +20,13 @@ std::pair<long long, long long> residentBytes() {
   return {rss, hwm};
 }
 
-void resetPeakResident() {
-  std::ofstream("/proc/self/clear_refs") << "5";  // Linux: "5" resets VmHWM
+bool resetPeakResident() {
+  // Freed memory the allocator keeps would otherwise be reused unseen by the next step's peak.
+  malloc_trim(0);
+  std::ofstream clear_refs("/proc/self/clear_refs");
+  clear_refs << "5" << std::flush;  // Linux: "5" resets VmHWM
+  const auto [rss, peak] = residentBytes();
+  return clear_refs.good() && peak - rss < 1024 * 1024;
 }
 
 double processCpuSeconds() {

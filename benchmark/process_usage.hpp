@@ -10,8 +10,9 @@ namespace benchmark {
 /// Resident and peak resident memory of this process [bytes], from /proc/self/status.
 std::pair<long long, long long> residentBytes();
 
-/// Lowers the peak resident memory to the resident memory now, so that a later peak is one step's.
-void resetPeakResident();
+/// Hands freed heap back to the system and lowers the peak resident memory to the resident memory
+/// now, so that a later peak is one step's alone; false where the peak cannot be reset.
+bool resetPeakResident();
 
 /// CPU time of this process (every thread) [s].
 double processCpuSeconds();

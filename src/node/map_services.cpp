@@ -1,5 +1,6 @@
 // The node's map and its database: opening ~database at start-up, ~reset, ~save_map, ~load_map.
 
+#include <algorithm>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -29,7 +30,7 @@ void PlaceRecognitionNode::openMap() {
   // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
   // starting empty over a map it could not read.
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
-  session_start_size_ = recognizer_.size();
+  startSession(recognizer_.size());
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
            params_.database.c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
 }
@@ -66,8 +67,18 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
   // none of a loaded map's own. The services and continuous mode run on the query thread. The new version
   // makes its next period look, also at the frames a load held back, when no keyframe follows them.
   auto_query_size_ = map_frames;
-  session_start_size_ = map_frames;
+  startSession(map_frames);
   ++map_version_;
+}
+
+void PlaceRecognitionNode::startSession(int map_frames) {
+  session_start_size_ = map_frames;
+  const int max_frames = params_.recognizer.max_frames;
+  const int length = params_.autoQueryFrames();
+  if (params_.auto_query_period <= 0.0 || max_frames <= 0 || max_frames - map_frames >= length) return;
+  ROS_WARN("mrs_vpr: continuous mode asks with %d keyframes added after the map's %d frames, but ~max_frames (%d) "
+           "leaves room for %d: it publishes nothing until ~reset, a smaller map is loaded or ~max_frames is raised",
+           length, map_frames, max_frames, std::max(0, max_frames - map_frames));
 }
 
 bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::Response& response) {

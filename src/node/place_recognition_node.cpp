@@ -131,8 +131,9 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
 
 MapInfo PlaceRecognitionNode::makeMapInfo() {
   MapInfo info;
-  // Persisted first: a map's frames only grow meanwhile, so persisted <= frames. A ~reset or ~load_map
-  // between the two reads leaves the old map's count, capped at the new map's frames until the next.
+  // Persisted first, then capped at the frames read after it (pending ones included: a keyframe is
+  // queued for the database when admitted, before it may leave the pending buffer for the map): a
+  // commit, ~reset or ~load_map between the two reads never makes the database hold more than the map.
   const std::uint64_t persisted = map_->persisted();
   const PlaceRecognizer::MapState state = recognizer_.state();
   info.frames = static_cast<std::uint32_t>(state.frames);
@@ -144,7 +145,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   }
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);
-  info.frames_persisted = std::min<std::uint64_t>(persisted, state.frames);
+  info.frames_persisted = std::min<std::uint64_t>(persisted, state.frames + state.pending);
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     info.frame_time_mean_ms =

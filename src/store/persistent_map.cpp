@@ -18,6 +18,11 @@ constexpr int kChunk = 4096;  // frames read or written at a time by a whole-map
 
 /// Throws MapDatabaseError when `frames` do not fit in the recognizer's map.
 void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path, std::int64_t frames) {
+  if (frames > std::numeric_limits<int>::max()) {
+    throw MapDatabaseError("map database '" + path + "': it holds " + std::to_string(frames) +
+                           " frames, more than a map can hold (" + std::to_string(std::numeric_limits<int>::max()) +
+                           ")");
+  }
   const int capacity = recognizer.recognizerParameters().max_frames;
   if (capacity > 0 && frames > capacity) {
     throw MapDatabaseError("map database '" + path + "': it holds " + std::to_string(frames) +
@@ -117,9 +122,9 @@ int PersistentMap::load(const std::string& path) {
   // frame by frame as the file is read (a million-frame map is not held twice, as rows and as a map) ...
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
-    saved.checkIntegrity();
     std::optional<PlaceRecognizer::PreparedMap> map;
     saved.readAtOneMoment([&] {
+      saved.checkIntegrity();
       const std::int64_t frames = saved.size();
       requireCapacity(recognizer_, path, frames);
       map = recognizer_.prepareMap(static_cast<int>(frames));

@@ -46,7 +46,7 @@ TEST(MemoryBudget, ABruteForceQuestionBeyondTheMemoryIsRefusedNamingTheRemedy) {
 }
 
 // The per-frame protocol (mrs_vpr_eval, query_bag) holds one matrix of every query frame against the
-// map: one it cannot hold is refused with the remedy, by either method (MRS shares the brute force's).
+// map: one it cannot hold is refused with the remedy, by either method (MRS is the brute force at this length).
 TEST(MemoryBudget, APerFrameRunBeyondTheMemoryIsRefusedNamingTheRemedy) {
   const std::vector<std::uint8_t> frame(64, 7);
   const SequenceView map{frame.data(), 2'000'000'000, 64, 0};

@@ -116,6 +116,9 @@ class PlaceRecognitionNode {
   /// Continuous mode asks about the keyframes after the new map's `map_frames` (those added while a
   /// load rewrote the database too).
   void startOverOnNewMap(int map_frames);
+  /// Marks the map's first `map_frames` as loaded (continuous mode's sequences hold none of them) and
+  /// warns when ~max_frames leaves too little room after them for continuous mode to ever ask.
+  void startSession(int map_frames);
   /// Logs (throttled) why commits to ~database fail, while they do.
   void reportWriteErrors();
   void autoQueryCallback(const ros::WallTimerEvent& event);
