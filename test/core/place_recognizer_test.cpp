@@ -2,6 +2,7 @@
 #include <functional>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -306,17 +307,22 @@ TEST(PlaceRecognizer, ReserveHoldsAKnownNumberOfFramesWithoutSpareCapacity) {
   EXPECT_LT(recognizer.state().memory_bytes - empty, 300 * (frame_bytes + coarse_bytes));
 }
 
+/// The descriptors and stamps of the first `count` frames a recognizer maps of the route's reference.
+std::pair<std::vector<cv::Mat>, std::vector<Stamp>> mappedFrames(int count) {
+  PlaceRecognizer built(routeParameters());
+  mapReference(built);
+  std::pair<std::vector<cv::Mat>, std::vector<Stamp>> frames;
+  built.visitFrames(0, count, [&](const cv::Mat& descriptor, Stamp stamp) {
+    frames.first.push_back(descriptor.clone());
+    frames.second.push_back(stamp);
+  });
+  return frames;
+}
+
 // A loaded map leaves room for the camera's next frames: the first of them copied the whole map on
 // the camera's thread (0.2-0.8 s for 60k frames), the next growth being reserveAhead()'s.
 TEST(PlaceRecognizer, AReplacedMapTakesTheCamerasNextFramesWithoutGrowing) {
-  PlaceRecognizer built(routeParameters());
-  mapReference(built);
-  std::vector<cv::Mat> descriptors;
-  std::vector<Stamp> stamps;
-  built.visitFrames(0, 300, [&](const cv::Mat& descriptor, Stamp stamp) {
-    descriptors.push_back(descriptor.clone());
-    stamps.push_back(stamp);
-  });
+  const auto [descriptors, stamps] = mappedFrames(300);
   PlaceRecognizer recognizer(routeParameters());
   recognizer.replace(descriptors, stamps);
   const std::size_t loaded = recognizer.state().memory_bytes;
@@ -339,14 +345,7 @@ TEST(PlaceRecognizer, AReplacedMapTakesTheCamerasNextFramesWithoutGrowing) {
 // A map read from a file is built frame by frame (PersistentMap::load), never given more frames than
 // it was prepared for, and tells whether a second read of the file gave the same frames.
 TEST(PlaceRecognizer, AMapPreparedFrameByFrameHoldsWhatItWasGivenAndNoMore) {
-  PlaceRecognizer built(routeParameters());
-  mapReference(built);
-  std::vector<cv::Mat> descriptors;
-  std::vector<Stamp> stamps;
-  built.visitFrames(0, 3, [&](const cv::Mat& descriptor, Stamp stamp) {
-    descriptors.push_back(descriptor.clone());
-    stamps.push_back(stamp);
-  });
+  const auto [descriptors, stamps] = mappedFrames(3);
   PlaceRecognizer recognizer(routeParameters());
   PlaceRecognizer::PreparedMap prepared = recognizer.prepareMap(2);
   prepared.append(descriptors[0], stamps[0]);
