@@ -1,5 +1,6 @@
 #include "mrs_vpr/store/map_writer.hpp"
 
+#include <algorithm>
 #include <exception>
 #include <iterator>
 #include <utility>
@@ -40,12 +41,19 @@ std::size_t MapWriter::stop() {
 }
 
 void MapWriter::add(StoredFrame frame) {
+  addIf(std::move(frame), [] { return true; });
+}
+
+bool MapWriter::addIf(StoredFrame frame, const std::function<bool()>& accept) {
   std::lock_guard<std::mutex> lock(queue_mutex_);
+  if (queue_.size() == queue_.capacity()) queue_.reserve(std::max<std::size_t>(16, 2 * queue_.capacity()));
+  if (!accept()) return false;
   const bool was_empty = queue_.empty();
   if (was_empty) oldest_ = Clock::now();
   queue_.push_back(std::move(frame));
   // The thread sleeps until a frame arrives (then until its deadline) or a batch is full.
   if (was_empty || static_cast<int>(queue_.size()) >= policy_.frames) wake_.notify_one();
+  return true;
 }
 
 void MapWriter::commit() {

@@ -85,16 +85,27 @@ FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, cons
   std::lock_guard<std::mutex> lock(add_mutex_);
   // Frames held back during a load's rewrite are for the new map: no more than it has room for.
   if (rewriting_ && held_back_.size() >= rewrite_room_) return FrameAdmission::kMapFull;
-  const FrameAdmission admission =
-      offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
-  if (admission == FrameAdmission::kAdmitted && writer_) {
-    StoredFrame frame{descriptor, stamp, frame_id, sequence};  // Shares the descriptor's bytes, never changed.
-    if (rewriting_) {
-      held_back_.push_back(std::move(frame));
-    } else {
-      writer_->add(std::move(frame));
-    }
+  FrameAdmission admission = FrameAdmission::kMapFull;
+  const auto admit = [&] {
+    admission =
+        offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
+    return admission == FrameAdmission::kAdmitted;
+  };
+  if (!writer_) {
+    admit();
+    return admission;
   }
+  // The frame's record, and its room in the queue, are made before the map admits it: a frame admitted
+  // reaches the database, and a failed allocation (std::bad_alloc) leaves it out of both.
+  StoredFrame frame{descriptor, stamp, frame_id, sequence};  // Shares the descriptor's bytes, never changed.
+  if (!rewriting_) {
+    writer_->addIf(std::move(frame), admit);
+    return admission;
+  }
+  if (held_back_.size() == held_back_.capacity()) {
+    held_back_.reserve(std::max<std::size_t>(16, 2 * held_back_.capacity()));
+  }
+  if (admit()) held_back_.push_back(std::move(frame));
   return admission;
 }
 

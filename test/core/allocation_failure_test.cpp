@@ -303,6 +303,42 @@ TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
   EXPECT_EQ(databaseFrames(map, folder), 45);
 }
 
+// A keyframe's place in the database's queue is made before the map admits it: a failed allocation
+// leaves the frame out of both, never in the map alone (lost at the next start).
+TEST(AllocationFailure, AFrameThatCouldNotBeQueuedForTheDatabaseIsNotInTheMapEither) {
+  const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
+  RecognizerParams every_frame;
+  every_frame.min_appearance_change = 0.0;
+  cv::RNG random(23);
+  PlaceRecognizer recognizer(Parameters{}, every_frame);
+  PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{60.0, 1000});  // nothing commits by itself
+  int frames = 0;
+  for (; frames < 16; ++frames) {
+    ASSERT_EQ(map.add(randomDescriptor(recognizer.extractor().size(), random), Stamp::fromNanoseconds(frames)),
+              FrameAdmission::kAdmitted);
+  }
+  map.commit();
+  // Frames added with their first allocation failing, their second, and so on (an add makes a few;
+  // how many depends on whether the map grows); after each the map and its database hold the same
+  // frames. The commits between them empty the queue, so that each add grows it.
+  int failures = 0;
+  for (long allocation = 0; allocation < kMaxAllocations; ++allocation) {
+    for (int repeat = 0; repeat < 4; ++repeat) {
+      const cv::Mat descriptor = randomDescriptor(recognizer.extractor().size(), random);
+      const std::string frame_id(40, 'c');  // longer than a short string's own storage
+      try {
+        FailingAllocation failing(allocation);
+        if (map.add(descriptor, Stamp::fromNanoseconds(frames), frame_id) == FrameAdmission::kAdmitted) ++frames;
+      } catch (const std::bad_alloc&) {
+        ++failures;
+      }
+      ASSERT_EQ(databaseFrames(map, folder), recognizer.size() + recognizer.pending()) << "allocation " << allocation;
+      ASSERT_EQ(recognizer.size() + recognizer.pending(), frames) << "allocation " << allocation;
+    }
+  }
+  EXPECT_GT(failures, 0);
+}
+
 // ~reset empties the database only once the empty map is made: a failure keeps both whole.
 TEST(AllocationFailure, AFailedResetLeavesTheDatabaseAndTheMapAsTheyWere) {
   const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");

@@ -41,6 +41,13 @@ class MapWriter {
 
   /// Queues a frame for the next commit; cheap (the frame's descriptor is shared, not copied).
   void add(StoredFrame frame);
+  /**
+   * Makes room for one more frame in the queue, then calls `accept` (under the queue's lock, so that
+   * nothing is committed in between) and queues `frame` when it returns true, with nothing left that
+   * could fail. Throws std::bad_alloc, before `accept` is called, when the room cannot be had.
+   * Returns what `accept` returned.
+   */
+  bool addIf(StoredFrame frame, const std::function<bool()>& accept);
   /// Commits every queued frame now; throws MapDatabaseError when that fails (the frames stay queued).
   void commit();
   /// Commits what is queued (one last try) and stops the thread; returns the frames that try could not
