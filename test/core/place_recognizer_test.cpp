@@ -363,6 +363,34 @@ TEST(PlaceRecognizer, AMapPreparedFrameByFrameHoldsWhatItWasGivenAndNoMore) {
   EXPECT_THROW(PlaceRecognizer(routeParameters(), limits).prepareMap(3), std::invalid_argument);
 }
 
+// A map built aside (replace(), a load) takes its frames as its keyframes: the camera's next frame is
+// compared with the map's last one, so a view that has not changed is no new keyframe after a load.
+TEST(PlaceRecognizer, AReplacedMapsFramesAreTheKeyframesTheNextFrameIsComparedWith) {
+  const auto [descriptors, stamps] = mappedFrames(20);
+  PlaceRecognizer recognizer(routeParameters());
+  recognizer.replace(descriptors, stamps);
+  const Stamp next = Stamp::fromNanoseconds(stamps.back().nanoseconds() + 100'000'000);
+  EXPECT_EQ(recognizer.offerDescriptor(descriptors.back(), next), FrameAdmission::kTooSimilar);
+  EXPECT_EQ(recognizer.size(), 20);
+  PlaceRecognizer::PreparedMap prepared = recognizer.prepareMap(2);
+  prepared.append(descriptors[0], stamps[0]);
+  prepared.append(descriptors[1], stamps[1]);
+  recognizer.install(std::move(prepared));
+  EXPECT_EQ(recognizer.offerDescriptor(descriptors[1], next), FrameAdmission::kTooSimilar);
+  EXPECT_EQ(recognizer.size(), 2);
+}
+
+// prepareMap(frames) takes a count read from a file: a negative one is refused, rather than a map
+// prepared for no frame that refuses each one the file then gives.
+TEST(PlaceRecognizer, AMapPreparedForANegativeNumberOfFramesIsRefused) {
+  const PlaceRecognizer recognizer(routeParameters());
+  EXPECT_THROW(recognizer.prepareMap(-1), std::invalid_argument);
+  RecognizerParams limits;
+  limits.max_frames = 2;
+  EXPECT_THROW(PlaceRecognizer(routeParameters(), limits).prepareMap(-1), std::invalid_argument);
+  EXPECT_EQ(recognizer.prepareMap(0).size(), 0);
+}
+
 // The room is frames of over two minutes of a camera, but never more than 64 MB of descriptors:
 // large ones (a 512 x 512 thumbnail's 256 KB) made an emptied map hold a gigabyte.
 TEST(PlaceRecognizer, TheRoomForNewFramesHoldsAt64MegabytesOfDescriptorsWhateverTheirSize) {

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -725,6 +726,52 @@ TEST_F(MapDatabaseTest, BadDescriptorsAreRefusedBeforeAnythingIsWritten) {
   batch[2].descriptor = cv::Mat(1, 10, CV_8UC1);
   EXPECT_THROW(database.append(batch), std::invalid_argument);
   EXPECT_EQ(database.size(), 0);
+}
+
+// replace() takes its frames from a source read as it goes (PersistentMap::load reads a file a second
+// time), so it can meet a bad descriptor or a failure after some frames: the old frames must then stay,
+// all of them, and none of the new ones.
+TEST_F(MapDatabaseTest, AReplaceThatFailsPartWayKeepsEveryOldFrame) {
+  MapDatabase database(path("map.db"), thumbnailParams());
+  const std::vector<StoredFrame> old_frames = frames(3);
+  database.append(old_frames);
+  std::vector<StoredFrame> batch = frames(4, 10);
+  batch[3].descriptor = cv::Mat(1, 10, CV_8UC1, cv::Scalar(0));
+  const auto stampsOf = [&] {
+    std::vector<Stamp> stamps;
+    database.forEachFrame([&](const StoredFrame& frame) { stamps.push_back(frame.stamp); });
+    return stamps;
+  };
+  const std::vector<Stamp> old_stamps = {old_frames[0].stamp, old_frames[1].stamp, old_frames[2].stamp};
+  const MapDatabase::FrameSource with_bad_descriptor = [&](const auto& insert) {
+    for (const StoredFrame& frame : batch) insert(frame);
+  };
+  EXPECT_THROW(database.replace(with_bad_descriptor), std::invalid_argument);
+  EXPECT_EQ(stampsOf(), old_stamps);
+  const MapDatabase::FrameSource failing = [&](const auto& insert) {
+    insert(batch[0]);
+    throw std::runtime_error("the source's file changed");
+  };
+  EXPECT_THROW(database.replace(failing), std::runtime_error);
+  EXPECT_EQ(stampsOf(), old_stamps);
+  database.replace([&](const auto& insert) { insert(batch[1]); });
+  EXPECT_EQ(stampsOf(), std::vector<Stamp>{batch[1].stamp});
+}
+
+// A read that fails ends its read transaction: the connection then reads the file as it is now and
+// can still write, rather than staying in the failed read's transaction.
+TEST_F(MapDatabaseTest, AFailedReadAtOneMomentLeavesTheDatabaseReadableAndWritable) {
+  MapDatabase database(path("map.db"), thumbnailParams());
+  database.append(frames(2));
+  const auto failing_read = [&] {
+    EXPECT_EQ(database.size(), 2);
+    throw std::runtime_error("a reader's failure");
+  };
+  EXPECT_THROW(database.readAtOneMoment(failing_read), std::runtime_error);
+  database.append(frames(1, 2));
+  std::int64_t size = 0;
+  database.readAtOneMoment([&] { size = database.size(); });
+  EXPECT_EQ(size, 3);
 }
 
 TEST_F(MapDatabaseTest, ALongFileOfTheUsersWhereTheSnapshotIsWrittenFirstIsLeftAlone) {

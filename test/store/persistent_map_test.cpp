@@ -136,6 +136,24 @@ TEST_F(PersistentMapTest, AMapOfExactlyMaxFramesStartsAndLoads) {
   expectSameFrames(framesOf(recognizer), expectedFrames(0, 40));
 }
 
+// A frame the map refuses (it is full, or the frame is no keyframe) must not reach the database
+// either: the next start would load other frames than the map held.
+TEST_F(PersistentMapTest, FramesTheMapRefusesAreNotStored) {
+  RecognizerParams capacity;
+  capacity.max_frames = 10;
+  {
+    PlaceRecognizer recognizer(Parameters{}, capacity);
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    addReference(map, 0, 9);
+    EXPECT_EQ(map.offer(referenceDescriptors()[8], secondsStamp(9), "camera", 9), FrameAdmission::kTooSimilar);
+    addReference(map, 9, 10);
+    EXPECT_EQ(map.add(referenceDescriptors()[10], secondsStamp(10), "camera", 10), FrameAdmission::kMapFull);
+    map.commit();
+    EXPECT_EQ(map.persisted(), 10U);
+  }
+  expectSameFrames(framesOf(path("map.db")), expectedFrames(0, 10));
+}
+
 TEST_F(PersistentMapTest, ARestartedMapHoldsEveryFrameInOrderAndAnswersAboutThem) {
   {
     PlaceRecognizer recognizer;
@@ -404,6 +422,59 @@ TEST_F(PersistentMapTest, AFileThatChangesWhileItIsLoadedLeavesTheMapEqualToItsD
   done = true;
   writer.join();
   std::cout << refused << " of 20 loads refused while " << appended << " rows were appended" << std::endl;
+}
+
+// The second read must give the very frames of the first, not only as many: a row changed in place (another
+// stamp, the same count) or removed between the reads is refused like a row appended, else the map holds
+// one frame and the database another, or the map a frame that the database lacks. One kind of change at a
+// time: a stamp changed as well would be refused for the stamp whatever became of a removed row.
+TEST_F(PersistentMapTest, AFileWhoseRowsChangeOrGoWhileItIsLoadedLeavesTheMapEqualToItsDatabase) {
+  writeMap(path("changing.db"), 0, 300);
+  const std::vector<std::vector<const char*>> kinds = {
+      {"UPDATE frames SET stamp_ns = stamp_ns + 1 WHERE id = 150"},  // a row changed in place
+      {"INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) "  // a row appended, then removed
+       "SELECT stamp_ns + 1000000000000, frame_id, sequence, descriptor FROM frames WHERE id = 1",
+       "DELETE FROM frames WHERE id = (SELECT MAX(id) FROM frames)"},
+  };
+  // Another program, say sqlite3: open, and its first read done, before any load, as a load meeting the
+  // first connection's setup of the file's log would be refused for a lock.
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(path("changing.db").c_str(), &db), SQLITE_OK);
+  sqlite3_busy_timeout(db, 1000);
+  ASSERT_EQ(sqlite3_exec(db, "SELECT COUNT(*) FROM frames", nullptr, nullptr, nullptr), SQLITE_OK);
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+  addReference(map, 0, 30);
+  for (const std::vector<const char*>& changes : kinds) {
+    SCOPED_TRACE(changes.front());
+    std::atomic<bool> done{false};
+    std::thread writer([&] {  // Not paced: most loads meet a change between their reads.
+      for (std::size_t i = 0; !done; ++i) {
+        const int changed = sqlite3_exec(db, changes[i % changes.size()], nullptr, nullptr, nullptr);
+        EXPECT_EQ(changed, SQLITE_OK) << sqlite3_errmsg(db);
+        if (changed != SQLITE_OK) break;
+      }
+    });
+    int refused = 0;
+    int attempts = 0;
+    for (; attempts < 200 && refused < 10 && !HasFatalFailure(); ++attempts) {
+      SCOPED_TRACE(attempts);
+      const std::string message = errorOf([&] { map.load(path("changing.db")); });
+      if (message != "(no error)") {
+        ++refused;
+        EXPECT_NE(message.find(path("changing.db") + "': it changed while it was loaded"), std::string::npos)
+            << message;
+      }
+      const std::string copy = path("copy.db");  // the database is locked
+      map.save(copy);
+      expectSameFrames(framesOf(copy), framesOf(recognizer));
+      fs::remove(copy);
+    }
+    done = true;
+    writer.join();
+    std::cout << refused << " of " << attempts << " loads refused" << std::endl;
+  }
+  sqlite3_close(db);
 }
 
 TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
