@@ -64,6 +64,13 @@ class FailingAllocation {
 /// More attempts than any one call makes allocations: a call that still fails after it is a defect.
 constexpr long kMaxAllocations = 64;
 
+/// A recognizer's parameters under which every frame offered is a keyframe.
+RecognizerParams everyFrameAKeyframe() {
+  RecognizerParams params;
+  params.min_appearance_change = 0.0;
+  return params;
+}
+
 cv::Mat randomDescriptor(int size, cv::RNG& random) {
   cv::Mat descriptor(1, size, CV_8UC1);
   random.fill(descriptor, cv::RNG::UNIFORM, 0, 256);
@@ -169,8 +176,7 @@ TEST(AllocationFailure, EveryFrameThePlaceRecognizerAdmittedReachesTheMapInOrder
 }
 
 TEST(AllocationFailure, AFailedReplaceKeepsTheOldMap) {
-  RecognizerParams every_frame;
-  every_frame.min_appearance_change = 0.0;
+  const RecognizerParams every_frame = everyFrameAKeyframe();
   PlaceRecognizer recognizer(Parameters{}, every_frame);
   const int size = recognizer.extractor().size();
   cv::RNG random(13);
@@ -280,8 +286,7 @@ int failEachAllocationOf(const std::function<void()>& change, const PlaceRecogni
 
 TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
   const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
-  RecognizerParams every_frame;
-  every_frame.min_appearance_change = 0.0;
+  const RecognizerParams every_frame = everyFrameAKeyframe();
   cv::RNG random(17);
   const auto mapOf = [&](PlaceRecognizer& recognizer, PersistentMap& map, int frames) {
     for (int frame = 0; frame < frames; ++frame) {
@@ -307,8 +312,7 @@ TEST(AllocationFailure, AFailedLoadLeavesTheDatabaseAndTheMapAsTheyWere) {
 // leaves the frame out of both, never in the map alone (lost at the next start).
 TEST(AllocationFailure, AFrameThatCouldNotBeQueuedForTheDatabaseIsNotInTheMapEither) {
   const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
-  RecognizerParams every_frame;
-  every_frame.min_appearance_change = 0.0;
+  const RecognizerParams every_frame = everyFrameAKeyframe();
   cv::RNG random(23);
   PlaceRecognizer recognizer(Parameters{}, every_frame);
   PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{60.0, 1000});  // nothing commits by itself
@@ -342,8 +346,7 @@ TEST(AllocationFailure, AFrameThatCouldNotBeQueuedForTheDatabaseIsNotInTheMapEit
 // ~reset empties the database only once the empty map is made: a failure keeps both whole.
 TEST(AllocationFailure, AFailedResetLeavesTheDatabaseAndTheMapAsTheyWere) {
   const testing_support::TemporaryFolder folder("mrs_vpr_allocation_failure_test");
-  RecognizerParams every_frame;
-  every_frame.min_appearance_change = 0.0;
+  const RecognizerParams every_frame = everyFrameAKeyframe();
   cv::RNG random(19);
   PlaceRecognizer recognizer(Parameters{}, every_frame);
   PersistentMap map(recognizer, folder.path("map.db"), CommitPolicy{});

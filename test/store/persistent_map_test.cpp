@@ -111,6 +111,24 @@ class PersistentMapTest : public ::testing::Test {
   }
 
 
+  /// Loads `file` into `map`; true when the load was refused because the file changed meanwhile (any
+  /// other refusal fails the test).
+  static bool refusedAsChanged(PersistentMap& map, const std::string& file) {
+    const std::string message = errorOf([&] { map.load(file); });
+    if (message == "(no error)") return false;
+    EXPECT_NE(message.find(file + "': it changed while it was loaded"), std::string::npos) << message;
+    return true;
+  }
+
+  /// Expects `map`'s database to hold the frames of `recognizer`, read through a snapshot (the
+  /// database itself is locked while the map is open).
+  void expectDatabaseHoldsTheMap(PersistentMap& map, const PlaceRecognizer& recognizer) const {
+    const std::string copy = path("copy.db");
+    map.save(copy);
+    expectSameFrames(framesOf(copy), framesOf(recognizer));
+    fs::remove(copy);
+  }
+
   /// A map database of reference frames [begin, end) at `file`, written by a PersistentMap.
   static void writeMap(const std::string& file, int begin, int end) {
     PlaceRecognizer recognizer;
@@ -407,15 +425,8 @@ TEST_F(PersistentMapTest, AFileThatChangesWhileItIsLoadedLeavesTheMapEqualToItsD
     addReference(map, 0, 30);
     for (int attempt = 0; attempt < 20; ++attempt) {
       SCOPED_TRACE(attempt);
-      const std::string message = errorOf([&] { map.load(path("growing.db")); });
-      if (message != "(no error)") {
-        ++refused;
-        EXPECT_NE(message.find(path("growing.db") + "': it changed while it was loaded"), std::string::npos)
-            << message;
-      }
-      const std::string copy = path("copy" + std::to_string(attempt) + ".db");  // the database is locked
-      map.save(copy);
-      expectSameFrames(framesOf(copy), framesOf(recognizer));
+      if (refusedAsChanged(map, path("growing.db"))) ++refused;
+      expectDatabaseHoldsTheMap(map, recognizer);
       EXPECT_TRUE(recognizer.size() == 30 || recognizer.size() >= 200) << recognizer.size();  // its own, or a load's
     }
   }
@@ -459,16 +470,8 @@ TEST_F(PersistentMapTest, AFileWhoseRowsChangeOrGoWhileItIsLoadedLeavesTheMapEqu
     int attempts = 0;
     for (; attempts < 200 && refused < 10 && !HasFatalFailure(); ++attempts) {
       SCOPED_TRACE(attempts);
-      const std::string message = errorOf([&] { map.load(path("changing.db")); });
-      if (message != "(no error)") {
-        ++refused;
-        EXPECT_NE(message.find(path("changing.db") + "': it changed while it was loaded"), std::string::npos)
-            << message;
-      }
-      const std::string copy = path("copy.db");  // the database is locked
-      map.save(copy);
-      expectSameFrames(framesOf(copy), framesOf(recognizer));
-      fs::remove(copy);
+      if (refusedAsChanged(map, path("changing.db"))) ++refused;
+      expectDatabaseHoldsTheMap(map, recognizer);
     }
     done = true;
     writer.join();
