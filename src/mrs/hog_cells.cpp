@@ -33,14 +33,14 @@ HogCells::HogCells(const DescriptorParams& geometry)
   const HogFrontEnd hog(geometry);
   bins_ = geometry.hog_bins;
   group_width_ = (bins_ + kOrientationGroups - 1) / kOrientationGroups;
-  groups_ = (bins_ + group_width_ - 1) / group_width_;
-  std::vector<int> members(static_cast<std::size_t>(hog.cellsX() * hog.cellsY() * groups_), 0);
+  const int groups = (bins_ + group_width_ - 1) / group_width_;
+  std::vector<int> members(static_cast<std::size_t>(hog.cellsX() * hog.cellsY() * groups), 0);
   // Histograms lie in the descriptor in OpenCV's order (HogFrontEnd::offset).
   for (int bx = 0; bx < hog.blocksX(); ++bx) {
     for (int by = 0; by < hog.blocksY(); ++by) {
       for (int cx = 0; cx < 2; ++cx) {
         for (int cy = 0; cy < 2; ++cy) {
-          const Histogram histogram{hog.offset(bx, by, cx, cy), ((bx + cx) * hog.cellsY() + by + cy) * groups_};
+          const Histogram histogram{hog.offset(bx, by, cx, cy), ((bx + cx) * hog.cellsY() + by + cy) * groups};
           histograms_.push_back(histogram);
           for (int bin = 0; bin < bins_; ++bin) {
             ++members[static_cast<std::size_t>(histogram.first_cell_byte + bin / group_width_)];

@@ -314,12 +314,6 @@ void MapDatabase::convertToCurrentFormat() {
   format_version_ = kFormatVersion;
 }
 
-void MapDatabase::checkDescriptors(const std::vector<StoredFrame>& frames) const {
-  for (const StoredFrame& frame : frames) {
-    requireDescriptorBytes(frame.descriptor, descriptor_bytes_, "a stored descriptor");
-  }
-}
-
 void MapDatabase::insertFrames(const FrameSource& source) {
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) VALUES (?, ?, ?, ?)", -1,
@@ -340,8 +334,7 @@ void MapDatabase::insertFrames(const FrameSource& source) {
 }
 
 void MapDatabase::append(const std::vector<StoredFrame>& frames) {
-  checkDescriptors(frames);  // All of them before the transaction begins.
-  execute("BEGIN IMMEDIATE");
+  execute("BEGIN IMMEDIATE");  // insertFrames checks each descriptor: a bad one rolls the batch back.
   try {
     insertFrames([&](const auto& insert) {
       for (const StoredFrame& frame : frames) insert(frame);

@@ -40,7 +40,6 @@ class HogCells : public CompactCells {
   std::vector<Histogram> histograms_;
   int bins_ = 0;
   int group_width_ = 0;  ///< Neighbouring bins per group (the last group may have fewer).
-  int groups_ = 0;
   std::vector<float> scale_;  ///< Per cell byte: 1 / the descriptor bytes pooled into it.
 };
 

@@ -164,8 +164,8 @@ class MapDatabase {
   void checkMetadata(bool params_given);
   /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
   void convertToCurrentFormat();
-  void checkDescriptors(const std::vector<StoredFrame>& frames) const;
-  /// Inserts the frames of `source` inside a transaction the caller has begun.
+  /// Inserts the frames of `source` inside a transaction the caller has begun; throws
+  /// std::invalid_argument for a descriptor that is not of this map's size.
   void insertFrames(const FrameSource& source);
 
   std::string path_;
