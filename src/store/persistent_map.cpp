@@ -35,16 +35,6 @@ MapDatabaseError changedWhileLoaded(const std::string& path) {
   return MapDatabaseError("map database '" + path + "': it changed while it was loaded; load it again");
 }
 
-/// Hands one frame to the recognizer, which must take it (the caller checked the capacity).
-void admit(PlaceRecognizer& recognizer, const cv::Mat& descriptor, Stamp stamp) {
-  FrameAdmission admission = recognizer.addDescriptor(descriptor, stamp);
-  if (admission == FrameAdmission::kPendingFull) {
-    recognizer.flush();  // Another thread held the map for a moment: wait for it instead of dropping.
-    admission = recognizer.addDescriptor(descriptor, stamp);
-  }
-  if (admission != FrameAdmission::kAdmitted) throw std::logic_error("the map refused a frame it had room for");
-}
-
 }  // namespace
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(recognizer) {}
@@ -55,14 +45,13 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
   if (recognizer_.size() + recognizer_.pending() > 0) {
     throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
   }
-  requireCapacity(recognizer_, path, database_->size());
-  // Streamed, not read into memory first: a million-frame map would be held twice. Its size is known,
-  // so the map is allocated once, with nothing copied as it grows.
-  recognizer_.reserve(static_cast<int>(database_->size()));
-  database_->forEachFrame([&](const StoredFrame& frame) {
-    admit(recognizer_, frame.descriptor.clone(), frame.stamp);  // The row's bytes live until the next row.
-  });
-  recognizer_.flush();
+  const std::int64_t frames = database_->size();
+  requireCapacity(recognizer_, path, frames);
+  // Streamed into a map built aside, as load() builds one: a million-frame map is not held twice, and
+  // its size is known, so it is allocated once (with room for the camera's next frames).
+  PlaceRecognizer::PreparedMap map = recognizer_.prepareMap(static_cast<int>(frames));
+  database_->forEachFrame([&](const StoredFrame& frame) { map.append(frame.descriptor, frame.stamp); });
+  recognizer_.install(std::move(map));
   writer_ = std::make_unique<MapWriter>(*database_, policy);
 }
 
