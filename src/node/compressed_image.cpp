@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include <opencv2/imgproc.hpp>
+
 #include "mrs_vpr/image_codecs.hpp"
 
 namespace mrs_vpr {
@@ -88,6 +90,16 @@ cv::Size pngSize(const std::vector<std::uint8_t>& data) {
 
 bool isDescribable(int type) { return type == CV_8UC1 || type == CV_16UC1 || type == CV_8UC3 || type == CV_8UC4; }
 
+/// The encoding the image had before it was compressed: "bayer_rggb8" of "bayer_rggb8; png compressed ",
+/// empty when the format does not say (cv_bridge's "jpeg").
+std::string originalEncoding(const std::string& format) {
+  const std::size_t separator = format.find(';');
+  if (separator == std::string::npos) return "";
+  const std::string before = format.substr(0, separator);
+  const std::size_t begin = before.find_first_not_of(" \t");
+  return begin == std::string::npos ? "" : before.substr(begin, before.find_last_not_of(" \t") - begin + 1);
+}
+
 }  // namespace
 
 CompressedCodec parseCompressedFormat(const std::string& format) {
@@ -153,7 +165,13 @@ ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
         ", which is not described (supported: " + "8-bit grey, colour or colour with alpha, 16-bit grey)");
   }
   ImageFrame frame;
-  frame.pixels = image;
+  // A Bayer camera's image is compressed as its mosaic (image_transport's publisher keeps it so).
+  const int demosaic = bayerToGreyCode(originalEncoding(lowerCase(message.format)));
+  if (demosaic >= 0 && image.channels() == 1) {
+    cv::cvtColor(image, frame.pixels, demosaic);
+  } else {
+    frame.pixels = image;
+  }
   frame.order = ChannelOrder::kBgr;  // imdecode returns blue first, whatever the publisher's encoding was
   return frame;
 }

@@ -5,24 +5,44 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include <opencv2/imgproc.hpp>
+
 namespace mrs_vpr {
 namespace node {
 namespace {
+
+/// Pixels that the descriptor reads as they are.
+constexpr int kAsTheyAre = -1;
 
 struct EncodingInfo {
   const char* name;
   int bytes_per_pixel;
   ChannelOrder order;
   int cv_type;
+  /// The cv::cvtColor code that makes grey of the rest: a camera's raw mosaic or its YUV.
+  int to_grey = kAsTheyAre;
 };
 
-const std::array<EncodingInfo, 6> kEncodings{{
+const std::array<EncodingInfo, 16> kEncodings{{
     {"mono8", 1, ChannelOrder::kBgr, CV_8UC1},
     {"mono16", 2, ChannelOrder::kBgr, CV_16UC1},
     {"bgr8", 3, ChannelOrder::kBgr, CV_8UC3},
     {"rgb8", 3, ChannelOrder::kRgb, CV_8UC3},
     {"bgra8", 4, ChannelOrder::kBgr, CV_8UC4},
     {"rgba8", 4, ChannelOrder::kRgb, CV_8UC4},
+    // What many cameras' drivers publish as image_raw: demosaiced straight to grey, which is all that
+    // the front ends read, so that no image_proc node is needed in front of this one.
+    {"bayer_rggb8", 1, ChannelOrder::kBgr, CV_8UC1, cv::COLOR_BayerRGGB2GRAY},
+    {"bayer_bggr8", 1, ChannelOrder::kBgr, CV_8UC1, cv::COLOR_BayerBGGR2GRAY},
+    {"bayer_gbrg8", 1, ChannelOrder::kBgr, CV_8UC1, cv::COLOR_BayerGBRG2GRAY},
+    {"bayer_grbg8", 1, ChannelOrder::kBgr, CV_8UC1, cv::COLOR_BayerGRBG2GRAY},
+    {"bayer_rggb16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerRGGB2GRAY},
+    {"bayer_bggr16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerBGGR2GRAY},
+    {"bayer_gbrg16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerGBRG2GRAY},
+    {"bayer_grbg16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerGRBG2GRAY},
+    // USB cameras (usb_cam): "yuv422" is UYVY, "yuv422_yuy2" YUYV; grey is their luma.
+    {"yuv422", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_UYVY},
+    {"yuv422_yuy2", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_YUY2},
 }};
 
 bool hostIsBigEndian() {
@@ -52,6 +72,12 @@ const EncodingInfo* findEncoding(const std::string& encoding) {
 }
 
 }  // namespace
+
+int bayerToGreyCode(const std::string& encoding) {
+  const EncodingInfo* info = findEncoding(encoding);
+  const bool bayer = info != nullptr && encoding.rfind("bayer_", 0) == 0;
+  return bayer ? info->to_grey : kAsTheyAre;
+}
 
 bool isSupportedEncoding(const std::string& encoding) { return findEncoding(encoding) != nullptr; }
 
@@ -95,11 +121,13 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
   // other byte order is copied.
   const cv::Mat shared(static_cast<int>(message.height), static_cast<int>(message.width), info->cv_type,
                        const_cast<std::uint8_t*>(message.data.data()), message.step);
-  if (CV_MAT_DEPTH(info->cv_type) == CV_16U && (message.is_bigendian != 0) != hostIsBigEndian()) {
-    frame.pixels = swapBytes(shared);
+  const bool swapped = CV_MAT_DEPTH(info->cv_type) == CV_16U && (message.is_bigendian != 0) != hostIsBigEndian();
+  const cv::Mat pixels = swapped ? swapBytes(shared) : shared;
+  if (info->to_grey != kAsTheyAre) {
+    cv::cvtColor(pixels, frame.pixels, info->to_grey);  // A grey copy: the message is not kept.
   } else {
-    frame.pixels = shared;
-    frame.owner = tracked_object;
+    frame.pixels = pixels;
+    if (!swapped) frame.owner = tracked_object;
   }
   return frame;
 }

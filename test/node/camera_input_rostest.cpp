@@ -1,6 +1,6 @@
 // Drives the nodes of camera_input.test: one route published raw, as JPEG and as PNG (the
-// `compressed` transport), the answers compared, and bad compressed frames counted; bursts of large
-// frames into a one-frame queue, every frame counted.
+// `compressed` transport) and as a Bayer camera's raw mosaics, the answers compared, and bad
+// compressed frames counted; bursts of large frames into a one-frame queue, every frame counted.
 
 #include <gtest/gtest.h>
 
@@ -15,6 +15,7 @@
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/synthetic_route.hpp"
+#include "node/camera_mosaics.hpp"
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
@@ -53,12 +54,13 @@ class CompressedTransportTest : public ::testing::Test {
     }
   }
 
-  /// Publishes the reference traversal on the three topics and waits until every map holds it.
+  /// Publishes the reference traversal on the four topics and waits until every map holds it.
   void mapReference() {
     ros::Publisher raw = nh_.advertise<sensor_msgs::Image>("/camera/raw", 1000);
     ros::Publisher jpeg = nh_.advertise<sensor_msgs::CompressedImage>("/camera/jpeg/compressed", 1000);
     ros::Publisher png = nh_.advertise<sensor_msgs::CompressedImage>("/camera/png/compressed", 1000);
-    for (const ros::Publisher& publisher : {raw, jpeg, png}) {
+    ros::Publisher bayer = nh_.advertise<sensor_msgs::Image>("/camera/bayer", 1000);
+    for (const ros::Publisher& publisher : {raw, jpeg, png, bayer}) {
       ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << publisher.getTopic() << " has no subscriber";
     }
     for (std::size_t i = 0; i < route_.reference.size(); ++i) {
@@ -66,6 +68,7 @@ class CompressedTransportTest : public ::testing::Test {
       raw.publish(imageMessage(route_.reference[i], stamp));
       jpeg.publish(toCompressed(route_.reference[i], stamp, "jpeg"));
       png.publish(toCompressed(route_.reference[i], stamp, "png"));
+      bayer.publish(bayerMessage(route_.reference[i], stamp));
       ros::WallDuration(0.002).sleep();
     }
     const auto frames = static_cast<std::uint32_t>(route_.reference.size());
@@ -84,17 +87,26 @@ class CompressedTransportTest : public ::testing::Test {
     }
   }
 
-  mrs_vpr::QuerySequence::Response query(const std::string& node, int first, const std::string& method) {
+  /// What a camera with an RGGB colour filter publishes as image_raw for the view `bgr`.
+  static sensor_msgs::Image bayerMessage(const cv::Mat& bgr, double stamp) {
+    return imageMessage(mrs_vpr::node::testing::mosaicOf(bgr, "rggb"), stamp, "bayer_rggb8");
+  }
+
+  /// Asks `node` about kQueryLength query frames from `first`, as bgr8 images or as Bayer mosaics.
+  mrs_vpr::QuerySequence::Response query(const std::string& node, int first, const std::string& method,
+                                         bool mosaics = false) {
     mrs_vpr::QuerySequence srv;
     for (int i = first; i < first + kQueryLength; ++i) {
-      srv.request.images.push_back(imageMessage(route_.query[static_cast<std::size_t>(i)], 9000.0 + i * kFramePeriod));
+      const cv::Mat& frame = route_.query[static_cast<std::size_t>(i)];
+      const double stamp = 9000.0 + i * kFramePeriod;
+      srv.request.images.push_back(mosaics ? bayerMessage(frame, stamp) : imageMessage(frame, stamp));
     }
     srv.request.method = method;
     EXPECT_TRUE(mrs_vpr::testing_support::callService(node + "/query", srv)) << node;
     return srv.response;
   }
 
-  const std::vector<std::string> kNodes{"/mrs_vpr_raw", "/jpeg/mrs_vpr", "/mrs_vpr_png"};
+  const std::vector<std::string> kNodes{"/mrs_vpr_raw", "/jpeg/mrs_vpr", "/mrs_vpr_png", "/mrs_vpr_bayer"};
   const mrs_vpr::SyntheticRoute& route_ = mrs_vpr::testing_support::standardRouteImages();
   static bool mapped_;
   ros::NodeHandle nh_;
@@ -128,6 +140,13 @@ TEST_F(CompressedTransportTest, CompressedMapsGiveTheRawMapsAnswers) {
       EXPECT_EQ(jpeg.reference_index, raw.reference_index);
       EXPECT_EQ(jpeg.accepted, raw.accepted);
       EXPECT_NEAR(jpeg.confidence, raw.confidence, 0.1 * raw.confidence + 0.5);
+
+      // A Bayer camera's mosaics, mapped and asked about as they come: demosaiced to nearly the
+      // same grey, so the same place.
+      const auto bayer = query("/mrs_vpr_bayer", first, method, true);
+      ASSERT_TRUE(bayer.success) << bayer.message;
+      EXPECT_NEAR(bayer.reference_index, raw.reference_index, 2);
+      EXPECT_EQ(bayer.accepted, raw.accepted) << "confidence " << bayer.confidence << " against " << raw.confidence;
     }
   }
 }

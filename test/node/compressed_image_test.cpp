@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/node/compressed_image.hpp"
+#include "node/camera_mosaics.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -103,6 +104,20 @@ TEST(CompressedImage, KeepsGreyDepthAndAlpha) {
   cv::Mat bgra;
   cv::cvtColor(texturedBgr(), bgra, cv::COLOR_BGR2BGRA);
   EXPECT_EQ(decodeCompressedImage(compress(bgra, "png", "bgra8")).image().type(), CV_8UC4);
+}
+
+TEST(CompressedImage, ACompressedBayerMosaicBecomesTheGreyOfItsColours) {
+  const cv::Mat bgr = testing::redAcrossBlueDown();
+  const cv::Mat mosaic = testing::mosaicOf(bgr, "gbrg");
+  // image_transport's publisher compresses a mosaic as it is: "bayer_gbrg8; png compressed ".
+  sensor_msgs::CompressedImage message = compress(mosaic, "png", "bayer_gbrg8");
+  message.format = "bayer_gbrg8; png compressed ";
+  const ImageFrame frame = decodeCompressedImage(message);
+  ASSERT_EQ(frame.image().type(), CV_8UC1);
+  EXPECT_LT(testing::interiorDifference(frame.image(), testing::greyOf(bgr)), 1.5);
+  // A format that names no encoding gives the stored pixels.
+  message.format = "png";
+  EXPECT_EQ(cv::norm(decodeCompressedImage(message).image(), mosaic, cv::NORM_INF), 0.0);
 }
 
 TEST(CompressedImage, ReadsTheSizeFromTheHeader) {

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/node/image_conversion.hpp"
+#include "node/camera_mosaics.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -116,12 +117,68 @@ TEST(ImageConversion, RgbOrderGivesTheSameDescriptorAsBgr) {
             0.0);
 }
 
+TEST(ImageConversion, BayerMosaicsBecomeTheGreyOfTheirColours) {
+  const cv::Mat bgr = testing::redAcrossBlueDown();
+  const cv::Mat grey = testing::greyOf(bgr);
+  for (const std::string pattern : {"rggb", "bggr", "gbrg", "grbg"}) {
+    const std::string encoding = "bayer_" + pattern + "8";
+    const cv::Mat mosaic = testing::mosaicOf(bgr, pattern);
+    const ImageFrame frame = fromImageMessage(makeImage(mosaic, encoding));
+    ASSERT_EQ(frame.image().type(), CV_8UC1) << encoding;
+    EXPECT_LT(testing::interiorDifference(frame.image(), grey), 1.5) << encoding;
+    // Read as the pattern with red and blue swapped, the grey is far off: the pattern named is the one
+    // demosaiced.
+    std::string swapped = pattern;
+    std::swap(swapped[swapped.find('r')], swapped[swapped.find('b')]);
+    const ImageFrame wrong = fromImageMessage(makeImage(mosaic, "bayer_" + swapped + "8"));
+    EXPECT_GT(testing::interiorDifference(wrong.image(), grey), 8.0) << encoding << " read as " << swapped;
+  }
+}
+
+TEST(ImageConversion, A16BitBayerMosaicOfEitherByteOrderBecomesDeepGrey) {
+  const cv::Mat bgr = testing::redAcrossBlueDown();
+  cv::Mat mosaic16;
+  testing::mosaicOf(bgr, "rggb").convertTo(mosaic16, CV_16UC1, 256.0);
+  cv::Mat grey16;
+  testing::greyOf(bgr).convertTo(grey16, CV_16UC1, 256.0);
+  sensor_msgs::Image message = makeImage(mosaic16, "bayer_rggb16");
+  const ImageFrame little = fromImageMessage(message);
+  ASSERT_EQ(little.image().type(), CV_16UC1);
+  EXPECT_LT(testing::interiorDifference(little.image(), grey16), 1.5 * 256);
+  // The same values sent big-endian.
+  for (std::size_t i = 0; i + 1 < message.data.size(); i += 2) std::swap(message.data[i], message.data[i + 1]);
+  message.is_bigendian = 1;
+  EXPECT_EQ(cv::norm(fromImageMessage(message).image(), little.image(), cv::NORM_INF), 0.0);
+}
+
+TEST(ImageConversion, Yuv422BecomesItsLuma) {
+  // Two pixels a group of four bytes: U Y0 V Y1 (yuv422, UYVY) or Y0 U Y1 V (yuv422_yuy2, YUYV).
+  sensor_msgs::Image message;
+  message.width = 4;
+  message.height = 1;
+  message.step = 8;
+  message.encoding = "yuv422";
+  message.data = {100, 10, 200, 20, 100, 30, 200, 40};
+  const cv::Mat uyvy = fromImageMessage(message).image();
+  ASSERT_EQ(uyvy.type(), CV_8UC1);
+  EXPECT_EQ(cv::norm(uyvy, cv::Mat_<uchar>({1, 4}, {10, 20, 30, 40}), cv::NORM_INF), 0.0) << uyvy;
+  message.encoding = "yuv422_yuy2";
+  message.data = {10, 100, 20, 200, 30, 100, 40, 200};
+  const cv::Mat yuyv = fromImageMessage(message).image();
+  EXPECT_EQ(cv::norm(yuyv, uyvy, cv::NORM_INF), 0.0) << yuyv;
+  message.step = 7;  // fewer bytes than two a pixel
+  EXPECT_NE(errorOf(message).find("step 7 is less than width 4 x 2 bytes of yuv422_yuy2"), std::string::npos)
+      << errorOf(message);
+}
+
 TEST(ImageConversion, RejectsUnsupportedEncodingsByName) {
   EXPECT_TRUE(isSupportedEncoding("rgba8"));
-  EXPECT_FALSE(isSupportedEncoding("bayer_rggb8"));
-  const std::string bayer = errorOf(makeImage(cv::Mat(8, 8, CV_8UC1, cv::Scalar(1)), "bayer_rggb8"));
-  EXPECT_NE(bayer.find("unsupported encoding 'bayer_rggb8'"), std::string::npos) << bayer;
-  EXPECT_NE(bayer.find("mono8"), std::string::npos) << bayer;
+  EXPECT_TRUE(isSupportedEncoding("bayer_rggb8"));
+  EXPECT_FALSE(isSupportedEncoding("nv21"));
+  const std::string nv21 = errorOf(makeImage(cv::Mat(8, 8, CV_8UC1, cv::Scalar(1)), "nv21"));
+  EXPECT_NE(nv21.find("unsupported encoding 'nv21'"), std::string::npos) << nv21;
+  EXPECT_NE(nv21.find("mono8"), std::string::npos) << nv21;
+  EXPECT_NE(nv21.find("bayer_grbg16"), std::string::npos) << nv21;
   const std::string float3 = errorOf(makeImage(cv::Mat(8, 8, CV_32FC3, cv::Scalar(1, 1, 1)), "32FC3"));
   EXPECT_NE(float3.find("'32FC3'"), std::string::npos) << float3;
 }

@@ -219,9 +219,9 @@ TEST_F(NodeTest, BadRequestsAreReportedAndTheNodeKeepsServing) {
   expectFailure(float_image, "images[5]");
   expectFailure(float_image, "unsupported encoding '32FC3'");
 
-  auto bayer = explicitQuery(100, 20, "seqslam");
-  bayer.request.images[0] = imageMessage(cv::Mat(64, 128, CV_8UC1, cv::Scalar(9)), 1.0, "bayer_rggb8");
-  expectFailure(bayer, "unsupported encoding 'bayer_rggb8'");
+  auto semi_planar = explicitQuery(100, 20, "seqslam");
+  semi_planar.request.images[0] = imageMessage(cv::Mat(96, 128, CV_8UC1, cv::Scalar(9)), 1.0, "nv21");
+  expectFailure(semi_planar, "unsupported encoding 'nv21'");
 
   auto one_image = explicitQuery(100, 1, "mrs");
   expectFailure(one_image, "at least 2 images");

@@ -22,17 +22,24 @@ struct ImageFrame {
   const cv::Mat& image() const { return pixels; }
 };
 
-/// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8.
+/// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8, the
+/// Bayer mosaics bayer_{rggb,bggr,gbrg,grbg}{8,16}, and yuv422 (UYVY) and yuv422_yuy2 (YUYV).
 bool isSupportedEncoding(const std::string& encoding);
 
-/// The encodings accepted, for messages: "mono8, mono16, bgr8, rgb8, bgra8, rgba8".
+/// The encodings accepted, for messages: "mono8, mono16, bgr8, ...".
 std::string supportedEncodings();
 
+/// For a Bayer encoding ("bayer_rggb8", ...), the cv::cvtColor code that demosaics it to grey; -1 for
+/// any other encoding. A compressed Bayer image decodes to its mosaic, which needs it as well.
+int bayerToGreyCode(const std::string& encoding);
+
 /**
- * Converts an image message without changing its encoding. `tracked_object` keeps the message's
- * memory alive while the returned frame shares it (pass the message's shared pointer, or nullptr when
- * the caller outlives the frame). Throws std::invalid_argument, with a message naming the problem,
- * for an empty image, an unsupported encoding or a data array too short for its size and step.
+ * Converts an image message. Grey and colour images keep their encoding, and `tracked_object` keeps
+ * the message's memory alive while the returned frame shares it (pass the message's shared pointer,
+ * or nullptr when the caller outlives the frame). A Bayer mosaic or YUV image becomes a grey copy (of
+ * the mosaic's depth), the only image the front ends read. Throws std::invalid_argument, with a
+ * message naming the problem, for an empty image, an unsupported encoding or a data array too short
+ * for its size and step.
  */
 ImageFrame fromImageMessage(const sensor_msgs::Image& message,
                             const boost::shared_ptr<void const>& tracked_object = nullptr);
