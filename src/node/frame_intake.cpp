@@ -1,8 +1,9 @@
 // The node's frames: image and compressed-image callbacks, their stamps, the keyframe policies (time,
-// stride, travel on tf, appearance change), and the counts of frames skipped, dropped or missing.
+// stride, travel on tf, appearance change), the counts of frames skipped, dropped or missing, and a silent camera.
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <exception>
 #include <mutex>
 #include <optional>
@@ -36,6 +37,7 @@ void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::Compressed
 template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
+  camera_silence_.imageArrived(steadySeconds());
   countMissingFrames(header.seq, header.stamp.toSec());
   const std::optional<Stamp> stamp = frameStamp(header);
   if (!stamp) return;
@@ -217,6 +219,37 @@ void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq, double stamp) {
 
 std::string PlaceRecognitionNode::imageTopic() const {
   return compressed_image_sub_ ? compressed_image_sub_.getTopic() : image_sub_.getTopic();
+}
+
+void PlaceRecognitionNode::cameraWatchCallback(const ros::WallTimerEvent&) {
+  const double now = steadySeconds();
+  switch (camera_silence_.check(now)) {
+    case CameraSilence::Change::kSilent:
+      ROS_WARN("%s", cameraSilenceWarning(now).c_str());
+      break;
+    case CameraSilence::Change::kImagesBack:
+      ROS_INFO("mrs_vpr: images arrive on %s again", imageTopic().c_str());
+      break;
+    case CameraSilence::Change::kNone:
+      break;
+  }
+}
+
+std::string PlaceRecognitionNode::cameraSilenceWarning(double now) const {
+  const std::string topic = imageTopic();
+  const std::string seconds = std::to_string(std::lround(camera_silence_.silentFor(now)));
+  std::string warning = "mrs_vpr: no image has arrived on " + topic +
+                        (camera_silence_.anyImage() ? " for " + seconds + " s"
+                                                    : " in the " + seconds + " s since the node started");
+  const std::uint32_t publishers =
+      compressed_image_sub_ ? compressed_image_sub_.getNumPublishers() : image_sub_.getNumPublishers();
+  if (publishers == 0) {
+    return warning + ": no node publishes it (check the name with `rostopic list`, and the launch file's image:= "
+                     "argument); the map grows, and continuous mode asks, only as images come";
+  }
+  return warning + ": " + std::to_string(publishers) +
+         (publishers == 1 ? " publisher is connected but sends" : " publishers are connected but send") +
+         " nothing (check with `rostopic hz " + topic + "`)";
 }
 
 }  // namespace node

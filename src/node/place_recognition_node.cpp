@@ -75,6 +75,9 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   } else {
     image_sub_ = image_transport_.subscribe("image", queue_size, &PlaceRecognitionNode::imageCallback, this, hints);
   }
+  camera_silence_.listenFrom(steadySeconds());  // After the map: loading a large one takes a while.
+  camera_watch_timer_ =
+      info_nh_.createWallTimer(ros::WallDuration(1.0), &PlaceRecognitionNode::cameraWatchCallback, this);
 
   query_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &query_queue_);
   query_spinner_->start();
@@ -106,6 +109,7 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   compressed_image_sub_.shutdown();
   auto_query_timer_.stop();
   map_info_timer_.stop();
+  camera_watch_timer_.stop();
   query_srv_.shutdown();
   reset_srv_.shutdown();
   save_map_srv_.shutdown();

@@ -1,6 +1,7 @@
 // Drives the nodes of camera_input.test: one route published raw, as JPEG and as PNG (the
 // `compressed` transport) and as a Bayer camera's raw mosaics, the answers compared, and bad
-// compressed frames counted; bursts of large frames into a one-frame queue, every frame counted.
+// compressed frames counted; bursts of large frames into a one-frame queue, every frame counted; a
+// node whose topic nobody publishes, warning of it, and of a camera that stopped.
 
 #include <gtest/gtest.h>
 
@@ -10,6 +11,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 #include <ros/ros.h>
+#include <rosgraph_msgs/Log.h>
 #include <sensor_msgs/CompressedImage.h>
 
 #include "mrs_vpr/MapInfo.h"
@@ -22,6 +24,7 @@
 #include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
+#include "support/topic_inbox.hpp"
 
 namespace {
 
@@ -40,6 +43,41 @@ sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, cons
   message.format = "bgr8; " + codec + " compressed bgr8";
   cv::imencode(codec == "jpeg" ? ".jpg" : ".png", bgr, message.data);
   return message;
+}
+
+TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesAndOfACameraThatStopped) {
+  // The node starts 3 s after the test (camera_input.test), and this test runs first, so that the
+  // node's first warning, 5 s later, comes after this subscription to /rosout is connected.
+  ros::NodeHandle nh;
+  const std::string node = "/mrs_vpr_no_camera";
+  mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
+  const auto logged = [&](std::uint8_t level, const std::string& start, const std::string& part, double timeout) {
+    rosgraph_msgs::Log found;
+    return log.waitFor(
+        [&](const rosgraph_msgs::Log& m) {
+          return m.name == node && m.level == level && m.msg.rfind(start, 0) == 0 && m.msg.find(part) != std::string::npos;
+        },
+        found, timeout);
+  };
+  EXPECT_TRUE(logged(rosgraph_msgs::Log::WARN, "mrs_vpr: no image has arrived on /camera/none in the",
+                     "no node publishes it (check the name with `rostopic list`", 30.0))
+      << "no warning of a topic nobody publishes";
+
+  ros::Publisher camera = nh.advertise<sensor_msgs::Image>("/camera/none", 10);
+  ASSERT_TRUE(waitForSubscribers(camera, 1, 30.0));
+  mrs_vpr::SyntheticRouteParams route_params;
+  route_params.reference_frames = 10;
+  route_params.query_frames = 2;
+  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+  for (std::size_t i = 0; i < route.reference.size(); ++i) {
+    camera.publish(imageMessage(route.reference[i], 100.0 + static_cast<double>(i) * kFramePeriod));
+    ros::WallDuration(kFramePeriod).sleep();
+  }
+  EXPECT_TRUE(logged(rosgraph_msgs::Log::INFO, "mrs_vpr: images arrive on /camera/none again", "", 10.0));
+  // The camera stops; its publisher stays connected.
+  EXPECT_TRUE(logged(rosgraph_msgs::Log::WARN, "mrs_vpr: no image has arrived on /camera/none for ",
+                     "1 publisher is connected but sends nothing (check with `rostopic hz /camera/none`)", 20.0))
+      << "no warning of a camera that stopped";
 }
 
 class CompressedTransportTest : public ::testing::Test {

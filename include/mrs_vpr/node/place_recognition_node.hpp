@@ -21,6 +21,7 @@
 #include "mrs_vpr/QuerySequence.h"
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/node/camera_silence.hpp"
 #include "mrs_vpr/node/debug_image_publisher.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/node/keyframe_policy.hpp"
@@ -123,6 +124,10 @@ class PlaceRecognitionNode {
   void reportWriteErrors();
   void autoQueryCallback(const ros::WallTimerEvent& event);
   void mapInfoCallback(const ros::WallTimerEvent& event);
+  /// Warns once when no image has arrived for a while (camera_silence.hpp), and says when images come again.
+  void cameraWatchCallback(const ros::WallTimerEvent& event);
+  /// The warning of a silence at `now`: how long, and what the topic's publishers suggest.
+  std::string cameraSilenceWarning(double now) const;
   /// Moves the keyframes parked during a query into the map; false, logged, when memory ran out (a
   /// timer callback must not throw: roscpp would end the node). Without `wait`, also false at once
   /// while a query holds the map (the frames then wait for the next flush).
@@ -155,6 +160,7 @@ class PlaceRecognitionNode {
   KeyframePolicy keyframe_policy_;
   TravelPolicy travel_policy_;
   SequenceGaps sequence_gaps_;  // frames lost before the image callback
+  CameraSilence camera_silence_;  // thread-safe: outside state_mutex_
   StandingFrames standing_frames_;  // frames too similar to a recent keyframe, one per ~auto_query_period
   std::string camera_frame_id_;
   double frame_time_total_ms_ = 0.0;  // image callback cost of the keyframes, for ~map_info
@@ -211,6 +217,7 @@ class PlaceRecognitionNode {
   ros::ServiceServer load_map_srv_;
   ros::WallTimer auto_query_timer_;
   ros::WallTimer map_info_timer_;
+  ros::WallTimer camera_watch_timer_;
   std::unique_ptr<ros::AsyncSpinner> query_spinner_;
   std::unique_ptr<ros::AsyncSpinner> info_spinner_;
   std::unique_ptr<MasterWatch> master_watch_;  // re-registers everything above with a restarted master
