@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "mrs_vpr/image_codecs.hpp"
+#include "mrs_vpr/node/compressed_format.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -90,16 +91,6 @@ cv::Size pngSize(const std::vector<std::uint8_t>& data) {
 
 bool isDescribable(int type) { return type == CV_8UC1 || type == CV_16UC1 || type == CV_8UC3 || type == CV_8UC4; }
 
-/// The encoding the image had before it was compressed: "bayer_rggb8" of "bayer_rggb8; png compressed ",
-/// empty when the format does not say (cv_bridge's "jpeg").
-std::string originalEncoding(const std::string& format) {
-  const std::size_t separator = format.find(';');
-  if (separator == std::string::npos) return "";
-  const std::string before = format.substr(0, separator);
-  const std::size_t begin = before.find_first_not_of(" \t");
-  return begin == std::string::npos ? "" : before.substr(begin, before.find_last_not_of(" \t") - begin + 1);
-}
-
 }  // namespace
 
 CompressedCodec parseCompressedFormat(const std::string& format) {
@@ -166,7 +157,7 @@ ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
   }
   ImageFrame frame;
   // A Bayer camera's image is compressed as its mosaic (image_transport's publisher keeps it so).
-  const int demosaic = bayerToGreyCode(originalEncoding(lowerCase(message.format)));
+  const int demosaic = bayerToGreyCode(compressedMosaicEncoding(message.format));
   if (demosaic >= 0 && image.channels() == 1) {
     cv::cvtColor(image, frame.pixels, demosaic);
   } else {

@@ -108,6 +108,11 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
                                 std::to_string(message.width) + " x " +
                                 std::to_string(info->bytes_per_pixel) + " bytes of " + message.encoding);
   }
+  const auto value_bytes = static_cast<std::uint32_t>(CV_ELEM_SIZE1(info->cv_type));
+  if (message.step % value_bytes != 0) {
+    throw std::invalid_argument("step " + std::to_string(message.step) + " is not a whole number of the " +
+                                std::to_string(value_bytes) + "-byte values of " + message.encoding);
+  }
   const std::size_t needed = static_cast<std::size_t>(message.step) * message.height;
   if (message.data.size() < needed) {
     throw std::invalid_argument("data holds " + std::to_string(message.data.size()) +

@@ -2,6 +2,7 @@
 // on the first bag read, so that a tool run that reads no bag starts without them.
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <rosbag/bag.h>
@@ -13,6 +14,7 @@
 #include "bag_reader_table.hpp"
 #include "image_message_copy.hpp"
 #include "mrs_vpr/image_codecs.hpp"
+#include "mrs_vpr/node/compressed_format.hpp"
 
 namespace mrs_vpr {
 namespace bag {
@@ -52,8 +54,15 @@ void checkTopic(const rosbag::Bag& bag, const std::string& path, const std::stri
                            "' (it has: " + (listing.empty() ? "nothing" : listing) + ")");
 }
 
-/// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8.
-/// The caller names the message in the error.
+/// The name of a decoded Bayer camera's mosaic of `depth`: the format's encoding with its bits per value.
+std::string mosaicEncoding(const std::string& format_encoding, int depth) {
+  const std::string pattern = format_encoding.substr(0, format_encoding.find_first_of("0123456789"));
+  return pattern + (depth == CV_16U ? "16" : "8");
+}
+
+/// Decodes as cv_bridge::toCvCopy does: the stream's own channels, named mono8/mono16, bgr8 or bgra8,
+/// or, for a Bayer camera's mosaic, its Bayer encoding, as the node reads it. The caller names the
+/// message in the error.
 sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compressed) {
   const std::vector<std::uint8_t>& data = compressed->data;
   if (data.empty()) throw std::runtime_error("the compressed image holds no data (0 bytes)");
@@ -75,6 +84,10 @@ sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compres
   if (image.empty()) {
     throw std::runtime_error("cannot decode the compressed image (format '" + compressed->format + "', " +
                              std::to_string(data.size()) + " bytes): not an image OpenCV reads");
+  }
+  const std::string mosaic = node::compressedMosaicEncoding(compressed->format);
+  if (!mosaic.empty() && (image.type() == CV_8UC1 || image.type() == CV_16UC1)) {
+    return imageMessageOf(image, mosaicEncoding(mosaic, image.depth()), compressed->header);
   }
   switch (image.type()) {
     case CV_8UC1:

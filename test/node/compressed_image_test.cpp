@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "mrs_vpr/node/compressed_format.hpp"
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "node/camera_mosaics.hpp"
 
@@ -115,9 +116,23 @@ TEST(CompressedImage, ACompressedBayerMosaicBecomesTheGreyOfItsColours) {
   const ImageFrame frame = decodeCompressedImage(message);
   ASSERT_EQ(frame.image().type(), CV_8UC1);
   EXPECT_LT(testing::interiorDifference(frame.image(), testing::greyOf(bgr)), 1.5);
-  // A format that names no encoding gives the stored pixels.
-  message.format = "png";
-  EXPECT_EQ(cv::norm(decodeCompressedImage(message).image(), mosaic, cv::NORM_INF), 0.0);
+  // A format that names no encoding gives the stored pixels, and so does a Bayer image that its
+  // publisher made grey before compressing it: it must not be demosaiced again.
+  for (const std::string format : {"png", "bayer_gbrg8; png compressed mono8"}) {
+    message.format = format;
+    EXPECT_EQ(cv::norm(decodeCompressedImage(message).image(), mosaic, cv::NORM_INF), 0.0) << format;
+  }
+}
+
+TEST(CompressedImage, TheFormatTellsWhetherTheImageIsABayerMosaic) {
+  EXPECT_EQ(compressedMosaicEncoding("bayer_rggb8; jpeg compressed "), "bayer_rggb8");
+  EXPECT_EQ(compressedMosaicEncoding(" BAYER_GRBG16 ; png compressed"), "bayer_grbg16");
+  EXPECT_EQ(compressedMosaicEncoding("bayer_bggr8; png compressed bayer_bggr8"), "bayer_bggr8");
+  EXPECT_EQ(compressedMosaicEncoding("bayer_bggr8; jpeg compressed bgr8"), "");
+  EXPECT_EQ(compressedMosaicEncoding("bgr8; jpeg compressed bgr8"), "");
+  EXPECT_EQ(compressedMosaicEncoding("mono8; png compressed "), "");
+  EXPECT_EQ(compressedMosaicEncoding("jpeg"), "");
+  EXPECT_EQ(compressedMosaicEncoding(""), "");
 }
 
 TEST(CompressedImage, ReadsTheSizeFromTheHeader) {

@@ -137,18 +137,21 @@ TEST(ImageConversion, BayerMosaicsBecomeTheGreyOfTheirColours) {
 
 TEST(ImageConversion, A16BitBayerMosaicOfEitherByteOrderBecomesDeepGrey) {
   const cv::Mat bgr = testing::redAcrossBlueDown();
-  cv::Mat mosaic16;
-  testing::mosaicOf(bgr, "rggb").convertTo(mosaic16, CV_16UC1, 256.0);
   cv::Mat grey16;
   testing::greyOf(bgr).convertTo(grey16, CV_16UC1, 256.0);
-  sensor_msgs::Image message = makeImage(mosaic16, "bayer_rggb16");
-  const ImageFrame little = fromImageMessage(message);
-  ASSERT_EQ(little.image().type(), CV_16UC1);
-  EXPECT_LT(testing::interiorDifference(little.image(), grey16), 1.5 * 256);
-  // The same values sent big-endian.
-  for (std::size_t i = 0; i + 1 < message.data.size(); i += 2) std::swap(message.data[i], message.data[i + 1]);
-  message.is_bigendian = 1;
-  EXPECT_EQ(cv::norm(fromImageMessage(message).image(), little.image(), cv::NORM_INF), 0.0);
+  for (const std::string pattern : {"rggb", "bggr", "gbrg", "grbg"}) {
+    const std::string encoding = "bayer_" + pattern + "16";
+    cv::Mat mosaic16;
+    testing::mosaicOf(bgr, pattern).convertTo(mosaic16, CV_16UC1, 256.0);
+    sensor_msgs::Image message = makeImage(mosaic16, encoding);
+    const ImageFrame little = fromImageMessage(message);
+    ASSERT_EQ(little.image().type(), CV_16UC1) << encoding;
+    EXPECT_LT(testing::interiorDifference(little.image(), grey16), 1.5 * 256) << encoding;
+    // The same values sent big-endian.
+    for (std::size_t i = 0; i + 1 < message.data.size(); i += 2) std::swap(message.data[i], message.data[i + 1]);
+    message.is_bigendian = 1;
+    EXPECT_EQ(cv::norm(fromImageMessage(message).image(), little.image(), cv::NORM_INF), 0.0) << encoding;
+  }
 }
 
 TEST(ImageConversion, Yuv422BecomesItsLuma) {
@@ -207,6 +210,14 @@ TEST(ImageConversion, AStepShorterThanARowOfItsEncodingIsRefused) {
   deep.step = 8;  // one byte a pixel
   EXPECT_NE(errorOf(deep).find("step 8 is less than width 8 x 2 bytes of mono16"), std::string::npos)
       << errorOf(deep);
+  // Rows of 16-bit values must start at a value: OpenCV cannot read them otherwise.
+  for (const std::string encoding : {"mono16", "bayer_rggb16"}) {
+    sensor_msgs::Image odd = makeImage(cv::Mat(4, 4, CV_16UC1, cv::Scalar(1)), encoding);
+    odd.step = 9;
+    odd.data.resize(odd.step * odd.height);
+    EXPECT_NE(errorOf(odd).find("step 9 is not a whole number of the 2-byte values of " + encoding), std::string::npos)
+        << errorOf(odd);
+  }
 }
 
 }  // namespace

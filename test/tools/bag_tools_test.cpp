@@ -125,6 +125,35 @@ TEST_F(BagToolsTest, ImagesToBagWritesIncreasingStampsAndTheEvaluatorReadsBags) 
 
 // rosbag (with roslib, rospack and Python) is a plugin loaded on the first bag read: a run that reads
 // no bag starts without it. LD_DEBUG=files makes the dynamic loader name every library it opens.
+TEST_F(BagToolsTest, ACompressedBayerMosaicIsReadAsItsBayerEncoding) {
+  // A Bayer camera's frames recorded through image_transport's compressed publisher: the mosaic as a
+  // PNG, "bayer_rggb8; png compressed ". The tools must read it as the node does: a mosaic to demosaic,
+  // not a grey image.
+  cv::Mat mosaic(48, 64, CV_8UC1);
+  cv::randu(mosaic, 0, 256);
+  const std::string bag_path = path("bayer_compressed.bag");
+  {
+    rosbag::Bag writer(bag_path, rosbag::bagmode::Write);
+    int second = 100;
+    for (const std::string format : {"bayer_rggb8; png compressed ", "bayer_rggb8; png compressed mono8", "png"}) {
+      sensor_msgs::CompressedImage compressed;
+      compressed.header.stamp = ros::Time(second++, 0);
+      compressed.format = format;
+      cv::imencode(".png", mosaic, compressed.data);
+      writer.write("/camera/image_raw/compressed", compressed.header.stamp, compressed);
+    }
+  }
+  const auto images = mrs_vpr::bag::readImages(bag_path, "/camera/image_raw/compressed", 0, 3);
+  ASSERT_EQ(images.size(), 3U);
+  EXPECT_EQ(images[0]->encoding, "bayer_rggb8");
+  EXPECT_EQ(images[1]->encoding, "mono8");  // made grey before it was compressed
+  EXPECT_EQ(images[2]->encoding, "mono8");
+  for (const auto& image : images) {
+    ASSERT_EQ(image->data.size(), mosaic.total());
+    EXPECT_TRUE(std::equal(image->data.begin(), image->data.end(), mosaic.data)) << image->encoding;
+  }
+}
+
 TEST_F(BagToolsTest, TheEvaluatorLoadsTheBagReaderOnlyWhenItReadsABag) {
   const CommandResult help = run("LD_DEBUG=files " + eval("--help"));
   ASSERT_EQ(help.status, 0) << help.err;

@@ -31,9 +31,9 @@ cv::Size compressedImageSize(const std::vector<std::uint8_t>& data, CompressedCo
 
 /**
  * Decodes a sensor_msgs/CompressedImage (jpeg or png) into a frame for DescriptorExtractor::compute:
- * CV_8UC1, CV_16UC1, CV_8UC3 (BGR) or CV_8UC4 (BGRA) as stored; a Bayer mosaic (format "bayer_rggb8;
- * png compressed ", as image_transport's publisher writes it) demosaiced to grey. Checks the format string, the stream's signature and
- * its size against DescriptorExtractor::kMaxImagePixels before decoding. Throws std::invalid_argument, with a message
+ * CV_8UC1, CV_16UC1, CV_8UC3 (BGR) or CV_8UC4 (BGRA) as stored; a Bayer mosaic (compressed_format.hpp)
+ * demosaiced to grey. Checks the format string, the stream's signature and its size against
+ * DescriptorExtractor::kMaxImagePixels before decoding. Throws std::invalid_argument, with a message
  * naming the problem, for a bad format, corrupt data or an image too large.
  */
 ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message);
