@@ -228,7 +228,7 @@ void PlaceRecognitionNode::cameraWatchCallback(const ros::WallTimerEvent&) {
       ROS_WARN("%s", cameraSilenceWarning(now).c_str());
       break;
     case CameraSilence::Change::kImagesBack:
-      ROS_INFO("mrs_vpr: images arrive on %s again", imageTopic().c_str());
+      ROS_INFO("mrs_vpr: images arrive on %s now", imageTopic().c_str());
       break;
     case CameraSilence::Change::kNone:
       break;
@@ -238,18 +238,23 @@ void PlaceRecognitionNode::cameraWatchCallback(const ros::WallTimerEvent&) {
 std::string PlaceRecognitionNode::cameraSilenceWarning(double now) const {
   const std::string topic = imageTopic();
   const std::string seconds = std::to_string(std::lround(camera_silence_.silentFor(now)));
-  std::string warning = "mrs_vpr: no image has arrived on " + topic +
-                        (camera_silence_.anyImage() ? " for " + seconds + " s"
-                                                    : " in the " + seconds + " s since the node started");
+  const bool came_before = camera_silence_.anyImage();
+  const std::string warning =
+      "mrs_vpr: no image has arrived on " + topic +
+      (came_before ? " for " + seconds + " s" : " in the " + seconds + " s since the node subscribed to it");
   const std::uint32_t publishers =
       compressed_image_sub_ ? compressed_image_sub_.getNumPublishers() : image_sub_.getNumPublishers();
-  if (publishers == 0) {
-    return warning + ": no node publishes it (check the name with `rostopic list`, and the launch file's image:= "
-                     "argument); the map grows, and continuous mode asks, only as images come";
+  if (publishers > 0) {
+    return warning + ": " + std::to_string(publishers) +
+           (publishers == 1 ? " publisher is connected but sends" : " publishers are connected but send") +
+           " nothing (check with `rostopic hz " + topic + "`)";
   }
-  return warning + ": " + std::to_string(publishers) +
-         (publishers == 1 ? " publisher is connected but sends" : " publishers are connected but send") +
-         " nothing (check with `rostopic hz " + topic + "`)";
+  if (came_before) {
+    return warning + ": its publisher has gone (a camera driver that stopped, or a bag that ended)";
+  }
+  return warning + ": no node publishes it (check the name with `rostopic list`, and the launch file's image:= "
+                   "argument); the map grows, and continuous mode asks, only as images come (a node that only "
+                   "answers ~query about the images sent with it can ignore this)";
 }
 
 }  // namespace node

@@ -105,11 +105,11 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   // than roslaunch's 15 s before SIGTERM. Then stop feeding callbacks, and join the query thread, so
   // that no callback outlives the members.
   recognizer_.stopQueries();
+  camera_watch_timer_.stop();  // First: it asks the subscribers below how many publishers they have.
   image_sub_.shutdown();
   compressed_image_sub_.shutdown();
   auto_query_timer_.stop();
   map_info_timer_.stop();
-  camera_watch_timer_.stop();
   query_srv_.shutdown();
   reset_srv_.shutdown();
   save_map_srv_.shutdown();

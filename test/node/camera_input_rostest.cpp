@@ -45,23 +45,32 @@ sensor_msgs::CompressedImage toCompressed(const cv::Mat& bgr, double stamp, cons
   return message;
 }
 
-TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesAndOfACameraThatStopped) {
-  // The node starts 3 s after the test (camera_input.test), and this test runs first, so that the
-  // node's first warning, 5 s later, comes after this subscription to /rosout is connected.
+/// Waits for a message of `level` from `node` on /rosout that starts with `start` and holds `part`.
+bool logged(mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log>& log, const std::string& node,
+            std::uint8_t level, const std::string& start, const std::string& part, double timeout) {
+  rosgraph_msgs::Log found;
+  return log.waitFor(
+      [&](const rosgraph_msgs::Log& m) {
+        return m.name == node && m.level == level && m.msg.rfind(start, 0) == 0 &&
+               m.msg.find(part) != std::string::npos;
+      },
+      found, timeout);
+}
+
+TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesOfAPublisherThatSendsNothingAndOfOneThatWent) {
+  // The two nodes start 3 s after the test (camera_input.test), and this test runs first, so that their
+  // first warnings, 5 s later, come after this subscription to /rosout is connected.
   ros::NodeHandle nh;
-  const std::string node = "/mrs_vpr_no_camera";
   mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
-  const auto logged = [&](std::uint8_t level, const std::string& start, const std::string& part, double timeout) {
-    rosgraph_msgs::Log found;
-    return log.waitFor(
-        [&](const rosgraph_msgs::Log& m) {
-          return m.name == node && m.level == level && m.msg.rfind(start, 0) == 0 && m.msg.find(part) != std::string::npos;
-        },
-        found, timeout);
-  };
-  EXPECT_TRUE(logged(rosgraph_msgs::Log::WARN, "mrs_vpr: no image has arrived on /camera/none in the",
+  ros::Publisher idle = nh.advertise<sensor_msgs::Image>("/camera/idle", 10);  // connected, never sends
+  EXPECT_TRUE(logged(log, "/mrs_vpr_no_camera", rosgraph_msgs::Log::WARN,
+                     "mrs_vpr: no image has arrived on /camera/none in the",
                      "no node publishes it (check the name with `rostopic list`", 30.0))
       << "no warning of a topic nobody publishes";
+  EXPECT_TRUE(logged(log, "/mrs_vpr_idle_camera", rosgraph_msgs::Log::WARN,
+                     "mrs_vpr: no image has arrived on /camera/idle in the",
+                     "1 publisher is connected but sends nothing (check with `rostopic hz /camera/idle`)", 10.0))
+      << "no warning of a publisher that sends nothing";
 
   ros::Publisher camera = nh.advertise<sensor_msgs::Image>("/camera/none", 10);
   ASSERT_TRUE(waitForSubscribers(camera, 1, 30.0));
@@ -73,10 +82,13 @@ TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesAndOfACameraThatStopped) {
     camera.publish(imageMessage(route.reference[i], 100.0 + static_cast<double>(i) * kFramePeriod));
     ros::WallDuration(kFramePeriod).sleep();
   }
-  EXPECT_TRUE(logged(rosgraph_msgs::Log::INFO, "mrs_vpr: images arrive on /camera/none again", "", 10.0));
-  // The camera stops; its publisher stays connected.
-  EXPECT_TRUE(logged(rosgraph_msgs::Log::WARN, "mrs_vpr: no image has arrived on /camera/none for ",
-                     "1 publisher is connected but sends nothing (check with `rostopic hz /camera/none`)", 20.0))
+  EXPECT_TRUE(logged(log, "/mrs_vpr_no_camera", rosgraph_msgs::Log::INFO, "mrs_vpr: images arrive on /camera/none now",
+                     "", 10.0));
+  // The camera's driver stops: a second silence, reported after twice the first wait.
+  camera.shutdown();
+  EXPECT_TRUE(logged(log, "/mrs_vpr_no_camera", rosgraph_msgs::Log::WARN,
+                     "mrs_vpr: no image has arrived on /camera/none for ",
+                     "its publisher has gone (a camera driver that stopped, or a bag that ended)", 20.0))
       << "no warning of a camera that stopped";
 }
 
