@@ -47,6 +47,10 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
        &P::auto_query_frames},
       {{"map_info_rate", Range::closed(0.001, 1000), {}, "", "Highest rate of ~map_info updates [Hz, wall-clock]."},
        &P::map_info_rate},
+      {{"threads", Range::closed(0, 1024), {}, "",
+        "Threads a query's search may use (OpenCV's); 0 = one a core. Process-wide: in a nodelet manager it "
+        "sets every nodelet's OpenCV threads."},
+       &P::threads},
       {{"database", Range{}, {}, "a file path; empty = memory only",
         "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
        &P::database},

@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 
+#include <opencv2/core/utility.hpp>
 #include <std_msgs/Float64MultiArray.h>
 
 #include "mrs_vpr/LoopClosure.h"
@@ -36,6 +37,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
       query_nh_(private_nh),
       info_nh_(private_nh),
       image_transport_(nh) {
+  // Before anything runs in parallel: loading the map does.
+  if (params_.threads > 0) cv::setNumThreads(params_.threads);
   openMap();  // First: a map database that cannot be used stops the node before it offers anything.
   // Everything that may wait for the map (queries, reset, timers) lives on its own queue and thread.
   query_nh_.setCallbackQueue(&query_queue_);

@@ -71,6 +71,9 @@ TEST(NodeParameters, PeriodsRatesAndDistancesMustBeFinite) {
   params.map_info_rate = 1e-10;
   EXPECT_EQ(errorOf(params), "~map_info_rate must be in 0.001..1000, got 1e-10");
   params = NodeParameters{};
+  params.threads = -1;
+  EXPECT_EQ(errorOf(params), "~threads must be in 0..1024, got -1");
+  params = NodeParameters{};
   params.min_frame_interval = infinity;
   EXPECT_EQ(errorOf(params), "~min_frame_interval must be in 0..86400, got inf");
   params = NodeParameters{};
@@ -105,7 +108,8 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("descriptor/type"), 1U);
   EXPECT_EQ(names.count("descriptor/hog/cell_size"), 1U);
   EXPECT_EQ(names.count("min_appearance_change"), 1U);
-  EXPECT_EQ(descriptions.size(), 46U);
+  EXPECT_EQ(names.count("threads"), 1U);
+  EXPECT_EQ(descriptions.size(), 47U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and

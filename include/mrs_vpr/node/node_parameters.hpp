@@ -32,6 +32,7 @@ struct NodeParameters {
   double auto_query_period = 0.0;   ///< Continuous mode period [s]; 0 = off.
   int auto_query_frames = 0;        ///< Test sequence length in continuous mode; 0 = sequence/sequence_length.
   double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz, wall-clock].
+  int threads = 0;                  ///< Threads of a query's search (OpenCV's); 0 = one a core.
   std::string database;             ///< Map database path; empty = the map lives in memory only.
   CommitPolicy commit;              ///< ~commit_period, ~commit_frames: batching of the database's commits.
 
