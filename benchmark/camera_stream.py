@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Publishes a synthetic camera stream (sensor_msgs/Image, bgr8) at a fixed rate for the node's CPU
-benchmark (benchmark/node_cpu.sh). Runs in a process of its own, so its CPU is not the node's.
+"""Publishes a synthetic camera stream (sensor_msgs/Image) at a fixed rate for the node's CPU benchmark
+(benchmark/node_cpu.sh). Runs in a process of its own, so its CPU is not the node's.
 
-Usage: camera_stream.py TOPIC WIDTH HEIGHT RATE SECONDS
+Usage: camera_stream.py TOPIC WIDTH HEIGHT RATE SECONDS [ENCODING]
+ENCODING: bgr8 (the default), or bayer_rggb8, the raw mosaic a colour camera's driver publishes.
 Prints the number of frames published when done."""
 import sys
 import time
@@ -12,10 +13,21 @@ import rospy
 from sensor_msgs.msg import Image
 
 
+def mosaic(bgr):
+    """The frame an RGGB colour filter records of `bgr`: red, green / green, blue in each 2 x 2 block."""
+    raw = bgr[:, :, 1].copy()
+    raw[0::2, 0::2] = bgr[0::2, 0::2, 2]
+    raw[1::2, 1::2] = bgr[1::2, 1::2, 0]
+    return raw
+
+
 def main():
-    if len(sys.argv) != 6:
+    if len(sys.argv) not in (6, 7):
         sys.exit(__doc__)
     topic, width, height, rate, seconds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4]), float(sys.argv[5])
+    encoding = sys.argv[6] if len(sys.argv) == 7 else "bgr8"
+    if encoding not in ("bgr8", "bayer_rggb8"):
+        sys.exit("camera_stream.py: encoding must be bgr8 or bayer_rggb8, got " + encoding)
     rospy.init_node("camera_stream", anonymous=True, disable_signals=True)
     publisher = rospy.Publisher(topic, Image, queue_size=int(rate) * 2)
     # A textured scene panned by a few pixels a frame, so that frames differ as a camera's do.
@@ -24,10 +36,15 @@ def main():
     scene = np.kron(scene, np.ones((8, 8, 1), dtype=np.uint8))
     # At most 200 frames and about 400 MB of them.
     count = max(2, min(200, (400 << 20) // (width * height * 3)))
-    frames = [scene[:height, 4 * i:4 * i + width].tobytes() for i in range(count)]
+    views = [scene[:height, 4 * i:4 * i + width] for i in range(count)]
+    if encoding == "bayer_rggb8":
+        frames = [mosaic(view).tobytes() for view in views]
+    else:
+        frames = [view.tobytes() for view in views]
     while publisher.get_num_connections() == 0 and not rospy.is_shutdown():
         time.sleep(0.05)
-    message = Image(height=height, width=width, encoding="bgr8", step=width * 3)
+    channels = 3 if encoding == "bgr8" else 1
+    message = Image(height=height, width=width, encoding=encoding, step=width * channels)
     message.header.frame_id = "camera"
     period = 1.0 / rate
     start = time.monotonic()

@@ -6,7 +6,7 @@
 #
 # Usage (with the workspace's devel/setup.bash sourced):
 #   benchmark/node_cpu.sh [--seconds 40] [--rate 30] [--width 640] [--height 480]
-#                         [--node LABEL=BINARY[:LIBDIR]]...
+#                         [--encoding bgr8|bayer_rggb8] [--node LABEL=BINARY[:LIBDIR]]...
 # Without --node it measures the workspace's mrs_vpr_node. LIBDIR, when given, goes first on
 # LD_LIBRARY_PATH, so that a saved copy of an earlier build (binary and its libmrs_vpr_*.so) runs as it was.
 # The nodes run in continuous mode (~auto_query_period 1 s) with the default parameters otherwise.
@@ -17,6 +17,7 @@ seconds=40
 rate=30
 width=640
 height=480
+encoding=bgr8
 nodes=()
 while [[ $# -gt 0 ]]; do
   case $1 in
@@ -24,6 +25,7 @@ while [[ $# -gt 0 ]]; do
     --rate) rate=$2; shift 2 ;;
     --width) width=$2; shift 2 ;;
     --height) height=$2; shift 2 ;;
+    --encoding) encoding=$2; shift 2 ;;
     --node) nodes+=("$2"); shift 2 ;;
     -h | --help) sed -n '2,/^[^#]/{/^#/s/^# \{0,1\}//p}' "$0"; exit 0 ;;
     *) echo "node_cpu: unknown argument $1 (see the usage at the top of $0)" >&2; exit 2 ;;
@@ -72,7 +74,7 @@ for label in "${labels[@]}"; do
 done
 
 ticks() { awk '{print $14 + $15}' "/proc/$1/stat"; }
-python3 "$here/camera_stream.py" "$topic" "$width" "$height" "$rate" "$((seconds + warmup + 2))" \
+python3 "$here/camera_stream.py" "$topic" "$width" "$height" "$rate" "$((seconds + warmup + 2))" "$encoding" \
   >"$work/published" 2>"$work/stream.log" &
 stream_pid=$!
 pids+=("$stream_pid")
@@ -86,7 +88,7 @@ wait "$stream_pid" || true
 published=$(cat "$work/published")
 hz=$(getconf CLK_TCK)
 
-echo "${width}x${height} bgr8 at $rate Hz, continuous mode (~auto_query_period 1 s), ${seconds} s measured:"
+echo "${width}x${height} $encoding at $rate Hz, continuous mode (~auto_query_period 1 s), ${seconds} s measured:"
 printf '%-14s %10s %12s %8s %8s %14s\n' node "% of core" received failed dropped "frame ms mean"
 first=""
 for i in "${!labels[@]}"; do
