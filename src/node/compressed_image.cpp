@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
@@ -18,12 +17,6 @@ namespace {
 
 const std::array<std::uint8_t, 3> kJpegSignature{0xFF, 0xD8, 0xFF};
 const std::array<std::uint8_t, 8> kPngSignature{0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
-
-std::string lowerCase(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
 
 bool contains(const std::string& text, const char* word) { return text.find(word) != std::string::npos; }
 
@@ -94,14 +87,13 @@ bool isDescribable(int type) { return type == CV_8UC1 || type == CV_16UC1 || typ
 }  // namespace
 
 CompressedCodec parseCompressedFormat(const std::string& format) {
-  const std::string lower = lowerCase(format);
-  if (contains(lower, "compresseddepth")) {
+  const CompressedFormat parts(format);
+  if (contains(parts.text, "compresseddepth")) {
     throw std::invalid_argument("format '" + format + "' is of the compressedDepth transport, which is not supported");
   }
   // "bgr8; jpeg compressed bgr8": the codec follows the original encoding.
-  const std::string codec = lower.substr(lower.find(';') == std::string::npos ? 0 : lower.find(';') + 1);
-  const bool jpeg = contains(codec, "jpeg") || contains(codec, "jpg");
-  const bool png = contains(codec, "png");
+  const bool jpeg = contains(parts.codec, "jpeg") || contains(parts.codec, "jpg");
+  const bool png = contains(parts.codec, "png");
   if (jpeg == png) {
     throw std::invalid_argument("unsupported compressed format '" + format + "' (supported: jpeg, png)");
   }
