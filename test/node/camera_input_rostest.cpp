@@ -74,12 +74,9 @@ TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesOfAPublisherThatSendsNothin
 
   ros::Publisher camera = nh.advertise<sensor_msgs::Image>("/camera/none", 10);
   ASSERT_TRUE(waitForSubscribers(camera, 1, 30.0));
-  mrs_vpr::SyntheticRouteParams route_params;
-  route_params.reference_frames = 10;
-  route_params.query_frames = 2;
-  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
-  for (std::size_t i = 0; i < route.reference.size(); ++i) {
-    camera.publish(imageMessage(route.reference[i], 100.0 + static_cast<double>(i) * kFramePeriod));
+  const std::vector<cv::Mat> frames = mrs_vpr::testing_support::shortRouteImages(10);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    camera.publish(imageMessage(frames[i], 100.0 + static_cast<double>(i) * kFramePeriod));
     ros::WallDuration(kFramePeriod).sleep();
   }
   EXPECT_TRUE(logged(log, "/mrs_vpr_no_camera", rosgraph_msgs::Log::INFO, "mrs_vpr: images arrive on /camera/none now",

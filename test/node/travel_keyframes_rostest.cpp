@@ -16,10 +16,10 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "mrs_vpr/MapInfo.h"
-#include "mrs_vpr/synthetic_route.hpp"
 #include "support/image_message.hpp"
 #include "support/map_info_watch.hpp"
 #include "support/rostest_main.hpp"
+#include "support/route_fixture.hpp"
 #include "support/service_call.hpp"
 #include "support/subscriber_wait.hpp"
 #include "support/topic_inbox.hpp"
@@ -55,15 +55,13 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   // Driving 4 m at 0.25 m a frame, standing still for 30 frames (odometry jitters by 1 cm), then
   // driving 2 m at 0.5 m a frame: keyframes at 0, 1, 2, 3, 4, 5 and 6 m.
   const std::vector<double> positions = mrs_vpr::testing_support::driveStopDrive();
-  mrs_vpr::SyntheticRouteParams route_params;
-  route_params.reference_frames = static_cast<int>(positions.size());
-  route_params.query_frames = 2;
-  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+  const std::vector<cv::Mat> frames =
+      mrs_vpr::testing_support::shortRouteImages(static_cast<int>(positions.size()));
 
   for (std::size_t i = 0; i < positions.size(); ++i) {
     const double stamp = kStart + static_cast<double>(i) * kFramePeriod;
     tf_pub.publish(poseAt(positions[i], stamp));
-    image_pub.publish(imageMessage(route.reference[i], stamp));
+    image_pub.publish(imageMessage(frames[i], stamp));
   }
   const auto total = static_cast<std::uint64_t>(positions.size());
   ASSERT_TRUE(map_info.waitFor([&](const mrs_vpr::MapInfo& info) { return info.frames_received == total; }, 60.0))
@@ -78,7 +76,7 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   EXPECT_EQ(driven.frames_failed, 0U);
 
   // A frame stamped long before any pose: skipped and counted, the map unchanged, the node alive.
-  image_pub.publish(imageMessage(route.reference[0], kStart - 100.0));
+  image_pub.publish(imageMessage(frames[0], kStart - 100.0));
   ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames_without_pose == 1; }, 30.0))
       << "frames without pose: " << map_info.latest().frames_without_pose;
   EXPECT_EQ(map_info.latest().frames, 7U);
@@ -86,7 +84,7 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   // Driving on keeps adding keyframes.
   double stamp = kStart + static_cast<double>(positions.size()) * kFramePeriod;
   tf_pub.publish(poseAt(7.0, stamp));
-  image_pub.publish(imageMessage(route.reference[1], stamp));
+  image_pub.publish(imageMessage(frames[1], stamp));
   ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 8; }, 30.0))
       << "map frames: " << map_info.latest().frames;
 
@@ -96,7 +94,7 @@ TEST(TravelKeyframes, AFrameEachMetreAndNoneWhileTheRobotStandsStill) {
   ASSERT_TRUE(reset.response.success) << reset.response.message;
   stamp += kFramePeriod;
   tf_pub.publish(poseAt(7.1, stamp));
-  image_pub.publish(imageMessage(route.reference[2], stamp));
+  image_pub.publish(imageMessage(frames[2], stamp));
   EXPECT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames == 1; }, 30.0))
       << "map frames after the reset: " << map_info.latest().frames;
 }
@@ -108,15 +106,12 @@ TEST(TravelKeyframes, FramesFailAtOnceNamingAnOdometryFrameThatNothingPublishes)
   mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
   ros::Publisher image_pub = nh.advertise<sensor_msgs::Image>("untracked_camera/image", 100);
   ASSERT_TRUE(waitForSubscribers(image_pub, 1, 30.0));
-  mrs_vpr::SyntheticRouteParams route_params;
-  route_params.reference_frames = 20;
-  route_params.query_frames = 2;
-  const mrs_vpr::SyntheticRoute route = mrs_vpr::generateSyntheticRoute(route_params);
+  const std::vector<cv::Mat> frames = mrs_vpr::testing_support::shortRouteImages(20);
 
   // ~tf_timeout is 5 s: waiting that long for each frame, 20 frames would take 100 s.
   const auto start = std::chrono::steady_clock::now();
-  for (std::size_t i = 0; i < route.reference.size(); ++i) {
-    image_pub.publish(imageMessage(route.reference[i], kStart + static_cast<double>(i) * kFramePeriod));
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    image_pub.publish(imageMessage(frames[i], kStart + static_cast<double>(i) * kFramePeriod));
   }
   ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& info) { return info.frames_without_pose == 20; }, 60.0))
       << "frames without pose: " << map_info.latest().frames_without_pose;

@@ -62,6 +62,15 @@ inline DescribedRoute describeRoute(const SyntheticRouteParams& route_params) {
   return describeRoute(generateSyntheticRoute(route_params));
 }
 
+/// The reference images of a route of `frames` frames, generated for a test that needs a camera's few
+/// frames (its query traversal, of the fewest frames a route has, is left unused).
+inline std::vector<cv::Mat> shortRouteImages(int frames) {
+  SyntheticRouteParams params;
+  params.reference_frames = frames;
+  params.query_frames = 2;
+  return generateSyntheticRoute(params).reference;
+}
+
 /// The images of the default route (SyntheticRouteParams{}: 400 reference frames, 300 query frames,
 /// 128 x 64), generated once per test program.
 inline const SyntheticRoute& defaultRouteImages() {

@@ -17,6 +17,7 @@
 #include "mrs_vpr/synthetic_route.hpp"
 #include "route_folders.hpp"
 #include "support/command_run.hpp"
+#include "support/route_fixture.hpp"
 #include "support/temporary_folder.hpp"
 
 namespace {
@@ -176,10 +177,7 @@ TEST_F(MakeDriveTest, TwoDrivesAndTheirTruthAreWhatTheEvaluatorReads) {
 
 TEST_F(MakeDriveTest, PlacesFromTheRouteMakeAStandingRecordingOnePlace) {
   // A route of 40 frames whose recording camera stood from frame 10 to 19 (noisy copies of frame 10).
-  mrs_vpr::SyntheticRouteParams params;
-  params.reference_frames = 40;
-  params.query_frames = 2;
-  std::vector<cv::Mat> route = mrs_vpr::generateSyntheticRoute(params).reference;
+  std::vector<cv::Mat> route = mrs_vpr::testing_support::shortRouteImages(40);
   cv::RNG rng(7);
   for (int i = 11; i < 20; ++i) {
     cv::Mat noise(route[10].size(), CV_16SC(route[10].channels()));
