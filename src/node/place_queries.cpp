@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/core/utility.hpp>
+
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
@@ -73,6 +75,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     response.accepted = false;
   }
   response.elapsed_ms = std::chrono::duration<float, std::milli>(std::chrono::steady_clock::now() - start).count();
+  response.threads = static_cast<std::uint32_t>(std::max(1, cv::getNumThreads()));
   if (response.success) {
     const std::string unpublished = publishLoopClosure(input.header, answered, response, input.header.stamp);
     if (!unpublished.empty()) response.message += "; " + unpublished;

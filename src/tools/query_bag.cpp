@@ -144,6 +144,7 @@ json answerJson(const mrs_vpr::QuerySequence::Response& response, double round_t
           {"method", response.method},
           {"query_length", response.query_length},
           {"elapsed_ms", response.elapsed_ms},
+          {"threads", response.threads},
           {"round_trip_ms", round_trip_ms},
           {"request", request}};
 }

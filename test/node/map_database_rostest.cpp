@@ -490,6 +490,7 @@ TEST_F(MapDatabaseNodeTest, TheLatestRosTimeIsStoredServedAndLoadedExactly) {
     EXPECT_EQ(answer.at("method").get<std::string>(), "seqslam");  // The method that answered.
     EXPECT_GE(answer.at("query_length").get<int>(), mrs_vpr::kMinSequenceFrames);
     EXPECT_LE(answer.at("query_length").get<int>(), 20);
+    EXPECT_GE(answer.at("threads").get<int>(), 1);
     const int index = answer.at("reference_index").get<int>();
     ASSERT_GE(index, 0);
     EXPECT_EQ(answer.at("reference_stamp_ns").get<std::int64_t>(),

@@ -136,6 +136,7 @@ TEST_F(NodeTest, ExplicitImagesWithBothMethods) {
     EXPECT_GE(response.confidence, 3.0F);
     EXPECT_TRUE(response.accepted) << response.message;
     EXPECT_GT(response.elapsed_ms, 0.0F);
+    EXPECT_EQ(response.threads, 3U);  // place_recognition_node.test: ~threads 3
 
     const std::string expected_method = method.empty() ? "mrs" : method;
     EXPECT_EQ(response.method, expected_method);
