@@ -492,6 +492,14 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
   sqlite3_close(db);
   writeMap(path("truncated.db"), 0, 300);
   fs::resize_file(path("truncated.db"), fs::file_size(path("truncated.db")) / 2);
+  // Every frame of it reads, but its free list points past the file (the header's first free-list trunk
+  // page and count of free pages): only SQLite's check tells, and a map written over it would fail.
+  writeMap(path("free_list.db"), 0, 20);
+  {
+    std::fstream file(path("free_list.db"), std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(32);
+    file.write("\0\0\x27\x0f\0\0\0\x01", 8);
+  }
   {
     DescriptorParams params;  // Another front end.
     params.type = kThumbnailFrontEnd;
@@ -508,6 +516,7 @@ TEST_F(PersistentMapTest, LoadRefusesBadFilesNamingThemAndKeepsTheMap) {
       {"notes.db", "not a database"},
       {"other.db", "another kind"},
       {"truncated.db", "malformed"},
+      {"free_list.db", "it is corrupt or truncated (SQLite's quick_check finds"},
       {"small.db",
        "descriptors of the thumbnail (32 x 32, patches of 8 px) front end, not of the hog (128 x 64 window"},
       {"big.db", "50 frames, more than max_frames (40): raise max_frames to at least that, or to 0 (unbounded)"},
