@@ -1,5 +1,6 @@
 #include <exception>
 #include <memory>
+#include <stdexcept>
 
 #include <nodelet/nodelet.h>
 #include <pluginlib/class_list_macros.hpp>
@@ -12,12 +13,17 @@ namespace mrs_vpr {
 class MrsVprNodelet : public nodelet::Nodelet {
  private:
   void onInit() override {
+    // Images on the manager's single-threaded queue; the node serves queries on its own thread.
+    // A nodelet that cannot start says why, as the node does, and throws: the loader then unloads it,
+    // and a standalone nodelet's process exits with an error instead of staying registered, inert.
     try {
-      // Images on the manager's single-threaded queue; the node serves queries on its own thread.
       node_ = node::PlaceRecognitionNode::start(getNodeHandle(), getPrivateNodeHandle());
-    } catch (const std::exception& error) {
-      // A nodelet cannot exit its manager; it stays inert and says why (parameters, map database).
-      NODELET_FATAL("not starting: %s", error.what());
+    } catch (const std::invalid_argument& error) {
+      NODELET_FATAL("mrs_vpr: invalid parameters, not starting: %s", error.what());
+      throw;
+    } catch (const std::exception& error) {  // the map database
+      NODELET_FATAL("mrs_vpr: not starting: %s", error.what());
+      throw;
     }
   }
 

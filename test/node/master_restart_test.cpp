@@ -2,15 +2,7 @@
 // test owns the master, so that it can kill it.
 #include <gtest/gtest.h>
 
-#include <netinet/in.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/socket.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -18,65 +10,16 @@
 
 #include <xmlrpcpp/XmlRpc.h>
 
-extern char** environ;  // NOLINT: the children get this environment with the master's address.
+#include "support/ros_processes.hpp"
 
 namespace {
 
+using mrs_vpr::testing_support::Child;
+using mrs_vpr::testing_support::environmentFor;
+using mrs_vpr::testing_support::freePort;
+using mrs_vpr::testing_support::masterSays;
+using mrs_vpr::testing_support::waitFor;
 using XmlRpc::XmlRpcValue;
-
-int freePort() {
-  const int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t length = sizeof(address);
-  const bool bound = bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) == 0 &&
-                     getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0;
-  close(fd);
-  return bound ? ntohs(address.sin_port) : -1;
-}
-
-/// A process the test starts; killed when the test ends, whatever happens.
-class Child {
- public:
-  Child(const std::vector<std::string>& command, const std::vector<std::string>& environment) {
-    std::vector<char*> argv;
-    for (const std::string& word : command) argv.push_back(const_cast<char*>(word.c_str()));
-    argv.push_back(nullptr);
-    std::vector<char*> envp;
-    for (const std::string& entry : environment) envp.push_back(const_cast<char*>(entry.c_str()));
-    envp.push_back(nullptr);
-    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
-  }
-  ~Child() { stop(SIGKILL); }
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-
-  bool started() const { return pid_ > 0; }
-  /// False once the process has exited (a crash included).
-  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
-
-  void stop(int signal) {
-    if (pid_ <= 0) return;
-    kill(pid_, signal);
-    waitpid(pid_, nullptr, 0);
-    pid_ = -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
-
-/// A call of the master API as any node makes it; true when the master answers with success.
-bool masterSays(int port, const std::string& method, const std::string& argument = "") {
-  XmlRpc::XmlRpcClient client("localhost", port, "/");  // A new connection: the old master may be gone.
-  XmlRpcValue params;
-  params[0] = std::string("/master_restart_test");
-  if (!argument.empty()) params[1] = argument;
-  XmlRpcValue result;
-  return client.execute(method.c_str(), params, result) && result.getType() == XmlRpcValue::TypeArray &&
-         result.size() == 3 && static_cast<int>(result[0]) == 1;
-}
 
 /// True when the master lists `node` among the publishers (`kind` 0) or subscribers (1) of `topic`.
 bool lists(int port, int kind, const std::string& node, const std::string& topic) {
@@ -108,30 +51,6 @@ bool setParameter(int port, const std::string& name, const XmlRpcValue& value) {
 
 bool publishes(int port, const std::string& node, const std::string& topic) { return lists(port, 0, node, topic); }
 bool subscribes(int port, const std::string& node, const std::string& topic) { return lists(port, 1, node, topic); }
-
-bool waitFor(const std::function<bool()>& condition, double seconds) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (std::chrono::steady_clock::now() < end) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return condition();
-}
-
-/// This process's environment for a master on `port` of this machine.
-std::vector<std::string> environmentFor(int port) {
-  std::vector<std::string> environment;
-  for (char** entry = environ; *entry != nullptr; ++entry) {
-    const std::string text = *entry;
-    if (text.rfind("ROS_MASTER_URI=", 0) != 0 && text.rfind("ROS_HOSTNAME=", 0) != 0 &&
-        text.rfind("ROS_IP=", 0) != 0) {
-      environment.push_back(text);
-    }
-  }
-  environment.push_back("ROS_MASTER_URI=http://localhost:" + std::to_string(port) + "/");
-  environment.push_back("ROS_HOSTNAME=localhost");
-  return environment;
-}
 
 TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
   const int port = freePort();
