@@ -1,6 +1,7 @@
 // The launch files' arguments: a parameter file's values stay unless an argument is given
 // (roslaunch --dump-params), topics are remapped only when asked (roslaunch --args), and an earlier
-// launch's parameters are cleared first (roslaunch's loader); no master needed.
+// launch's parameters are cleared first (roslaunch's loader); every argument is documented
+// (roslaunch --ros-args); no master needed.
 
 #include <gtest/gtest.h>
 
@@ -157,6 +158,26 @@ TEST_P(LaunchFilesTest, LoopClosureStampsGoWhereTheArgumentSays) {
   ASSERT_EQ(remappings.count("image"), 1U) << "roslaunch --args failed for " << GetParam();
   ASSERT_EQ(remappings.count("~loop_closure_stamps"), 1U);
   EXPECT_EQ(remappings.at("~loop_closure_stamps"), "/lio_loop/loop_closure_detection");
+}
+
+TEST_P(LaunchFilesTest, EveryArgumentIsDocumentedAndOnlyTheBagIsRequired) {
+  // roslaunch's ros-args option lists an argument whose default is empty as required: each such
+  // argument's doc must then say that it is optional.
+  const std::vector<std::string> lines = outputLines("roslaunch --ros-args mrs_vpr " + launch());
+  ASSERT_FALSE(lines.empty()) << "roslaunch --ros-args failed for " << GetParam();
+  bool required = false;
+  int arguments = 0;
+  for (const std::string& line : lines) {
+    if (line == "Required Arguments:" || line == "Optional Arguments:") {
+      required = line == "Required Arguments:";
+      continue;
+    }
+    ++arguments;
+    EXPECT_EQ(line.find("undocumented"), std::string::npos) << line;
+    const std::string name = line.substr(2, line.find_first_of(" :", 2) - 2);
+    if (required && name != "bag") EXPECT_NE(line.find(": Optional"), std::string::npos) << line;
+  }
+  EXPECT_GE(arguments, 10);
 }
 
 INSTANTIATE_TEST_SUITE_P(BothLaunchFiles, LaunchFilesTest, ::testing::Values("mrs_vpr.launch", "replay.launch"),
