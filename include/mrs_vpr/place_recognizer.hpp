@@ -212,6 +212,10 @@ class PlaceRecognizer {
   };
   MapState state() const;
 
+  /// Throws std::invalid_argument naming `method` unless it is one a query can use ("" is the default
+  /// method): a request can be refused before its images are described.
+  void requireMethod(const std::string& method) const { matcherFor(method); }
+
   const Parameters& parameters() const { return params_; }
   const DescriptorExtractor& extractor() const { return extractor_; }
   const RecognizerParams& recognizerParameters() const { return recognizer_; }

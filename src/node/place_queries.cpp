@@ -35,6 +35,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
   PlaceAnswer answered;
   bool stopped = false;  // by the node's shutdown: said in the response, not warned about
   try {
+    recognizer_.requireMethod(request.method);  // Before any image is described.
     if (!request.images.empty()) {
       if (request.recent_frames > 0) {
         throw std::invalid_argument("give either images or recent_frames, not both (got " +

@@ -24,16 +24,19 @@ inline std::string descriptorOption(const std::string& parameter) {
 
 /// Adds an option for every parameter of the core's descriptor table, with the meaning it gives and
 /// the value `params` holds as the default; the values land in `params`, which must outlive parsing.
-inline void addDescriptorOptions(boost::program_options::options_description& description, DescriptorParams& params) {
+/// `shown_default`, when given, is what --help shows as every default instead of the value.
+inline void addDescriptorOptions(boost::program_options::options_description& description, DescriptorParams& params,
+                                 const char* shown_default = nullptr) {
   for (const auto& spec : descriptorParameters()) {
     std::visit(
         [&](auto member) {
           using Value = std::decay_t<decltype(params.*member)>;
           if constexpr (std::is_same_v<Value, int> || std::is_same_v<Value, double> ||
                         std::is_same_v<Value, std::string>) {
-            description.add_options()(descriptorOption(spec.info.name).c_str(),
-                                      boost::program_options::value(&(params.*member))->default_value(params.*member),
-                                      spec.info.meaning.c_str());
+            auto* value = boost::program_options::value(&(params.*member));
+            value = shown_default == nullptr ? value->default_value(params.*member)
+                                             : value->default_value(params.*member, shown_default);
+            description.add_options()(descriptorOption(spec.info.name).c_str(), value, spec.info.meaning.c_str());
           }
         },
         spec.member);

@@ -45,6 +45,9 @@ constexpr const char* kUsage =
     "--service), unless --min-appearance-change or front-end options are given (0: N consecutive frames).\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
+/// What --help shows as the default of an option whose default is the node's own setting.
+constexpr const char* kTheNodes = "the node's";
+
 /// Where the test sequence lies in a bag, and how its frames are chosen there.
 struct BagSequence {
   std::string bag_path;
@@ -177,7 +180,8 @@ int run(int argc, char** argv) {
       description, from_bag.travel, from_bag.min_appearance_change,
       "metres between the sequence's frames, by the bag's /tf (0: keyframes by appearance change instead)",
       "without --min-travel: the sequence's frames are keyframes by appearance change, as the node's "
-      "~min_appearance_change keeps them (default: the node's own; 0 = consecutive frames)");
+      "~min_appearance_change keeps them (0 = consecutive frames)",
+      kTheNodes);
   // clang-format off
   description.add_options()
       ("recent-frames", po::value(&recent_frames), "instead of a bag: the node's own K most recent frames")
@@ -185,7 +189,7 @@ int run(int argc, char** argv) {
       ("service", po::value(&service)->default_value(service), "the node's query service")
       ("timeout", po::value(&timeout)->default_value(timeout), "seconds to wait for the service, (0, 3600]");
   // clang-format on
-  mrs_vpr::tools::addDescriptorOptions(description, from_bag.front_end);
+  mrs_vpr::tools::addDescriptorOptions(description, from_bag.front_end, kTheNodes);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   mrs_vpr::tools::refuseEmptyPaths(variables, {"bag"});
@@ -226,7 +230,10 @@ int run(int argc, char** argv) {
       throw std::invalid_argument("--bag, --topic and --count are required (or --recent-frames)");
     }
     if (from_bag.start < 0) throw std::invalid_argument("--start must be >= 0");
-    if (from_bag.count < 1) throw std::invalid_argument("--count must be >= 1");
+    if (from_bag.count < mrs_vpr::kMinSequenceFrames) {
+      throw std::invalid_argument("--count must be >= " + std::to_string(mrs_vpr::kMinSequenceFrames) +
+                                  ", as ~query takes it");
+    }
     request["bag"] = from_bag.bag_path;
     request["topic"] = from_bag.topic;
     request["start"] = from_bag.start;

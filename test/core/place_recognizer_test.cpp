@@ -200,6 +200,8 @@ TEST(PlaceRecognizer, BadRequestsAreRefusedWithAMessageAndTheRecognizerStaysUsab
   mapReference(recognizer);
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 10), "fast"); }).find("unknown method 'fast'"),
             std::string::npos);
+  EXPECT_EQ(errorOf([&] { recognizer.requireMethod("fast"); }), "unknown method 'fast': use 'mrs' or 'seqslam'");
+  for (const std::string method : {"", "mrs", "seqslam"}) EXPECT_NO_THROW(recognizer.requireMethod(method));
   EXPECT_NE(errorOf([&] { recognizer.match(queryImages(0, 1)); }).find("at least 2 images"), std::string::npos);
   // A NUL in the method used to cut the message short on its way to the user.
   const std::string with_nul = errorOf([&] { recognizer.match(queryImages(0, 10), std::string("m\0rs", 4)); });

@@ -200,6 +200,9 @@ TEST_F(NodeTest, BadRequestsAreReportedAndTheNodeKeepsServing) {
 
   auto unknown = explicitQuery(100, 20, "fast");
   expectFailure(unknown, "unknown method 'fast'");
+  // Said before any image is converted or described: an image that cannot be read is not the first problem.
+  unknown.request.images[0].encoding = "no_such_encoding";
+  expectFailure(unknown, "unknown method 'fast'");
 
   mrs_vpr::QuerySequence too_many;
   too_many.request.recent_frames = 5000;

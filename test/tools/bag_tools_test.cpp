@@ -452,6 +452,13 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   const CommandResult one = run(std::string(QUERY_BAG_PATH) + " --recent-frames 1 --service /nope/query");
   EXPECT_EQ(one.status, 1);
   EXPECT_NE(one.err.find("--recent-frames must be >= 2"), std::string::npos) << one.err;
+  const CommandResult one_image = run(std::string(QUERY_BAG_PATH) + " --bag /nope.bag --topic /t --count 1");
+  EXPECT_EQ(one_image.status, 1);
+  EXPECT_NE(one_image.err.find("--count must be >= 2, as ~query takes it"), std::string::npos) << one_image.err;
+  // Where the node's own setting is the default, --help says so rather than the core's value.
+  const CommandResult help = run(std::string(QUERY_BAG_PATH) + " --help");
+  EXPECT_NE(help.out.find("--min-appearance-change arg (=the node's)"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--descriptor arg (=the node's)"), std::string::npos) << help.out;
 }
 
 TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
@@ -763,8 +770,10 @@ TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
     image.step = 8 * sizeof(float);
     image.data.assign(image.step * image.height, 0);
     writer.write("/depth", image.header.stamp, image);
+    image.header.stamp = ros::Time(101, 0);
+    writer.write("/depth", image.header.stamp, image);
   }
-  const CommandResult unread = run(std::string(QUERY_BAG_PATH) + " --bag " + depth + " --topic /depth --count 1");
+  const CommandResult unread = run(std::string(QUERY_BAG_PATH) + " --bag " + depth + " --topic /depth --count 2");
   EXPECT_EQ(unread.status, 1);
   EXPECT_NE(unread.err.find("query_bag: error: message 0 of topic '/depth' in bag '" + depth + "': "),
             std::string::npos)
