@@ -78,7 +78,8 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
   // clang-format off
   description.add_options()
       ("help,h", "print this help")
-      ("reference", po::value(&options.reference)->required(), "reference traversal: image folder or .bag")
+      ("reference", po::value(&options.reference)->required(),
+       "reference traversal: image folder, .bag, or map database (.db) of the node or build_map")
       ("query", po::value(&options.query)->required(), "query traversal: image folder or .bag")
       ("topic", po::value(&options.topic), "image topic of the bags")
       ("ground-truth", po::value(&options.ground_truth), "CSV query_index,matching_ref_indices (default: identity)")
