@@ -28,7 +28,12 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   }
   const fs::path absolute = fs::absolute(path, error);
   const fs::path folder = absolute.parent_path();
-  if (!fs::is_directory(folder, error)) return "there is no folder " + folder.string();
+  if (!fs::is_directory(folder, error)) {
+    // A shell expands ~; a service request's path reaches the node as it was typed.
+    const bool tilde = path.rfind("~/", 0) == 0 || path == "~";
+    return "there is no folder " + folder.string() +
+           (tilde ? " (~ is not expanded to a home folder here: give the path in full)" : "");
+  }
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
   const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;
   const std::size_t name = absolute.filename().string().size();

@@ -338,6 +338,9 @@ TEST_F(MapDatabaseTest, PathsThatCannotHoldAMapAreNamedForWhatTheyAre) {
       {path("folder"), "it is a folder (give the path of a new file in it, such as " + path("folder/map.db") + ")"},
       {path(std::string(245, 'b')), "its file name is 245 bytes long, too long for this file system: at most 241"},
       {path("missing/map.db"), "there is no folder " + path("missing")},
+      // As typed into a service request, which no shell expands.
+      {"~/mrs_vpr_no_such_folder/map.db", "there is no folder " + fs::absolute("~/mrs_vpr_no_such_folder").string() +
+                                              " (~ is not expanded to a home folder here: give the path in full)"},
   };
   for (const auto& [file, problem] : saves) {
     SCOPED_TRACE(file);
