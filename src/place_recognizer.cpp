@@ -510,7 +510,8 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);
     refuseRepeatedViews(result.match, map_.view(size - recent, size), repeated_views);
     result.newest_stamp = map_.stamp(size - 1);
-    result.localised_stamp = map_.stamp(size - recent + result.localised_row);
+    result.localised_frame = size - recent + result.localised_row;
+    result.localised_stamp = map_.stamp(result.localised_frame);
   }
   flush();
   return result;

@@ -35,6 +35,7 @@ struct PlaceAnswer {
   /// The reference frame is that frame's place.
   int localised_row = -1;
   Stamp localised_stamp;       ///< Stamp of the localised frame (matchRecent; else 0).
+  int localised_frame = -1;    ///< The localised frame's index in the map (matchRecent; else -1).
   int query_length = 0;        ///< Frames of the test sequence.
   std::string method;          ///< The method that answered.
 };

@@ -103,9 +103,14 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   if (input.images) {
     input.header = input.image_headers.at(static_cast<std::size_t>(answered.localised_row));
   } else {
+    // The map frame's own camera frame, as its image said (a loaded map's too); the camera's newest
+    // for a frame that said none.
     input.header.stamp = rosTimeOf(answered.localised_stamp);
-    std::lock_guard<std::mutex> lock(state_mutex_);
-    input.header.frame_id = camera_frame_id_;
+    input.header.frame_id = map_->frameIdOf(answered.localised_frame);
+    if (input.header.frame_id.empty()) {
+      std::lock_guard<std::mutex> lock(state_mutex_);
+      input.header.frame_id = camera_frame_id_;
+    }
   }
   if (explain != nullptr) {
     // What keyframing left out, so that a stop shows as frames skipped rather than as missing answers.

@@ -144,7 +144,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   const std::uint64_t persisted = map_->persisted();
   const PlaceRecognizer::MapState state = recognizer_.state();
   info.frames = static_cast<std::uint32_t>(state.frames);
-  info.memory_bytes = state.memory_bytes;
+  info.memory_bytes = state.memory_bytes + map_->labelBytes();
   info.descriptor_size = static_cast<std::uint32_t>(state.descriptor_size);
   if (state.frames > 0) {
     info.first_stamp = rosTimeOf(state.first_stamp);

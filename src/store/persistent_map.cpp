@@ -50,7 +50,11 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
   // Streamed into a map built aside, as load() builds one: a million-frame map is not held twice, and
   // its size is known, so it is allocated once (with room for the camera's next frames).
   PlaceRecognizer::PreparedMap map = recognizer_.prepareMap(static_cast<int>(frames));
-  database_->forEachFrame([&](const StoredFrame& frame) { map.append(frame.descriptor, frame.stamp); });
+  labels_.reserve(static_cast<std::size_t>(frames));
+  database_->forEachFrame([&](const StoredFrame& frame) {
+    map.append(frame.descriptor, frame.stamp);
+    labels_.append(frame.frame_id, frame.sequence);
+  });
   recognizer_.install(std::move(map));
   writer_ = std::make_unique<MapWriter>(*database_, policy);
 }
@@ -80,22 +84,44 @@ FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, cons
         offered ? recognizer_.offerDescriptor(descriptor, stamp) : recognizer_.addDescriptor(descriptor, stamp);
     return admission == FrameAdmission::kAdmitted;
   };
+  // The frame's labels, its record and its room in the queue are made before the map admits it: a
+  // frame admitted has its labels and reaches the database, and a failed allocation (std::bad_alloc)
+  // leaves it out of all of them.
+  labels_.prepareFor(frame_id);
+  const auto admitLabelled = [&] {
+    if (!admit()) return false;
+    labels_.append(frame_id, sequence);  // Cannot fail: prepared for.
+    return true;
+  };
   if (!writer_) {
-    admit();
+    admitLabelled();
     return admission;
   }
-  // The frame's record, and its room in the queue, are made before the map admits it: a frame admitted
-  // reaches the database, and a failed allocation (std::bad_alloc) leaves it out of both.
   StoredFrame frame{descriptor, stamp, frame_id, sequence};  // Shares the descriptor's bytes, never changed.
   if (!rewriting_) {
-    writer_->addIf(std::move(frame), admit);
+    writer_->addIf(std::move(frame), admitLabelled);
     return admission;
   }
   if (held_back_.size() == held_back_.capacity()) {
     held_back_.reserve(std::max<std::size_t>(16, 2 * held_back_.capacity()));
   }
-  if (admit()) held_back_.push_back(std::move(frame));
+  if (admitLabelled()) held_back_.push_back(std::move(frame));
   return admission;
+}
+
+std::string PersistentMap::frameIdOf(int index) const {
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  return index >= 0 && index < labels_.size() ? labels_.frameId(index) : "";
+}
+
+std::int64_t PersistentMap::sequenceOf(int index) const {
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  return index >= 0 && index < labels_.size() ? labels_.sequence(index) : -1;
+}
+
+std::size_t PersistentMap::labelBytes() const {
+  std::lock_guard<std::mutex> lock(add_mutex_);
+  return labels_.memoryBytes();
 }
 
 void PersistentMap::commit() {
@@ -109,6 +135,7 @@ int PersistentMap::reset() {
   PlaceRecognizer::PreparedMap empty = recognizer_.prepareMap({}, {});
   std::lock_guard<std::mutex> lock(add_mutex_);
   if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
+  labels_.clear();
   return recognizer_.install(std::move(empty));
 }
 
@@ -120,6 +147,7 @@ int PersistentMap::load(const std::string& path) {
   }
   // Everything is read and checked before anything changes: the recognizer's new map is built aside,
   // frame by frame as the file is read (a million-frame map is not held twice, as rows and as a map) ...
+  FrameLabels labels;
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
     std::optional<PlaceRecognizer::PreparedMap> map;
@@ -128,12 +156,16 @@ int PersistentMap::load(const std::string& path) {
       const std::int64_t frames = saved.size();
       requireCapacity(recognizer_, path, frames);
       map = recognizer_.prepareMap(static_cast<int>(frames));
-      saved.forEachFrame([&](const StoredFrame& frame) { map->append(frame.descriptor, frame.stamp); });
+      labels.reserve(static_cast<std::size_t>(frames));
+      saved.forEachFrame([&](const StoredFrame& frame) {
+        map->append(frame.descriptor, frame.stamp);
+        labels.append(frame.frame_id, frame.sequence);
+      });
     });
     return std::move(*map);
   }();
   // ... the database rewritten from the file ...
-  if (writer_) replaceDatabase(path, prepared);
+  if (writer_) replaceDatabase(path, prepared, labels);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
   // the new one. The frames that came while the database was rewritten follow the new map's.
   const int loaded = prepared.size();
@@ -142,17 +174,20 @@ int PersistentMap::load(const std::string& path) {
   arrived.swap(held_back_);
   rewriting_ = false;
   recognizer_.install(std::move(prepared));
+  labels_ = std::move(labels);
   // The new map is in place in both: nothing may throw from here on. The frames fit (store() held back
   // no more than the new map has room for); only a failure to get memory would leave some out, of both.
   try {
     if (!arrived.empty()) recognizer_.reserve(static_cast<int>(loaded + arrived.size()));
     for (StoredFrame& frame : arrived) {
+      labels_.prepareFor(frame.frame_id);
       FrameAdmission admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
       if (admission == FrameAdmission::kPendingFull) {
         recognizer_.flush();  // A query holds the map: wait for it rather than drop a frame the camera gave.
         admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
       }
       if (admission != FrameAdmission::kAdmitted) break;
+      labels_.append(frame.frame_id, frame.sequence);
       writer_->add(std::move(frame));
     }
   } catch (const std::exception&) {
@@ -161,7 +196,8 @@ int PersistentMap::load(const std::string& path) {
   return loaded;
 }
 
-void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared) {
+void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
+                                    const FrameLabels& labels) {
   // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
   // frames go on joining the old map meanwhile, held back from the database so that it holds the old
   // map or the new one; load() puts them after the new map's frames ...
@@ -180,7 +216,10 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
       database.replace([&](const auto& insert) {
         int index = 0;
         saved.forEachFrame([&](const StoredFrame& frame) {
-          if (!prepared.holds(index, frame.descriptor, frame.stamp)) throw changedWhileLoaded(path);
+          if (!prepared.holds(index, frame.descriptor, frame.stamp) ||
+              !labels.holds(index, frame.frame_id, frame.sequence)) {
+            throw changedWhileLoaded(path);
+          }
           insert(frame);
           ++index;
         });
@@ -230,6 +269,16 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path) {
       recognizer_.visitFrames(begin, std::min(frames, begin + kChunk), [&](const cv::Mat& descriptor, Stamp stamp) {
         chunk.push_back({descriptor.clone(), stamp, "", -1});
       });
+      {
+        // The labels of frames the snapshot holds: those added since follow them, and none goes
+        // while whole_map_mutex_ keeps reset() and load() out.
+        std::lock_guard<std::mutex> lock(add_mutex_);
+        for (std::size_t i = 0; i < chunk.size(); ++i) {
+          const int index = begin + static_cast<int>(i);
+          chunk[i].frame_id = labels_.frameId(index);
+          chunk[i].sequence = labels_.sequence(index);
+        }
+      }
       copy.append(chunk);
     }
     copy.backupTo(path);

@@ -367,6 +367,45 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   }
 }
 
+TEST_F(MapDatabaseNodeTest, AMapInMemoryKeepsItsFramesIdsAndNumbersThroughSaveAndLoad) {
+  // A node without ~database saved "" and -1 for every frame, and an answer about a loaded map's frame
+  // was stamped with the frame id of the camera instead of the map's.
+  auto node = startNode("memory", "");
+  MapInfoWatch info(nh_, "/" + node->name());
+  publishReference(0, 120);
+  ASSERT_TRUE(info.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames == 120; }, 30.0));
+  mrs_vpr::SaveMap save;
+  save.request.path = path("snapshot.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
+  ASSERT_TRUE(save.response.success) << save.response.message;
+  std::vector<mrs_vpr::StoredFrame> frames = storedFrames(path("snapshot.db"));
+  ASSERT_EQ(frames.size(), 120U);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    EXPECT_EQ(frames[i].frame_id, "camera") << i;
+    EXPECT_EQ(frames[i].sequence, static_cast<std::int64_t>(i)) << i;
+  }
+
+  // The same frames seen by another camera, loaded: an answer about one of them names that camera.
+  for (mrs_vpr::StoredFrame& frame : frames) frame.frame_id = "left_camera";
+  mrs_vpr::MapDatabase(path("left.db"), mrs_vpr::DescriptorParams{}).append(frames);
+  mrs_vpr::LoadMap load;
+  load.request.path = path("left.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
+  ASSERT_TRUE(load.response.success) << load.response.message;
+  TopicInbox<mrs_vpr::LoopClosure> closures(nh_, "/" + node->name() + "/loop_closure");
+  ASSERT_TRUE(closures.waitConnected());
+  mrs_vpr::QuerySequence recent;
+  recent.request.recent_frames = 10;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  ASSERT_TRUE(recent.response.success) << recent.response.message;
+  mrs_vpr::LoopClosure closure;
+  const ros::Time localised = recent.response.localised_stamp;
+  ASSERT_TRUE(closures.waitFor([&](const mrs_vpr::LoopClosure& m) { return m.header.stamp == localised; }, closure,
+                               10.0));
+  EXPECT_EQ(closure.header.frame_id, "left_camera");
+  EXPECT_EQ(node->stop(), 0);
+}
+
 TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
   {
     auto mapper = startNode("mapper", path("map.db"));

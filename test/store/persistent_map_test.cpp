@@ -70,6 +70,29 @@ std::vector<std::pair<cv::Mat, Stamp>> framesOf(const std::string& path) {
   return frames;
 }
 
+/// The database's frames' ids and numbers.
+std::vector<std::pair<std::string, std::int64_t>> labelsOf(const std::string& path) {
+  std::vector<std::pair<std::string, std::int64_t>> labels;
+  MapDatabase(path, DescriptorParams{}, MapAccess::kReadOnly).forEachFrame([&](const StoredFrame& frame) {
+    labels.emplace_back(frame.frame_id, frame.sequence);
+  });
+  return labels;
+}
+
+/// The map's frames' ids and numbers, as PersistentMap tells them.
+std::vector<std::pair<std::string, std::int64_t>> labelsOf(const PersistentMap& map, int frames) {
+  std::vector<std::pair<std::string, std::int64_t>> labels;
+  for (int i = 0; i < frames; ++i) labels.emplace_back(map.frameIdOf(i), map.sequenceOf(i));
+  return labels;
+}
+
+/// The labels addReference gives frames [begin, end): frame id "camera", number i.
+std::vector<std::pair<std::string, std::int64_t>> expectedLabels(int begin, int end) {
+  std::vector<std::pair<std::string, std::int64_t>> labels;
+  for (int i = begin; i < end; ++i) labels.emplace_back("camera", i);
+  return labels;
+}
+
 /// Reference frames [begin, end) as the map should hold them: descriptor and stamp i.
 std::vector<std::pair<cv::Mat, Stamp>> expectedFrames(int begin, int end) {
   std::vector<std::pair<cv::Mat, Stamp>> frames;
@@ -126,6 +149,7 @@ class PersistentMapTest : public ::testing::Test {
     const std::string copy = path("copy.db");
     map.save(copy);
     expectSameFrames(framesOf(copy), framesOf(recognizer));
+    EXPECT_EQ(labelsOf(copy), labelsOf(map, recognizer.size()));
     fs::remove(copy);
   }
 
@@ -232,7 +256,10 @@ TEST_F(PersistentMapTest, ResetEmptiesTheMapAndTheDatabase) {
     EXPECT_EQ(map.reset(), 50);
     EXPECT_EQ(recognizer.size(), 0);
     EXPECT_EQ(map.persisted(), 0U);
+    EXPECT_EQ(map.frameIdOf(0), "");
+    EXPECT_EQ(map.sequenceOf(0), -1);
     addReference(map, 50, 60);
+    EXPECT_EQ(labelsOf(map, 10), expectedLabels(50, 60));
   }
   expectSameFrames(framesOf(path("map.db")), expectedFrames(50, 60));
 }
@@ -282,6 +309,7 @@ TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
   EXPECT_EQ(map.persisted(), 0U);
   EXPECT_EQ(map.save(path("memory.db")), 120);
   expectSameFrames(framesOf(path("memory.db")), expectedFrames(0, 120));
+  EXPECT_EQ(labelsOf(path("memory.db")), expectedLabels(0, 120));  // Not "" and -1, which lost them.
   EXPECT_FALSE(fs::exists(path("memory.db.build")));
   // The scratch file's name holding a file of the user's: refused, and the file left alone.
   std::ofstream(path("notes.db.build")) << "mine\n";
@@ -289,6 +317,23 @@ TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
   EXPECT_NE(refused.find("'" + path("notes.db.build") + "'"), std::string::npos) << refused;
   EXPECT_EQ(fileContents(path("notes.db.build")), "mine\n");
   EXPECT_FALSE(fs::exists(path("notes.db")));
+}
+
+TEST_F(PersistentMapTest, AMapInMemoryKeepsTheFrameIdsAndNumbersOfTheMapItLoaded) {
+  writeMap(path("saved.db"), 200, 260);
+  PlaceRecognizer recognizer;
+  PersistentMap map(recognizer);
+  addReference(map, 0, 10);
+  ASSERT_EQ(map.load(path("saved.db")), 60);
+  EXPECT_EQ(labelsOf(map, 60), expectedLabels(200, 260));
+  map.add(referenceDescriptors()[0], secondsStamp(1000), "other_camera", 7);
+  EXPECT_EQ(map.frameIdOf(60), "other_camera");
+  EXPECT_EQ(map.sequenceOf(60), 7);
+  EXPECT_EQ(map.frameIdOf(61), "");  // No such frame.
+  ASSERT_EQ(map.save(path("again.db")), 61);
+  auto expected = expectedLabels(200, 260);
+  expected.emplace_back("other_camera", 7);
+  EXPECT_EQ(labelsOf(path("again.db")), expected);
 }
 
 TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {
@@ -443,6 +488,8 @@ TEST_F(PersistentMapTest, AFileWhoseRowsChangeOrGoWhileItIsLoadedLeavesTheMapEqu
   writeMap(path("changing.db"), 0, 300);
   const std::vector<std::vector<const char*>> kinds = {
       {"UPDATE frames SET stamp_ns = stamp_ns + 1 WHERE id = 150"},  // a row changed in place
+      {"UPDATE frames SET frame_id = frame_id || 'x' WHERE id = 150"},  // only its frame id
+      {"UPDATE frames SET sequence = sequence + 1 WHERE id = 150"},     // only its number
       {"INSERT INTO frames (stamp_ns, frame_id, sequence, descriptor) "  // a row appended, then removed
        "SELECT stamp_ns + 1000000000000, frame_id, sequence, descriptor FROM frames WHERE id = 1",
        "DELETE FROM frames WHERE id = (SELECT MAX(id) FROM frames)"},

@@ -9,6 +9,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/frame_labels.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/store/map_writer.hpp"
 
@@ -65,11 +66,19 @@ class PersistentMap {
   /**
    * Writes a consistent snapshot of the map, as it is when called, to the new file `path` (never
    * overwritten; written aside and renamed when complete). With a database it is SQLite's online
-   * backup of it; in memory only, the map's descriptors and stamps. Returns the frames written.
+   * backup of it; in memory only, the map's frames as the database would hold them (descriptor,
+   * stamp, frame id and number). Returns the frames written.
    */
   std::int64_t save(const std::string& path);
   /// Commits the queued frames now.
   void commit();
+
+  /// Map frame `index`'s frame id and number (StoredFrame), as added or loaded; "" and -1 for an
+  /// index the map does not hold.
+  std::string frameIdOf(int index) const;
+  std::int64_t sequenceOf(int index) const;
+  /// Bytes that the frames' ids and numbers hold (about 12 a frame), besides the recognizer's map.
+  std::size_t labelBytes() const;
 
   bool persistent() const { return database_ != nullptr; }
   /// The database's path; empty in memory only.
@@ -91,14 +100,17 @@ class PersistentMap {
   std::int64_t saveFromMemory(const std::string& path);
   /// load()'s rewrite of the database by the frames of the map saved at `path`, which must be those of
   /// `prepared`; added frames are held back meanwhile.
-  void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared);
+  void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
+                       const FrameLabels& labels);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
   std::unique_ptr<MapWriter> writer_;
   // Held by add() while the frame goes to the map and the queue, so that both see frames in one
   // order; held by reset() and load() while they swap the maps.
-  std::mutex add_mutex_;
+  mutable std::mutex add_mutex_;
+  // The frame ids and numbers of the recognizer's frames, in its order. Guarded by add_mutex_.
+  FrameLabels labels_;
   // One whole-map operation (reset, load, save) at a time.
   std::mutex whole_map_mutex_;
   // While load() rewrites the database, add() holds the admitted frames back here instead of queuing
