@@ -74,7 +74,10 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
     return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
   }
   const FrameAdmission admission = append(descriptor, stamp);
-  if (admission == FrameAdmission::kAdmitted) {
+  // A full map still follows the camera as if it had room, so that only the frames that would have
+  // been keyframes are dropped (a robot standing at a new place drops one); a frame that only waited
+  // for a query (kPendingFull) is not kept by the rule, so that the next one can take its place.
+  if (admission == FrameAdmission::kAdmitted || admission == FrameAdmission::kMapFull) {
     keepKeyframeLocked(descriptor);
   } else {
     keyframes_.skip(descriptor);

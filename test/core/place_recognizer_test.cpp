@@ -244,6 +244,25 @@ TEST(PlaceRecognizer, CapacityDropsFramesBeyondMaxFramesAndResetEmpties) {
   EXPECT_EQ(recognizer.addFrame(route().reference[0]), FrameAdmission::kAdmitted);
 }
 
+TEST(PlaceRecognizer, AFullMapDropsOnlyTheFramesThatWouldHaveBeenKeyframes) {
+  // A full map went on comparing each camera frame with its last keyframe, so that a robot standing at
+  // a new place had every frame counted as a keyframe dropped.
+  RecognizerParams limits;
+  limits.max_frames = 20;
+  PlaceRecognizer recognizer(routeParameters(), limits);
+  std::size_t next = 0;
+  while (recognizer.size() < limits.max_frames) {
+    recognizer.offerDescriptor(recognizer.describe(route().reference[next++]));
+  }
+  const cv::Mat standing = recognizer.describe(route().reference[next + 100]);
+  EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kMapFull);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kTooSimilar) << i;
+  EXPECT_EQ(recognizer.offerDescriptor(recognizer.describe(route().reference[next + 200])), FrameAdmission::kMapFull);
+  // Emptied, the map takes the view at once: the rule starts over with it.
+  recognizer.reset();
+  EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kAdmitted);
+}
+
 // A map loaded while queries run: each query sees the old map or the new one, never a part of either.
 TEST(PlaceRecognizer, ReplaceExchangesTheWholeMapInOneStep) {
   PlaceRecognizer recognizer(routeParameters());
