@@ -79,6 +79,7 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
   // for a query (kPendingFull) is not kept by the rule, so that the next one can take its place.
   if (admission == FrameAdmission::kAdmitted || admission == FrameAdmission::kMapFull) {
     keepKeyframeLocked(descriptor);
+    newest_keyframe_in_map_ = admission == FrameAdmission::kAdmitted;
   } else {
     keyframes_.skip(descriptor);
   }
@@ -99,7 +100,10 @@ FrameAdmission PlaceRecognizer::addDescriptor(const cv::Mat& descriptor, Stamp s
   requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   const FrameAdmission admission = append(descriptor, stamp);
-  if (admission == FrameAdmission::kAdmitted) keepKeyframeLocked(descriptor);
+  if (admission == FrameAdmission::kAdmitted) {
+    keepKeyframeLocked(descriptor);
+    newest_keyframe_in_map_ = true;
+  }
   return admission;
 }
 
@@ -110,7 +114,7 @@ double PlaceRecognizer::lastAppearanceChange() const {
 
 bool PlaceRecognizer::lastFrameStood() const {
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
-  return keyframes_.lastStood();
+  return newest_keyframe_in_map_ && keyframes_.lastStood();
 }
 
 FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
@@ -307,6 +311,7 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   std::lock_guard<std::mutex> lock(pending_mutex_);
   const int cleared = map_.size() + static_cast<int>(pending_.size());
   keyframes_ = std::move(prepared.keyframes_);
+  newest_keyframe_in_map_ = true;
   map_ = std::move(prepared.map_);
   pending_.clear();
   recent_rows_->clear();

@@ -90,7 +90,8 @@ class PlaceRecognizer {
   double lastAppearanceChange() const;
   /// Whether the last frame offerDescriptor() refused as kTooSimilar shows the newest keyframe's view
   /// itself (AppearanceKeyframes::lastStood): the node restates the keyframe's closures for such frames
-  /// only, not for frames on their way to the next place.
+  /// only, not for frames on their way to the next place. False when that keyframe is one a full map
+  /// dropped (the rule follows the camera on), as the map holds no frame of its place.
   bool lastFrameStood() const;
 
   /// Where the test sequence (images, oldest first, at the camera's rate or spaced already) ends in the
@@ -247,7 +248,8 @@ class PlaceRecognizer {
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively. When an append
   /// throws, the frames not yet in the map stay pending.
   void flushLocked();
-  /// keyframes_.keep() of an admitted frame; the caller holds keyframes_mutex_.
+  /// keyframes_.keep() of an admitted frame, or of one a full map dropped; the caller holds
+  /// keyframes_mutex_.
   void keepKeyframeLocked(const cv::Mat& descriptor);
   /// reserveAhead(); the caller holds map_mutex_ exclusively.
   void reserveAheadLocked();
@@ -267,6 +269,8 @@ class PlaceRecognizer {
   // Held while a frame is offered, so that frames are decided and added one at a time, in order.
   mutable std::mutex keyframes_mutex_;
   AppearanceKeyframes keyframes_;
+  // False while the rule's newest keyframe is a frame a full map dropped: no answer is about its place.
+  bool newest_keyframe_in_map_ = true;
 
   // Read by queries under a shared lock, written under an exclusive one.
   mutable std::shared_mutex map_mutex_;

@@ -5,7 +5,10 @@
 namespace mrs_vpr {
 
 void FrameLabels::prepareFor(const std::string& frame_id) {
-  if (sequences_.size() == sequences_.capacity()) reserve(std::max<std::size_t>(16, 2 * sequences_.capacity()));
+  if (sequences_.size() == sequences_.capacity() || name_of_.size() == name_of_.capacity()) {
+    reserve(std::max<std::size_t>(16, 2 * sequences_.size()));
+  }
+  prepared_a_new_name_ = false;
   const auto [found, added] = index_of_.try_emplace(frame_id, static_cast<std::uint32_t>(names_.size()));
   if (!added) return;
   try {
@@ -14,15 +17,28 @@ void FrameLabels::prepareFor(const std::string& frame_id) {
     index_of_.erase(found);
     throw;
   }
+  name_bytes_ += names_.back().capacity() + found->first.capacity();
+  prepared_a_new_name_ = true;
+}
+
+void FrameLabels::cancelPrepared() {
+  if (!prepared_a_new_name_) return;
+  prepared_a_new_name_ = false;
+  const auto found = index_of_.find(names_.back());
+  name_bytes_ -= names_.back().capacity() + found->first.capacity();
+  index_of_.erase(found);
+  names_.pop_back();
 }
 
 void FrameLabels::append(const std::string& frame_id, std::int64_t sequence) {
   // The last frame's id first: a camera's frames all have the same one.
-  if (name_of_.empty() || names_[name_of_.back()] != frame_id) prepareFor(frame_id);
-  const std::uint32_t name =
-      !name_of_.empty() && names_[name_of_.back()] == frame_id ? name_of_.back() : index_of_.at(frame_id);
+  const bool as_last = !name_of_.empty() && names_[name_of_.back()] == frame_id;
+  if (!as_last && index_of_.find(frame_id) == index_of_.end()) prepareFor(frame_id);
+  const std::uint32_t name = as_last ? name_of_.back() : index_of_.at(frame_id);
+  if (sequences_.size() == sequences_.capacity()) reserve(std::max<std::size_t>(16, 2 * sequences_.size()));
   name_of_.push_back(name);
   sequences_.push_back(sequence);
+  prepared_a_new_name_ = false;
 }
 
 void FrameLabels::clear() { *this = FrameLabels(); }
@@ -37,9 +53,11 @@ const std::string& FrameLabels::frameId(int index) const { return names_[name_of
 std::int64_t FrameLabels::sequence(int index) const { return sequences_.at(static_cast<std::size_t>(index)); }
 
 std::size_t FrameLabels::memoryBytes() const {
-  std::size_t bytes = name_of_.capacity() * sizeof(std::uint32_t) + sequences_.capacity() * sizeof(std::int64_t);
-  for (const std::string& name : names_) bytes += 2 * (sizeof(std::string) + name.capacity());  // and its key
-  return bytes;
+  // A table node holds its key, value and link; the key's characters are in name_bytes_.
+  constexpr std::size_t kNode = sizeof(void*) + sizeof(std::string) + sizeof(std::uint32_t) + sizeof(std::size_t);
+  return name_of_.capacity() * sizeof(std::uint32_t) + sequences_.capacity() * sizeof(std::int64_t) +
+         names_.capacity() * sizeof(std::string) + index_of_.bucket_count() * sizeof(void*) +
+         index_of_.size() * kNode + name_bytes_;
 }
 
 bool FrameLabels::holds(int index, const std::string& frame_id, std::int64_t sequence) const {

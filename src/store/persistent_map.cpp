@@ -31,6 +31,10 @@ void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path,
   }
 }
 
+/// Labels to reserve for a map of `frames`: with room for the camera's next frames, so that the first
+/// of them does not copy a large map's labels on the camera's thread.
+std::size_t withRoomToGrow(std::int64_t frames) { return static_cast<std::size_t>(frames + frames / 8 + 64); }
+
 MapDatabaseError changedWhileLoaded(const std::string& path) {
   return MapDatabaseError("map database '" + path + "': it changed while it was loaded; load it again");
 }
@@ -50,12 +54,13 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
   // Streamed into a map built aside, as load() builds one: a million-frame map is not held twice, and
   // its size is known, so it is allocated once (with room for the camera's next frames).
   PlaceRecognizer::PreparedMap map = recognizer_.prepareMap(static_cast<int>(frames));
-  labels_.reserve(static_cast<std::size_t>(frames));
+  labels_.reserve(withRoomToGrow(frames));
   database_->forEachFrame([&](const StoredFrame& frame) {
     map.append(frame.descriptor, frame.stamp);
     labels_.append(frame.frame_id, frame.sequence);
   });
   recognizer_.install(std::move(map));
+  label_bytes_ = labels_.memoryBytes();
   writer_ = std::make_unique<MapWriter>(*database_, policy);
 }
 
@@ -88,24 +93,31 @@ FrameAdmission PersistentMap::store(const cv::Mat& descriptor, Stamp stamp, cons
   // frame admitted has its labels and reaches the database, and a failed allocation (std::bad_alloc)
   // leaves it out of all of them.
   labels_.prepareFor(frame_id);
+  bool labelled = false;
   const auto admitLabelled = [&] {
     if (!admit()) return false;
     labels_.append(frame_id, sequence);  // Cannot fail: prepared for.
+    labelled = true;
     return true;
   };
-  if (!writer_) {
-    admitLabelled();
-    return admission;
+  try {
+    if (!writer_) {
+      admitLabelled();
+    } else if (!rewriting_) {
+      writer_->addIf(StoredFrame{descriptor, stamp, frame_id, sequence}, admitLabelled);  // Shares the bytes.
+    } else {
+      if (held_back_.size() == held_back_.capacity()) {
+        held_back_.reserve(std::max<std::size_t>(16, 2 * held_back_.capacity()));
+      }
+      StoredFrame frame{descriptor, stamp, frame_id, sequence};
+      if (admitLabelled()) held_back_.push_back(std::move(frame));
+    }
+  } catch (...) {
+    if (!labelled) labels_.cancelPrepared();
+    throw;
   }
-  StoredFrame frame{descriptor, stamp, frame_id, sequence};  // Shares the descriptor's bytes, never changed.
-  if (!rewriting_) {
-    writer_->addIf(std::move(frame), admitLabelled);
-    return admission;
-  }
-  if (held_back_.size() == held_back_.capacity()) {
-    held_back_.reserve(std::max<std::size_t>(16, 2 * held_back_.capacity()));
-  }
-  if (admitLabelled()) held_back_.push_back(std::move(frame));
+  if (!labelled) labels_.cancelPrepared();
+  label_bytes_ = labels_.memoryBytes();
   return admission;
 }
 
@@ -119,10 +131,7 @@ std::int64_t PersistentMap::sequenceOf(int index) const {
   return index >= 0 && index < labels_.size() ? labels_.sequence(index) : -1;
 }
 
-std::size_t PersistentMap::labelBytes() const {
-  std::lock_guard<std::mutex> lock(add_mutex_);
-  return labels_.memoryBytes();
-}
+std::size_t PersistentMap::labelBytes() const { return label_bytes_; }
 
 void PersistentMap::commit() {
   if (writer_) writer_->commit();
@@ -136,6 +145,7 @@ int PersistentMap::reset() {
   std::lock_guard<std::mutex> lock(add_mutex_);
   if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
   labels_.clear();
+  label_bytes_ = labels_.memoryBytes();
   return recognizer_.install(std::move(empty));
 }
 
@@ -156,7 +166,7 @@ int PersistentMap::load(const std::string& path) {
       const std::int64_t frames = saved.size();
       requireCapacity(recognizer_, path, frames);
       map = recognizer_.prepareMap(static_cast<int>(frames));
-      labels.reserve(static_cast<std::size_t>(frames));
+      labels.reserve(withRoomToGrow(frames));
       saved.forEachFrame([&](const StoredFrame& frame) {
         map->append(frame.descriptor, frame.stamp);
         labels.append(frame.frame_id, frame.sequence);
@@ -186,13 +196,17 @@ int PersistentMap::load(const std::string& path) {
         recognizer_.flush();  // A query holds the map: wait for it rather than drop a frame the camera gave.
         admission = recognizer_.addDescriptor(frame.descriptor, frame.stamp);
       }
-      if (admission != FrameAdmission::kAdmitted) break;
+      if (admission != FrameAdmission::kAdmitted) {
+        labels_.cancelPrepared();
+        break;
+      }
       labels_.append(frame.frame_id, frame.sequence);
       writer_->add(std::move(frame));
     }
   } catch (const std::exception&) {
     // Out of memory: the frames not yet added are in neither, and the map still matches its database.
   }
+  label_bytes_ = labels_.memoryBytes();
   return loaded;
 }
 

@@ -256,11 +256,19 @@ TEST(PlaceRecognizer, AFullMapDropsOnlyTheFramesThatWouldHaveBeenKeyframes) {
   }
   const cv::Mat standing = recognizer.describe(route().reference[next + 100]);
   EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kMapFull);
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kTooSimilar) << i;
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kTooSimilar) << i;
+    // Not standing at the map's newest keyframe, whose closures the node would restate: the map holds
+    // no frame of this place.
+    EXPECT_FALSE(recognizer.lastFrameStood()) << i;
+  }
   EXPECT_EQ(recognizer.offerDescriptor(recognizer.describe(route().reference[next + 200])), FrameAdmission::kMapFull);
-  // Emptied, the map takes the view at once: the rule starts over with it.
+  // Emptied, the map takes the view at once: the rule starts over with it, and a camera standing there
+  // stands at a keyframe of the map.
   recognizer.reset();
   EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kAdmitted);
+  EXPECT_EQ(recognizer.offerDescriptor(standing), FrameAdmission::kTooSimilar);
+  EXPECT_TRUE(recognizer.lastFrameStood());
 }
 
 // A map loaded while queries run: each query sees the old map or the new one, never a part of either.

@@ -7,36 +7,52 @@
 #include <vector>
 
 #include "support/ros_processes.hpp"
+#include "support/temporary_folder.hpp"
 
 namespace {
 
 using mrs_vpr::testing_support::Child;
+using mrs_vpr::testing_support::fileContents;
 using mrs_vpr::testing_support::PrivateMaster;
 
-/// The exit status of `command` run against `master`, or nothing when it still runs after 30 s.
-std::optional<int> exitStatusOf(const PrivateMaster& master, const std::vector<std::string>& command) {
-  Child child(command, master.environment());
-  if (!child.started()) return std::nullopt;
-  return child.exitWithin(30.0);
-}
+class StartUpTest : public ::testing::Test {
+ protected:
+  /// Runs `command` against a master of its own; its exit status (nothing when it still runs after
+  /// 30 s) and, in `output`, what it printed.
+  std::optional<int> run(const std::vector<std::string>& command, std::string& output) {
+    const PrivateMaster master;
+    EXPECT_TRUE(master.started()) << "rosmaster did not start";
+    const std::string log = folder_.path("output.log");
+    Child child(command, master.environment(), log);
+    EXPECT_TRUE(child.started()) << command.front() << " did not start";
+    const std::optional<int> status = child.exitWithin(30.0);
+    output = fileContents(log);
+    return status;
+  }
 
-TEST(StartUp, ANodeWithABadParameterExitsWithAnError) {
-  const PrivateMaster master;
-  ASSERT_TRUE(master.started());
-  const std::optional<int> status =
-      exitStatusOf(master, {MRS_VPR_NODE_PATH, "__name:=bad_node", "_sequence/accept_threshold:=-1"});
+  mrs_vpr::testing_support::TemporaryFolder folder_{"mrs_vpr_start_up_test"};
+};
+
+constexpr const char* kBadParameter = "_sequence/accept_threshold:=-1";
+constexpr const char* kSaysWhy = "mrs_vpr: invalid parameters, not starting: ~sequence/accept_threshold";
+
+TEST_F(StartUpTest, ANodeWithABadParameterExitsWithAnError) {
+  std::string output;
+  const std::optional<int> status = run({MRS_VPR_NODE_PATH, "__name:=bad_node", kBadParameter}, output);
   ASSERT_TRUE(status.has_value()) << "the node still runs";
   EXPECT_EQ(*status, 2);  // mrs_vpr_node's status for invalid parameters
+  EXPECT_NE(output.find(kSaysWhy), std::string::npos) << output;
 }
 
-TEST(StartUp, AStandaloneNodeletWithABadParameterExitsWithAnError) {
-  // It stayed registered, with neither services nor topics, until it was killed.
-  const PrivateMaster master;
-  ASSERT_TRUE(master.started());
-  const std::optional<int> status = exitStatusOf(master, {NODELET_PATH, "standalone", "mrs_vpr/MrsVprNodelet",
-                                                          "__name:=bad_nodelet", "_sequence/accept_threshold:=-1"});
+TEST_F(StartUpTest, AStandaloneNodeletWithABadParameterExitsWithAnError) {
+  // It stayed registered, with neither services nor topics, until it was killed. The nodelet itself
+  // must be what refused: a plugin nodelet could not find fails the same way, without the message.
+  std::string output;
+  const std::optional<int> status =
+      run({NODELET_PATH, "standalone", "mrs_vpr/MrsVprNodelet", "__name:=bad_nodelet", kBadParameter}, output);
   ASSERT_TRUE(status.has_value()) << "the nodelet's process still runs";
   EXPECT_NE(*status, 0);
+  EXPECT_NE(output.find(kSaysWhy), std::string::npos) << output;
 }
 
 }  // namespace

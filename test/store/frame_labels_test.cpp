@@ -54,8 +54,30 @@ TEST(FrameLabels, AFramePreparedForIsAppendedWithoutAllocating) {
     labels.prepareFor(id);
     const std::size_t bytes = labels.memoryBytes();
     labels.append(id, i);
-    EXPECT_EQ(labels.memoryBytes(), bytes) << i;
+    EXPECT_EQ(labels.memoryBytes(), bytes) << i;  // vectors' capacities, the table's buckets and nodes
   }
+}
+
+TEST(FrameLabels, AFrameIdPreparedForAFrameThatWasNotAdmittedIsNotKept) {
+  // A camera that names every frame anew, standing still: none of its frames joins the map.
+  FrameLabels labels;
+  labels.append("camera", 0);
+  const std::size_t before = labels.memoryBytes();
+  for (int i = 0; i < 1000; ++i) {
+    labels.prepareFor("frame_" + std::to_string(i));
+    labels.cancelPrepared();
+  }
+  EXPECT_LE(labels.memoryBytes(), before + 64 * sizeof(void*));  // at most the table's buckets grew
+  labels.prepareFor("camera");  // known already: nothing to undo
+  labels.cancelPrepared();
+  labels.append("camera", 1);
+  labels.prepareFor("left");
+  labels.append("left", 2);
+  labels.cancelPrepared();  // after its append: the id is the frame's, and stays
+  EXPECT_EQ(labels.frameId(2), "left");
+  labels.append("right", 3);
+  EXPECT_EQ(labels.frameId(3), "right");
+  EXPECT_EQ(labels.frameId(0), "camera");
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // Processes a test starts itself (its own rosmaster on a free port, the node), for tests that are
 // not rostests because they must own the master or see a process exit.
 
+#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
@@ -39,22 +40,36 @@ inline int freePort() {
 /// A process the test starts; killed when the test ends, whatever happens.
 class Child {
  public:
-  Child(const std::vector<std::string>& command, const std::vector<std::string>& environment) {
+  /// With `output`, the process's standard output and error go to that file.
+  Child(const std::vector<std::string>& command, const std::vector<std::string>& environment,
+        const std::string& output = "") {
     std::vector<char*> argv;
     for (const std::string& word : command) argv.push_back(const_cast<char*>(word.c_str()));
     argv.push_back(nullptr);
     std::vector<char*> envp;
     for (const std::string& entry : environment) envp.push_back(const_cast<char*>(entry.c_str()));
     envp.push_back(nullptr);
-    if (posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!output.empty()) {
+      posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    }
+    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), envp.data()) != 0) pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
   }
   ~Child() { stop(SIGKILL); }
   Child(const Child&) = delete;
   Child& operator=(const Child&) = delete;
 
   bool started() const { return pid_ > 0; }
-  /// False once the process has exited (a crash included).
-  bool running() const { return pid_ > 0 && waitpid(pid_, nullptr, WNOHANG) == 0; }
+  /// False once the process has exited (a crash included); it is then reaped, and never signalled.
+  bool running() {
+    if (pid_ <= 0) return false;
+    if (waitpid(pid_, nullptr, WNOHANG) == 0) return true;
+    pid_ = -1;
+    return false;
+  }
 
   /// The exit status once the process has ended by itself within `seconds` (-signal when a signal
   /// ended it); nothing while it still runs.

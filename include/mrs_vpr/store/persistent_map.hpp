@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <mutex>
@@ -106,11 +107,14 @@ class PersistentMap {
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
   std::unique_ptr<MapWriter> writer_;
-  // Held by add() while the frame goes to the map and the queue, so that both see frames in one
-  // order; held by reset() and load() while they swap the maps.
+  // Held by add() while the frame goes to the map, its labels and the queue, so that all see frames
+  // in one order; by reset() and load() while they swap the maps; by frameIdOf(), sequenceOf() and
+  // saveFromMemory() while they read the labels.
   mutable std::mutex add_mutex_;
   // The frame ids and numbers of the recognizer's frames, in its order. Guarded by add_mutex_.
   FrameLabels labels_;
+  // labels_.memoryBytes(), for ~map_info, which must not wait for a reset's or a load's disk work.
+  std::atomic<std::size_t> label_bytes_{0};
   // One whole-map operation (reset, load, save) at a time.
   std::mutex whole_map_mutex_;
   // While load() rewrites the database, add() holds the admitted frames back here instead of queuing
