@@ -41,7 +41,12 @@ MapDatabaseError changedWhileLoaded(const std::string& path) {
 
 }  // namespace
 
-PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(recognizer) {}
+PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(recognizer) {
+  // Its frames would have no labels: frames join the map through this object only.
+  if (recognizer_.size() + recognizer_.pending() > 0) {
+    throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
+  }
+}
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& path, const CommitPolicy& policy)
     : recognizer_(recognizer),

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -317,6 +318,14 @@ TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
   EXPECT_NE(refused.find("'" + path("notes.db.build") + "'"), std::string::npos) << refused;
   EXPECT_EQ(fileContents(path("notes.db.build")), "mine\n");
   EXPECT_FALSE(fs::exists(path("notes.db")));
+}
+
+TEST_F(PersistentMapTest, ARecognizerThatHoldsFramesAlreadyIsRefused) {
+  // Frames that did not come through the PersistentMap have no frame ids or numbers to save.
+  PlaceRecognizer recognizer;
+  recognizer.addDescriptor(referenceDescriptors()[0], secondsStamp(0));
+  EXPECT_THROW(PersistentMap{recognizer}, std::logic_error);
+  EXPECT_THROW((PersistentMap{recognizer, path("map.db"), CommitPolicy{}}), std::logic_error);
 }
 
 TEST_F(PersistentMapTest, AMapInMemoryKeepsTheFrameIdsAndNumbersOfTheMapItLoaded) {
