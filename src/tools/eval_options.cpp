@@ -162,7 +162,16 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
     if (!folder.empty() && !std::filesystem::is_directory(folder)) {
       throw std::invalid_argument("--output '" + options.output + "': there is no folder " + folder.string());
     }
-    requireWritableFolder(folder.empty() ? "." : folder.string(), "--output");
+    std::error_code ignored;
+    const auto status = std::filesystem::symlink_status(options.output, ignored);
+    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+      // A pipe, a device or a link (/dev/stdout): written into, not replaced (writeJson).
+      if (::access(options.output.c_str(), W_OK) != 0) {
+        throw std::invalid_argument("--output '" + options.output + "': cannot write to it");
+      }
+    } else {
+      requireWritableFolder(folder.empty() ? "." : folder.string(), "--output");
+    }
   }
   return options;
 }

@@ -104,8 +104,20 @@ std::string jsonText(const json& document, int indent) {
 
 void writeJson(const json& document, const std::string& path) {
   const std::string text = jsonText(document, 2);
-  OutputInProgress output(path);  // Removed unless renamed into place: an existing file is never emptied.
   const auto cannot = [&] { return std::runtime_error("cannot write '" + path + "'"); };
+  // A pipe, a device or a link (/dev/stdout) is written into: renaming a file onto it would replace
+  // it, and whoever reads it would get nothing.
+  std::error_code ignored;
+  const std::filesystem::file_status status = std::filesystem::symlink_status(path, ignored);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    std::ofstream file(path);
+    if (!(file << text << "\n").flush()) throw cannot();
+    file.close();
+    if (file.fail()) throw cannot();
+    std::cerr << "  wrote " << path << "\n";
+    return;
+  }
+  OutputInProgress output(path);  // Removed unless renamed into place: an existing file is never emptied.
   {
     std::ofstream file(output.temporary());
     if (!(file << text << "\n").flush()) throw cannot();

@@ -3,10 +3,17 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
@@ -345,6 +352,43 @@ TEST_F(EvaluatorTest, APathThatIsNotUtf8IsWrittenAndAnExistingOutputIsKeptUntilT
   const json document = json::parse(fileContents(output));
   EXPECT_EQ(document.at("summary").at("queries").get<int>(), 91);
   EXPECT_FALSE(fs::exists(output + ".part"));
+}
+
+TEST_F(EvaluatorTest, APipeGivenAsOutputIsWrittenIntoNotReplaced) {
+  // As `--output /dev/stdout` into a pipe, or a named pipe another program reads: renaming a file
+  // onto it replaced it, and the reader got nothing.
+  const std::string fifo = path("results.fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  // Read as the tool writes (more than a pipe holds), without blocking: a tool that never opens the
+  // pipe must fail the test, not hang it.
+  const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  std::atomic<bool> finished{false};
+  std::string received;
+  std::thread reader([&] {
+    char buffer[65536];
+    for (;;) {
+      const ssize_t count = ::read(fd, buffer, sizeof(buffer));
+      if (count > 0) {
+        received.append(buffer, static_cast<std::size_t>(count));
+      } else if (count == 0 && finished) {
+        break;  // No writer any more, and none to come.
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    }
+  });
+  const CommandResult result = run(eval("--reference " + path("reference") + " --query " + path("query") +
+                                        " --method seqslam --protocol per-frame --sequence-length 10 --output " +
+                                        fifo));
+  finished = true;
+  reader.join();
+  ::close(fd);
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_FALSE(fs::exists(fifo + ".part"));
+  ASSERT_FALSE(received.empty());
+  EXPECT_EQ(json::parse(received).at("summary").at("queries").get<int>(), 91);
 }
 
 }  // namespace
