@@ -118,6 +118,8 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     length = parameters["sequence/sequence_length"]
     alignment = parameters["sequence/alignment"]
     frames = len(query_images)
+    if frames < length:  # Else no query would be matched, and every figure would be NaN.
+        raise ValueError("the query has %d images, fewer than the sequence length %d" % (frames, length))
     if ground_truth is None and recognizer.frames_left_out > 0:
         warnings.warn("without ground_truth, query frame i is taken to show map frame i, but the map left out %d "
                       "of the frames offered to it (keyframes by min_appearance_change): its frame i is not the "
@@ -136,6 +138,12 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     else:  # "global"
         # Every image first, as match_every_frame checks them: a window meets a bad one only if it covers it.
         recognizer._check_images(query_images, channel_order, "the traversal")
+        positions = frames - length + 1
+        if queries > positions:
+            warnings.warn("%d test sequences, but the query has %d positions for one: each position once, and %d "
+                          "of them again (the summary counts every test sequence)" % (queries, positions,
+                                                                                       queries - positions),
+                          UserWarning, stacklevel=2)
         for first, count, _ in _bindings.global_queries(frames, length, queries, seed, alignment):
             start = time.perf_counter()
             answer = recognizer.match(query_images[first:first + count], method, channel_order)

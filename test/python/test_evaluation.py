@@ -73,12 +73,22 @@ def test_the_global_protocol_draws_the_same_sequences_for_the_same_seed(route, s
     assert indices == [record["query_index"] for record in again.records]
     assert [r["predicted_index"] for r in first.records] == [r["predicted_index"] for r in again.records]
     assert first.summary["top1"] > 0.8
+    # More test sequences than the query has positions for (6 of 20 frames in 25): said, as repeats count.
+    with pytest.warns(UserWarning, match="10 test sequences, but the query has 6 positions for one"):
+        more = mrs_vpr.evaluate(short_sequences, route["query"][:25], protocol="global", queries=10, seed=3,
+                                method="seqslam")
+    assert len(more.records) <= 10
 
 
 def test_bad_evaluation_input_raises_value_error(route, short_sequences):
     with pytest.raises(ValueError) as error:
         mrs_vpr.evaluate(short_sequences, route["query"], protocol="sideways")
     assert str(error.value) == "protocol must be 'per-frame' or 'global', got 'sideways'"
+    for protocol in ("per-frame", "global"):  # Not 0 queries and NaN figures, as mrs_vpr_eval refuses it.
+        with pytest.raises(ValueError) as error:
+            mrs_vpr.evaluate(MatchesNothing(sequence_length=20, **ROUTE_PARAMETERS), route["query"][:19],
+                             protocol=protocol)
+        assert str(error.value) == "the query has 19 images, fewer than the sequence length 20"
     with pytest.raises(ValueError) as error:
         mrs_vpr.evaluate(short_sequences, route["query"], ground_truth={5000: [1]})
     assert "5000" in str(error.value)

@@ -75,6 +75,12 @@ TEST_F(EvaluatorTest, GlobalProtocolIsSeededAndUsesKSequences) {
     EXPECT_GE(a["records"][i]["query_index"].get<int>(), 39);
   }
   EXPECT_GE(a.at("summary").at("top1").get<double>(), 0.9);
+  // More test sequences than the query has positions for: said, as the summary counts the repeats.
+  const CommandResult more = run(eval("--reference " + path("reference") + " --query " + path("query") +
+                                      " --method seqslam --protocol global --sequence-length 90 --queries 50"));
+  ASSERT_EQ(more.status, 0) << more.err;
+  EXPECT_NE(more.err.find("50 test sequences, but the query has "), std::string::npos) << more.err;
+  EXPECT_NE(more.err.find("(the summary counts every test sequence)"), std::string::npos) << more.err;
 }
 
 TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
