@@ -13,8 +13,9 @@ import numpy as np
 
 from mrs_vpr import _bindings
 
-#: records: one dict per evaluated query (query_index, true_indices, predicted_index, score,
-#: confidence, accepted, rival_places, at_velocity_bound, repeated_view, time_ms); summary: a dict of
+#: records: one dict per evaluated query (query_index, true_index, true_indices, predicted_index,
+#: predicted_last, score, confidence, accepted, rival_places, at_velocity_bound, repeated_view, time_ms,
+#: correct: within the tolerance of a true frame, as mrs_vpr_eval's records); summary: a dict of
 #: the figures (top1, pr_auc, recall_at_100_precision, accepted, accepted_precision, ...); pr_curve:
 #: NumPy arrays threshold, precision and recall.
 Evaluation = collections.namedtuple("Evaluation", "records summary pr_curve")
@@ -155,4 +156,6 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
             if truths[query] is None:
                 continue
             records.append(_bindings.query_record(query, truths[query], answer.match, elapsed_ms))
+    for record in records:
+        record["correct"] = _bindings.is_correct(record, tolerance)
     return Evaluation(records, summarise(records, tolerance), precision_recall_curve(records, tolerance))

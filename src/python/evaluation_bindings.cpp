@@ -71,6 +71,10 @@ void bindEvaluation(py::module_& m) {
       },
       py::arg("query_index"), py::arg("true_indices"), py::arg("match"), py::arg("time_ms"));
   m.def(
+      "is_correct", [](const py::handle& record, int tolerance) { return isCorrect(recordOf(record), tolerance); },
+      py::arg("record"), py::arg("tolerance"),
+      "Whether the record's answer lies within `tolerance` frames of a true one (mrs_vpr_eval's `correct`).");
+  m.def(
       "summarise",
       [](const py::iterable& records, int tolerance) {
         return summaryDict(summarise(recordsFrom(records), tolerance));

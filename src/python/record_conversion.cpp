@@ -18,6 +18,9 @@ QueryRecord recordFrom(const py::handle& row) {
   record.query_index = row["query_index"].cast<int>();
   record.true_indices = row["true_indices"].cast<std::vector<int>>();
   record.predicted_index = row["predicted_index"].cast<int>();
+  if (py::isinstance<py::dict>(row) && row.cast<py::dict>().contains("predicted_last")) {
+    record.predicted_last = row["predicted_last"].cast<int>();
+  }
   record.score = row["score"].cast<float>();
   record.confidence = row["confidence"].cast<float>();
   record.accepted = row["accepted"].cast<bool>();
@@ -51,9 +54,12 @@ GroundTruth groundTruthFrom(const py::dict& truth) {
 
 py::dict recordDict(const QueryRecord& record) {
   py::dict row;
+  const int nearest = nearestTrueIndex(record);
   row["query_index"] = record.query_index;
+  row["true_index"] = nearest >= 0 ? py::cast(nearest) : py::none();  // The nearest true frame, as mrs_vpr_eval's.
   row["true_indices"] = record.true_indices;
   row["predicted_index"] = record.predicted_index;
+  row["predicted_last"] = record.predicted_last;
   row["score"] = record.score;
   row["confidence"] = record.confidence;
   row["accepted"] = record.accepted;
@@ -64,16 +70,17 @@ py::dict recordDict(const QueryRecord& record) {
   return row;
 }
 
+QueryRecord recordOf(const py::handle& row) {
+  try {
+    return recordFrom(row);
+  } catch (const py::cast_error&) {
+    throw std::invalid_argument("a query record holds a value of the wrong type: " + py::repr(row).cast<std::string>());
+  }
+}
+
 std::vector<QueryRecord> recordsFrom(const py::iterable& rows) {
   std::vector<QueryRecord> records;
-  for (const py::handle row : rows) {
-    try {
-      records.push_back(recordFrom(row));
-    } catch (const py::cast_error&) {
-      throw std::invalid_argument("a query record holds a value of the wrong type: " +
-                                  py::repr(row).cast<std::string>());
-    }
-  }
+  for (const py::handle row : rows) records.push_back(recordOf(row));
   return records;
 }
 

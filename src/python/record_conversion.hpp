@@ -17,8 +17,10 @@ GroundTruth groundTruthFrom(const py::dict& truth);
 /// A query record as a dict whose keys are its field names.
 py::dict recordDict(const QueryRecord& record);
 
-/// Records from dicts with recordDict's keys (as Python code may have built or filtered them); a value
+/// A record from a dict with recordDict's keys (as Python code may have built or filtered it); a value
 /// of the wrong type is an error that shows the dict.
+QueryRecord recordOf(const py::handle& row);
+/// recordOf() of each dict.
 std::vector<QueryRecord> recordsFrom(const py::iterable& rows);
 
 /// An evaluation summary as a dict whose keys are its field names.

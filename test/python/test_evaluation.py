@@ -33,8 +33,16 @@ def test_per_frame_records_every_query_frame_with_a_full_sequence(route, short_s
     assert queries == list(range(19, 400))  # causal: the sequence ends at the frame localised
     record = evaluation.records[0]
     assert record["true_indices"] == [int(route["query_to_reference"][19])]
-    assert set(record) == {"query_index", "true_indices", "predicted_index", "score", "confidence", "accepted",
-                           "rival_places", "at_velocity_bound", "repeated_view", "time_ms"}
+    assert set(record) == {"query_index", "true_index", "true_indices", "predicted_index", "predicted_last",
+                           "score", "confidence", "accepted", "rival_places", "at_velocity_bound", "repeated_view",
+                           "time_ms", "correct"}
+    assert record["true_index"] == record["true_indices"][0]
+    assert record["predicted_last"] == record["predicted_index"]  # A map frame stands for itself here.
+    # As mrs_vpr_eval counts them: the summary's top-1 is the share of correct records.
+    correct = [r["correct"] for r in evaluation.records]
+    assert correct == [r["predicted_index"] >= 0 and min(abs(r["predicted_index"] - t) for t in r["true_indices"]) <= 3
+                       for r in evaluation.records]
+    assert evaluation.summary["top1"] == pytest.approx(sum(correct) / len(correct))
     summary = evaluation.summary
     assert summary["queries"] == 381
     assert summary["tolerance"] == 3
