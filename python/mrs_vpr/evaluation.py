@@ -15,7 +15,8 @@ from mrs_vpr import _bindings
 
 #: records: one dict per evaluated query (query_index, true_index, true_indices, predicted_index,
 #: predicted_last, score, confidence, accepted, rival_places, at_velocity_bound, repeated_view, time_ms,
-#: correct: within the tolerance of a true frame, as mrs_vpr_eval's records); summary: a dict of
+#: correct: within the tolerance of a true frame, as mrs_vpr_eval's records; time_ms includes describing
+#: the images, which mrs_vpr_eval does before it times the queries); summary: a dict of
 #: the figures (top1, pr_auc, recall_at_100_precision, accepted, accepted_precision, ...); pr_curve:
 #: NumPy arrays threshold, precision and recall.
 Evaluation = collections.namedtuple("Evaluation", "records summary pr_curve")

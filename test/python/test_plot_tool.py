@@ -148,8 +148,10 @@ def test_a_mistyped_output_folder_is_refused_not_created(plot_tool, capsys, tmp_
         (["eval", "{json}", "-d", ""], "-d was given an empty path"),
         (["pr", "{json}", "-o", "{folder}/c.jpg", "--colours", "16"],
          "--colours makes a PNG of a few colours; -o {folder}/c.jpg is no .png file"),
+        (["pr", "{json}", "-o", "{folder}/nowhere/pr.png"],
+         "-o {folder}/nowhere/pr.png: there is no folder {folder}/nowhere"),
     ],
-    ids=["empty -o", "empty -d", "colours of a JPEG"],
+    ids=["empty -o", "empty -d", "colours of a JPEG", "no folder for -o"],
 )
 def test_outputs_it_cannot_write_as_asked_are_refused_before_drawing(plot_tool, capsys, tmp_path, argv, problem):
     path = tmp_path / "evaluation.json"
