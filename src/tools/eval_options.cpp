@@ -56,8 +56,17 @@ constexpr const char* kUsage =
 void requireWritableFolder(const std::string& folder, const std::string& option) {
   requireParentFolder(option, folder);
   std::error_code error;
-  std::filesystem::create_directory(normalPath(folder), error);
+  const bool created = std::filesystem::create_directory(normalPath(folder), error);
   if (error) throw std::runtime_error(option + " '" + folder + "': cannot create the folder: " + error.message());
+  // Made for the probe only: the results make it again, so that a run that fails leaves no empty folder.
+  struct RemoveIfCreated {
+    bool created;
+    std::string folder;
+    ~RemoveIfCreated() {
+      std::error_code ignored;
+      if (created) std::filesystem::remove(normalPath(folder), ignored);
+    }
+  } remove_after_probe{created, folder};
   std::string probe = (std::filesystem::path(folder) / ".mrs_vpr_eval_probe.XXXXXX").string();
   const int file = ::mkstemp(probe.data());
   if (file < 0) {

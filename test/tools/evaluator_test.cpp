@@ -343,6 +343,13 @@ TEST_F(EvaluatorTest, TheEvaluatorChecksWhereItWritesBeforeEvaluating) {
             std::string::npos)
       << deep.err;
   EXPECT_FALSE(fs::exists(path("nowhere")));
+  // A run that fails after its options were checked leaves no empty --plots folder behind.
+  std::ofstream(path("far_truth.csv")) << "query_index,matching_ref_indices\n0,100000\n";
+  const CommandResult failed =
+      run(eval(evaluation + " --ground-truth " + path("far_truth.csv") + " --plots " + path("failed_plots")));
+  EXPECT_EQ(failed.status, 1);
+  EXPECT_NE(failed.err.find("100000"), std::string::npos) << failed.err;
+  EXPECT_FALSE(fs::exists(path("failed_plots")));
 }
 
 TEST_F(EvaluatorTest, APathThatIsNotUtf8IsWrittenAndAnExistingOutputIsKeptUntilTheNewOneIsComplete) {
