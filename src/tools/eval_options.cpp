@@ -16,6 +16,7 @@
 #include "descriptor_options.hpp"
 #include "double_option.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "output_in_progress.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -171,10 +172,7 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
     if (!folder.empty() && !std::filesystem::is_directory(folder)) {
       throw std::invalid_argument("--output '" + options.output + "': there is no folder " + folder.string());
     }
-    std::error_code ignored;
-    const auto status = std::filesystem::symlink_status(options.output, ignored);
-    if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
-      // A pipe, a device or a link (/dev/stdout): written into, not replaced (writeJson).
+    if (writtenInPlace(options.output)) {
       if (::access(options.output.c_str(), W_OK) != 0) {
         throw std::invalid_argument("--output '" + options.output + "': cannot write to it");
       }

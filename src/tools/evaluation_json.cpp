@@ -105,11 +105,7 @@ std::string jsonText(const json& document, int indent) {
 void writeJson(const json& document, const std::string& path) {
   const std::string text = jsonText(document, 2);
   const auto cannot = [&] { return std::runtime_error("cannot write '" + path + "'"); };
-  // A pipe, a device or a link (/dev/stdout) is written into: renaming a file onto it would replace
-  // it, and whoever reads it would get nothing.
-  std::error_code ignored;
-  const std::filesystem::file_status status = std::filesystem::symlink_status(path, ignored);
-  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+  if (writtenInPlace(path)) {
     std::ofstream file(path);
     if (!(file << text << "\n").flush()) throw cannot();
     file.close();

@@ -11,6 +11,14 @@
 namespace mrs_vpr {
 namespace tools {
 
+/// Whether `path` is a pipe, a device or a link (/dev/stdout), which an output is written into rather
+/// than renamed onto: renaming would replace it, and whoever reads it would get nothing.
+inline bool writtenInPlace(const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::file_status status = std::filesystem::symlink_status(path, ignored);
+  return std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+}
+
 /// `path`.part while it is written; removed (file or folder) unless commit() renamed it to `path`.
 class OutputInProgress {
  public:
