@@ -31,12 +31,8 @@ void FrameLabels::cancelPrepared() {
 }
 
 void FrameLabels::append(const std::string& frame_id, std::int64_t sequence) {
-  // The last frame's id first: a camera's frames all have the same one.
-  const bool as_last = !name_of_.empty() && names_[name_of_.back()] == frame_id;
-  if (!as_last && index_of_.find(frame_id) == index_of_.end()) prepareFor(frame_id);
-  const std::uint32_t name = as_last ? name_of_.back() : index_of_.at(frame_id);
-  if (sequences_.size() == sequences_.capacity()) reserve(std::max<std::size_t>(16, 2 * sequences_.size()));
-  name_of_.push_back(name);
+  prepareFor(frame_id);  // Nothing to do when the frame was prepared for already.
+  name_of_.push_back(index_of_.at(frame_id));
   sequences_.push_back(sequence);
   prepared_a_new_name_ = false;
 }
