@@ -31,6 +31,15 @@ void requireCapacity(const PlaceRecognizer& recognizer, const std::string& path,
   }
 }
 
+/// `recognizer`, which must hold no frame: frames join the map through a PersistentMap only, or they
+/// would be missing from its database and have no labels.
+PlaceRecognizer& requireEmpty(PlaceRecognizer& recognizer) {
+  if (recognizer.size() + recognizer.pending() > 0) {
+    throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
+  }
+  return recognizer;
+}
+
 /// Labels to reserve for a map of `frames`: with room for the camera's next frames, so that the first
 /// of them does not copy a large map's labels on the camera's thread.
 std::size_t withRoomToGrow(std::int64_t frames) { return static_cast<std::size_t>(frames + frames / 8 + 64); }
@@ -41,19 +50,11 @@ MapDatabaseError changedWhileLoaded(const std::string& path) {
 
 }  // namespace
 
-PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(recognizer) {
-  // Its frames would have no labels: frames join the map through this object only.
-  if (recognizer_.size() + recognizer_.pending() > 0) {
-    throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
-  }
-}
+PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(requireEmpty(recognizer)) {}
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& path, const CommitPolicy& policy)
-    : recognizer_(recognizer),
+    : recognizer_(requireEmpty(recognizer)),
       database_(std::make_unique<MapDatabase>(path, recognizer.parameters().descriptor)) {
-  if (recognizer_.size() + recognizer_.pending() > 0) {
-    throw std::logic_error("PersistentMap needs an empty PlaceRecognizer");
-  }
   const std::int64_t frames = database_->size();
   requireCapacity(recognizer_, path, frames);
   // Streamed into a map built aside, as load() builds one: a million-frame map is not held twice, and
