@@ -140,12 +140,9 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     else:  # "global"
         # Every image first, as match_every_frame checks them: a window meets a bad one only if it covers it.
         recognizer._check_images(query_images, channel_order, "the traversal")
-        positions = frames - length + 1
-        if queries > positions:
-            warnings.warn("%d test sequences, but the query has %d positions for one: each position once, and %d "
-                          "of them again (the summary counts every test sequence)" % (queries, positions,
-                                                                                       queries - positions),
-                          UserWarning, stacklevel=2)
+        repeated = _bindings.repeated_global_queries(frames, length, queries)
+        if repeated:
+            warnings.warn(repeated, UserWarning, stacklevel=2)
         for first, count, _ in _bindings.global_queries(frames, length, queries, seed, alignment):
             start = time.perf_counter()
             answer = recognizer.match(query_images[first:first + count], method, channel_order)

@@ -288,6 +288,14 @@ void checkGroundTruth(const GroundTruth& ground_truth, int query_frames, int ref
   }
 }
 
+std::string repeatedGlobalQueries(int query_frames, int length, int count) {
+  const int positions = query_frames - length + 1;
+  if (count <= positions) return "";
+  return std::to_string(count) + " test sequences, but the query has " + std::to_string(positions) +
+         " positions for one: each position once, and " + std::to_string(count - positions) +
+         " of them again (the summary counts every test sequence)";
+}
+
 std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames) {
   if (ground_truth != nullptr) {
     const auto entry = ground_truth->find(query_index);

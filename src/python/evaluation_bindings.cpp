@@ -46,6 +46,8 @@ void bindEvaluation(py::module_& m) {
       },
       py::arg("query_frames"), py::arg("length"), py::arg("count"), py::arg("seed"), py::arg("alignment"),
       "Test sequences (start, length, query_index) of the global localisation protocol.");
+  m.def("repeated_global_queries", &repeatedGlobalQueries, py::arg("query_frames"), py::arg("length"),
+        py::arg("count"), "What to tell a user whose global test sequences repeat positions; '' when none does.");
   m.def(
       "truths",
       [](const std::optional<py::dict>& truth, int query_frames, int reference_frames) {

@@ -95,12 +95,8 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
   }
   const std::vector<TestSequence> tests = globalQueries(query.size(), sequence.sequence_length, options.queries,
                                                         static_cast<std::uint64_t>(options.seed), sequence.alignment);
-  const int positions = query.size() - sequence.sequence_length + 1;
-  if (options.queries > positions) {
-    std::cerr << "  " << options.queries << " test sequences, but the query has " << positions
-              << " positions for one: each position once, and " << options.queries - positions
-              << " of them again (the summary counts every test sequence)\n";
-  }
+  const std::string repeated = repeatedGlobalQueries(query.size(), sequence.sequence_length, options.queries);
+  if (!repeated.empty()) std::cerr << "  " << repeated << "\n";
   std::vector<QueryRecord> records;
   int done = 0;
   int skipped = 0;

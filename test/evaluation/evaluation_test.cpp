@@ -329,6 +329,11 @@ TEST(Evaluation, GlobalQueriesUseEveryPositionBeforeRepeating) {
   std::set<int> distinct;
   for (const TestSequence& s : more) distinct.insert(s.start);
   EXPECT_EQ(distinct, (std::set<int>{0, 1, 2}));
+  // The tools say so, as the summary counts a repeated test sequence again.
+  EXPECT_EQ(repeatedGlobalQueries(10, 8, 3), "");
+  EXPECT_EQ(repeatedGlobalQueries(10, 8, 5),
+            "5 test sequences, but the query has 3 positions for one: each position once, and 2 of them again (the "
+            "summary counts every test sequence)");
 }
 
 TEST(Evaluation, GlobalQueriesCentredLocaliseTheMiddle) {

@@ -4,6 +4,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "mrs_vpr/match.hpp"
@@ -156,6 +157,9 @@ struct TestSequence {
  */
 std::vector<TestSequence> globalQueries(int query_frames, int length, int count, std::uint64_t seed,
                                         WindowAlignment alignment = WindowAlignment::kCausal);
+/// What to tell a user whose globalQueries() repeat positions (count > query_frames - length + 1), as
+/// the summary then counts a repeated test sequence again; empty when every position is distinct.
+std::string repeatedGlobalQueries(int query_frames, int length, int count);
 
 /**
  * Throws std::invalid_argument naming the query row when ground truth lists a query frame outside
