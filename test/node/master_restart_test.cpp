@@ -18,6 +18,8 @@ using mrs_vpr::testing_support::Child;
 using mrs_vpr::testing_support::environmentFor;
 using mrs_vpr::testing_support::freePort;
 using mrs_vpr::testing_support::masterSays;
+using mrs_vpr::testing_support::PrivateMaster;
+using mrs_vpr::testing_support::rosmasterCommand;
 using mrs_vpr::testing_support::waitFor;
 using XmlRpc::XmlRpcValue;
 
@@ -56,7 +58,7 @@ TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
   const int port = freePort();
   ASSERT_GT(port, 0);
   const std::vector<std::string> environment = environmentFor(port);
-  const std::vector<std::string> master_command{"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)};
+  const std::vector<std::string> master_command = rosmasterCommand(port);
   const auto master_up = [port] { return masterSays(port, "getPid"); };
   const auto query_registered = [port] { return masterSays(port, "lookupService", "/mrs_vpr/query"); };
 
@@ -89,14 +91,11 @@ TEST(MasterRestart, TheNodeRegistersAgainWithAMasterRestartedAfterKill9) {
 TEST(MasterRestart, ARunIdThatIsNoStringDoesNotStopTheNode) {
   // The master's /run_id tells a restarted master from the same one. Set by hand to a number, its
   // reading threw XmlRpc's own exception, which is no std::exception, and aborted the node.
-  const int port = freePort();
-  ASSERT_GT(port, 0);
-  const std::vector<std::string> environment = environmentFor(port);
-  Child master({"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)}, environment);
-  ASSERT_TRUE(master.started());
-  ASSERT_TRUE(waitFor([port] { return masterSays(port, "getPid"); }, 30.0)) << "rosmaster did not start";
+  const PrivateMaster master;
+  ASSERT_TRUE(master.started()) << "rosmaster did not start";
+  const int port = master.port();
   ASSERT_TRUE(setParameter(port, "/run_id", XmlRpcValue(5)));
-  Child node({MRS_VPR_NODE_PATH, "__name:=mrs_vpr"}, environment);
+  Child node({MRS_VPR_NODE_PATH, "__name:=mrs_vpr"}, master.environment());
   ASSERT_TRUE(node.started());
   EXPECT_TRUE(waitFor([port] { return masterSays(port, "lookupService", "/mrs_vpr/query"); }, 30.0));
   // While it runs, too: the watch reads /run_id every second.

@@ -133,10 +133,15 @@ inline std::vector<std::string> environmentFor(int port) {
   return environment;
 }
 
+/// The command that runs a ROS master on `port` of this machine.
+inline std::vector<std::string> rosmasterCommand(int port) {
+  return {"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)};
+}
+
 /// A rosmaster of its own on a free port, running once constructed (started() tells).
 class PrivateMaster {
  public:
-  PrivateMaster() : port_(freePort()), master_(command(port_), environmentFor(port_)) {
+  PrivateMaster() : port_(freePort()), master_(rosmasterCommand(port_), environmentFor(port_)) {
     up_ = master_.started() && port_ > 0 && waitFor([this] { return masterSays(port_, "getPid"); }, 30.0);
   }
   bool started() const { return up_; }
@@ -144,9 +149,6 @@ class PrivateMaster {
   std::vector<std::string> environment() const { return environmentFor(port_); }
 
  private:
-  static std::vector<std::string> command(int port) {
-    return {"/usr/bin/rosmaster", "--core", "-p", std::to_string(port)};
-  }
   int port_;
   Child master_;
   bool up_ = false;
