@@ -272,10 +272,12 @@ bool DescriptorParams::sameFrontEnd(const DescriptorParams& other) const {
 
 void SequenceParams::validate() const {
   requireInRange(sequenceParameters(), *this);
+  // Either bound may be the one the user set, so the message names both.
   if (velocity_max < velocity_min) {
-    throw std::invalid_argument(parameterInfo(sequenceParameters(), "sequence/velocity_max")
-                                    .rejection(numberText(velocity_max),
-                                               "velocity_min " + numberText(velocity_min)));
+    throw std::invalid_argument("sequence/velocity_min " + numberText(velocity_min) + " is above sequence/velocity_max " +
+                                numberText(velocity_max) +
+                                ": the slowest velocity tried must not exceed the fastest; lower the first or raise "
+                                "the second");
   }
   const double velocity_count = velocityCount();
   if (velocity_count > kMaxVelocities) {

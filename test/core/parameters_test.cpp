@@ -109,6 +109,13 @@ TEST(SequenceParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_TRUE(accepted([](Parameters& p) { p.sequence.velocity_max = p.sequence.velocity_min; }));
 }
 
+TEST(SequenceParams, AMinimumVelocityAboveTheMaximumNamesBothBounds) {
+  // A user who raised only velocity_min must find it in the message, not just velocity_max.
+  const std::string message = rejection([](Parameters& p) { p.sequence.velocity_min = 1.5; });
+  EXPECT_NE(message.find("sequence/velocity_min 1.5"), std::string::npos) << message;
+  EXPECT_NE(message.find("sequence/velocity_max 1.2"), std::string::npos) << message;
+}
+
 TEST(MrsParams, OutOfRangeValuesNameTheParameter) {
   EXPECT_REJECTED("mrs/levels", [](Parameters& p) { p.mrs.levels = -1; });
   EXPECT_REJECTED("mrs/levels", [](Parameters& p) { p.mrs.levels = 9; });
