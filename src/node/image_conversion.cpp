@@ -21,6 +21,8 @@ struct EncodingInfo {
   int cv_type;
   /// The cv::cvtColor code that makes grey of the rest: a camera's raw mosaic or its YUV.
   int to_grey = kAsTheyAre;
+  /// Pixels that share one group of bytes: YUV 4:2:2 sends two pixels' luma with one chroma pair.
+  unsigned pixels_per_group = 1;
 };
 
 const std::array<EncodingInfo, 16> kEncodings{{
@@ -41,8 +43,8 @@ const std::array<EncodingInfo, 16> kEncodings{{
     {"bayer_gbrg16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerGBRG2GRAY},
     {"bayer_grbg16", 2, ChannelOrder::kBgr, CV_16UC1, cv::COLOR_BayerGRBG2GRAY},
     // USB cameras (usb_cam): "yuv422" is UYVY, "yuv422_yuy2" YUYV; grey is their luma.
-    {"yuv422", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_UYVY},
-    {"yuv422_yuy2", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_YUY2},
+    {"yuv422", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_UYVY, 2},
+    {"yuv422_yuy2", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_YUY2, 2},
 }};
 
 bool hostIsBigEndian() {
@@ -100,6 +102,11 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
   if (message.width == 0 || message.height == 0) {
     throw std::invalid_argument("empty image (" + std::to_string(message.width) + " x " +
                                 std::to_string(message.height) + " px)");
+  }
+  if (message.width % info->pixels_per_group != 0) {
+    throw std::invalid_argument(message.encoding + " sends pixels in groups of " +
+                                std::to_string(info->pixels_per_group) + ", so its width must be a multiple of " +
+                                std::to_string(info->pixels_per_group) + ", got " + std::to_string(message.width));
   }
   // The frame trusts width, height and step; a malformed message must not make it read past data.
   const std::size_t row_bytes = static_cast<std::size_t>(message.width) * info->bytes_per_pixel;

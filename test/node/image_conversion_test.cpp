@@ -174,6 +174,22 @@ TEST(ImageConversion, Yuv422BecomesItsLuma) {
       << errorOf(message);
 }
 
+TEST(ImageConversion, Yuv422OfAnOddWidthIsRefused) {
+  // Its last pixel would have half a chroma pair: the camera or the bag is broken, so say so.
+  sensor_msgs::Image message;
+  message.width = 3;
+  message.height = 1;
+  message.step = 6;
+  message.data = {100, 10, 200, 20, 100, 30};
+  for (const char* encoding : {"yuv422", "yuv422_yuy2"}) {
+    message.encoding = encoding;
+    EXPECT_NE(errorOf(message).find(std::string(encoding) + " sends pixels in groups of 2, so its width must be a "
+                                                            "multiple of 2, got 3"),
+              std::string::npos)
+        << errorOf(message);
+  }
+}
+
 TEST(ImageConversion, RejectsUnsupportedEncodingsByName) {
   EXPECT_TRUE(isSupportedEncoding("rgba8"));
   EXPECT_TRUE(isSupportedEncoding("bayer_rggb8"));
