@@ -215,7 +215,14 @@ int run(int argc, char** argv) {
 
   if (options.threads > 0) cv::setNumThreads(options.threads);
   std::optional<GroundTruth> truth;
-  if (!options.ground_truth.empty()) truth = readGroundTruthCsv(options.ground_truth);
+  if (!options.ground_truth.empty()) {
+    truth = readGroundTruthCsv(options.ground_truth);
+    // A file of other traversals is refused before the images are described; a map database's frame
+    // numbers are known only once read, so its rows are checked then, below.
+    const int reference_frames = isMapDatabase(options.reference) ? std::numeric_limits<int>::max()
+                                                                  : countFrames(options.reference, options.topic);
+    checkGroundTruth(*truth, countFrames(options.query, options.topic), reference_frames);
+  }
 
   // A map built by build_map or the node holds descriptors already, of the front end it records.
   std::optional<MapDatabase> map;

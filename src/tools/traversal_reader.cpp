@@ -12,13 +12,25 @@
 namespace mrs_vpr {
 namespace tools {
 
+namespace {
+
+bool isBag(const std::string& source, SourceKind kind) {
+  return kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
+}
+
+}  // namespace
+
+int countFrames(const std::string& source, const std::string& topic, SourceKind kind) {
+  return isBag(source, kind) ? mrs_vpr::bag::countImages(source, topic)
+                             : static_cast<int>(mrs_vpr::listImageFiles(source).size());
+}
+
 Traversal readTraversal(const std::string& source, const std::string& topic, const std::string& what,
                         const DescriptorExtractor& extractor,
                         const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append,
                         SourceKind kind) {
-  const bool bag = kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
-  const int total =
-      bag ? mrs_vpr::bag::countImages(source, topic) : static_cast<int>(mrs_vpr::listImageFiles(source).size());
+  const bool bag = isBag(source, kind);
+  const int total = countFrames(source, topic, kind);
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;
   const auto add = [&](const cv::Mat& descriptor, Stamp stamp) {

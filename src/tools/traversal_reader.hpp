@@ -27,6 +27,10 @@ struct Traversal {
   cv::Size image_size;
 };
 
+/// The frames of a folder or of a bag's `topic`, counted without reading an image: a check of what
+/// depends on the count comes before minutes of describing.
+int countFrames(const std::string& source, const std::string& topic, SourceKind kind = SourceKind::kByName);
+
 /**
  * Reads and describes every image of a folder or bag (`topic`), handing each descriptor with its
  * exact stamp to `append` (a folder's frames are stamped with their index, in seconds), and reports

@@ -293,6 +293,10 @@ TEST_F(EvaluatorTest, BadSeedAndGroundTruthOfOtherTraversalsAreRefused) {
     beyond << "query_index,matching_ref_indices\n0,0\n1,1000 1001\n";
   }
   expectError(folders + " --ground-truth " + path("beyond.csv"), "query frame 1 lists reference frame 1000");
+  // Refused before a single image is described, which takes minutes on a long traversal.
+  const CommandResult beyond = run(eval(folders + " --ground-truth " + path("beyond.csv")));
+  EXPECT_EQ(beyond.err.find("described"), std::string::npos) << beyond.err;
+  EXPECT_EQ(beyond.err.find("reference:"), std::string::npos) << beyond.err;
   {
     std::ofstream huge(path("huge.csv"));
     huge << "query_index,matching_ref_indices\n0,999999999\n";
