@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <optional>
@@ -43,12 +44,24 @@ class Recognizer {
   /// any, map frame i is not the i-th frame offered (which evaluate() without ground truth assumes).
   long long framesLeftOut() const { return frames_left_out_.load(); }
   void leftOut(long long frames) { frames_left_out_ += frames; }
-  void forgetLeftOut() { frames_left_out_ = 0; }
+
+  /// Numbers for the next `frames` frames offered: their places among the frames offered since the
+  /// map was emptied, numbered on from a loaded map's last frame, as build_map numbers a traversal. A
+  /// saved map's frames then keep the numbers that a ground truth gives them.
+  std::int64_t numberFrames(std::int64_t frames) { return next_number_.fetch_add(frames); }
+
+  /// After the map was emptied or replaced: numbering starts after its last frame.
+  void startOver() {
+    frames_left_out_ = 0;
+    const int frames = recognizer_.size();
+    next_number_ = frames == 0 ? 0 : std::max<std::int64_t>(map_.sequenceOf(frames - 1) + 1, frames);
+  }
 
  private:
   PlaceRecognizer recognizer_;
   PersistentMap map_;
   std::atomic<long long> frames_left_out_{0};
+  std::atomic<std::int64_t> next_number_{0};
 };
 
 }  // namespace
@@ -66,8 +79,8 @@ void bindRecognizer(py::module_& m) {
             const Stamp exact = coreStamp(stamp);
             py::gil_scoped_release released;
             // The node's path: the map keeps the frame only if it is a keyframe.
-            const bool kept =
-                self.map().offer(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+            const cv::Mat descriptor = self.core().describe(view.mat, order);
+            const bool kept = self.map().offer(descriptor, exact, "", self.numberFrames(1)) == FrameAdmission::kAdmitted;
             self.leftOut(kept ? 0 : 1);
             return kept;
           },
@@ -97,10 +110,11 @@ void bindRecognizer(py::module_& m) {
             }
             py::gil_scoped_release released;
             const DescriptorSequence descriptors = describeAll(self.core(), views, order, "images");
+            const std::int64_t first_number = self.numberFrames(descriptors.size());
             int admitted = 0;
             for (int i = 0; i < descriptors.size(); ++i) {
-              admitted += self.map().offer(descriptors.descriptorRow(i).clone(), exact[static_cast<std::size_t>(i)]) ==
-                                  FrameAdmission::kAdmitted
+              admitted += self.map().offer(descriptors.descriptorRow(i).clone(), exact[static_cast<std::size_t>(i)], "",
+                                           first_number + i) == FrameAdmission::kAdmitted
                               ? 1
                               : 0;
             }
@@ -195,7 +209,7 @@ void bindRecognizer(py::module_& m) {
           [](Recognizer& self, const std::string& path) {
             py::gil_scoped_release released;
             const int frames = self.map().load(path);
-            self.forgetLeftOut();
+            self.startOver();
             return frames;
           },
           py::arg("path"),
@@ -205,10 +219,23 @@ void bindRecognizer(py::module_& m) {
           [](Recognizer& self) {
             py::gil_scoped_release released;
             const int frames = self.map().reset();
-            self.forgetLeftOut();
+            self.startOver();
             return frames;
           },
           "Removes every frame; returns how many there were.")
+      .def(
+          "frame_number",
+          [](Recognizer& self, int index) {
+            if (index < 0 || index >= self.core().size()) {
+              throw py::index_error("map frame " + std::to_string(index) + " of a map of " +
+                                    std::to_string(self.core().size()) + " frames");
+            }
+            return self.map().sequenceOf(index);
+          },
+          py::arg("index"),
+          "Map frame `index`'s number: its place among the frames offered since the map was emptied (counted "
+          "on from a loaded map's last frame), or the number its map database records; saved with the map, as "
+          "build_map saves a traversal's frame numbers, for ground truths that name the frames offered.")
       .def("__len__", [](Recognizer& self) { return self.core().size(); })
       .def_property_readonly(
           "frames_left_out", [](Recognizer& self) { return self.framesLeftOut(); },

@@ -76,3 +76,28 @@ def test_a_save_target_is_checked_in_the_words_save_would_use(mapped, tmp_path):
         assert str(saved.value) == str(checked.value)
     mrs_vpr.PlaceRecognizer.check_save_target(tmp_path / "new.db")  # A new file in a folder: no error.
     assert not (tmp_path / "new.db").exists()
+
+
+def test_a_saved_map_keeps_each_frames_place_among_the_frames_offered(route, tmp_path):
+    # As build_map numbers a traversal's frames: mrs_vpr_eval's ground truth names the frames offered,
+    # not the keyframes a map kept of them.
+    recognizer = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"][:50])
+    assert recognizer.add_frame(route["reference"][49]) is False  # Offered as frame 50, and left out.
+    assert recognizer.add_frame(route["reference"][51]) is True
+    kept = len(recognizer)
+    assert recognizer.frame_number(kept - 1) == 51
+    numbers = [recognizer.frame_number(index) for index in range(kept)]
+    assert numbers == sorted(set(numbers)) and numbers[0] == 0
+    path = tmp_path / "map.db"
+    recognizer.save(path)
+    loaded = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
+    loaded.load(str(path))
+    assert [loaded.frame_number(index) for index in range(kept)] == numbers
+    assert loaded.add_frame(route["reference"][60]) is True  # Numbered on from the map's last frame.
+    assert loaded.frame_number(kept) == 52
+    with pytest.raises(IndexError, match="map frame 99 of a map of"):
+        loaded.frame_number(99)
+    loaded.reset()
+    loaded.add_frames(route["reference"][:3])
+    assert loaded.frame_number(0) == 0
