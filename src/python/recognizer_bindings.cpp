@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <limits>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -43,25 +45,61 @@ class Recognizer {
   /// Frames offered since the map was last emptied or loaded that it did not keep: while there are
   /// any, map frame i is not the i-th frame offered (which evaluate() without ground truth assumes).
   long long framesLeftOut() const { return frames_left_out_.load(); }
-  void leftOut(long long frames) { frames_left_out_ += frames; }
 
-  /// Numbers for the next `frames` frames offered: their places among the frames offered since the
-  /// map was emptied, numbered on from a loaded map's last frame, as build_map numbers a traversal. A
-  /// saved map's frames then keep the numbers that a ground truth gives them.
-  std::int64_t numberFrames(std::int64_t frames) { return next_number_.fetch_add(frames); }
+  /**
+   * Offers camera frames (oldest first) to the map; returns how many became keyframes. Each is
+   * numbered by its place among the frames offered since the map was emptied, on from a loaded map's
+   * last frame, as build_map numbers a traversal: a saved map's frames keep the numbers a ground truth
+   * gives them. One lock orders numbering, offering, loading and emptying: a frame offered while
+   * another thread loads a map waits for the load, and is numbered in the map it joins.
+   */
+  int offer(const DescriptorSequence& descriptors, const std::vector<Stamp>& stamps) {
+    const std::lock_guard<std::mutex> lock(numbering_mutex_);
+    int admitted = 0;
+    for (int i = 0; i < descriptors.size(); ++i) {
+      const FrameAdmission admission =
+          map_.offer(descriptors.descriptorRow(i).clone(), stamps[static_cast<std::size_t>(i)], "", next_number_);
+      if (admission == FrameAdmission::kAdmitted) ++admitted;
+      // Saturates: a loaded map may have numbered its frames up to the largest number.
+      if (next_number_ < std::numeric_limits<std::int64_t>::max()) ++next_number_;
+    }
+    frames_left_out_ += descriptors.size() - admitted;
+    return admitted;
+  }
 
-  /// After the map was emptied or replaced: numbering starts after its last frame.
-  void startOver() {
-    frames_left_out_ = 0;
-    const int frames = recognizer_.size();
-    next_number_ = frames == 0 ? 0 : std::max<std::int64_t>(map_.sequenceOf(frames - 1) + 1, frames);
+  int load(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(numbering_mutex_);
+    const int frames = map_.load(path);
+    startOver();
+    return frames;
+  }
+
+  int reset() {
+    const std::lock_guard<std::mutex> lock(numbering_mutex_);
+    const int frames = map_.reset();
+    startOver();
+    return frames;
   }
 
  private:
+  /// After the map was emptied or replaced: numbering goes on after its last frame's number, or after
+  /// its frames where it has none (-1: a map saved before frames were numbered).
+  void startOver() {
+    frames_left_out_ = 0;
+    const int frames = recognizer_.size();
+    const std::int64_t last = frames == 0 ? -1 : map_.sequenceOf(frames - 1);
+    if (last < 0) {
+      next_number_ = frames;
+    } else {
+      next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
+    }
+  }
+
   PlaceRecognizer recognizer_;
   PersistentMap map_;
+  std::mutex numbering_mutex_;
   std::atomic<long long> frames_left_out_{0};
-  std::atomic<std::int64_t> next_number_{0};
+  std::int64_t next_number_ = 0;  ///< Guarded by numbering_mutex_.
 };
 
 }  // namespace
@@ -79,10 +117,9 @@ void bindRecognizer(py::module_& m) {
             const Stamp exact = coreStamp(stamp);
             py::gil_scoped_release released;
             // The node's path: the map keeps the frame only if it is a keyframe.
-            const cv::Mat descriptor = self.core().describe(view.mat, order);
-            const bool kept = self.map().offer(descriptor, exact, "", self.numberFrames(1)) == FrameAdmission::kAdmitted;
-            self.leftOut(kept ? 0 : 1);
-            return kept;
+            DescriptorSequence descriptor(self.core().extractor().size());
+            descriptor.append(self.core().describe(view.mat, order), exact);
+            return self.offer(descriptor, {exact}) == 1;
           },
           py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
           "Offers a camera frame to the map; True when it became a keyframe. A frame too similar to the last "
@@ -110,16 +147,7 @@ void bindRecognizer(py::module_& m) {
             }
             py::gil_scoped_release released;
             const DescriptorSequence descriptors = describeAll(self.core(), views, order, "images");
-            const std::int64_t first_number = self.numberFrames(descriptors.size());
-            int admitted = 0;
-            for (int i = 0; i < descriptors.size(); ++i) {
-              admitted += self.map().offer(descriptors.descriptorRow(i).clone(), exact[static_cast<std::size_t>(i)], "",
-                                           first_number + i) == FrameAdmission::kAdmitted
-                              ? 1
-                              : 0;
-            }
-            self.leftOut(descriptors.size() - admitted);
-            return admitted;
+            return self.offer(descriptors, exact);
           },
           py::arg("images"), py::arg("stamps") = py::none(), py::arg("channel_order") = "bgr",
           "Offers frames (oldest first) to the map as add_frame does; returns how many became keyframes.")
@@ -208,9 +236,7 @@ void bindRecognizer(py::module_& m) {
           "load",
           [](Recognizer& self, const std::string& path) {
             py::gil_scoped_release released;
-            const int frames = self.map().load(path);
-            self.startOver();
-            return frames;
+            return self.load(path);
           },
           py::arg("path"),
           "Replaces the map by the map database `path` (of this recognizer's front end); returns its frames.")
@@ -218,24 +244,25 @@ void bindRecognizer(py::module_& m) {
           "reset",
           [](Recognizer& self) {
             py::gil_scoped_release released;
-            const int frames = self.map().reset();
-            self.startOver();
-            return frames;
+            return self.reset();
           },
           "Removes every frame; returns how many there were.")
       .def(
           "frame_number",
-          [](Recognizer& self, int index) {
-            if (index < 0 || index >= self.core().size()) {
-              throw py::index_error("map frame " + std::to_string(index) + " of a map of " +
-                                    std::to_string(self.core().size()) + " frames");
+          [](Recognizer& self, long long index) {
+            const int frames = self.core().size();
+            if (index < 0 || index >= frames) {
+              throw py::index_error("no map frame " + std::to_string(index) + ": the map holds " +
+                                    std::to_string(frames) + " frames" +
+                                    (frames > 0 ? " (0.." + std::to_string(frames - 1) + ")" : ""));
             }
-            return self.map().sequenceOf(index);
+            return self.map().sequenceOf(static_cast<int>(index));
           },
           py::arg("index"),
           "Map frame `index`'s number: its place among the frames offered since the map was emptied (counted "
-          "on from a loaded map's last frame), or the number its map database records; saved with the map, as "
-          "build_map saves a traversal's frame numbers, for ground truths that name the frames offered.")
+          "on from a loaded map's last frame), or the number its map database records (-1: none, as in maps "
+          "saved from Python before frames were numbered); saved with the map, as build_map saves a "
+          "traversal's frame numbers, for ground truths that name the frames offered.")
       .def("__len__", [](Recognizer& self) { return self.core().size(); })
       .def_property_readonly(
           "frames_left_out", [](Recognizer& self) { return self.framesLeftOut(); },

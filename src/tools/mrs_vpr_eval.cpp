@@ -214,14 +214,16 @@ int run(int argc, char** argv) {
   const SequenceParams& sequence = options.params.sequence;
 
   if (options.threads > 0) cv::setNumThreads(options.threads);
+  // A ground truth of other traversals is refused before any image is described: the frames are
+  // counted first. A map database's frames are known once it is read, before the query is described.
   std::optional<GroundTruth> truth;
+  int query_frame_count = 0;
   if (!options.ground_truth.empty()) {
     truth = readGroundTruthCsv(options.ground_truth);
-    // A file of other traversals is refused before the images are described; a map database's frame
-    // numbers are known only once read, so its rows are checked then, below.
+    query_frame_count = countFrames(options.query, options.topic);
     const int reference_frames = isMapDatabase(options.reference) ? std::numeric_limits<int>::max()
                                                                   : countFrames(options.reference, options.topic);
-    checkGroundTruth(*truth, countFrames(options.query, options.topic), reference_frames);
+    checkGroundTruth(*truth, query_frame_count, reference_frames);
   }
 
   // A map built by build_map or the node holds descriptors already, of the front end it records.
@@ -263,6 +265,7 @@ int run(int argc, char** argv) {
   Traversal reference;
   if (map) {
     reference = readMapDatabase(*map, options, recognizer, keyframes.reference, add_to_map);
+    if (truth) checkGroundTruth(*truth, query_frame_count, reference.frames);
     if (!options.plots.empty() && plotted_reference.size() != reference.frames) {
       throw std::invalid_argument("--plots draws every frame of the reference, and the map database " +
                                   options.reference + " holds " + std::to_string(plotted_reference.size()) + " of " +
@@ -294,7 +297,6 @@ int run(int argc, char** argv) {
   }
   const double describe_s = secondsSince(start);
 
-  if (truth) checkGroundTruth(*truth, query.frames, reference.frames);
   if (options.out_of_map) {
     truth.emplace();  // Every query frame, none of them in the reference.
     for (int frame = 0; frame < query.frames; ++frame) (*truth)[frame] = {};

@@ -1,5 +1,7 @@
 """Saving and loading the SQLite map database."""
 
+import sqlite3
+
 import pytest
 
 import mrs_vpr
@@ -96,8 +98,25 @@ def test_a_saved_map_keeps_each_frames_place_among_the_frames_offered(route, tmp
     assert [loaded.frame_number(index) for index in range(kept)] == numbers
     assert loaded.add_frame(route["reference"][60]) is True  # Numbered on from the map's last frame.
     assert loaded.frame_number(kept) == 52
-    with pytest.raises(IndexError, match="map frame 99 of a map of"):
+    with pytest.raises(IndexError, match=r"no map frame 99: the map holds 52 frames \(0\.\.51\)"):
         loaded.frame_number(99)
+    with pytest.raises(IndexError, match="no map frame 2147483648"):
+        loaded.frame_number(2**31)
     loaded.reset()
     loaded.add_frames(route["reference"][:3])
     assert loaded.frame_number(0) == 0
+
+
+def test_a_map_saved_without_frame_numbers_is_numbered_on_after_its_frames(route, tmp_path):
+    path = tmp_path / "map.db"
+    mapped = mrs_vpr.PlaceRecognizer(min_appearance_change=0, **ROUTE_PARAMETERS)
+    mapped.add_frames(route["reference"][:20])
+    mapped.save(path)
+    with sqlite3.connect(path) as database:  # As maps saved from Python before frames were numbered.
+        database.execute("UPDATE frames SET sequence = -1")
+    database.close()
+    loaded = mrs_vpr.PlaceRecognizer(min_appearance_change=0, **ROUTE_PARAMETERS)
+    loaded.load(str(path))
+    assert loaded.frame_number(19) == -1
+    loaded.add_frame(route["reference"][20])
+    assert loaded.frame_number(20) == 20

@@ -42,3 +42,32 @@ def test_frames_are_added_from_another_thread_while_a_query_holds_the_map(route)
     recognizer.match(test[:20])
     assert recognizer.pending_frames == 0
     assert len(recognizer) == 2400 + added
+
+
+def test_frames_offered_while_another_thread_loads_a_map_are_numbered_in_the_map_they_join(route, tmp_path):
+    # Numbered in the old map's count but joining the new one, a frame would break the increasing
+    # numbers by which mrs_vpr_eval reads a saved map's ground truth.
+    saved = mrs_vpr.PlaceRecognizer(descriptor_type="thumbnail", min_appearance_change=0)
+    saved.add_frames(route["reference"][:300])
+    path = tmp_path / "map.db"
+    saved.save(path)
+    for attempt in range(5):
+        recognizer = mrs_vpr.PlaceRecognizer(descriptor_type="thumbnail", min_appearance_change=0)
+        stop = threading.Event()
+
+        def camera():
+            offered = 0
+            while not stop.is_set():
+                recognizer.add_frame(route["query"][offered % 400])
+                offered += 1
+
+        worker = threading.Thread(target=camera)
+        worker.start()
+        time.sleep(0.05 * attempt)
+        recognizer.load(str(path))
+        time.sleep(0.02)
+        stop.set()
+        worker.join()
+        numbers = [recognizer.frame_number(index) for index in range(len(recognizer))]
+        assert numbers[:300] == list(range(300))
+        assert all(later > earlier for earlier, later in zip(numbers, numbers[1:])), numbers[295:310]

@@ -306,6 +306,18 @@ TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
     return document;
   };
   EXPECT_EQ(summary(from_map), summary(from_folder));
+  // A ground truth of another traversal is refused once the map is read, before the query is described.
+  {
+    std::ofstream beyond(path("beyond.csv"));
+    beyond << "query_index,matching_ref_indices\n0,0\n1,150\n";
+  }
+  const CommandResult beyond = run(eval("--reference " + map + " --query " + path("query") + " --ground-truth " +
+                                        path("beyond.csv") + " --method seqslam --protocol per-frame"));
+  EXPECT_EQ(beyond.status, 1);
+  EXPECT_NE(beyond.err.find("query frame 1 lists reference frame 150, but the reference has 150 frames"),
+            std::string::npos)
+      << beyond.err;
+  EXPECT_EQ(beyond.err.find("query:"), std::string::npos) << beyond.err;
 
   // An existing map is neither replaced nor extended unless asked.
   const CommandResult again = run(build);
