@@ -60,24 +60,32 @@ inline bool liesInside(const std::filesystem::path& inner, const std::filesystem
 
 /**
  * Throws std::invalid_argument, naming both options, when `output` is one of `inputs` or lies inside
- * an input folder. Called before any work, so that the inputs stay as they were.
+ * an input folder. Called before any work, so that the inputs stay as they were. An output that is a
+ * symbolic link is checked both as the link (which a tool may replace) and as what it points to
+ * (which a tool that writes through it, or into a linked folder, changes).
  */
 inline void requireApartFromInputs(const NamedPath& output, const std::vector<NamedPath>& inputs) {
   if (output.path.empty()) return;
-  const std::filesystem::path written = writtenAt(output.path);
-  if (written.empty()) return;  // The output's own checks name what is wrong with it.
-  for (const NamedPath& input : inputs) {
-    if (input.path.empty()) continue;
-    const std::filesystem::path read = resolved(input.path);
-    if (read.empty()) continue;
-    if (written == read || written == writtenAt(input.path)) {
-      throw std::invalid_argument(output.option + " '" + output.path + "' is what " + input.option +
-                                  " reads: write it elsewhere");
-    }
-    std::error_code ignored;
-    if (std::filesystem::is_directory(read, ignored) && liesInside(written, read)) {
-      throw std::invalid_argument(output.option + " '" + output.path + "' lies inside the folder '" + input.path +
-                                  "' that " + input.option + " reads: write it elsewhere");
+  std::vector<std::filesystem::path> written_places{writtenAt(output.path)};
+  std::error_code no_link;
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(normalPath(output.path), no_link))) {
+    written_places.push_back(resolved(output.path));
+  }
+  for (const std::filesystem::path& written : written_places) {
+    if (written.empty()) continue;  // The output's own checks name what is wrong with it.
+    for (const NamedPath& input : inputs) {
+      if (input.path.empty()) continue;
+      const std::filesystem::path read = resolved(input.path);
+      if (read.empty()) continue;
+      if (written == read || written == writtenAt(input.path)) {
+        throw std::invalid_argument(output.option + " '" + output.path + "' is what " + input.option +
+                                    " reads: write it elsewhere");
+      }
+      std::error_code ignored;
+      if (std::filesystem::is_directory(read, ignored) && liesInside(written, read)) {
+        throw std::invalid_argument(output.option + " '" + output.path + "' lies inside the folder '" + input.path +
+                                    "' that " + input.option + " reads: write it elsewhere");
+      }
     }
   }
 }

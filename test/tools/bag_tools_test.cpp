@@ -665,8 +665,26 @@ TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {
   refused(run(std::string(MAKE_DRIVE_PATH) + " --images " + path("reference") + " --output " +
               path("reference/drive")),
           "make_drive: error: --output '" + path("reference/drive") + "' lies inside the folder");
+  // mrs_vpr_eval writes through a link (into a pipe, say), and into the folder a link names: a link to an
+  // input is refused as the input itself.
+  fs::create_symlink(bag, path("bag_link.json"));
+  refused(run(eval("--reference " + bag + " --query " + path("query") + " --topic /t --protocol per-frame --output " +
+                   path("bag_link.json"))),
+          "mrs_vpr_eval: error: --output '" + path("bag_link.json") + "' is what --reference reads");
+  fs::create_symlink(first_image, path("image_link.json"));
+  refused(run(eval("--reference " + path("reference") + " --query " + path("query") + " --protocol per-frame --output " +
+                   path("image_link.json"))),
+          "--output '" + path("image_link.json") + "' lies inside the folder '" + path("reference") + "'");
+  const std::size_t query_images = mrs_vpr::listImageFiles(path("query")).size();
+  fs::create_directory_symlink(path("query"), path("query_link"));
+  refused(run(eval("--reference " + path("reference") + " --query " + path("query") + " --protocol per-frame --plots " +
+                   path("query_link"))),
+          "--plots '" + path("query_link") + "' is what --query reads");
   EXPECT_EQ(fileContents(bag), bag_bytes);
   EXPECT_EQ(fileContents(first_image), image_bytes);
+  EXPECT_EQ(mrs_vpr::listImageFiles(path("query")).size(), query_images);
+  EXPECT_EQ(std::distance(fs::directory_iterator(path("query")), fs::directory_iterator()),
+            static_cast<std::ptrdiff_t>(query_images));
   EXPECT_FALSE(fs::exists(path("reference/map.db")));
   EXPECT_FALSE(fs::exists(path("query/plots")));
   EXPECT_FALSE(fs::exists(path("reference/drive")));
