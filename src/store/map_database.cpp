@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -247,6 +248,16 @@ void MapDatabase::checkMetadata(bool params_given) {
     fail("its descriptor_bytes is '" + stored["descriptor_bytes"] + "', but its front end's descriptors are " + size +
          " bytes");
   }
+  if (stored.count("traversal_frames") != 0) {
+    const std::string& text = stored["traversal_frames"];
+    char* end = nullptr;
+    errno = 0;
+    const long long frames = std::strtoll(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || frames < 0) {
+      fail("its traversal_frames is '" + text + "', not a count of frames");
+    }
+    traversal_frames_ = frames;
+  }
   if (!params_given) {
     params_ = *written;
     descriptor_bytes_ = params_.descriptorSize();
@@ -339,11 +350,13 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames) {
     insertFrames([&](const auto& insert) {
       for (const StoredFrame& frame : frames) insert(frame);
     });
+    forgetTraversal();
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
+  traversal_frames_.reset();
 }
 
 void MapDatabase::replace(const FrameSource& source) {
@@ -351,11 +364,22 @@ void MapDatabase::replace(const FrameSource& source) {
   try {
     execute("DELETE FROM frames");
     insertFrames(source);
+    forgetTraversal();
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
+  traversal_frames_.reset();
+}
+
+void MapDatabase::forgetTraversal() {
+  if (traversal_frames_) execute("DELETE FROM metadata WHERE key = 'traversal_frames'");
+}
+
+void MapDatabase::setTraversalFrames(std::int64_t frames) {
+  execute("INSERT OR REPLACE INTO metadata VALUES ('traversal_frames', '" + std::to_string(frames) + "')");
+  traversal_frames_ = frames;
 }
 
 std::int64_t MapDatabase::size() const {
@@ -411,7 +435,18 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
   if (step != SQLITE_DONE) fail(lastProblem(db_));
 }
 
-void MapDatabase::clear() { execute("DELETE FROM frames"); }
+void MapDatabase::clear() {
+  execute("BEGIN IMMEDIATE");
+  try {
+    execute("DELETE FROM frames");
+    forgetTraversal();
+    execute("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  traversal_frames_.reset();
+}
 
 void MapDatabase::readAtOneMoment(const std::function<void()>& read) const {
   execute("BEGIN");  // Deferred: the first read takes the snapshot that the others see.

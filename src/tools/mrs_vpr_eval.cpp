@@ -153,8 +153,14 @@ Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const Pl
   std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
   if (const std::optional<Keyframes> numbered = storedFrameNumbers(stored_numbers)) {
     keyframes = *numbered;
-    std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back()
-              << " of its traversal by the numbers it stores\n";
+    // build_map records how many frames the traversal had: those after the last keyframe, which it
+    // stands for, are frames of the reference too.
+    const std::optional<std::int64_t> traversal = map.traversalFrames();
+    if (traversal && *traversal > keyframes.total && *traversal <= std::numeric_limits<int>::max()) {
+      keyframes.total = static_cast<int>(*traversal);
+    }
+    std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back() << " of its traversal of "
+              << keyframes.total << " frames by the numbers it stores\n";
     if (numbered->frames.front() > 0 && options.ground_truth.empty() && !options.out_of_map) {
       std::cerr << "  query frames 0 to " << numbered->frames.front() - 1
                 << " show, by the identity ground truth, places before the map's first frame: places outside"

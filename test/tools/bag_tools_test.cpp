@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -267,7 +268,8 @@ TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChan
   const std::string rest = " --query " + path("query") + " --protocol per-frame --sequence-length 10";
   const CommandResult from_map = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped.db") + rest);
   ASSERT_EQ(from_map.status, 0) << from_map.err;
-  EXPECT_NE(from_map.err.find("frames 0 to 189 of its traversal by the numbers it stores"), std::string::npos)
+  EXPECT_NE(from_map.err.find("frames 0 to 189 of its traversal of 190 frames by the numbers it stores"),
+            std::string::npos)
       << from_map.err;
   const auto summary = [](const json& document) {
     json figures = document.at("summary");
@@ -283,6 +285,52 @@ TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChan
   EXPECT_NE(plots.err.find("holds " + std::to_string(190 - skipped) + " of 190: give its image folder or bag instead"),
             std::string::npos)
       << plots.err;
+}
+
+TEST_F(BagToolsTest, AMapWhoseLastFramesWereNotKeptIsJudgedOnEveryFrameOfItsTraversal) {
+  // A traversal that ends standing still (the corridor set's does): its last frames are too similar to
+  // be kept, and a ground truth may name them. The map records the traversal's length, so that the
+  // map is judged as its folder is.
+  const std::string folder = path("ends_standing");
+  fs::create_directories(folder);
+  const std::vector<std::string> images = mrs_vpr::listImageFiles(path("reference"));
+  for (std::size_t i = 0; i < images.size() + 5; ++i) {
+    fs::create_symlink(images[std::min(i, images.size() - 1)], folder + "/" + std::to_string(10000 + i) + ".png");
+  }
+  {
+    std::ifstream truth(path("truth.csv"));
+    std::ofstream named(path("names_the_last_frames.csv"));
+    std::string line;
+    while (std::getline(truth, line)) named << line << (line.rfind("99,", 0) == 0 ? " 154" : "") << "\n";
+  }
+  const std::string map = path("ends_standing.db");
+  const CommandResult built = run(std::string(BUILD_MAP_PATH) + " --descriptor thumbnail --images " + folder +
+                                  " --output " + map);
+  ASSERT_EQ(built.status, 0) << built.err;
+  const std::string rest = " --descriptor thumbnail --query " + path("query") + " --ground-truth " +
+                           path("names_the_last_frames.csv") + " --protocol per-frame --sequence-length 10";
+  const CommandResult from_folder = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + folder + rest);
+  const CommandResult from_map = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + map + rest);
+  ASSERT_EQ(from_folder.status, 0) << from_folder.err;
+  ASSERT_EQ(from_map.status, 0) << from_map.err;
+  EXPECT_NE(from_map.err.find("of its traversal of 155 frames by the numbers it stores"), std::string::npos)
+      << from_map.err;
+  const auto summary = [](const CommandResult& result) {
+    nlohmann::json document = nlohmann::json::parse(result.out).at("summary");
+    document.erase("median_time_ms");
+    document.erase("total_time_s");
+    return document;
+  };
+  EXPECT_EQ(summary(from_map), summary(from_folder));
+  // Extended by the node or another traversal, the map is no longer that traversal alone.
+  {
+    mrs_vpr::MapDatabase database(map, mrs_vpr::MapAccess::kReadWrite);
+    ASSERT_EQ(database.traversalFrames(), std::optional<std::int64_t>(155));
+    const int bytes = static_cast<int>(database.descriptorParams().descriptorSize());
+    database.append({{cv::Mat(1, bytes, CV_8U, cv::Scalar(7)), mrs_vpr::Stamp(), "", 155}});
+    EXPECT_EQ(database.traversalFrames(), std::nullopt);
+  }
+  EXPECT_EQ(mrs_vpr::MapDatabase(map, mrs_vpr::MapAccess::kReadOnly).traversalFrames(), std::nullopt);
 }
 
 TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {

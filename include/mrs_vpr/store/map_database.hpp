@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <stdexcept>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -46,7 +47,8 @@ struct StoredFrame {
  *                                                that front end's parameters (hog_window_width,
  *                                                hog_window_height, hog_cell_size, hog_bins, hog_blur;
  *                                                image_width, image_height, patch_size),
- *                                                descriptor_bytes, created, package_version
+ *                                                descriptor_bytes, created, package_version;
+ *                                                traversal_frames where build_map wrote the map
  *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
  *
  * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. Format 1 (earlier releases) kept
@@ -149,6 +151,13 @@ class MapDatabase {
    */
   void makeSelfContained();
 
+  /// Records that the map's frames were kept of a traversal of `frames` frames, numbered 0 ..
+  /// frames - 1 (build_map): frames after the last keyframe are then still frames of the traversal.
+  /// Any later change of the frames (append, replace, clear) forgets it.
+  void setTraversalFrames(std::int64_t frames);
+  /// What setTraversalFrames() recorded; nullopt for a map that records none (the node's).
+  std::optional<std::int64_t> traversalFrames() const { return traversal_frames_; }
+
   const std::string& path() const { return path_; }
   /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).
   const DescriptorParams& descriptorParams() const { return params_; }
@@ -162,6 +171,8 @@ class MapDatabase {
   /// Reads the format version and the front end: with `params_given` checks params_ against it, else
   /// adopts it.
   void checkMetadata(bool params_given);
+  /// Removes the recorded traversal inside the caller's transaction: the frames are no longer only its.
+  void forgetTraversal();
   /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
   void convertToCurrentFormat();
   /// Inserts the frames of `source` inside a transaction the caller has begun; throws
@@ -172,6 +183,7 @@ class MapDatabase {
   DescriptorParams params_;
   int descriptor_bytes_ = 0;
   int format_version_ = kFormatVersion;
+  std::optional<std::int64_t> traversal_frames_;
   sqlite3* db_ = nullptr;
 };
 
