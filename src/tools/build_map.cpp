@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -34,8 +35,9 @@ constexpr const char* kUsage =
     "                 [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
-    "with their stamps and their frame's index in DIR or on T (the frame numbers of mrs_vpr_eval's\n"
-    "ground truth; with --append, numbered on from the map's last frame), in the SQLite map database\n"
+    "with their stamps (a bag's; frame i of DIR at i s) and their frame's index in DIR or on T (the frame\n"
+    "numbers of mrs_vpr_eval's ground truth; with --append, numbered and stamped on from the map's last\n"
+    "frame), in the SQLite map database\n"
     "MAP.db. The map is written to MAP.db.part and renamed only when complete; an existing MAP.db is\n"
     "extended with --append (a copy of it, with the front end it records unless one is given) or replaced\n"
     "with --force. A failure leaves MAP.db as it was.\n"
@@ -131,7 +133,12 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
           ++too_similar;
           return;
         }
-        batch.push_back({descriptor.clone(), stamp, "", index});
+        // A folder's frame i is stamped i s; an appended folder's frames go on from the map's numbers, so
+        // that no two frames of one map share a stamp.
+        const bool numbered_stamp = from_folder && index <= std::numeric_limits<std::uint32_t>::max();
+        const mrs_vpr::Stamp kept_stamp =
+            numbered_stamp ? mrs_vpr::Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(index), 0) : stamp;
+        batch.push_back({descriptor.clone(), kept_stamp, "", index});
         if (batch.size() >= kBatch) flush();
       },
       from_folder ? mrs_vpr::tools::SourceKind::kFolder : mrs_vpr::tools::SourceKind::kBag);
@@ -225,8 +232,13 @@ int run(int argc, char** argv) {
     if (own_part) removePart();
     throw;
   }
-  // The old map's log would be read into the new file (its frames are in the copy extended).
-  if (exists) mrs_vpr::MapDatabase::removeCompanions(output);
+  // The old map's log would be read into the new file (its frames are in the copy extended), and the
+  // new file takes the old one's permissions: a private map stays private.
+  if (exists) {
+    mrs_vpr::MapDatabase::removeCompanions(output);
+    std::error_code kept;
+    std::filesystem::permissions(target, std::filesystem::status(output, kept).permissions(), kept);
+  }
   std::error_code error;
   std::filesystem::rename(target, output, error);
   hold.reset();

@@ -371,9 +371,20 @@ TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   const CommandResult again = run(build);
   EXPECT_EQ(again.status, 1);
   EXPECT_NE(again.err.find("exists; use --append to extend it or --force to replace it"), std::string::npos);
+  fs::permissions(map, fs::perms::owner_read | fs::perms::owner_write);  // A private map...
   const CommandResult appended = run(build + " --append");
   EXPECT_EQ(appended.status, 0) << appended.err;
   EXPECT_NE(appended.err.find("150 frames added to 150"), std::string::npos) << appended.err;
+  // ... stays private, and the appended folder's frames go on from its numbers and stamps (frame i at
+  // i s), so that no two frames share a stamp.
+  EXPECT_EQ(fs::status(map).permissions(), fs::perms::owner_read | fs::perms::owner_write);
+  std::int64_t frame = 0;
+  mrs_vpr::MapDatabase(map, mrs_vpr::MapAccess::kReadOnly).forEachFrame([&](const mrs_vpr::StoredFrame& stored) {
+    EXPECT_EQ(stored.sequence, frame);
+    EXPECT_EQ(stored.stamp, mrs_vpr::Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(frame), 0));
+    ++frame;
+  });
+  EXPECT_EQ(frame, 300);
 
   // An extension that fails after a first batch of 1000 frames leaves the map as it was (it kept that
   // batch before, and a second run after the image was mended would have stored it twice).
