@@ -88,6 +88,9 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
   mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag", "output"});
   if (options.images.empty() == options.bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!options.bag_path.empty() && options.topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
+  if (!options.images.empty() && !options.topic.empty()) {
+    throw std::invalid_argument("--topic is for --bag: an image folder has no topic");
+  }
   if (options.append && options.force) throw std::invalid_argument("--append and --force exclude each other");
   mrs_vpr::RecognizerParams keyframing;
   keyframing.min_appearance_change = options.min_appearance_change;
@@ -166,14 +169,28 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   return stored;
 }
 
+/// The file the link `link` points to, through links to links; throws naming `link` for a loop.
+std::string linkTarget(const std::string& link) {
+  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
+  std::filesystem::path target = link;
+  for (int hops = 0; std::filesystem::is_symlink(target); ++hops) {
+    if (hops == kMostLinks) {
+      throw std::invalid_argument("--output '" + link + "' is a link that leads to no file (a loop of links)");
+    }
+    const std::filesystem::path next = std::filesystem::read_symlink(target);
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  return std::filesystem::weakly_canonical(target).string();
+}
+
 int run(int argc, char** argv) {
   std::optional<BuildOptions> parsed = parseOptions(argc, argv);
   if (!parsed) return 0;
   BuildOptions& options = *parsed;
   std::string& output = options.output;
-  // A link names the map it points to: the new map replaces that file, not the link, and that file
-  // must be no input.
-  if (std::filesystem::is_symlink(output)) output = std::filesystem::weakly_canonical(output).string();
+  // A link names the map it points to, also one not written yet: the new map replaces that file, not
+  // the link, and that file must be no input.
+  if (std::filesystem::is_symlink(output)) output = linkTarget(output);
   mrs_vpr::tools::requireApartFromInputs({"--output", output},
                                          {{"--images", options.images}, {"--bag", options.bag_path}});
   // The output is checked before any work: a folder would otherwise be found only when the finished
@@ -185,6 +202,10 @@ int run(int argc, char** argv) {
   const bool exists = std::filesystem::exists(output);
   if (exists && !options.append && !options.force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
+  }
+  // A mistyped map name would otherwise become a second map, and the map meant would stay as it was.
+  if (!exists && options.append) {
+    throw std::invalid_argument("--append: there is no map '" + output + "' to extend (leave --append out to create it)");
   }
   // Its folder, a name the file system allows, and no earlier map's log beside it.
   if (!exists) mrs_vpr::MapDatabase::checkSaveTarget(output);

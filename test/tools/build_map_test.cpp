@@ -164,4 +164,37 @@ TEST_F(BuildMapTest, AMapNamedThroughALinkIsExtendedWhereTheLinkPoints) {
   EXPECT_EQ(framesIn(map), 300);
 }
 
+TEST_F(BuildMapTest, ALinkToAMapNotWrittenYetIsWrittenWhereItPoints) {
+  // As a link to an existing map is: ~/maps/current.db -> a map of today's drive, say.
+  fs::create_directories(path("maps"));
+  fs::create_symlink("maps/today.db", path("current.db"));
+  fs::create_symlink(path("current.db"), path("current_of_current.db"));
+  const CommandResult built = run(build(path("current_of_current.db")));
+  ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_TRUE(fs::is_symlink(path("current.db")));
+  EXPECT_TRUE(fs::is_symlink(path("current_of_current.db")));
+  EXPECT_EQ(framesIn(path("maps/today.db")), 150);
+  // A loop of links leads to no file, and says so.
+  fs::create_symlink(path("loop_b.db"), path("loop_a.db"));
+  fs::create_symlink(path("loop_a.db"), path("loop_b.db"));
+  const CommandResult loop = run(build(path("loop_a.db")));
+  EXPECT_EQ(loop.status, 1);
+  EXPECT_NE(loop.err.find("--output '" + path("loop_a.db") + "' is a link that leads to no file (a loop of links)"),
+            std::string::npos)
+      << loop.err;
+}
+
+TEST_F(BuildMapTest, MistakesOnTheCommandLineAreRefusedBeforeAnyWork) {
+  // A mistyped map name with --append would have become a second map, the map meant left as it was.
+  const CommandResult append = run(build(path("no_such_map.db"), " --append"));
+  EXPECT_EQ(append.status, 1);
+  EXPECT_NE(append.err.find("--append: there is no map '" + path("no_such_map.db") + "' to extend"), std::string::npos)
+      << append.err;
+  EXPECT_FALSE(fs::exists(path("no_such_map.db")));
+  const CommandResult topic = run(build(path("topic.db"), " --topic /camera/image_raw"));
+  EXPECT_EQ(topic.status, 1);
+  EXPECT_NE(topic.err.find("--topic is for --bag: an image folder has no topic"), std::string::npos) << topic.err;
+  EXPECT_FALSE(fs::exists(path("topic.db")));
+}
+
 }  // namespace
