@@ -74,6 +74,13 @@ class Recognizer {
     return frames;
   }
 
+  /// Saves the map with the count of frames offered, so that mrs_vpr_eval judges it on every frame
+  /// offered, as it judges build_map's maps (frames after the last keyframe included).
+  std::int64_t save(const std::string& path) {
+    const std::lock_guard<std::mutex> lock(numbering_mutex_);
+    return map_.save(path, next_number_);
+  }
+
   int reset() {
     const std::lock_guard<std::mutex> lock(numbering_mutex_);
     const int frames = map_.reset();
@@ -82,17 +89,20 @@ class Recognizer {
   }
 
  private:
-  /// After the map was emptied or replaced: numbering goes on after its last frame's number, or after
-  /// its frames where it has none (-1: a map saved before frames were numbered).
+  /// After the map was emptied or replaced: numbering goes on after its traversal (the frames it
+  /// records it was kept of, as build_map's and saved Python maps do) or its last frame's number, or
+  /// after its frames where it has none (-1: a map saved before frames were numbered).
   void startOver() {
     frames_left_out_ = 0;
     const int frames = recognizer_.size();
     const std::int64_t last = frames == 0 ? -1 : map_.sequenceOf(frames - 1);
     if (last < 0) {
       next_number_ = frames;
-    } else {
-      next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
+      return;
     }
+    next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
+    const std::optional<std::int64_t> traversal = map_.loadedTraversalFrames();
+    if (traversal) next_number_ = std::max(next_number_, *traversal);
   }
 
   PlaceRecognizer recognizer_;
@@ -228,7 +238,7 @@ void bindRecognizer(py::module_& m) {
           "save",
           [](Recognizer& self, const std::string& path) {
             py::gil_scoped_release released;
-            return self.map().save(path);
+            return self.save(path);
           },
           py::arg("path"),
           "Writes the map to the new SQLite map database `path` (never overwritten); returns the frames written.")

@@ -87,17 +87,22 @@ def test_a_saved_map_keeps_each_frames_place_among_the_frames_offered(route, tmp
     recognizer.add_frames(route["reference"][:50])
     assert recognizer.add_frame(route["reference"][49]) is False  # Offered as frame 50, and left out.
     assert recognizer.add_frame(route["reference"][51]) is True
+    assert recognizer.add_frame(route["reference"][51]) is False  # Frame 52, the last offered, left out.
     kept = len(recognizer)
     assert recognizer.frame_number(kept - 1) == 51
     numbers = [recognizer.frame_number(index) for index in range(kept)]
     assert numbers == sorted(set(numbers)) and numbers[0] == 0
     path = tmp_path / "map.db"
     recognizer.save(path)
+    # As build_map records its traversal: a ground truth may name frames after the last keyframe.
+    with sqlite3.connect(path) as database:
+        assert database.execute("SELECT value FROM metadata WHERE key = 'traversal_frames'").fetchall() == [("53",)]
+    database.close()
     loaded = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
     loaded.load(str(path))
     assert [loaded.frame_number(index) for index in range(kept)] == numbers
-    assert loaded.add_frame(route["reference"][60]) is True  # Numbered on from the map's last frame.
-    assert loaded.frame_number(kept) == 52
+    assert loaded.add_frame(route["reference"][60]) is True  # Numbered on after the 53 frames offered.
+    assert loaded.frame_number(kept) == 53
     with pytest.raises(IndexError, match=r"no map frame 99: the map holds 52 frames \(0\.\.51\)"):
         loaded.frame_number(99)
     with pytest.raises(IndexError, match="no map frame 2147483648"):
