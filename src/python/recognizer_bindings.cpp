@@ -78,7 +78,10 @@ class Recognizer {
   /// offered, as it judges build_map's maps (frames after the last keyframe included).
   std::int64_t save(const std::string& path) {
     const std::lock_guard<std::mutex> lock(numbering_mutex_);
-    return map_.save(path, next_number_);
+    MapTraversal offered;
+    offered.frames = next_number_;
+    offered.min_appearance_change = recognizer_.recognizerParameters().min_appearance_change;
+    return map_.save(path, offered);
   }
 
   int reset() {
@@ -101,8 +104,8 @@ class Recognizer {
       return;
     }
     next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
-    const std::optional<std::int64_t> traversal = map_.loadedTraversalFrames();
-    if (traversal) next_number_ = std::max(next_number_, *traversal);
+    const std::optional<MapTraversal>& traversal = map_.loadedTraversal();
+    if (traversal) next_number_ = std::max(next_number_, traversal->frames);
   }
 
   PlaceRecognizer recognizer_;

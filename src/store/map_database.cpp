@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -248,16 +249,7 @@ void MapDatabase::checkMetadata(bool params_given) {
     fail("its descriptor_bytes is '" + stored["descriptor_bytes"] + "', but its front end's descriptors are " + size +
          " bytes");
   }
-  if (stored.count("traversal_frames") != 0) {
-    const std::string& text = stored["traversal_frames"];
-    char* end = nullptr;
-    errno = 0;
-    const long long frames = std::strtoll(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || frames < 0) {
-      fail("its traversal_frames is '" + text + "', not a count of frames");
-    }
-    traversal_frames_ = frames;
-  }
+  traversal_ = traversalOfMetadata(stored);
   if (!params_given) {
     params_ = *written;
     descriptor_bytes_ = params_.descriptorSize();
@@ -356,7 +348,7 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-  traversal_frames_.reset();
+  traversal_.reset();
 }
 
 void MapDatabase::replace(const FrameSource& source) {
@@ -370,16 +362,50 @@ void MapDatabase::replace(const FrameSource& source) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-  traversal_frames_.reset();
+  traversal_.reset();
 }
 
 void MapDatabase::forgetTraversal() {
-  if (traversal_frames_) execute("DELETE FROM metadata WHERE key = 'traversal_frames'");
+  if (traversal_) execute("DELETE FROM metadata WHERE key IN ('traversal_frames', 'traversal_min_appearance_change')");
 }
 
-void MapDatabase::setTraversalFrames(std::int64_t frames) {
-  execute("INSERT OR REPLACE INTO metadata VALUES ('traversal_frames', '" + std::to_string(frames) + "')");
-  traversal_frames_ = frames;
+void MapDatabase::setTraversal(const MapTraversal& traversal) {
+  execute("BEGIN IMMEDIATE");
+  try {
+    forgetTraversal();
+    execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "')");
+    if (traversal.min_appearance_change) {
+      execute("INSERT INTO metadata VALUES ('traversal_min_appearance_change', '" +
+              preciseNumber(*traversal.min_appearance_change) + "')");
+    }
+    execute("COMMIT");
+  } catch (...) {
+    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
+    throw;
+  }
+  traversal_ = traversal;
+}
+
+std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std::string, std::string>& stored) const {
+  const auto frames = stored.find("traversal_frames");
+  if (frames == stored.end()) return std::nullopt;
+  MapTraversal traversal;
+  char* end = nullptr;
+  errno = 0;
+  traversal.frames = std::strtoll(frames->second.c_str(), &end, 10);
+  if (frames->second.empty() || *end != '\0' || errno != 0 || traversal.frames < 0) {
+    fail("its traversal_frames is '" + frames->second + "', not a count of frames");
+  }
+  const auto change = stored.find("traversal_min_appearance_change");
+  if (change != stored.end()) {
+    errno = 0;
+    const double value = std::strtod(change->second.c_str(), &end);
+    if (change->second.empty() || *end != '\0' || errno != 0 || !std::isfinite(value) || value < 0.0) {
+      fail("its traversal_min_appearance_change is '" + change->second + "', not an appearance change");
+    }
+    traversal.min_appearance_change = value;
+  }
+  return traversal;
 }
 
 std::int64_t MapDatabase::size() const {
@@ -445,7 +471,7 @@ void MapDatabase::clear() {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-  traversal_frames_.reset();
+  traversal_.reset();
 }
 
 void MapDatabase::readAtOneMoment(const std::function<void()>& read) const {

@@ -152,7 +152,7 @@ int PersistentMap::reset() {
   if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
   labels_.clear();
   label_bytes_ = labels_.memoryBytes();
-  loaded_traversal_frames_.reset();
+  loaded_traversal_.reset();
   return recognizer_.install(std::move(empty));
 }
 
@@ -165,10 +165,10 @@ int PersistentMap::load(const std::string& path) {
   // Everything is read and checked before anything changes: the recognizer's new map is built aside,
   // frame by frame as the file is read (a million-frame map is not held twice, as rows and as a map) ...
   FrameLabels labels;
-  std::optional<std::int64_t> traversal_frames;
+  std::optional<MapTraversal> traversal;
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
-    traversal_frames = saved.traversalFrames();
+    traversal = saved.traversal();
     std::optional<PlaceRecognizer::PreparedMap> map;
     saved.readAtOneMoment([&] {
       saved.checkIntegrity();
@@ -194,7 +194,7 @@ int PersistentMap::load(const std::string& path) {
   rewriting_ = false;
   recognizer_.install(std::move(prepared));
   labels_ = std::move(labels);
-  loaded_traversal_frames_ = traversal_frames;
+  loaded_traversal_ = traversal;
   // The new map is in place in both: nothing may throw from here on. The frames fit (store() held back
   // no more than the new map has room for); only a failure to get memory would leave some out, of both.
   try {
@@ -260,9 +260,9 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
   }
 }
 
-std::int64_t PersistentMap::save(const std::string& path, std::optional<std::int64_t> traversal_frames) {
+std::int64_t PersistentMap::save(const std::string& path, const std::optional<MapTraversal>& traversal) {
   std::lock_guard<std::mutex> whole(whole_map_mutex_);
-  if (!writer_) return saveFromMemory(path, traversal_frames);
+  if (!writer_) return saveFromMemory(path, traversal);
   std::int64_t frames = 0;
   // Queued frames are committed first, so the snapshot holds every frame added before the call.
   writer_->withDatabase([&](MapDatabase& database) {
@@ -272,7 +272,7 @@ std::int64_t PersistentMap::save(const std::string& path, std::optional<std::int
   return frames;
 }
 
-std::int64_t PersistentMap::saveFromMemory(const std::string& path, std::optional<std::int64_t> traversal_frames) {
+std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::optional<MapTraversal>& traversal) {
   MapDatabase::checkSaveTarget(path);  // Before any work, in the words a backup would use.
   std::error_code ignored;
   // The frames go to a scratch database beside the target, which the online backup then turns into
@@ -305,7 +305,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, std::optiona
       }
       copy.append(chunk);
     }
-    if (traversal_frames) copy.setTraversalFrames(*traversal_frames);
+    if (traversal) copy.setTraversal(*traversal);
     copy.backupTo(path);
   } catch (const MapDatabaseError& error) {
     removeScratch();

@@ -145,8 +145,12 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
       },
       from_folder ? mrs_vpr::tools::SourceKind::kFolder : mrs_vpr::tools::SourceKind::kBag);
   flush();
-  // Frames after the last keyframe are still frames of the traversal, which a ground truth may name.
-  map.setTraversalFrames(next_index);
+  // Frames after the last keyframe are still frames of the traversal, which a ground truth may name;
+  // and a query keyframed as the map was lies on the map's scale.
+  mrs_vpr::MapTraversal traversal;
+  traversal.frames = next_index;
+  if (!keyframes) traversal.min_appearance_change = options.min_appearance_change;
+  map.setTraversal(traversal);
   mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.
   // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
   if (keyframes && stored == 0 && keyframes->withoutPose() > 0) {

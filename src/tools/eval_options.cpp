@@ -99,7 +99,8 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
       ("sequence-length", po::value(&params.sequence.sequence_length)->default_value(params.sequence.sequence_length),
        "N: keyframes per test sequence (ds of the per-frame protocol; default: the node's continuous mode)")
       ("min-appearance-change", doubleOption(&options.min_appearance_change),
-       "keyframes by appearance change, as the node's ~min_appearance_change; 0 = every frame")
+       "keyframes by appearance change, as the node's ~min_appearance_change (a map database's own where it "
+       "records one); 0 = every frame")
       ("queries", po::value(&options.queries)->default_value(options.queries),
        "K: test sequences of the global protocol")
       ("tolerance", po::value(&options.tolerance)->default_value(options.tolerance),
@@ -132,6 +133,8 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
   refuseOtherFrontEndsOptions(variables, params.descriptor);
   refuseEmptyPaths(variables, {"reference", "query", "ground-truth", "output", "plots"});
   options.descriptor_given = descriptorOptionsGiven(variables);
+  options.min_appearance_change_given = variables.count("min-appearance-change") != 0 &&
+                                        !variables["min-appearance-change"].defaulted();
 
   if (options.method != "mrs" && options.method != "seqslam") {
     throw std::invalid_argument("unknown method '" + options.method + "' (expected mrs or seqslam)");

@@ -33,6 +33,7 @@ struct EvalOptions {
   bool descriptor_given = false;  ///< A descriptor option was set; else a map database's own front end is used.
   /// As the node's ~min_appearance_change: both traversals are keyframed as the node keyframes a camera.
   double min_appearance_change = RecognizerParams{}.min_appearance_change;
+  bool min_appearance_change_given = false;  ///< Else a map database's own keyframing, where it records one.
 };
 
 /// Parses and checks the command line; returns nothing after printing the help. Throws

@@ -322,15 +322,38 @@ TEST_F(BagToolsTest, AMapWhoseLastFramesWereNotKeptIsJudgedOnEveryFrameOfItsTrav
     return document;
   };
   EXPECT_EQ(summary(from_map), summary(from_folder));
+  // Without --min-appearance-change the query is keyframed as the map's frames were; with another
+  // value, the evaluator warns.
+  const std::string at_03 = path("kept_at_0.3.db");
+  ASSERT_EQ(run(std::string(BUILD_MAP_PATH) + " --descriptor thumbnail --min-appearance-change 0.3 --images " + folder +
+                " --output " + at_03)
+                .status,
+            0);
+  const CommandResult map_keyframing = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + at_03 + rest +
+                                           " --output " + path("kept_at_0.3.json"));
+  ASSERT_EQ(map_keyframing.status, 0) << map_keyframing.err;
+  EXPECT_NE(map_keyframing.err.find("keyframes at an appearance change of 0.3"), std::string::npos)
+      << map_keyframing.err;
+  EXPECT_EQ(nlohmann::json::parse(fileContents(path("kept_at_0.3.json"))).at("parameters").at("min_appearance_change"),
+            0.3);
+  EXPECT_EQ(map_keyframing.err.find("warning"), std::string::npos) << map_keyframing.err;
+  const CommandResult other = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + at_03 + rest +
+                                  " --min-appearance-change 0");
+  ASSERT_EQ(other.status, 0) << other.err;
+  EXPECT_NE(other.err.find("warning: the map's keyframes were kept at an appearance change of 0.3, the query's at 0"),
+            std::string::npos)
+      << other.err;
   // Extended by the node or another traversal, the map is no longer that traversal alone.
   {
     mrs_vpr::MapDatabase database(map, mrs_vpr::MapAccess::kReadWrite);
-    ASSERT_EQ(database.traversalFrames(), std::optional<std::int64_t>(155));
+    ASSERT_TRUE(database.traversal().has_value());
+    EXPECT_EQ(database.traversal()->frames, 155);
+    EXPECT_EQ(database.traversal()->min_appearance_change, mrs_vpr::RecognizerParams{}.min_appearance_change);
     const int bytes = static_cast<int>(database.descriptorParams().descriptorSize());
     database.append({{cv::Mat(1, bytes, CV_8U, cv::Scalar(7)), mrs_vpr::Stamp(), "", 155}});
-    EXPECT_EQ(database.traversalFrames(), std::nullopt);
+    EXPECT_FALSE(database.traversal().has_value());
   }
-  EXPECT_EQ(mrs_vpr::MapDatabase(map, mrs_vpr::MapAccess::kReadOnly).traversalFrames(), std::nullopt);
+  EXPECT_FALSE(mrs_vpr::MapDatabase(map, mrs_vpr::MapAccess::kReadOnly).traversal().has_value());
 }
 
 TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {

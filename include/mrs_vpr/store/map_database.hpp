@@ -2,8 +2,9 @@
 
 #include <cstdint>
 #include <functional>
-#include <stdexcept>
+#include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,15 @@ struct StoredFrame {
   std::int64_t sequence = -1;
 };
 
+/// The traversal a map's frames were kept of, as a map records it (MapDatabase::setTraversal).
+struct MapTraversal {
+  /// Its frames, numbered 0 .. frames - 1: those after the last keyframe are still frames of it.
+  std::int64_t frames = 0;
+  /// The appearance change at which its keyframes were kept (RecognizerParams::min_appearance_change,
+  /// 0: every frame); nullopt when they were kept otherwise (by travel).
+  std::optional<double> min_appearance_change;
+};
+
 /**
  * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
  * that users can inspect with `sqlite3` or Python. Schema (format 2):
@@ -48,7 +58,8 @@ struct StoredFrame {
  *                                                hog_window_height, hog_cell_size, hog_bins, hog_blur;
  *                                                image_width, image_height, patch_size),
  *                                                descriptor_bytes, created, package_version;
- *                                                traversal_frames where build_map wrote the map
+ *                                                traversal_frames and, for keyframes by appearance
+ *                                                change, traversal_min_appearance_change (MapTraversal)
  *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
  *
  * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. Format 1 (earlier releases) kept
@@ -151,12 +162,11 @@ class MapDatabase {
    */
   void makeSelfContained();
 
-  /// Records that the map's frames were kept of a traversal of `frames` frames, numbered 0 ..
-  /// frames - 1 (build_map): frames after the last keyframe are then still frames of the traversal.
-  /// Any later change of the frames (append, replace, clear) forgets it.
-  void setTraversalFrames(std::int64_t frames);
-  /// What setTraversalFrames() recorded; nullopt for a map that records none (the node's).
-  std::optional<std::int64_t> traversalFrames() const { return traversal_frames_; }
+  /// Records the traversal the map's frames were kept of (build_map, a map saved from Python). Any
+  /// later change of the frames (append, replace, clear) forgets it: they are no longer its alone.
+  void setTraversal(const MapTraversal& traversal);
+  /// What setTraversal() recorded; nullopt for a map that records none (the node's).
+  const std::optional<MapTraversal>& traversal() const { return traversal_; }
 
   const std::string& path() const { return path_; }
   /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).
@@ -171,7 +181,9 @@ class MapDatabase {
   /// Reads the format version and the front end: with `params_given` checks params_ against it, else
   /// adopts it.
   void checkMetadata(bool params_given);
-  /// Removes the recorded traversal inside the caller's transaction: the frames are no longer only its.
+  /// The traversal the metadata records; throws MapDatabaseError for values that are no numbers.
+  std::optional<MapTraversal> traversalOfMetadata(const std::map<std::string, std::string>& stored) const;
+  /// Removes the recorded traversal inside the caller's transaction: the frames are no longer its alone.
   void forgetTraversal();
   /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
   void convertToCurrentFormat();
@@ -183,7 +195,7 @@ class MapDatabase {
   DescriptorParams params_;
   int descriptor_bytes_ = 0;
   int format_version_ = kFormatVersion;
-  std::optional<std::int64_t> traversal_frames_;
+  std::optional<MapTraversal> traversal_;
   sqlite3* db_ = nullptr;
 };
 

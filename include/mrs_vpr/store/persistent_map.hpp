@@ -71,9 +71,9 @@ class PersistentMap {
    * backup of it; in memory only, the map's frames as the database would hold them (descriptor,
    * stamp, frame id and number). Returns the frames written.
    */
-  /// `traversal_frames`, for a map in memory whose frames were numbered among the frames offered
-  /// (Python's), is recorded as MapDatabase::setTraversalFrames() records it.
-  std::int64_t save(const std::string& path, std::optional<std::int64_t> traversal_frames = std::nullopt);
+  /// `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
+  /// is recorded as MapDatabase::setTraversal() records it.
+  std::int64_t save(const std::string& path, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Commits the queued frames now.
   void commit();
 
@@ -81,9 +81,9 @@ class PersistentMap {
   /// index the map does not hold.
   std::string frameIdOf(int index) const;
   std::int64_t sequenceOf(int index) const;
-  /// The traversal_frames the map last loaded records (MapDatabase::traversalFrames); nullopt when
-  /// it records none or no map was loaded.
-  std::optional<std::int64_t> loadedTraversalFrames() const { return loaded_traversal_frames_; }
+  /// The traversal the map last loaded records (MapDatabase::traversal); nullopt when it records none
+  /// or no map was loaded since the last reset.
+  const std::optional<MapTraversal>& loadedTraversal() const { return loaded_traversal_; }
   /// Bytes that the frames' ids and numbers hold (about 12 a frame), besides the recognizer's map.
   std::size_t labelBytes() const;
 
@@ -104,7 +104,7 @@ class PersistentMap {
  private:
   FrameAdmission store(const cv::Mat& descriptor, Stamp stamp, const std::string& frame_id, std::int64_t sequence,
                        bool offered);
-  std::int64_t saveFromMemory(const std::string& path, std::optional<std::int64_t> traversal_frames);
+  std::int64_t saveFromMemory(const std::string& path, const std::optional<MapTraversal>& traversal);
   /// load()'s rewrite of the database by the frames of the map saved at `path`, which must be those of
   /// `prepared`; added frames are held back meanwhile.
   void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
@@ -119,7 +119,7 @@ class PersistentMap {
   mutable std::mutex add_mutex_;
   // The frame ids and numbers of the recognizer's frames, in its order. Guarded by add_mutex_.
   FrameLabels labels_;
-  std::optional<std::int64_t> loaded_traversal_frames_;  ///< Set by load(), while whole_map_mutex_ is held.
+  std::optional<MapTraversal> loaded_traversal_;  ///< Set by load() and reset(), while whole_map_mutex_ is held.
   // labels_.memoryBytes(), for ~map_info, which must not wait for a reset's or a load's disk work.
   std::atomic<std::size_t> label_bytes_{0};
   // One whole-map operation (reset, load, save) at a time.
