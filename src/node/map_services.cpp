@@ -6,6 +6,7 @@
 #include <string>
 
 #include "mrs_vpr/node/place_recognition_node.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -33,6 +34,15 @@ void PlaceRecognitionNode::openMap() {
   startSession(recognizer_.size());
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
            params_.database.c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
+  const std::string mismatch = keyframingMismatchOfMap();
+  if (!mismatch.empty()) ROS_WARN("mrs_vpr: map database '%s': %s", params_.database.c_str(), mismatch.c_str());
+}
+
+std::string PlaceRecognitionNode::keyframingMismatchOfMap() const {
+  // Keyframes by travel (odometry) are on the map's scale in metres, whatever its appearance change.
+  if (params_.min_travel > 0.0) return "";
+  return keyframingMismatch(map_->loadedTraversal(), recognizer_.recognizerParameters().min_appearance_change,
+                            "~min_appearance_change");
 }
 
 bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& response) {
@@ -105,7 +115,13 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
     response.message = "loaded " + std::to_string(loaded) + " frames from '" + absolutePath(request.path) + "'" +
                        (map_->persistent() ? "; the database '" + map_->databasePath() + "' now holds them too"
                                            : "");
-    ROS_INFO("mrs_vpr: %s", response.message.c_str());
+    const std::string mismatch = keyframingMismatchOfMap();
+    if (mismatch.empty()) {
+      ROS_INFO("mrs_vpr: %s", response.message.c_str());
+    } else {
+      response.message += "; warning: " + mismatch;
+      ROS_WARN("mrs_vpr: %s", response.message.c_str());
+    }
   } catch (const std::exception& error) {
     response.success = false;
     response.frames = static_cast<std::uint64_t>(recognizer_.size());

@@ -67,6 +67,7 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
   });
   recognizer_.install(std::move(map));
   label_bytes_ = labels_.memoryBytes();
+  loaded_traversal_ = database_->traversal();  // Before the camera's first frame makes it forgotten.
   writer_ = std::make_unique<MapWriter>(*database_, policy);
 }
 

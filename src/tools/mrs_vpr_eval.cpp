@@ -25,6 +25,7 @@
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
 #include "stopwatch.hpp"
 #include "summary_json.hpp"
 #include "tool_main.hpp"
@@ -175,19 +176,18 @@ Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const Pl
   return traversal;
 }
 
-/// The query is keyframed as the map's frames were, where the map records how: test sequences on
-/// another scale than the map's answer worse (Nordland, per-frame: top-1 0.853 against 0.991).
+/// The query is keyframed as the map's frames were, where the map records how (keyframingMismatch).
 void takeTheMapsKeyframing(const MapDatabase& map, EvalOptions& options) {
   const std::optional<MapTraversal>& traversal = map.traversal();
   if (!traversal || !traversal->min_appearance_change) return;
-  const double recorded = *traversal->min_appearance_change;
   if (!options.min_appearance_change_given) {
-    options.min_appearance_change = recorded;
-  } else if (options.min_appearance_change != recorded) {
-    std::cerr << "mrs_vpr_eval: warning: the map's keyframes were kept at an appearance change of " << recorded
-              << ", the query's at " << options.min_appearance_change
-              << " (--min-appearance-change): its test sequences lie on another scale than the map's; leave the option "
-                 "out to keyframe the query as the map\n";
+    options.min_appearance_change = *traversal->min_appearance_change;
+    return;
+  }
+  const std::string mismatch =
+      keyframingMismatch(traversal, options.min_appearance_change, "--min-appearance-change");
+  if (!mismatch.empty()) {
+    std::cerr << "mrs_vpr_eval: warning: " << mismatch << "; leave the option out to keyframe the query as the map\n";
   }
 }
 

@@ -403,6 +403,25 @@ TEST_F(MapDatabaseNodeTest, AMapInMemoryKeepsItsFramesIdsAndNumbersThroughSaveAn
   ASSERT_TRUE(closures.waitFor([&](const mrs_vpr::LoopClosure& m) { return m.header.stamp == localised; }, closure,
                                10.0));
   EXPECT_EQ(closure.header.frame_id, "left_camera");
+  EXPECT_EQ(load.response.message.find("warning"), std::string::npos) << load.response.message;
+
+  // A map kept at another appearance change than the node's: its keyframes lie on another scale than
+  // the camera's, and the load says so.
+  {
+    mrs_vpr::MapDatabase other_scale(path("other_scale.db"), mrs_vpr::DescriptorParams{});
+    other_scale.append(frames);
+    mrs_vpr::MapTraversal traversal;
+    traversal.frames = 120;
+    traversal.min_appearance_change = 0.123;
+    other_scale.setTraversal(traversal);
+  }
+  load.request.path = path("other_scale.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), load));
+  ASSERT_TRUE(load.response.success) << load.response.message;
+  EXPECT_NE(load.response.message.find(
+                "; warning: the map's keyframes were kept at an appearance change of 0.123, and ~min_appearance_change is"),
+            std::string::npos)
+      << load.response.message;
   EXPECT_EQ(node->stop(), 0);
 }
 

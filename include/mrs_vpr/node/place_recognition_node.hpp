@@ -110,6 +110,8 @@ class PlaceRecognitionNode {
   // The map and its database (map_services.cpp).
   /// Opens ~database and loads its map, or keeps the map in memory; throws MapDatabaseError.
   void openMap();
+  /// keyframingMismatch() of the map opened or loaded against the node's keyframing; empty if none.
+  std::string keyframingMismatchOfMap() const;
   bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
   bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);

@@ -12,6 +12,7 @@
 
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/stamp.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
 
 struct sqlite3;
 
@@ -38,15 +39,6 @@ struct StoredFrame {
   /// The image's number: the camera's header.seq for the node, the frame's index in its folder or on
   /// its bag topic for build_map; -1 when unknown.
   std::int64_t sequence = -1;
-};
-
-/// The traversal a map's frames were kept of, as a map records it (MapDatabase::setTraversal).
-struct MapTraversal {
-  /// Its frames, numbered 0 .. frames - 1: those after the last keyframe are still frames of it.
-  std::int64_t frames = 0;
-  /// The appearance change at which its keyframes were kept (RecognizerParams::min_appearance_change,
-  /// 0: every frame); nullopt when they were kept otherwise (by travel).
-  std::optional<double> min_appearance_change;
 };
 
 /**

@@ -81,8 +81,8 @@ class PersistentMap {
   /// index the map does not hold.
   std::string frameIdOf(int index) const;
   std::int64_t sequenceOf(int index) const;
-  /// The traversal the map last loaded records (MapDatabase::traversal); nullopt when it records none
-  /// or no map was loaded since the last reset.
+  /// The traversal the map last loaded (or the database opened) records (MapDatabase::traversal);
+  /// nullopt when it records none or no map was loaded since the last reset.
   const std::optional<MapTraversal>& loadedTraversal() const { return loaded_traversal_; }
   /// Bytes that the frames' ids and numbers hold (about 12 a frame), besides the recognizer's map.
   std::size_t labelBytes() const;

@@ -1,0 +1,15 @@
+#include "mrs_vpr/store/map_traversal.hpp"
+
+#include "mrs_vpr/number_text.hpp"
+
+namespace mrs_vpr {
+
+std::string keyframingMismatch(const std::optional<MapTraversal>& map, double min_appearance_change,
+                               const std::string& setting) {
+  if (!map || !map->min_appearance_change || *map->min_appearance_change == min_appearance_change) return "";
+  return "the map's keyframes were kept at an appearance change of " + numberText(*map->min_appearance_change) +
+         ", and " + setting + " is " + numberText(min_appearance_change) +
+         ": test sequences then lie on another scale than the map's, which loses answers and can accept wrong ones";
+}
+
+}  // namespace mrs_vpr

@@ -1,0 +1,110 @@
+// The traversal a map records (MapTraversal): written, read back, forgotten when the frames change,
+// refused when damaged, and compared with the keyframing of the frames asked about.
+
+#include <gtest/gtest.h>
+#include <sqlite3.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mrs_vpr/store/map_database.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
+#include "support/front_ends.hpp"
+#include "support/temporary_folder.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+using testing_support::thumbnailParams;
+
+class MapTraversalTest : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return folder_.path(name); }
+
+  static std::vector<StoredFrame> frames(int count) {
+    std::vector<StoredFrame> result;
+    for (int i = 0; i < count; ++i) {
+      result.push_back({cv::Mat(1, thumbnailParams().descriptorSize(), CV_8UC1, cv::Scalar(i)),
+                        Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(i + 1), 0), "", i});
+    }
+    return result;
+  }
+
+  /// A map of 5 keyframes of a traversal of 8 frames kept at an appearance change of 0.4.
+  std::string recordedMap(const std::string& name) const {
+    MapDatabase map(path(name), thumbnailParams());
+    map.append(frames(5));
+    MapTraversal traversal;
+    traversal.frames = 8;
+    traversal.min_appearance_change = 0.4;
+    map.setTraversal(traversal);
+    return path(name);
+  }
+
+ private:
+  testing_support::TemporaryFolder folder_{"mrs_vpr_map_traversal_test"};
+};
+
+TEST_F(MapTraversalTest, IsReadBackAsWritten) {
+  const MapDatabase map(recordedMap("map.db"), MapAccess::kReadOnly);
+  ASSERT_TRUE(map.traversal().has_value());
+  EXPECT_EQ(map.traversal()->frames, 8);
+  EXPECT_EQ(map.traversal()->min_appearance_change, 0.4);
+}
+
+TEST_F(MapTraversalTest, IsForgottenWhenTheFramesChange) {
+  // Appended to (by the node, say), replaced or emptied, the map's frames are no longer its alone.
+  for (const std::string& change : {"append", "replace", "clear"}) {
+    SCOPED_TRACE(change);
+    const std::string file = recordedMap(change + ".db");
+    {
+      MapDatabase map(file, thumbnailParams());
+      if (change == "append") map.append(frames(1));
+      if (change == "replace") map.replace([](const auto& insert) { insert(frames(1).front()); });
+      if (change == "clear") map.clear();
+      EXPECT_FALSE(map.traversal().has_value());
+    }
+    EXPECT_FALSE(MapDatabase(file, MapAccess::kReadOnly).traversal().has_value());
+  }
+}
+
+TEST_F(MapTraversalTest, ADamagedValueIsRefusedNamingIt) {
+  for (const std::string& damage : {"UPDATE metadata SET value = 'many' WHERE key = 'traversal_frames'",
+                                    "UPDATE metadata SET value = '-0.5' WHERE key = 'traversal_min_appearance_change'"}) {
+    SCOPED_TRACE(damage);
+    const std::string file = recordedMap("damaged.db");
+    sqlite3* db = nullptr;
+    ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+    EXPECT_EQ(sqlite3_exec(db, damage.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
+    sqlite3_close(db);
+    try {
+      MapDatabase map(file, MapAccess::kReadOnly);
+      ADD_FAILURE() << "opened";
+    } catch (const MapDatabaseError& error) {
+      EXPECT_NE(std::string(error.what()).find("its traversal_"), std::string::npos) << error.what();
+    }
+    std::remove(file.c_str());
+  }
+}
+
+TEST(KeyframingMismatch, IsSaidOnlyWhenTheMapRecordsAnotherAppearanceChange) {
+  MapTraversal kept_at_04;
+  kept_at_04.frames = 10;
+  kept_at_04.min_appearance_change = 0.4;
+  EXPECT_EQ(keyframingMismatch(kept_at_04, 0.4, "~min_appearance_change"), "");
+  EXPECT_EQ(keyframingMismatch(std::nullopt, 0.0, "~min_appearance_change"), "");
+  MapTraversal by_travel;
+  by_travel.frames = 10;
+  EXPECT_EQ(keyframingMismatch(by_travel, 0.0, "~min_appearance_change"), "");
+  const std::string mismatch = keyframingMismatch(kept_at_04, 0.0, "~min_appearance_change");
+  EXPECT_NE(mismatch.find("the map's keyframes were kept at an appearance change of 0.4, and ~min_appearance_change "
+                          "is 0"),
+            std::string::npos)
+      << mismatch;
+}
+
+}  // namespace
+}  // namespace mrs_vpr
