@@ -27,7 +27,8 @@ class PlaceRecognizer(_bindings.PlaceRecognizer):
     @classmethod
     def from_map(cls, path, **parameters):
         """A recognizer holding the map database `path`, with the front end it was written with unless
-        `parameters` choose another (which the map then refuses, naming both)."""
+        `parameters` choose another (which the map then refuses, naming both), and keyframing frames at
+        the appearance change the map's were kept at, where it records one, unless `parameters` choose."""
         chosen = exact_names(parameters, whole=False)
         settings = _bindings.map_front_end(os.fspath(path))
         if chosen.get("descriptor/type", settings["descriptor/type"]) != settings["descriptor/type"]:

@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "binding_parts.hpp"
@@ -37,15 +38,21 @@ PYBIND11_MODULE(_bindings, m) {
       "map_front_end",
       [](const std::string& path) {
         Settings settings;
-        settings.core.descriptor = MapDatabase(path, MapAccess::kReadOnly).descriptorParams();
+        const MapDatabase map(path, MapAccess::kReadOnly);
+        settings.core.descriptor = map.descriptorParams();
         py::dict own;  // The map's front end's parameters only: the others mean nothing for it.
         for (const auto& [name, value] : parameterValues(settings, "descriptor/")) {
           const std::string owner = frontEndOwning(name.cast<std::string>());
           if (owner.empty() || owner == settings.core.descriptor.type) own[name] = value;
         }
+        // Frames asked about are keyframed as the map's were: on the map's scale.
+        const std::optional<MapTraversal>& traversal = map.traversal();
+        if (traversal && traversal->min_appearance_change) own["min_appearance_change"] = *traversal->min_appearance_change;
         return own;
       },
-      py::arg("path"), "The descriptor parameters (exact names) of the front end a map database was written with.");
+      py::arg("path"),
+      "The descriptor parameters (exact names) of the front end a map database was written with, and the "
+      "appearance change its keyframes were kept at (min_appearance_change) where it records one.");
 
   const SyntheticRouteParams defaults;
   m.def(

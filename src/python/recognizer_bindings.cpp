@@ -74,13 +74,17 @@ class Recognizer {
     return frames;
   }
 
-  /// Saves the map with the count of frames offered, so that mrs_vpr_eval judges it on every frame
-  /// offered, as it judges build_map's maps (frames after the last keyframe included).
+  /// Saves the map with the count of frames offered and the appearance change they were kept at
+  /// where it is known, so that mrs_vpr_eval judges it as it judges build_map's maps (on every frame
+  /// offered, the query keyframed as the map). Frames go on arriving meanwhile: a count read before
+  /// the snapshot may fall short of its last number, which the evaluator then takes instead.
   std::int64_t save(const std::string& path) {
-    const std::lock_guard<std::mutex> lock(numbering_mutex_);
     MapTraversal offered;
-    offered.frames = next_number_;
-    offered.min_appearance_change = recognizer_.recognizerParameters().min_appearance_change;
+    {
+      const std::lock_guard<std::mutex> lock(numbering_mutex_);
+      offered.frames = next_number_;
+      offered.min_appearance_change = keyframing_;
+    }
     return map_.save(path, offered);
   }
 
@@ -98,14 +102,19 @@ class Recognizer {
   void startOver() {
     frames_left_out_ = 0;
     const int frames = recognizer_.size();
+    // The map's keyframes were kept at this recognizer's appearance change when it is empty or records
+    // that one; else it is not known (another, or none recorded), and a saved map records none.
+    const double own = recognizer_.recognizerParameters().min_appearance_change;
+    const std::optional<MapTraversal>& loaded = map_.loadedTraversal();
+    const bool as_own = loaded && loaded->min_appearance_change && *loaded->min_appearance_change == own;
+    keyframing_ = frames == 0 || as_own ? std::optional<double>(own) : std::nullopt;
     const std::int64_t last = frames == 0 ? -1 : map_.sequenceOf(frames - 1);
     if (last < 0) {
       next_number_ = frames;
       return;
     }
     next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
-    const std::optional<MapTraversal>& traversal = map_.loadedTraversal();
-    if (traversal) next_number_ = std::max(next_number_, traversal->frames);
+    if (loaded) next_number_ = std::max(next_number_, loaded->frames);
   }
 
   PlaceRecognizer recognizer_;
@@ -113,6 +122,8 @@ class Recognizer {
   std::mutex numbering_mutex_;
   std::atomic<long long> frames_left_out_{0};
   std::int64_t next_number_ = 0;  ///< Guarded by numbering_mutex_.
+  /// The appearance change the map's keyframes were kept at, when known; guarded by numbering_mutex_.
+  std::optional<double> keyframing_ = recognizer_.recognizerParameters().min_appearance_change;
 };
 
 }  // namespace
@@ -273,7 +284,7 @@ void bindRecognizer(py::module_& m) {
           },
           py::arg("index"),
           "Map frame `index`'s number: its place among the frames offered since the map was emptied (counted "
-          "on from a loaded map's last frame), or the number its map database records (-1: none, as in maps "
+          "on after a loaded map's recorded traversal or its last frame), or the number its map database records (-1: none, as in maps "
           "saved from Python before frames were numbered); saved with the map, as build_map saves a "
           "traversal's frame numbers, for ground truths that name the frames offered.")
       .def("__len__", [](Recognizer& self) { return self.core().size(); })

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -54,6 +55,13 @@ std::string utcNow() {
 }
 
 /// Every digit of `value` that tells it from its neighbours.
+/// The shortest text that reads back as exactly `value` (0.1, not 0.10000000000000001).
+std::string shortestNumber(double value) {
+  char text[32];
+  const std::to_chars_result written = std::to_chars(text, text + sizeof(text), value);
+  return std::string(text, written.ptr);
+}
+
 std::string preciseNumber(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.17g", value);
@@ -337,75 +345,86 @@ void MapDatabase::insertFrames(const FrameSource& source) {
 }
 
 void MapDatabase::append(const std::vector<StoredFrame>& frames) {
-  execute("BEGIN IMMEDIATE");  // insertFrames checks each descriptor: a bad one rolls the batch back.
-  try {
+  // insertFrames checks each descriptor: a bad one rolls the batch back.
+  inWriteTransaction([&] {
     insertFrames([&](const auto& insert) {
       for (const StoredFrame& frame : frames) insert(frame);
     });
     forgetTraversal();
-    execute("COMMIT");
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
-  traversal_.reset();
+  });
 }
 
 void MapDatabase::replace(const FrameSource& source) {
-  execute("BEGIN IMMEDIATE");
-  try {
+  inWriteTransaction([&] {
     execute("DELETE FROM frames");
     insertFrames(source);
     forgetTraversal();
+  });
+}
+
+void MapDatabase::inWriteTransaction(const std::function<void()>& work) {
+  execute("BEGIN IMMEDIATE");
+  try {
+    work();
     execute("COMMIT");
   } catch (...) {
     sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
     throw;
   }
-  traversal_.reset();
 }
 
 void MapDatabase::forgetTraversal() {
-  if (traversal_) execute("DELETE FROM metadata WHERE key IN ('traversal_frames', 'traversal_min_appearance_change')");
+  if (!traversal_) return;
+  execute("DELETE FROM metadata WHERE key LIKE 'traversal\\_%' ESCAPE '\\'");
+  traversal_.reset();  // Restored by nothing should the transaction roll back: a hint lost, never a false one.
 }
 
 void MapDatabase::setTraversal(const MapTraversal& traversal) {
-  execute("BEGIN IMMEDIATE");
-  try {
+  inWriteTransaction([&] {
     forgetTraversal();
-    execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "')");
+    execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "'), " +
+            "('traversal_last_id', '" + std::to_string(lastId()) + "')");
     if (traversal.min_appearance_change) {
       execute("INSERT INTO metadata VALUES ('traversal_min_appearance_change', '" +
-              preciseNumber(*traversal.min_appearance_change) + "')");
+              shortestNumber(*traversal.min_appearance_change) + "')");
     }
-    execute("COMMIT");
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
+  });
   traversal_ = traversal;
 }
 
 std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std::string, std::string>& stored) const {
-  const auto frames = stored.find("traversal_frames");
-  if (frames == stored.end()) return std::nullopt;
-  MapTraversal traversal;
-  char* end = nullptr;
-  errno = 0;
-  traversal.frames = std::strtoll(frames->second.c_str(), &end, 10);
-  if (frames->second.empty() || *end != '\0' || errno != 0 || traversal.frames < 0) {
-    fail("its traversal_frames is '" + frames->second + "', not a count of frames");
-  }
-  const auto change = stored.find("traversal_min_appearance_change");
-  if (change != stored.end()) {
+  // A hint for evaluating the map, never a reason to refuse it: a record that is damaged, or that
+  // another program's change of the frames left behind (its last id is not the map's), is none.
+  const auto number = [&](const char* key) -> std::optional<double> {
+    const auto entry = stored.find(key);
+    if (entry == stored.end() || entry->second.empty()) return std::nullopt;
+    char* end = nullptr;
     errno = 0;
-    const double value = std::strtod(change->second.c_str(), &end);
-    if (change->second.empty() || *end != '\0' || errno != 0 || !std::isfinite(value) || value < 0.0) {
-      fail("its traversal_min_appearance_change is '" + change->second + "', not an appearance change");
-    }
-    traversal.min_appearance_change = value;
+    const double value = std::strtod(entry->second.c_str(), &end);
+    if (*end != '\0' || errno != 0 || !std::isfinite(value) || value < 0.0) return std::nullopt;
+    return value;
+  };
+  const std::optional<double> frames = number("traversal_frames");
+  const std::optional<double> last_id = number("traversal_last_id");
+  constexpr double kLargestCount = 9e15;  // Exact in a double, and far beyond any map.
+  if (!frames || !last_id || *frames > kLargestCount || *frames != std::floor(*frames) ||
+      *last_id != static_cast<double>(lastId())) {
+    return std::nullopt;
   }
+  MapTraversal traversal;
+  traversal.frames = static_cast<std::int64_t>(*frames);
+  traversal.min_appearance_change = number("traversal_min_appearance_change");
   return traversal;
+}
+
+std::int64_t MapDatabase::lastId() const {
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT COALESCE(MAX(id), 0) FROM frames", -1, &raw, nullptr) != SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement last(raw, sqlite3_finalize);
+  if (sqlite3_step(last.get()) != SQLITE_ROW) fail(lastProblem(db_));
+  return sqlite3_column_int64(last.get(), 0);
 }
 
 std::int64_t MapDatabase::size() const {
@@ -462,16 +481,10 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
 }
 
 void MapDatabase::clear() {
-  execute("BEGIN IMMEDIATE");
-  try {
+  inWriteTransaction([&] {
     execute("DELETE FROM frames");
     forgetTraversal();
-    execute("COMMIT");
-  } catch (...) {
-    sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
-    throw;
-  }
-  traversal_.reset();
+  });
 }
 
 void MapDatabase::readAtOneMoment(const std::function<void()>& read) const {

@@ -1,5 +1,6 @@
 // build_map: a map database from an image folder or a bag, for the node or mrs_vpr_eval to use.
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -19,6 +20,7 @@
 #include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_database.hpp"
 #include "mrs_vpr/store/map_hold.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
 #include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
 #include "keyframing_options.hpp"
@@ -38,8 +40,9 @@ constexpr const char* kUsage =
     "with their stamps (a bag's; frame i of DIR at i s) and their frame's index in DIR or on T (the frame\n"
     "numbers of mrs_vpr_eval's ground truth; with --append, numbered and stamped on from the map's last\n"
     "frame), in the SQLite map database MAP.db. The map is written to MAP.db.part and renamed only when\n"
-    "complete; an existing MAP.db is extended with --append (a copy of it, with the front end it records\n"
-    "unless one is given) or replaced with --force. A failure leaves MAP.db as it was.\n"
+    "complete; an existing MAP.db is extended with --append (a copy of it, with the front end and the\n"
+    "appearance change it records unless given) or replaced with --force. A failure leaves MAP.db as it\n"
+    "was. The map records its traversal's frames and appearance change, by which mrs_vpr_eval judges it.\n"
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
     "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n"
     "Otherwise a frame is kept once its view has changed by C of the difference between unrelated\n"
@@ -60,6 +63,7 @@ struct BuildOptions {
   mrs_vpr::DescriptorParams params;
   double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
   bool descriptor_given = false;  // A front end named on the command line.
+  bool min_appearance_change_given = false;  // Else an extended map's own, where it records one.
 };
 
 /// The command line's options, checked against each other; nullopt after --help.
@@ -79,8 +83,8 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
   mrs_vpr::tools::addKeyframingOptions(
       description, options.travel, options.min_appearance_change,
       "with --bag: metres between kept frames, by the bag's /tf (0: keyframes by appearance change instead)",
-      "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0); "
-      "0 = every frame");
+      "keyframes by appearance change, as the node's ~min_appearance_change (when --min-travel is 0; with "
+      "--append, the map's own where it records one); 0 = every frame");
   mrs_vpr::tools::addDescriptorOptions(description, options.params);
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
@@ -99,6 +103,8 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
   options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
+  options.min_appearance_change_given =
+      variables.count("min-appearance-change") != 0 && !variables["min-appearance-change"].defaulted();
   return options;
 }
 
@@ -109,14 +115,17 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
                  std::optional<mrs_vpr::bag::BagKeyframes>& keyframes) {
   const mrs_vpr::DescriptorExtractor extractor(options.params);
   const std::int64_t before = map.size();
+  const std::optional<mrs_vpr::MapTraversal> extended = map.traversal();  // Forgotten at the first append.
   mrs_vpr::AppearanceKeyframes appearance(options.params, keyframes ? 0.0 : options.min_appearance_change);
   // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
-  // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame.
+  // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame, or
+  // after the frames of the traversal the map records (those after its last keyframe too).
   std::int64_t next_index = 0;
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
     next_index = frame.sequence + 1;
   });
+  if (extended) next_index = std::max(next_index, extended->frames);
   int stored = 0;
   int too_similar = 0;
   std::vector<mrs_vpr::StoredFrame> batch;
@@ -146,10 +155,17 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
       from_folder ? mrs_vpr::tools::SourceKind::kFolder : mrs_vpr::tools::SourceKind::kBag);
   flush();
   // Frames after the last keyframe are still frames of the traversal, which a ground truth may name;
-  // and a query keyframed as the map was lies on the map's scale.
+  // and a query keyframed as the map was lies on the map's scale. A map of keyframes kept in two ways
+  // records none.
   mrs_vpr::MapTraversal traversal;
   traversal.frames = next_index;
-  if (!keyframes) traversal.min_appearance_change = options.min_appearance_change;
+  if (!keyframes) {
+    const double kept_at = options.min_appearance_change;
+    const bool as_the_map = extended && extended->min_appearance_change && *extended->min_appearance_change == kept_at;
+    if (before == 0 || as_the_map) traversal.min_appearance_change = kept_at;
+    const std::string mismatch = mrs_vpr::keyframingMismatch(extended, kept_at, "--min-appearance-change");
+    if (before > 0 && !mismatch.empty()) std::cerr << "build_map: warning: " << mismatch << "\n";
+  }
   map.setTraversal(traversal);
   mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.
   // A frame name tf does not know (or a bag without /tf for it) keeps no frame: no empty map.
@@ -179,7 +195,8 @@ std::string linkTarget(const std::string& link) {
   std::filesystem::path target = link;
   for (int hops = 0; std::filesystem::is_symlink(target); ++hops) {
     if (hops == kMostLinks) {
-      throw std::invalid_argument("--output '" + link + "' is a link that leads to no file (a loop of links)");
+      throw std::invalid_argument("--output '" + link + "' is a link that leads to no file (a loop of links, or a " +
+                                  "chain of more than " + std::to_string(kMostLinks) + ")");
     }
     const std::filesystem::path next = std::filesystem::read_symlink(target);
     target = next.is_absolute() ? next : target.parent_path() / next;
@@ -217,9 +234,15 @@ int run(int argc, char** argv) {
   // starts writing it until the new map has taken its place (its frames would be lost).
   std::optional<mrs_vpr::MapHold> hold;
   if (exists) hold.emplace(output);
-  // A map is extended with its own front end, unless the command line names one (which must be the same).
-  if (exists && options.append && !options.descriptor_given) {
-    options.params = mrs_vpr::MapDatabase(output, mrs_vpr::MapAccess::kReadOnly).descriptorParams();
+  // A map is extended with its own front end and keyframing, unless the command line names them (a
+  // front end must be the same).
+  if (exists && options.append) {
+    const mrs_vpr::MapDatabase extended(output, mrs_vpr::MapAccess::kReadOnly);
+    if (!options.descriptor_given) options.params = extended.descriptorParams();
+    const std::optional<mrs_vpr::MapTraversal>& traversal = extended.traversal();
+    if (!options.min_appearance_change_given && traversal && traversal->min_appearance_change) {
+      options.min_appearance_change = *traversal->min_appearance_change;
+    }
   }
   // Reads the bag's poses before anything is written, so that a bag without /tf leaves no file.
   std::optional<mrs_vpr::bag::BagKeyframes> keyframes;
@@ -260,8 +283,9 @@ int run(int argc, char** argv) {
   // new file takes the old one's permissions: a private map stays private.
   if (exists) {
     mrs_vpr::MapDatabase::removeCompanions(output);
-    std::error_code kept;
-    std::filesystem::permissions(target, std::filesystem::status(output, kept).permissions(), kept);
+    std::error_code unknown;
+    const std::filesystem::file_status old_map = std::filesystem::status(output, unknown);
+    if (!unknown) std::filesystem::permissions(target, old_map.permissions(), unknown);
   }
   std::error_code error;
   std::filesystem::rename(target, output, error);

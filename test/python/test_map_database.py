@@ -125,3 +125,20 @@ def test_a_map_saved_without_frame_numbers_is_numbered_on_after_its_frames(route
     assert loaded.frame_number(19) == -1
     loaded.add_frame(route["reference"][20])
     assert loaded.frame_number(20) == 20
+
+
+def test_a_map_records_the_appearance_change_its_keyframes_were_kept_at(route, tmp_path):
+    # from_map keyframes at it (test sequences on the map's scale); a map whose keyframing is not
+    # known (loaded from a map kept at another) records none.
+    kept_at_03 = mrs_vpr.PlaceRecognizer(min_appearance_change=0.3, **ROUTE_PARAMETERS)
+    kept_at_03.add_frames(route["reference"][:40])
+    kept_at_03.save(tmp_path / "at_03.db")
+    loaded = mrs_vpr.PlaceRecognizer.from_map(tmp_path / "at_03.db", velocity_step=0.02, alignment="causal")
+    assert loaded.parameters["min_appearance_change"] == 0.3
+    chosen = mrs_vpr.PlaceRecognizer.from_map(tmp_path / "at_03.db", min_appearance_change=0.5)
+    assert chosen.parameters["min_appearance_change"] == 0.5
+    chosen.save(tmp_path / "unknown.db")
+    with sqlite3.connect(tmp_path / "unknown.db") as database:
+        keys = [key for (key,) in database.execute("SELECT key FROM metadata WHERE key LIKE 'traversal%'")]
+    database.close()
+    assert sorted(keys) == ["traversal_frames", "traversal_last_id"]

@@ -344,6 +344,34 @@ TEST_F(BagToolsTest, AMapWhoseLastFramesWereNotKeptIsJudgedOnEveryFrameOfItsTrav
                            "--min-appearance-change is 0"),
             std::string::npos)
       << other.err;
+  // Extended by build_map: numbered on after the traversal the map records (not after its last
+  // keyframe, which would give the first traversal's last frames' numbers again), at the map's own
+  // appearance change; at another, it says so and the map records none.
+  const std::int64_t kept_before = mrs_vpr::MapDatabase(at_03, mrs_vpr::MapAccess::kReadOnly).size();
+  const std::string append = std::string(BUILD_MAP_PATH) + " --images " + path("query") + " --output " + at_03 +
+                             " --append";
+  const CommandResult appended = run(append);
+  ASSERT_EQ(appended.status, 0) << appended.err;
+  EXPECT_NE(appended.err.find("(--min-appearance-change 0.3)"), std::string::npos) << appended.err;
+  {
+    const mrs_vpr::MapDatabase extended(at_03, mrs_vpr::MapAccess::kReadOnly);
+    ASSERT_TRUE(extended.traversal().has_value());
+    EXPECT_EQ(extended.traversal()->frames, 155 + 100);
+    EXPECT_EQ(extended.traversal()->min_appearance_change, 0.3);
+    std::int64_t index = 0;
+    extended.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+      if (index++ >= kept_before) EXPECT_GE(frame.sequence, 155);
+    });
+  }
+  const CommandResult mixed = run(append + " --min-appearance-change 0");
+  ASSERT_EQ(mixed.status, 0) << mixed.err;
+  EXPECT_NE(mixed.err.find("build_map: warning: the map's keyframes were kept at an appearance change of 0.3, and "
+                           "--min-appearance-change is 0"),
+            std::string::npos)
+      << mixed.err;
+  ASSERT_TRUE(mrs_vpr::MapDatabase(at_03, mrs_vpr::MapAccess::kReadOnly).traversal().has_value());
+  EXPECT_FALSE(mrs_vpr::MapDatabase(at_03, mrs_vpr::MapAccess::kReadOnly).traversal()->min_appearance_change);
+
   // Extended by the node or another traversal, the map is no longer that traversal alone.
   {
     mrs_vpr::MapDatabase database(map, mrs_vpr::MapAccess::kReadWrite);

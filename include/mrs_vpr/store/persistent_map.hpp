@@ -72,7 +72,8 @@ class PersistentMap {
    * stamp, frame id and number). Returns the frames written.
    */
   /// `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
-  /// is recorded as MapDatabase::setTraversal() records it.
+  /// is recorded as MapDatabase::setTraversal() records it; a map with a database saves what its
+  /// database records (nothing once frames were added to it), and ignores `traversal`.
   std::int64_t save(const std::string& path, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Commits the queued frames now.
   void commit();
@@ -119,7 +120,9 @@ class PersistentMap {
   mutable std::mutex add_mutex_;
   // The frame ids and numbers of the recognizer's frames, in its order. Guarded by add_mutex_.
   FrameLabels labels_;
-  std::optional<MapTraversal> loaded_traversal_;  ///< Set by load() and reset(), while whole_map_mutex_ is held.
+  /// Set at construction, by load() and by reset() (under whole_map_mutex_); read unlocked by
+  /// loadedTraversal(), whose callers order their calls with load() and reset() themselves.
+  std::optional<MapTraversal> loaded_traversal_;
   // labels_.memoryBytes(), for ~map_info, which must not wait for a reset's or a load's disk work.
   std::atomic<std::size_t> label_bytes_{0};
   // One whole-map operation (reset, load, save) at a time.
