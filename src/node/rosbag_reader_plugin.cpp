@@ -1,5 +1,6 @@
 // The only code linked with rosbag (which brings roslib, rospack and Python): loaded by bag_images.cpp
 // on the first bag read, so that a tool run that reads no bag starts without them.
+#include <fstream>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -25,11 +26,22 @@ constexpr const char* kCompressedType = "sensor_msgs/CompressedImage";
 constexpr const char* kTransformTopic = "/tf";
 constexpr const char* kStaticTransformTopic = "/tf_static";
 
+/// Whether `path` begins as every bag of format 2.0 does.
+bool beginsAsABag(const std::string& path) {
+  static const std::string kMagic = "#ROSBAG V2.0\n";
+  std::string start(kMagic.size(), '\0');
+  std::ifstream file(path, std::ios::binary);
+  return file.read(&start[0], static_cast<std::streamsize>(start.size())) && start == kMagic;
+}
+
 void openBag(rosbag::Bag& bag, const std::string& path) {
   try {
     bag.open(path, rosbag::bagmode::Read);
   } catch (const rosbag::BagException& error) {
-    throw std::runtime_error("cannot open bag '" + path + "': " + error.what());
+    // A recording cut short (a full disk, a killed rosbag record) lacks the index at its end.
+    const std::string hint =
+        beginsAsABag(path) ? " (a bag whose recording was cut short can be mended with `rosbag reindex`)" : "";
+    throw std::runtime_error("cannot open bag '" + path + "': " + error.what() + hint);
   }
 }
 

@@ -862,6 +862,15 @@ TEST_F(BagToolsTest, BuildMapReadsTheBagItIsGivenWhateverItsNameAndKeepsItsStamp
   EXPECT_NE(garbage.err.find("build_map: error: cannot open bag '" + path("garbage.db") + "'"), std::string::npos)
       << garbage.err;
   EXPECT_EQ(garbage.err.find("is not a folder"), std::string::npos) << garbage.err;
+  EXPECT_EQ(garbage.err.find("rosbag reindex"), std::string::npos) << garbage.err;
+  // A recording cut short is a bag without its index at the end, which rosbag reindex mends.
+  const std::string whole = fileContents(bag);
+  std::ofstream(path("cut_short.bag"), std::ios::binary) << whole.substr(0, whole.size() / 2);
+  const CommandResult cut_short = run(buildMap() + " --bag " + path("cut_short.bag") +
+                                      " --topic /camera/image_raw --output " + path("cut_short.db"));
+  EXPECT_EQ(cut_short.status, 1);
+  EXPECT_NE(cut_short.err.find("cannot open bag '" + path("cut_short.bag") + "'"), std::string::npos) << cut_short.err;
+  EXPECT_NE(cut_short.err.find("can be mended with `rosbag reindex`"), std::string::npos) << cut_short.err;
 }
 
 TEST_F(BagToolsTest, AMessageThatCannotBeReadIsNamedByItsIndexTopicAndBag) {
