@@ -51,7 +51,8 @@ class Recognizer {
    * numbered by its place among the frames offered since the map was emptied, on from a loaded map's
    * last frame, as build_map numbers a traversal: a saved map's frames keep the numbers a ground truth
    * gives them. One lock orders numbering, offering, loading and emptying: a frame offered while
-   * another thread loads a map waits for the load, and is numbered in the map it joins.
+   * another thread loads a map waits for the load, and is numbered in the map it joins. A save keeps
+   * loads and resets out (map_swap_mutex_), not frames.
    */
   int offer(const DescriptorSequence& descriptors, const std::vector<Stamp>& stamps) {
     const std::lock_guard<std::mutex> lock(numbering_mutex_);
@@ -68,6 +69,7 @@ class Recognizer {
   }
 
   int load(const std::string& path) {
+    const std::lock_guard<std::mutex> no_save(map_swap_mutex_);
     const std::lock_guard<std::mutex> lock(numbering_mutex_);
     const int frames = map_.load(path);
     startOver();
@@ -77,8 +79,10 @@ class Recognizer {
   /// Saves the map with the count of frames offered and the appearance change they were kept at
   /// where it is known, so that mrs_vpr_eval judges it as it judges build_map's maps (on every frame
   /// offered, the query keyframed as the map). Frames go on arriving meanwhile: a count read before
-  /// the snapshot may fall short of its last number, which the evaluator then takes instead.
+  /// the snapshot may fall short of its last number, which the evaluator then takes instead; but no
+  /// load or reset can put another map under the count.
   std::int64_t save(const std::string& path) {
+    const std::lock_guard<std::mutex> no_swap(map_swap_mutex_);
     MapTraversal offered;
     {
       const std::lock_guard<std::mutex> lock(numbering_mutex_);
@@ -89,6 +93,7 @@ class Recognizer {
   }
 
   int reset() {
+    const std::lock_guard<std::mutex> no_save(map_swap_mutex_);
     const std::lock_guard<std::mutex> lock(numbering_mutex_);
     const int frames = map_.reset();
     startOver();
@@ -119,6 +124,7 @@ class Recognizer {
 
   PlaceRecognizer recognizer_;
   PersistentMap map_;
+  std::mutex map_swap_mutex_;  ///< Taken before numbering_mutex_ by load() and reset(), and by save().
   std::mutex numbering_mutex_;
   std::atomic<long long> frames_left_out_{0};
   std::int64_t next_number_ = 0;  ///< Guarded by numbering_mutex_.

@@ -54,7 +54,6 @@ std::string utcNow() {
   return text;
 }
 
-/// Every digit of `value` that tells it from its neighbours.
 /// The shortest text that reads back as exactly `value` (0.1, not 0.10000000000000001).
 std::string shortestNumber(double value) {
   char text[32];
@@ -62,6 +61,7 @@ std::string shortestNumber(double value) {
   return std::string(text, written.ptr);
 }
 
+/// Every digit of `value` that tells it from its neighbours.
 std::string preciseNumber(double value) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.17g", value);
@@ -374,7 +374,7 @@ void MapDatabase::inWriteTransaction(const std::function<void()>& work) {
 }
 
 void MapDatabase::forgetTraversal() {
-  if (!traversal_) return;
+  // Also a record read as none (stale, damaged): left, it could match the frames again after a refill.
   execute("DELETE FROM metadata WHERE key LIKE 'traversal\\_%' ESCAPE '\\'");
   traversal_.reset();  // Restored by nothing should the transaction roll back: a hint lost, never a false one.
 }
@@ -383,7 +383,7 @@ void MapDatabase::setTraversal(const MapTraversal& traversal) {
   inWriteTransaction([&] {
     forgetTraversal();
     execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "'), " +
-            "('traversal_last_id', '" + std::to_string(lastId()) + "')");
+            "('traversal_last_frame', '" + lastFrame() + "')");
     if (traversal.min_appearance_change) {
       execute("INSERT INTO metadata VALUES ('traversal_min_appearance_change', '" +
               shortestNumber(*traversal.min_appearance_change) + "')");
@@ -394,7 +394,7 @@ void MapDatabase::setTraversal(const MapTraversal& traversal) {
 
 std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std::string, std::string>& stored) const {
   // A hint for evaluating the map, never a reason to refuse it: a record that is damaged, or that
-  // another program's change of the frames left behind (its last id is not the map's), is none.
+  // another program's change of the frames left behind (its last frame is not the map's), is none.
   const auto number = [&](const char* key) -> std::optional<double> {
     const auto entry = stored.find(key);
     if (entry == stored.end() || entry->second.empty()) return std::nullopt;
@@ -405,10 +405,10 @@ std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std:
     return value;
   };
   const std::optional<double> frames = number("traversal_frames");
-  const std::optional<double> last_id = number("traversal_last_id");
+  const auto last_frame = stored.find("traversal_last_frame");
   constexpr double kLargestCount = 9e15;  // Exact in a double, and far beyond any map.
-  if (!frames || !last_id || *frames > kLargestCount || *frames != std::floor(*frames) ||
-      *last_id != static_cast<double>(lastId())) {
+  if (!frames || *frames > kLargestCount || *frames != std::floor(*frames) || last_frame == stored.end() ||
+      last_frame->second != lastFrame()) {
     return std::nullopt;
   }
   MapTraversal traversal;
@@ -417,14 +417,18 @@ std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std:
   return traversal;
 }
 
-std::int64_t MapDatabase::lastId() const {
+std::string MapDatabase::lastFrame() const {
+  // Format 1 (read-only: a map opened for writing is converted) has seconds in `stamp`.
+  const std::string select = std::string("SELECT id, ") + (format_version_ == 1 ? "stamp" : "stamp_ns") +
+                             " FROM frames ORDER BY id DESC LIMIT 1";
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "SELECT COALESCE(MAX(id), 0) FROM frames", -1, &raw, nullptr) != SQLITE_OK) {
-    fail(lastProblem(db_));
-  }
+  if (sqlite3_prepare_v2(db_, select.c_str(), -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
   const Statement last(raw, sqlite3_finalize);
-  if (sqlite3_step(last.get()) != SQLITE_ROW) fail(lastProblem(db_));
-  return sqlite3_column_int64(last.get(), 0);
+  const int step = sqlite3_step(last.get());
+  if (step == SQLITE_DONE) return "none";
+  if (step != SQLITE_ROW) fail(lastProblem(db_));
+  const auto* stamp = reinterpret_cast<const char*>(sqlite3_column_text(last.get(), 1));
+  return std::to_string(sqlite3_column_int64(last.get(), 0)) + " at " + (stamp != nullptr ? stamp : "");
 }
 
 std::int64_t MapDatabase::size() const {

@@ -123,7 +123,8 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   std::int64_t next_index = 0;
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
-    next_index = frame.sequence + 1;
+    // A number past the last that a map can hold (a crafted file) numbers on from there, not wrapped.
+    next_index = frame.sequence < std::numeric_limits<std::int64_t>::max() ? frame.sequence + 1 : frame.sequence;
   });
   if (extended) next_index = std::max(next_index, extended->frames);
   int stored = 0;

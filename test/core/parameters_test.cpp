@@ -213,8 +213,6 @@ TEST(Parameters, RuleMessagesGiveTheWholeAllowedText) {
   };
   expectAllowed(parameterInfo(descriptorParameters(), "descriptor/patch_size"),
                 [](Parameters& p) { p.descriptor.patch_size = 6; });
-  expectAllowed(parameterInfo(sequenceParameters(), "sequence/velocity_max"),
-                [](Parameters& p) { p.sequence.velocity_max = 0.7; });
   expectAllowed(parameterInfo(sequenceParameters(), "sequence/velocity_step"),
                 [](Parameters& p) { p.sequence.velocity_step = 1e-10; });
 }

@@ -141,4 +141,4 @@ def test_a_map_records_the_appearance_change_its_keyframes_were_kept_at(route, t
     with sqlite3.connect(tmp_path / "unknown.db") as database:
         keys = [key for (key,) in database.execute("SELECT key FROM metadata WHERE key LIKE 'traversal%'")]
     database.close()
-    assert sorted(keys) == ["traversal_frames", "traversal_last_id"]
+    assert sorted(keys) == ["traversal_frames", "traversal_last_frame"]

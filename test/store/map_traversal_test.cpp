@@ -77,8 +77,11 @@ TEST_F(MapTraversalTest, ADamagedOrStaleRecordIsNoneAndTheMapStillOpens) {
   for (const std::string& change :
        {"UPDATE metadata SET value = 'many' WHERE key = 'traversal_frames'",
         "UPDATE metadata SET value = '8.5' WHERE key = 'traversal_frames'",
-        "DELETE FROM metadata WHERE key = 'traversal_last_id'",
-        "INSERT INTO frames SELECT id + 100, stamp_ns, frame_id, sequence, descriptor FROM frames WHERE id = 1"}) {
+        "DELETE FROM metadata WHERE key = 'traversal_last_frame'",
+        "INSERT INTO frames SELECT id + 100, stamp_ns, frame_id, sequence, descriptor FROM frames WHERE id = 1",
+        // Emptied and refilled to the same size (ids start again at 1), as after a reset, by a camera.
+        "CREATE TABLE refill AS SELECT * FROM frames; DELETE FROM frames; "
+        "INSERT INTO frames SELECT id, stamp_ns + 7, frame_id, sequence, descriptor FROM refill; DROP TABLE refill"}) {
     SCOPED_TRACE(change);
     const std::string file = recordedMap("changed.db");
     sqlite3* db = nullptr;
@@ -86,6 +89,16 @@ TEST_F(MapTraversalTest, ADamagedOrStaleRecordIsNoneAndTheMapStillOpens) {
     EXPECT_EQ(sqlite3_exec(db, change.c_str(), nullptr, nullptr, nullptr), SQLITE_OK);
     sqlite3_close(db);
     EXPECT_FALSE(MapDatabase(file, MapAccess::kReadOnly).traversal().has_value());
+    {
+      // Such a map is written as any other: the record read as none is replaced, not in the way.
+      MapDatabase map(file, thumbnailParams());
+      map.append(frames(1));
+      MapTraversal traversal;
+      traversal.frames = 20;
+      map.setTraversal(traversal);
+    }
+    ASSERT_TRUE(MapDatabase(file, MapAccess::kReadOnly).traversal().has_value());
+    EXPECT_EQ(MapDatabase(file, MapAccess::kReadOnly).traversal()->frames, 20);
     std::remove(file.c_str());
   }
   // A damaged appearance change alone leaves the frames known, the keyframing not.

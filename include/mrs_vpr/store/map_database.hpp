@@ -50,7 +50,7 @@ struct StoredFrame {
  *                                                hog_window_height, hog_cell_size, hog_bins, hog_blur;
  *                                                image_width, image_height, patch_size),
  *                                                descriptor_bytes, created, package_version;
- *                                                traversal_frames, traversal_last_id and, for keyframes
+ *                                                traversal_frames, traversal_last_frame and, for keyframes
  *                                                by appearance change, traversal_min_appearance_change
  *                                                (MapTraversal)
  *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
@@ -175,14 +175,16 @@ class MapDatabase {
   /// adopts it.
   void checkMetadata(bool params_given);
   /// The traversal the metadata records; nullopt when it records none, a damaged one, or one whose
-  /// frames have changed since (traversal_last_id is not the map's last id).
+  /// frames have changed since (traversal_last_frame is not the map's lastFrame()).
   std::optional<MapTraversal> traversalOfMetadata(const std::map<std::string, std::string>& stored) const;
   /// Removes the recorded traversal inside the caller's transaction: the frames are no longer its alone.
   void forgetTraversal();
   /// Runs `work` in one write transaction, rolled back when it throws.
   void inWriteTransaction(const std::function<void()>& work);
-  /// The largest frame id (0 for no frame).
-  std::int64_t lastId() const;
+  /// The last frame's id and stamp as text ("none" for no frame): what a record of the traversal
+  /// compares to tell whether the frames changed since, also by another program or a refill after a
+  /// reset (whose ids start again at 1, but not its camera's stamps).
+  std::string lastFrame() const;
   /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
   void convertToCurrentFormat();
   /// Inserts the frames of `source` inside a transaction the caller has begun; throws
