@@ -74,6 +74,15 @@ namespace {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
+
+/// An evaluation's summary without its times, which differ between runs of the same figures.
+json figuresOf(const json& document) {
+  json figures = document.at("summary");
+  figures.erase("median_time_ms");
+  figures.erase("total_time_s");
+  return figures;
+}
+
 using mrs_vpr::testing_support::CommandResult;
 using mrs_vpr::testing_support::fileContents;
 
@@ -271,13 +280,7 @@ TEST_F(BagToolsTest, ByDefaultBuildMapAndTheEvaluatorKeepOnlyFramesWhoseViewChan
   EXPECT_NE(from_map.err.find("frames 0 to 189 of its traversal of 190 frames by the numbers it stores"),
             std::string::npos)
       << from_map.err;
-  const auto summary = [](const json& document) {
-    json figures = document.at("summary");
-    figures.erase("median_time_ms");
-    figures.erase("total_time_s");
-    return figures;
-  };
-  EXPECT_EQ(summary(json::parse(from_map.out)), summary(document));
+  EXPECT_EQ(figuresOf(json::parse(from_map.out)), figuresOf(document));
   // The plots draw every frame of the reference, which the map does not hold.
   const CommandResult plots = run(std::string(MRS_VPR_EVAL_PATH) + " --reference " + path("stopped.db") + rest +
                                   " --plots " + path("stopped_plots"));
@@ -315,13 +318,7 @@ TEST_F(BagToolsTest, AMapWhoseLastFramesWereNotKeptIsJudgedOnEveryFrameOfItsTrav
   ASSERT_EQ(from_map.status, 0) << from_map.err;
   EXPECT_NE(from_map.err.find("of its traversal of 155 frames by the numbers it stores"), std::string::npos)
       << from_map.err;
-  const auto summary = [](const CommandResult& result) {
-    nlohmann::json document = nlohmann::json::parse(result.out).at("summary");
-    document.erase("median_time_ms");
-    document.erase("total_time_s");
-    return document;
-  };
-  EXPECT_EQ(summary(from_map), summary(from_folder));
+  EXPECT_EQ(figuresOf(json::parse(from_map.out)), figuresOf(json::parse(from_folder.out)));
   // Without --min-appearance-change the query is keyframed as the map's frames were; with another
   // value, the evaluator warns.
   const std::string at_03 = path("kept_at_0.3.db");
@@ -399,13 +396,7 @@ TEST_F(BagToolsTest, AMapBuiltOfAFolderAnswersAsTheFolderDoes) {
   const CommandResult from_map = run(eval("--reference " + map + rest));
   ASSERT_EQ(from_folder.status, 0) << from_folder.err;
   ASSERT_EQ(from_map.status, 0) << from_map.err;
-  const auto summary = [](const CommandResult& result) {
-    nlohmann::json document = nlohmann::json::parse(result.out).at("summary");
-    document.erase("median_time_ms");
-    document.erase("total_time_s");
-    return document;
-  };
-  EXPECT_EQ(summary(from_map), summary(from_folder));
+  EXPECT_EQ(figuresOf(json::parse(from_map.out)), figuresOf(json::parse(from_folder.out)));
   // A ground truth of another traversal is refused once the map is read, before the query is described.
   {
     std::ofstream beyond(path("beyond.csv"));
