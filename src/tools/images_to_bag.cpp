@@ -16,6 +16,7 @@
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
+#include "mrs_vpr/number_text.hpp"
 #include "apart_from_inputs.hpp"
 #include "output_in_progress.hpp"
 #include "tool_main.hpp"
@@ -82,7 +83,11 @@ int run(int argc, char** argv) {
   if (variables.count("start-time") == 0) {
     start_time = ros::WallTime::now().toSec();  // Wall-clock time: no ROS master, no /clock.
   }
-  if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s (a bag cannot hold time 0)");
+  // A bag's earliest time is 1 ns (ros::TIME_MIN): a start that rounds to 0 would fail in rosbag.
+  if (!(start_time >= 1e-9)) {
+    throw std::invalid_argument("--start-time must be at least 1 ns (a bag cannot hold time 0), got " +
+                                mrs_vpr::numberText(start_time));
+  }
 
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
   const std::vector<std::string> files = mrs_vpr::listImageFiles(images);

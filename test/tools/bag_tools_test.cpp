@@ -818,6 +818,17 @@ TEST_F(BagToolsTest, ImagesToBagStampsExactlyAndRefusesWhatNoBagCanHold) {
         << result.err;
     EXPECT_FALSE(fs::exists(path("never.bag")));
   }
+  // Before a bag's earliest time, 1 ns: rosbag's own message came from deep inside it; NaN named.
+  for (const std::string& start : {"1e-10", "0", "nan"}) {
+    const CommandResult early = run(std::string(IMAGES_TO_BAG_PATH) + images + " --bag " + path("never.bag") +
+                                    " --rate 10 --start-time " + start);
+    EXPECT_EQ(early.status, 1);
+    EXPECT_NE(early.err.find("images_to_bag: error: --start-time must be at least 1 ns (a bag cannot hold time 0), "
+                             "got "),
+              std::string::npos)
+        << early.err;
+    EXPECT_FALSE(fs::exists(path("never.bag")));
+  }
   const CommandResult topic = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
                                   path("never.bag") + " --topic 'bad topic!' --rate 10");
   EXPECT_EQ(topic.status, 1);
