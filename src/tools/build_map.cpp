@@ -166,6 +166,10 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
     if (before == 0 || as_the_map) traversal.min_appearance_change = kept_at;
     const std::string mismatch = mrs_vpr::keyframingMismatch(extended, kept_at, "--min-appearance-change");
     if (before > 0 && !mismatch.empty()) std::cerr << "build_map: warning: " << mismatch << "\n";
+  } else if (before > 0 && extended && extended->min_appearance_change) {
+    std::cerr << "build_map: warning: the map's keyframes were kept at an appearance change of "
+              << *extended->min_appearance_change << ", and these by travel (--min-travel): the map records no "
+              << "keyframing now\n";
   }
   map.setTraversal(traversal);
   mrs_vpr::tools::stopIfInterrupted();  // Also one that came while the last frames were written.

@@ -523,6 +523,22 @@ TEST_F(BagToolsTest, AMapBuiltOfABagWithMinTravelHasAFrameEachMetre) {
   EXPECT_NE(by_travel.err.find("7 keyframes of 51 frames at min_travel 1 m (44 too near, 0 without a pose"),
             std::string::npos)
       << by_travel.err;
+  // A map kept by travel records its frames, and no appearance change; one kept by appearance change
+  // and extended by travel says so, and records none any more.
+  const std::optional<mrs_vpr::MapTraversal> travel =
+      mrs_vpr::MapDatabase(path("by_travel.db"), mrs_vpr::MapAccess::kReadOnly).traversal();
+  ASSERT_TRUE(travel.has_value());
+  EXPECT_EQ(travel->frames, 51);
+  EXPECT_FALSE(travel->min_appearance_change.has_value());
+  const CommandResult mixed = run(build + path("every_frame.db") + " --append --min-travel 1");
+  ASSERT_EQ(mixed.status, 0) << mixed.err;
+  EXPECT_NE(mixed.err.find("build_map: warning: the map's keyframes were kept at an appearance change of 0, and these "
+                           "by travel (--min-travel)"),
+            std::string::npos)
+      << mixed.err;
+  EXPECT_FALSE(mrs_vpr::MapDatabase(path("every_frame.db"), mrs_vpr::MapAccess::kReadOnly)
+                   .traversal()
+                   ->min_appearance_change.has_value());
 
   // Frames tf has no pose for are skipped, and the user is told why; when that is every frame (a frame
   // name tf does not know), there is no map, not an empty one.
