@@ -32,6 +32,9 @@ const cv::Mat& toGrey(const cv::Mat& image, ChannelOrder order, cv::Mat& buffer)
   if (image.empty()) {
     throw std::invalid_argument("image is empty (0 x 0)");
   }
+  if (image.dims != 2) {
+    throw std::invalid_argument("image has " + std::to_string(image.dims) + " dimensions, not 2 (rows x columns)");
+  }
   const bool rgb = order == ChannelOrder::kRgb;
   switch (image.type()) {
     case CV_8UC1:

@@ -246,6 +246,7 @@ void DescriptorParams::validate() const {
 
 int DescriptorParams::descriptorSize() const {
   if (!isHog()) return image_width * image_height;
+  if (hog_cell_size <= 0) return 0;  // No cells; validate() names the parameter.
   const int blocks_x = hog_window_width / hog_cell_size - 1;
   const int blocks_y = hog_window_height / hog_cell_size - 1;
   return blocks_x * blocks_y * 4 * hog_bins;

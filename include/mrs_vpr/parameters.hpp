@@ -44,7 +44,7 @@ struct DescriptorParams {
   double hog_blur = 0.0;
 
   bool isHog() const { return type == kHogFrontEnd; }
-  /// Bytes per descriptor of this front end.
+  /// Bytes per descriptor of this front end (0 for HOG cells of no size, which validate() refuses).
   int descriptorSize() const;
   /// For messages: "hog (128 x 64 window, cells of 16 px, 9 bins)", "thumbnail (64 x 32, patches of 8 px)".
   std::string describe() const;

@@ -94,8 +94,9 @@ std::string immutableUri(const std::string& path) {
 }  // namespace
 
 MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access)
-    : path_(path), params_(params), descriptor_bytes_(params.descriptorSize()) {
-  params.validate();
+    : path_(path), params_(params) {
+  params.validate();  // Before any size is computed of them.
+  descriptor_bytes_ = params.descriptorSize();
   open(access, true);
 }
 
@@ -111,7 +112,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
   if (!path_problem.empty()) fail(path_problem);
   int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-  std::string name = path;
+  std::string name = sqliteFileName(path);
   // A map in WAL mode is read with an index (-shm) that SQLite creates beside it: in a folder nobody
   // may write to (a package's share/, a read-only mount) it must be read as the unchanging file it
   // is there, unless it holds a log, which only that index can read.
@@ -620,7 +621,9 @@ void MapDatabase::backupTo(const std::string& path) const {
   ::close(created);
   sqlite3* copy = nullptr;
   std::string problem;
-  if (sqlite3_open_v2(part.c_str(), &copy, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr) != SQLITE_OK) {
+  const int opened = sqlite3_open_v2(sqliteFileName(part).c_str(), &copy, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE,
+                                     nullptr);
+  if (opened != SQLITE_OK) {
     problem = copy != nullptr ? sqlite3_errmsg(copy) : "out of memory";
   } else {
     // One step copies every page under one read transaction: the copy is the map at one moment.

@@ -23,7 +23,7 @@ MapHold::MapHold(const std::string& path) : path_(path) {
     std::error_code ignored;
     existed_[i] = std::filesystem::exists(path + kCompanionSuffixes[i], ignored);
   }
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
+  if (sqlite3_open_v2(sqliteFileName(path).c_str(), &db_, SQLITE_OPEN_READWRITE, nullptr) != SQLITE_OK) {
     sqlite3_close(db_);
     db_ = nullptr;
     return;  // Nothing SQLite can open is held by an owner of a map.

@@ -30,4 +30,11 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix);
  */
 std::string nulByteProblem(const std::string& path);
 
+/// `path` as SQLite opens the file of that name: ":memory:" and "file:..." would otherwise be a
+/// database in memory and a URI, which a user who names a map file never means.
+inline std::string sqliteFileName(const std::string& path) {
+  const bool special = path == ":memory:" || path.rfind("file:", 0) == 0;
+  return special ? "./" + path : path;
+}
+
 }  // namespace mrs_vpr

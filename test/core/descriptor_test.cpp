@@ -211,6 +211,24 @@ TEST(DescriptorExtractor, UnsupportedTypesThrowNamingTheType) {
   EXPECT_NE(two_channel_message.find("8UC2"), std::string::npos) << two_channel_message;
 }
 
+TEST(DescriptorExtractor, AnImageOfMoreThanTwoDimensionsThrows) {
+  // OpenCV's resize would throw its own cv::Exception from deep inside the front end.
+  const int sizes[] = {4, 64, 128};
+  for (const DescriptorParams& params : {thumbnailParams(), DescriptorParams{}}) {
+    const DescriptorExtractor extractor{params};
+    const std::string message = invalidArgumentMessage([&] { extractor.compute(cv::Mat(3, sizes, CV_8UC1)); });
+    EXPECT_NE(message.find("image has 3 dimensions, not 2"), std::string::npos) << message;
+  }
+}
+
+TEST(DescriptorParams, AHogCellOfNoSizeIsRefusedNotDividedBy) {
+  DescriptorParams params;
+  params.hog_cell_size = 0;
+  EXPECT_EQ(params.descriptorSize(), 0);
+  const std::string message = invalidArgumentMessage([&] { params.validate(); });
+  EXPECT_NE(message.find("descriptor/hog/cell_size"), std::string::npos) << message;
+}
+
 TEST(DescriptorExtractor, InvalidParametersThrowNamingTheParameter) {
   const std::string not_dividing = invalidArgumentMessage([] { DescriptorExtractor(paramsOf(64, 32, 5)); });
   EXPECT_NE(not_dividing.find("descriptor/patch_size"), std::string::npos) << not_dividing;

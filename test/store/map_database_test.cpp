@@ -794,5 +794,31 @@ TEST_F(MapDatabaseTest, ALongFileOfTheUsersWhereTheSnapshotIsWrittenFirstIsLeftA
   EXPECT_FALSE(fs::exists(path("notes.db")));
 }
 
+TEST_F(MapDatabaseTest, NamesThatSqliteWouldReadAsMemoryOrAUriAreFiles) {
+  // ":memory:" gave a map that was never written, and "file:uri.db" one written to uri.db.
+  const fs::path previous = fs::current_path();
+  fs::current_path(fs::path(path("anything")).parent_path());
+  for (const std::string name : {":memory:", "file:uri.db"}) {
+    SCOPED_TRACE(name);
+    MapDatabase(name, thumbnailParams()).append(frames(3));
+    EXPECT_TRUE(fs::is_regular_file(name));
+    EXPECT_EQ(MapDatabase(name, MapAccess::kReadOnly).size(), 3);
+  }
+  EXPECT_FALSE(fs::exists("uri.db"));
+  fs::current_path(previous);
+}
+
+TEST_F(MapDatabaseTest, AHogCellOfNoSizeIsRefusedNotDividedBy) {
+  DescriptorParams params;
+  params.hog_cell_size = 0;
+  try {
+    MapDatabase map(path("cells.db"), params);
+    ADD_FAILURE() << "opened";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("descriptor/hog/cell_size"), std::string::npos) << error.what();
+  }
+  EXPECT_FALSE(fs::exists(path("cells.db")));
+}
+
 }  // namespace
 }  // namespace mrs_vpr

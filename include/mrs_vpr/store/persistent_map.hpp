@@ -30,6 +30,12 @@ namespace mrs_vpr {
  * new map's frames in both once it is in place, which add() waits for. Errors throw
  * MapDatabaseError naming the file and the problem; the map and the database are then as they were.
  * Every member is thread-safe.
+ *
+ * Once a recognizer belongs to a PersistentMap, every change of its map goes through the
+ * PersistentMap (add, offer, reset, load): a frame added to the recognizer itself would be in the map
+ * but not in the database, and would shift the frame ids and numbers of every later frame. Queries
+ * go to the recognizer as before. Both constructors throw std::logic_error for a recognizer that
+ * already holds frames: they would have no labels.
  */
 class PersistentMap {
  public:
