@@ -7,6 +7,7 @@
 #include <boost/program_options.hpp>
 
 #include "mrs_vpr/parameters.hpp"
+#include "tool_main.hpp"
 
 namespace mrs_vpr {
 namespace tools {
@@ -46,8 +47,7 @@ inline void addDescriptorOptions(boost::program_options::options_description& de
 /// Whether the command line set any descriptor option (rather than leaving every default).
 inline bool descriptorOptionsGiven(const boost::program_options::variables_map& variables) {
   for (const auto& spec : descriptorParameters()) {
-    const auto found = variables.find(descriptorOption(spec.info.name));
-    if (found != variables.end() && !found->second.defaulted()) return true;
+    if (givenOnCommandLine(variables, descriptorOption(spec.info.name))) return true;
   }
   return false;
 }
@@ -58,8 +58,7 @@ inline void refuseOtherFrontEndsOptions(const boost::program_options::variables_
                                         const DescriptorParams& params) {
   for (const auto& spec : descriptorParameters()) {
     const std::string& name = spec.info.name;
-    const auto found = variables.find(descriptorOption(name));
-    if (found == variables.end() || found->second.defaulted()) continue;
+    if (!givenOnCommandLine(variables, descriptorOption(name))) continue;
     const std::string owner = frontEndOwning(name);
     if (!owner.empty() && owner != params.type) {
       throw boost::program_options::error("--" + descriptorOption(name) + " is an option of the " + owner +

@@ -133,8 +133,7 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
   refuseOtherFrontEndsOptions(variables, params.descriptor);
   refuseEmptyPaths(variables, {"reference", "query", "ground-truth", "output", "plots"});
   options.descriptor_given = descriptorOptionsGiven(variables);
-  options.min_appearance_change_given = variables.count("min-appearance-change") != 0 &&
-                                        !variables["min-appearance-change"].defaulted();
+  options.min_appearance_change_given = givenOnCommandLine(variables, "min-appearance-change");
 
   if (options.method != "mrs" && options.method != "seqslam") {
     throw std::invalid_argument("unknown method '" + options.method + "' (expected mrs or seqslam)");

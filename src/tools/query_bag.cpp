@@ -68,7 +68,8 @@ std::int64_t exactNanoseconds(const ros::Time& time) { return static_cast<std::i
 void keyframeAsTheNode(const std::string& service, const po::variables_map& variables, BagSequence& from_bag,
                        json& request) {
   const bool options_given =
-      mrs_vpr::tools::descriptorOptionsGiven(variables) || !variables["min-appearance-change"].defaulted();
+      mrs_vpr::tools::descriptorOptionsGiven(variables) ||
+      mrs_vpr::tools::givenOnCommandLine(variables, "min-appearance-change");
   // Without a master (checked first: a NodeHandle would wait for one) the service call fails anyway.
   if (from_bag.travel.min_travel != 0.0 || options_given || !ros::master::check()) {
     request["keyframing"] = "command line";

@@ -34,6 +34,13 @@ inline bool parseCommandLine(int argc, char** argv, const char* usage,
   return true;
 }
 
+/// Whether the command line set `option` (its name without "--"), rather than leaving it out or at
+/// its default.
+inline bool givenOnCommandLine(const boost::program_options::variables_map& variables, const std::string& option) {
+  const auto found = variables.find(option);
+  return found != variables.end() && !found->second.defaulted();
+}
+
 /// Throws for each of `paths` (option names without "--") given as an empty string: an unset shell
 /// variable, which the tool would otherwise read as the option left out (the identity ground truth,
 /// no JSON written).
