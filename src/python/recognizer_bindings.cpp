@@ -5,10 +5,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <limits>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +20,7 @@
 #include "image_conversion.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
+#include "mrs_vpr/store/map_traversal.hpp"
 #include "mrs_vpr/store/persistent_map.hpp"
 #include "parameter_conversion.hpp"
 
@@ -61,8 +60,7 @@ class Recognizer {
       const FrameAdmission admission =
           map_.offer(descriptors.descriptorRow(i).clone(), stamps[static_cast<std::size_t>(i)], "", next_number_);
       if (admission == FrameAdmission::kAdmitted) ++admitted;
-      // Saturates: a loaded map may have numbered its frames up to the largest number.
-      if (next_number_ < std::numeric_limits<std::int64_t>::max()) ++next_number_;
+      next_number_ = nextFrameNumber(next_number_);
     }
     frames_left_out_ += descriptors.size() - admitted;
     return admitted;
@@ -114,12 +112,7 @@ class Recognizer {
     const bool as_own = loaded && loaded->min_appearance_change && *loaded->min_appearance_change == own;
     keyframing_ = frames == 0 || as_own ? std::optional<double>(own) : std::nullopt;
     const std::int64_t last = frames == 0 ? -1 : map_.sequenceOf(frames - 1);
-    if (last < 0) {
-      next_number_ = frames;
-      return;
-    }
-    next_number_ = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
-    if (loaded) next_number_ = std::max(next_number_, loaded->frames);
+    next_number_ = last < 0 ? frames : nextFrameNumber(last, loaded);
   }
 
   PlaceRecognizer recognizer_;

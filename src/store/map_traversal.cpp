@@ -1,8 +1,16 @@
 #include "mrs_vpr/store/map_traversal.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "mrs_vpr/number_text.hpp"
 
 namespace mrs_vpr {
+
+std::int64_t nextFrameNumber(std::int64_t last, const std::optional<MapTraversal>& map) {
+  const std::int64_t next = last < std::numeric_limits<std::int64_t>::max() ? last + 1 : last;
+  return map ? std::max(next, map->frames) : next;
+}
 
 std::string keyframingMismatch(const std::optional<MapTraversal>& map, double min_appearance_change,
                                const std::string& setting) {

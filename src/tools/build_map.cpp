@@ -1,6 +1,5 @@
 // build_map: a map database from an image folder or a bag, for the node or mrs_vpr_eval to use.
 
-#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -103,8 +102,7 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
   options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
-  options.min_appearance_change_given =
-      variables.count("min-appearance-change") != 0 && !variables["min-appearance-change"].defaulted();
+  options.min_appearance_change_given = mrs_vpr::tools::givenOnCommandLine(variables, "min-appearance-change");
   return options;
 }
 
@@ -120,13 +118,12 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
   // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame, or
   // after the frames of the traversal the map records (those after its last keyframe too).
-  std::int64_t next_index = 0;
+  std::int64_t last_number = -1;
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
-    // A number past the last that a map can hold (a crafted file) numbers on from there, not wrapped.
-    next_index = frame.sequence < std::numeric_limits<std::int64_t>::max() ? frame.sequence + 1 : frame.sequence;
+    last_number = frame.sequence;
   });
-  if (extended) next_index = std::max(next_index, extended->frames);
+  std::int64_t next_index = mrs_vpr::nextFrameNumber(last_number, extended);
   int stored = 0;
   int too_similar = 0;
   std::vector<mrs_vpr::StoredFrame> batch;

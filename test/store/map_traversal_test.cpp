@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -137,6 +138,17 @@ TEST_F(MapTraversalTest, AnAppearanceChangeIsWrittenAsAPersonReadsIt) {
   sqlite3_close(db);
   EXPECT_EQ(value, "0.1");
   EXPECT_EQ(MapDatabase(path("tenth.db"), MapAccess::kReadOnly).traversal()->min_appearance_change, 0.1);
+}
+
+TEST(NextFrameNumber, GoesOnAfterTheLastNumberAndTheRecordedTraversalWithoutWrapping) {
+  EXPECT_EQ(nextFrameNumber(-1), 0);
+  EXPECT_EQ(nextFrameNumber(41), 42);
+  MapTraversal traversal;
+  traversal.frames = 111;  // Frames 109 and 110 were not kept: the next is 111, not 109.
+  EXPECT_EQ(nextFrameNumber(108, traversal), 111);
+  EXPECT_EQ(nextFrameNumber(200, traversal), 201);
+  const std::int64_t largest = std::numeric_limits<std::int64_t>::max();
+  EXPECT_EQ(nextFrameNumber(largest), largest);
 }
 
 TEST(KeyframingMismatch, IsSaidOnlyWhenTheMapRecordsAnotherAppearanceChange) {

@@ -18,6 +18,11 @@ struct MapTraversal {
   std::optional<double> min_appearance_change;
 };
 
+/// The number of the frame offered after the one numbered `last` (-1: none yet): `last` + 1, but at
+/// least `map`'s recorded frames, so that frames after its last keyframe keep their numbers; it stays
+/// at the largest number rather than wrap (a crafted file).
+std::int64_t nextFrameNumber(std::int64_t last, const std::optional<MapTraversal>& map = std::nullopt);
+
 /**
  * A warning when the frames asked about are keyframed at `min_appearance_change` (named `setting` in
  * the words of the caller: "~min_appearance_change", "--min-appearance-change") and the map's were
