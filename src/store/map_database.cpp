@@ -355,12 +355,14 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames) {
   });
 }
 
-void MapDatabase::replace(const FrameSource& source) {
+void MapDatabase::replace(const FrameSource& source, const std::optional<MapTraversal>& traversal) {
   inWriteTransaction([&] {
     execute("DELETE FROM frames");
     insertFrames(source);
     forgetTraversal();
+    if (traversal) recordTraversal(*traversal);
   });
+  traversal_ = traversal;
 }
 
 void MapDatabase::inWriteTransaction(const std::function<void()>& work) {
@@ -383,14 +385,18 @@ void MapDatabase::forgetTraversal() {
 void MapDatabase::setTraversal(const MapTraversal& traversal) {
   inWriteTransaction([&] {
     forgetTraversal();
-    execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "'), " +
-            "('traversal_last_frame', '" + lastFrame() + "')");
-    if (traversal.min_appearance_change) {
-      execute("INSERT INTO metadata VALUES ('traversal_min_appearance_change', '" +
-              shortestNumber(*traversal.min_appearance_change) + "')");
-    }
+    recordTraversal(traversal);
   });
   traversal_ = traversal;
+}
+
+void MapDatabase::recordTraversal(const MapTraversal& traversal) {
+  execute("INSERT INTO metadata VALUES ('traversal_frames', '" + std::to_string(traversal.frames) + "'), " +
+          "('traversal_last_frame', '" + lastFrame() + "')");
+  if (traversal.min_appearance_change) {
+    execute("INSERT INTO metadata VALUES ('traversal_min_appearance_change', '" +
+            shortestNumber(*traversal.min_appearance_change) + "')");
+  }
 }
 
 std::optional<MapTraversal> MapDatabase::traversalOfMetadata(const std::map<std::string, std::string>& stored) const {

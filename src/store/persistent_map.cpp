@@ -68,6 +68,7 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
   recognizer_.install(std::move(map));
   label_bytes_ = labels_.memoryBytes();
   loaded_traversal_ = database_->traversal();  // Before the camera's first frame makes it forgotten.
+  loaded_frames_ = static_cast<int>(frames);
   writer_ = std::make_unique<MapWriter>(*database_, policy);
 }
 
@@ -154,6 +155,7 @@ int PersistentMap::reset() {
   labels_.clear();
   label_bytes_ = labels_.memoryBytes();
   loaded_traversal_.reset();
+  loaded_frames_ = 0;
   return recognizer_.install(std::move(empty));
 }
 
@@ -185,7 +187,7 @@ int PersistentMap::load(const std::string& path) {
     return std::move(*map);
   }();
   // ... the database rewritten from the file ...
-  if (writer_) replaceDatabase(path, prepared, labels);
+  if (writer_) replaceDatabase(path, prepared, labels, traversal);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
   // the new one. The frames that came while the database was rewritten follow the new map's.
   const int loaded = prepared.size();
@@ -196,6 +198,7 @@ int PersistentMap::load(const std::string& path) {
   recognizer_.install(std::move(prepared));
   labels_ = std::move(labels);
   loaded_traversal_ = traversal;
+  loaded_frames_ = loaded;
   // The new map is in place in both: nothing may throw from here on. The frames fit (store() held back
   // no more than the new map has room for); only a failure to get memory would leave some out, of both.
   try {
@@ -222,7 +225,7 @@ int PersistentMap::load(const std::string& path) {
 }
 
 void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
-                                    const FrameLabels& labels) {
+                                    const FrameLabels& labels, const std::optional<MapTraversal>& traversal) {
   // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
   // frames go on joining the old map meanwhile, held back from the database so that it holds the old
   // map or the new one; load() puts them after the new map's frames ...
@@ -238,7 +241,7 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
     // frames the new map was built from: else the database is left as it was.
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
     writer_->withDatabase([&](MapDatabase& database) {
-      database.replace([&](const auto& insert) {
+      const auto frames = [&](const auto& insert) {
         int index = 0;
         saved.forEachFrame([&](const StoredFrame& frame) {
           if (!prepared.holds(index, frame.descriptor, frame.stamp) ||
@@ -249,7 +252,8 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
           ++index;
         });
         if (index != prepared.size()) throw changedWhileLoaded(path);
-      });
+      };
+      database.replace(frames, traversal);
     });
   } catch (...) {
     // ... or, when the rewrite fails, the old map stays in both, and its new frames go to its database.
@@ -306,7 +310,9 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::o
       }
       copy.append(chunk);
     }
-    if (traversal) copy.setTraversal(*traversal);
+    // The loaded map's record holds while the snapshot is that map.
+    const std::optional<MapTraversal>& record = traversal || frames != loaded_frames_ ? traversal : loaded_traversal_;
+    if (record) copy.setTraversal(*record);
     copy.backupTo(path);
   } catch (const MapDatabaseError& error) {
     removeScratch();

@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -343,6 +345,43 @@ TEST_F(PersistentMapTest, AMapInMemoryKeepsTheFrameIdsAndNumbersOfTheMapItLoaded
   auto expected = expectedLabels(200, 260);
   expected.emplace_back("other_camera", 7);
   EXPECT_EQ(labelsOf(path("again.db")), expected);
+}
+
+TEST_F(PersistentMapTest, AMapSavedAsItWasLoadedKeepsItsRecordedTraversalAndOneWithNewFramesDoesNot) {
+  // A node's ~load_map then ~save_map: the copy is the loaded map, kept of the same traversal.
+  writeMap(path("saved.db"), 200, 260);
+  MapTraversal recorded;
+  recorded.frames = 75;
+  recorded.min_appearance_change = 0.4;
+  MapDatabase(path("saved.db"), DescriptorParams{}).setTraversal(recorded);
+  const auto traversalOf = [](const std::string& file) {
+    return MapDatabase(file, DescriptorParams{}, MapAccess::kReadOnly).traversal();
+  };
+  for (const bool with_database : {true, false}) {
+    SCOPED_TRACE(with_database ? "with a database" : "in memory");
+    const std::string prefix = with_database ? "database_" : "memory_";
+    PlaceRecognizer recognizer;
+    std::unique_ptr<PersistentMap> map = with_database
+                                             ? std::make_unique<PersistentMap>(recognizer, path(prefix + "map.db"),
+                                                                               CommitPolicy{})
+                                             : std::make_unique<PersistentMap>(recognizer);
+    addReference(*map, 0, 10);
+    ASSERT_EQ(map->load(path("saved.db")), 60);
+    ASSERT_EQ(map->save(path(prefix + "as_loaded.db")), 60);
+    const std::optional<MapTraversal> kept = traversalOf(path(prefix + "as_loaded.db"));
+    ASSERT_TRUE(kept.has_value());
+    EXPECT_EQ(kept->frames, 75);
+    EXPECT_EQ(kept->min_appearance_change, 0.4);
+    // A frame more, and the map is no longer that traversal's alone.
+    addReference(*map, 260, 261);
+    map->commit();
+    ASSERT_EQ(map->save(path(prefix + "grown.db")), 61);
+    EXPECT_FALSE(traversalOf(path(prefix + "grown.db")).has_value());
+    // Emptied, nothing of it is left either.
+    map->reset();
+    ASSERT_EQ(map->save(path(prefix + "emptied.db")), 0);
+    EXPECT_FALSE(traversalOf(path(prefix + "emptied.db")).has_value());
+  }
 }
 
 TEST_F(PersistentMapTest, LoadReplacesTheMapAndTheDatabase) {

@@ -118,8 +118,9 @@ class MapDatabase {
   /// Where replace() takes its frames from: it calls `insert` once for each frame, in map order.
   using FrameSource = std::function<void(const std::function<void(const StoredFrame& frame)>& insert)>;
   /// Replaces every frame by those `source` gives, in one transaction: on any failure (a throw from
-  /// `source` too) the old frames stay. The new frames need not all be in memory at once.
-  void replace(const FrameSource& source);
+  /// `source` too) the old frames stay. The new frames need not all be in memory at once. The old
+  /// frames' traversal is forgotten; `traversal`, the one the new frames were kept of, is recorded.
+  void replace(const FrameSource& source, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
   /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
@@ -179,6 +180,8 @@ class MapDatabase {
   std::optional<MapTraversal> traversalOfMetadata(const std::map<std::string, std::string>& stored) const;
   /// Removes the recorded traversal inside the caller's transaction: the frames are no longer its alone.
   void forgetTraversal();
+  /// Records `traversal` of the frames as they are, inside the caller's transaction, after forgetTraversal().
+  void recordTraversal(const MapTraversal& traversal);
   /// Runs `work` in one write transaction, rolled back when it throws.
   void inWriteTransaction(const std::function<void()>& work);
   /// The last frame's id and stamp as text ("none" for no frame): what a record of the traversal

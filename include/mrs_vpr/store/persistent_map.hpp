@@ -78,8 +78,10 @@ class PersistentMap {
    * stamp, frame id and number). Returns the frames written.
    */
   /// `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
-  /// is recorded as MapDatabase::setTraversal() records it; a map with a database saves what its
-  /// database records (nothing once frames were added to it), and ignores `traversal`.
+  /// is recorded as MapDatabase::setTraversal() records it; without it, a map saved before any frame
+  /// joined the map last loaded keeps that map's record (loadedTraversal()). A map with a database
+  /// saves what its database records (the same, and nothing once frames were added to it), and
+  /// ignores `traversal`.
   std::int64_t save(const std::string& path, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Commits the queued frames now.
   void commit();
@@ -114,8 +116,9 @@ class PersistentMap {
   std::int64_t saveFromMemory(const std::string& path, const std::optional<MapTraversal>& traversal);
   /// load()'s rewrite of the database by the frames of the map saved at `path`, which must be those of
   /// `prepared`; added frames are held back meanwhile.
+  /// `traversal`, the new frames' record, is written with them.
   void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
-                       const FrameLabels& labels);
+                       const FrameLabels& labels, const std::optional<MapTraversal>& traversal);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
@@ -129,6 +132,9 @@ class PersistentMap {
   /// Set at construction, by load() and by reset() (under whole_map_mutex_); read unlocked by
   /// loadedTraversal(), whose callers order their calls with load() and reset() themselves.
   std::optional<MapTraversal> loaded_traversal_;
+  // The frames of the map that loaded_traversal_ is the record of: while the map holds no more, it is
+  // still that map (frames are only ever appended). Written and read under whole_map_mutex_.
+  int loaded_frames_ = 0;
   // labels_.memoryBytes(), for ~map_info, which must not wait for a reset's or a load's disk work.
   std::atomic<std::size_t> label_bytes_{0};
   // One whole-map operation (reset, load, save) at a time.
