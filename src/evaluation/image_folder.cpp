@@ -63,13 +63,18 @@ using evaluation_detail::parseIndex;
 
 }  // namespace
 
-std::vector<std::string> listImageFiles(const std::string& folder) {
+std::vector<std::string> listImageFiles(const std::string& folder, std::vector<std::string>* left_out) {
   std::error_code error;
   if (!fs::exists(folder, error)) throw std::runtime_error("image folder '" + folder + "' does not exist");
   if (!fs::is_directory(folder, error)) throw std::runtime_error("'" + folder + "' is not a folder");
   std::vector<std::string> files;
+  if (left_out) left_out->clear();
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    if (!isImageFile(entry.path()) || entry.is_directory(error)) continue;
+    if (entry.is_directory(error)) continue;
+    if (!isImageFile(entry.path())) {
+      if (left_out) left_out->push_back(entry.path().filename().string());
+      continue;
+    }
     // An image that cannot be read is an error, not left out: every later frame would be numbered one
     // too low, and the evaluation's ground truth would be wrong without a word.
     if (entry.is_symlink(error) && !entry.exists(error)) {
@@ -83,6 +88,7 @@ std::vector<std::string> listImageFiles(const std::string& folder) {
   }
   if (files.empty()) throw std::runtime_error("image folder '" + folder + "' holds no image files");
   std::sort(files.begin(), files.end());
+  if (left_out) std::sort(left_out->begin(), left_out->end());
   return files;
 }
 

@@ -1,6 +1,9 @@
 #include "traversal_reader.hpp"
 
+#include <algorithm>
+#include <iostream>
 #include <stdexcept>
+#include <vector>
 
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/evaluation/progress_line.hpp"
@@ -18,6 +21,18 @@ bool isBag(const std::string& source, SourceKind kind) {
   return kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
 }
 
+/// Says which files of `folder` are not frames: an image of an extension not known would be missing
+/// from the traversal, and every later frame's number with it.
+void reportLeftOut(const std::string& what, const std::string& folder, const std::vector<std::string>& left_out) {
+  if (left_out.empty()) return;
+  constexpr std::size_t kNamed = 3;
+  std::string names;
+  for (std::size_t i = 0; i < std::min(kNamed, left_out.size()); ++i) names += (i == 0 ? "" : ", ") + left_out[i];
+  if (left_out.size() > kNamed) names += ", ...";
+  std::cerr << "  " << what << ": left out " << left_out.size() << (left_out.size() == 1 ? " file" : " files")
+            << " of '" << folder << "' not named as an image (" << names << ")\n";
+}
+
 }  // namespace
 
 int countFrames(const std::string& source, const std::string& topic, SourceKind kind) {
@@ -30,7 +45,14 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
                         const std::function<void(const cv::Mat& descriptor, Stamp stamp)>& append,
                         SourceKind kind) {
   const bool bag = isBag(source, kind);
-  const int total = countFrames(source, topic, kind);
+  int total = 0;
+  if (bag) {
+    total = countFrames(source, topic, kind);
+  } else {
+    std::vector<std::string> left_out;
+    total = static_cast<int>(mrs_vpr::listImageFiles(source, &left_out).size());
+    reportLeftOut(what, source, left_out);
+  }
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;
   const auto add = [&](const cv::Mat& descriptor, Stamp stamp) {

@@ -184,6 +184,28 @@ TEST_F(BuildMapTest, ALinkToAMapNotWrittenYetIsWrittenWhereItPoints) {
       << loop.err;
 }
 
+TEST_F(BuildMapTest, FilesOfTheFolderThatAreNoImagesAreNamedAsLeftOut) {
+  // A ground truth beside the frames is expected; an image of an extension not known would be a
+  // frame missing without a word.
+  const std::string folder = path("mixed");
+  fs::create_directories(folder + "/subfolder");
+  for (int i = 0; i < 12; ++i) {
+    const std::string name = (i < 10 ? "/0000" : "/000") + std::to_string(i) + ".png";
+    fs::copy_file(path("reference") + name, folder + name);
+  }
+  std::ofstream(folder + "/truth.csv") << "query_index,matching_ref_indices\n";
+  std::ofstream(folder + "/00012.exr") << "not read\n";
+  const CommandResult built = run(buildMap() + " --images " + folder + " --output " + path("mixed.db"));
+  ASSERT_EQ(built.status, 0) << built.err;
+  EXPECT_NE(built.err.find("left out 2 files of '" + folder + "' not named as an image (00012.exr, truth.csv)"),
+            std::string::npos)
+      << built.err;
+  EXPECT_EQ(framesIn(path("mixed.db")), 12);
+  const CommandResult plain = run(build(path("plain.db")));
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  EXPECT_EQ(plain.err.find("left out"), std::string::npos) << plain.err;
+}
+
 TEST_F(BuildMapTest, MistakesOnTheCommandLineAreRefusedBeforeAnyWork) {
   // A mistyped map name with --append would have become a second map, the map meant left as it was.
   const CommandResult append = run(build(path("no_such_map.db"), " --append"));

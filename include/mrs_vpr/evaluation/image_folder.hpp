@@ -13,11 +13,13 @@ namespace mrs_vpr {
 /**
  * Image files (png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif; any letter case) of
  * a folder, as full paths in file-name order (byte-wise, so zero-padded numbers sort as numbers).
- * Other files and folders are left out. Throws std::runtime_error when the folder does not exist, is
- * not a folder or holds no image, and naming the entry when one named as an image is a broken symbolic
- * link or not a regular file (left out, it would shift every later frame's number).
+ * Other files and folders are left out; `left_out`, when given, receives the names of the files, in
+ * file-name order, so that a caller can say so (an image of another extension would be missing from
+ * the frames). Throws std::runtime_error when the folder does not exist, is not a folder or holds no
+ * image, and naming the entry when one named as an image is a broken symbolic link or not a regular
+ * file (left out, it would shift every later frame's number).
  */
-std::vector<std::string> listImageFiles(const std::string& folder);
+std::vector<std::string> listImageFiles(const std::string& folder, std::vector<std::string>* left_out = nullptr);
 
 /// Reads one image with cv::IMREAD_UNCHANGED. Throws std::runtime_error naming the file and why when
 /// unreadable (no permission, empty, no decoder), or a JPEG file cut short (which OpenCV would read,
