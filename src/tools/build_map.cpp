@@ -23,6 +23,7 @@
 #include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
 #include "keyframing_options.hpp"
+#include "output_in_progress.hpp"
 #include "tool_main.hpp"
 #include "traversal_reader.hpp"
 
@@ -191,21 +192,6 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   return stored;
 }
 
-/// The file the link `link` points to, through links to links; throws naming `link` for a loop.
-std::string linkTarget(const std::string& link) {
-  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
-  std::filesystem::path target = link;
-  for (int hops = 0; std::filesystem::is_symlink(target); ++hops) {
-    if (hops == kMostLinks) {
-      throw std::invalid_argument("--output '" + link + "' is a link that leads to no file (a loop of links, or a " +
-                                  "chain of more than " + std::to_string(kMostLinks) + ")");
-    }
-    const std::filesystem::path next = std::filesystem::read_symlink(target);
-    target = next.is_absolute() ? next : target.parent_path() / next;
-  }
-  return std::filesystem::weakly_canonical(target).string();
-}
-
 int run(int argc, char** argv) {
   std::optional<BuildOptions> parsed = parseOptions(argc, argv);
   if (!parsed) return 0;
@@ -213,7 +199,7 @@ int run(int argc, char** argv) {
   std::string& output = options.output;
   // A link names the map it points to, also one not written yet: the new map replaces that file, not
   // the link, and that file must be no input.
-  if (std::filesystem::is_symlink(output)) output = linkTarget(output);
+  if (std::filesystem::is_symlink(output)) output = mrs_vpr::tools::linkTarget("--output", output);
   mrs_vpr::tools::requireApartFromInputs({"--output", output},
                                          {{"--images", options.images}, {"--bag", options.bag_path}});
   // The output is checked before any work: a folder would otherwise be found only when the finished

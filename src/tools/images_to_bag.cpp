@@ -65,6 +65,8 @@ int run(int argc, char** argv) {
   if (!ros::names::validate(topic, why)) {
     throw std::invalid_argument("--topic '" + topic + "' is not a valid ROS topic name: " + why);
   }
+  // A link names the bag it points to, as build_map's --output does: that file is replaced, not the link.
+  if (std::filesystem::is_symlink(bag_path)) bag_path = mrs_vpr::tools::linkTarget("--bag", bag_path);
   // Checked before any work: a folder would be found only when the finished bag is renamed.
   mrs_vpr::tools::requireApartFromInputs({"--bag", bag_path}, {{"--images", images}});
   if (std::filesystem::is_directory(bag_path)) {

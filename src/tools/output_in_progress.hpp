@@ -4,6 +4,7 @@
 // interrupted run never leaves a file or folder that looks complete.
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <system_error>
 #include <utility>
@@ -17,6 +18,23 @@ inline bool writtenInPlace(const std::string& path) {
   std::error_code ignored;
   const std::filesystem::file_status status = std::filesystem::symlink_status(path, ignored);
   return std::filesystem::exists(status) && !std::filesystem::is_regular_file(status);
+}
+
+/// The file the link `link` (named by `option`, for messages) points to, through links to links, also
+/// one not written yet: an output named through a link replaces that file, not the link, as writing to
+/// the link would. Throws std::invalid_argument for a loop.
+inline std::string linkTarget(const std::string& option, const std::string& link) {
+  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
+  std::filesystem::path target = link;
+  for (int hops = 0; std::filesystem::is_symlink(target); ++hops) {
+    if (hops == kMostLinks) {
+      throw std::invalid_argument(option + " '" + link + "' is a link that leads to no file (a loop of links, or a " +
+                                  "chain of more than " + std::to_string(kMostLinks) + ")");
+    }
+    const std::filesystem::path next = std::filesystem::read_symlink(target);
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  return std::filesystem::weakly_canonical(target).string();
 }
 
 /// `path`.part while it is written; removed (file or folder) unless commit() renamed it to `path`.

@@ -754,6 +754,28 @@ TEST_F(BagToolsTest, OutputsThatAreFoldersAreRefusedBeforeAnyWork) {
   EXPECT_TRUE(fs::is_empty(path("a_folder")));
 }
 
+TEST_F(BagToolsTest, ABagNamedThroughALinkIsWrittenWhereTheLinkPoints) {
+  // As build_map writes a map named through a link: ~/bags/latest.bag -> today's bag, say.
+  fs::create_directories(path("bags"));
+  fs::create_symlink("bags/today.bag", path("latest.bag"));
+  const std::string write = std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                            path("latest.bag") + " --rate 5 --start-time 1";
+  const CommandResult created = run(write + " --topic /t");
+  ASSERT_EQ(created.status, 0) << created.err;
+  EXPECT_TRUE(fs::is_symlink(path("latest.bag")));
+  ASSERT_TRUE(fs::is_regular_file(path("bags/today.bag")));
+  const std::string first_bytes = fileContents(path("bags/today.bag"));
+  // Replaced with --force through the link, the link stays and the file it names is the new bag.
+  const CommandResult refused = run(write + " --topic /t");
+  EXPECT_EQ(refused.status, 1);
+  EXPECT_NE(refused.err.find("exists; use --force to replace it"), std::string::npos) << refused.err;
+  const CommandResult replaced = run(write + " --topic /other --force");
+  ASSERT_EQ(replaced.status, 0) << replaced.err;
+  EXPECT_TRUE(fs::is_symlink(path("latest.bag")));
+  EXPECT_NE(fileContents(path("bags/today.bag")), first_bytes);
+  EXPECT_EQ(fileContents(path("latest.bag")), fileContents(path("bags/today.bag")));
+}
+
 TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {
   const std::string bag = path("own_input.bag");
   ASSERT_EQ(run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " + bag +
