@@ -331,7 +331,13 @@ WindowAlignment parseWindowAlignment(const std::string& text) {
 }
 
 std::string toString(WindowAlignment alignment) {
-  return alignment == WindowAlignment::kCausal ? "causal" : "centred";
+  switch (alignment) {
+    case WindowAlignment::kCausal:
+      return "causal";
+    case WindowAlignment::kCentred:
+      return "centred";
+  }
+  return std::to_string(static_cast<int>(alignment));
 }
 
 }  // namespace mrs_vpr

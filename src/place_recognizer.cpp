@@ -252,7 +252,8 @@ PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(const std::vector<cv::M
 }
 
 PlaceRecognizer::PreparedMap PlaceRecognizer::prepareMap(int frames) const {
-  if (frames < 0 || (recognizer_.max_frames > 0 && frames > recognizer_.max_frames)) {
+  if (frames < 0) throw std::invalid_argument("a map cannot hold " + std::to_string(frames) + " frames");
+  if (recognizer_.max_frames > 0 && frames > recognizer_.max_frames) {
     throw std::invalid_argument(std::to_string(frames) + " frames exceed max_frames (" +
                                 std::to_string(recognizer_.max_frames) + ")");
   }

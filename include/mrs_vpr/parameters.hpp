@@ -152,6 +152,7 @@ struct Parameters {
 
 /// Parses "causal" / "centred" (also "centered"); throws std::invalid_argument otherwise.
 WindowAlignment parseWindowAlignment(const std::string& text);
+/// "causal" or "centred"; the number, for a value that is no enumerator (which validate() refuses).
 std::string toString(WindowAlignment alignment);
 
 /// The numbers a parameter may take: an interval, and optionally 0 as well (a switch-off value).
@@ -240,7 +241,9 @@ void requireInRange(const std::vector<ParameterSpec<Group>>& specs, const Group&
           using Value = std::decay_t<decltype(group.*member)>;
           if constexpr (std::is_same_v<Value, std::string>) {
             spec.info.require(group.*member);
-          } else if constexpr (!std::is_same_v<Value, WindowAlignment>) {  // every enumerator is valid
+          } else if constexpr (std::is_same_v<Value, WindowAlignment>) {
+            spec.info.require(toString(group.*member));  // A value cast from a number may be no enumerator.
+          } else {
             spec.info.require(static_cast<double>(group.*member));
           }
         },

@@ -136,8 +136,9 @@ class PlaceRecognizer {
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);
   /// The fewest map frames with which matchRecent can ask about `frames` of them: the searched
-  /// older frames (all but those and recent_exclusion) must be at least as many.
-  int fewestFramesForRecent(int frames) const { return 2 * frames + recognizer_.recent_exclusion; }
+  /// older frames (all but those and recent_exclusion) must be at least as many. Wide, so that no
+  /// count of frames overflows it.
+  long long fewestFramesForRecent(long long frames) const { return 2 * frames + recognizer_.recent_exclusion; }
 
   /// Makes a running query throw QueryStopped within a block of its work (the brute force's columns,
   /// rows or anchors), and every later one at once: for a shutdown that need not wait for a long

@@ -193,7 +193,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   const int recent = params_.autoQueryFrames();
   // A test sequence holds the camera's keyframes of this run only: one reaching back into a loaded
   // map would join two drives, and its centre could be a keyframe of the file.
-  const int first_size = std::max(recognizer_.fewestFramesForRecent(recent), session_start_size_ + recent);
+  const long long first_size =
+      std::max(recognizer_.fewestFramesForRecent(recent), static_cast<long long>(session_start_size_) + recent);
   const int size = recognizer_.size();
   if (size < first_size) {
     return;  // too early: not enough older frames to search yet

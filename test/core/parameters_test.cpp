@@ -269,5 +269,22 @@ TEST(WindowAlignment, UnknownTextThrowsNamingItAndTheChoices) {
   EXPECT_THROW(parseWindowAlignment("Causal"), std::invalid_argument);
 }
 
+TEST(WindowAlignment, AValueThatIsNoEnumeratorIsRefusedByValidate) {
+  // Set from a number through the C++ API (a cast, a file read as an int): it was searched as centred.
+  SequenceParams sequence;
+  sequence.alignment = static_cast<WindowAlignment>(7);
+  EXPECT_EQ(toString(sequence.alignment), "7");
+  try {
+    sequence.validate();
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("sequence/alignment"), std::string::npos) << message;
+    EXPECT_NE(message.find("7"), std::string::npos) << message;
+  }
+  sequence.alignment = WindowAlignment::kCausal;
+  EXPECT_NO_THROW(sequence.validate());
+}
+
 }  // namespace
 }  // namespace mrs_vpr

@@ -1,5 +1,6 @@
 #include <atomic>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <utility>
@@ -413,11 +414,29 @@ TEST(PlaceRecognizer, AReplacedMapsFramesAreTheKeyframesTheNextFrameIsComparedWi
 // prepared for no frame that refuses each one the file then gives.
 TEST(PlaceRecognizer, AMapPreparedForANegativeNumberOfFramesIsRefused) {
   const PlaceRecognizer recognizer(routeParameters());
-  EXPECT_THROW(recognizer.prepareMap(-1), std::invalid_argument);
+  const auto messageOf = [](const PlaceRecognizer& refusing, int frames) -> std::string {
+    try {
+      refusing.prepareMap(frames);
+    } catch (const std::invalid_argument& error) {
+      return error.what();
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(messageOf(recognizer, -1), "a map cannot hold -1 frames");  // Not "-1 frames exceed max_frames".
   RecognizerParams limits;
   limits.max_frames = 2;
-  EXPECT_THROW(PlaceRecognizer(routeParameters(), limits).prepareMap(-1), std::invalid_argument);
+  EXPECT_EQ(messageOf(PlaceRecognizer(routeParameters(), limits), -1), "a map cannot hold -1 frames");
+  EXPECT_EQ(messageOf(PlaceRecognizer(routeParameters(), limits), 3), "3 frames exceed max_frames (2)");
   EXPECT_EQ(recognizer.prepareMap(0).size(), 0);
+}
+
+TEST(PlaceRecognizer, TheFewestFramesForARecentSequenceDoNotOverflowForAnyCount) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  const PlaceRecognizer recognizer(routeParameters(), limits);
+  EXPECT_EQ(recognizer.fewestFramesForRecent(10), 70);
+  const long long most = std::numeric_limits<int>::max();
+  EXPECT_EQ(recognizer.fewestFramesForRecent(most), 2 * most + 50);  // Was negative: any map was enough.
 }
 
 // The room is frames of over two minutes of a camera, but never more than 64 MB of descriptors:
