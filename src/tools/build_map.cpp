@@ -118,13 +118,14 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   mrs_vpr::AppearanceKeyframes appearance(options.params, keyframes ? 0.0 : options.min_appearance_change);
   // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
   // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame, or
-  // after the frames of the traversal the map records (those after its last keyframe too).
+  // after the frames of the traversal the map records (those after its last keyframe too), or from the
+  // map's size when its last frame has no number (-1), as Python numbers them.
   std::int64_t last_number = -1;
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
     last_number = frame.sequence;
   });
-  std::int64_t next_index = mrs_vpr::nextFrameNumber(last_number, extended);
+  std::int64_t next_index = mrs_vpr::nextFrameNumber(last_number < 0 ? before - 1 : last_number, extended);
   int stored = 0;
   int too_similar = 0;
   std::vector<mrs_vpr::StoredFrame> batch;

@@ -206,6 +206,26 @@ TEST_F(BuildMapTest, FilesOfTheFolderThatAreNoImagesAreNamedAsLeftOut) {
   EXPECT_EQ(plain.err.find("left out"), std::string::npos) << plain.err;
 }
 
+TEST_F(BuildMapTest, FramesAppendedToAMapWithoutFrameNumbersAreNumberedOnFromItsSize) {
+  // As Python numbers the frames it offers to such a map (one saved before frames were numbered):
+  // not from 0, which the map's own first frames stand for.
+  const std::string map = path("unnumbered.db");
+  {
+    std::vector<mrs_vpr::StoredFrame> unnumbered = frames(7);
+    for (mrs_vpr::StoredFrame& frame : unnumbered) frame.sequence = -1;
+    MapDatabase(map, thumbnail()).append(unnumbered);
+  }
+  const CommandResult appended = run(build(map, " --append"));
+  ASSERT_EQ(appended.status, 0) << appended.err;
+  std::vector<std::int64_t> numbers;
+  MapDatabase(map, MapAccess::kReadOnly).forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
+    numbers.push_back(frame.sequence);
+  });
+  ASSERT_GT(numbers.size(), 8U);
+  EXPECT_EQ(numbers[6], -1);
+  EXPECT_EQ(numbers[7], 7);
+}
+
 TEST_F(BuildMapTest, MistakesOnTheCommandLineAreRefusedBeforeAnyWork) {
   // A mistyped map name with --append would have become a second map, the map meant left as it was.
   const CommandResult append = run(build(path("no_such_map.db"), " --append"));
