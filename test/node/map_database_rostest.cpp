@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -422,6 +423,15 @@ TEST_F(MapDatabaseNodeTest, AMapInMemoryKeepsItsFramesIdsAndNumbersThroughSaveAn
                 "; warning: the map's keyframes were kept at an appearance change of 0.123, and ~min_appearance_change is"),
             std::string::npos)
       << load.response.message;
+  // Saved before any frame joins it, the loaded map keeps its record (~save_map dropped it).
+  save.request.path = path("other_scale_again.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
+  ASSERT_TRUE(save.response.success) << save.response.message;
+  const std::optional<mrs_vpr::MapTraversal> kept =
+      mrs_vpr::MapDatabase(path("other_scale_again.db"), mrs_vpr::MapAccess::kReadOnly).traversal();
+  ASSERT_TRUE(kept.has_value());
+  EXPECT_EQ(kept->frames, 120);
+  EXPECT_EQ(kept->min_appearance_change, 0.123);
   EXPECT_EQ(node->stop(), 0);
 }
 
