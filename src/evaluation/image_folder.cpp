@@ -10,6 +10,7 @@
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "index_field.hpp"
@@ -31,12 +32,22 @@ std::string extensionOf(const fs::path& path) {
 
 /// Named as an image. GIF is among them although OpenCV 4.6 reads none: such a file is refused by name
 /// rather than left out, which would shift the frames after it.
+const char* const kImageExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm",
+                                        ".ppm", ".pnm", ".pbm", ".webp", ".jp2", ".gif"};
+const char* const kImageExtensionsText = "png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif";
+
 bool isImageFile(const fs::path& path) {
   const std::string extension = extensionOf(path);
-  static const char* const kExtensions[] = {".png", ".jpg",  ".jpeg", ".bmp", ".tif", ".tiff", ".pgm",
-                                            ".ppm", ".pnm", ".pbm",  ".webp", ".jp2", ".gif"};
-  return std::any_of(std::begin(kExtensions), std::end(kExtensions),
+  return std::any_of(std::begin(kImageExtensions), std::end(kImageExtensions),
                      [&extension](const char* known) { return extension == known; });
+}
+
+/// The first few of `names`, for a message.
+std::string namesOf(const std::vector<std::string>& names) {
+  constexpr std::size_t kNamed = 5;
+  std::string text;
+  for (std::size_t i = 0; i < std::min(kNamed, names.size()); ++i) text += (i == 0 ? "" : ", ") + names[i];
+  return names.size() > kNamed ? text + " and " + std::to_string(names.size() - kNamed) + " more" : text;
 }
 
 std::string sizeText(const cv::Mat& image) {
@@ -68,12 +79,16 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
   if (!fs::exists(folder, error)) throw std::runtime_error("image folder '" + folder + "' does not exist");
   if (!fs::is_directory(folder, error)) throw std::runtime_error("'" + folder + "' is not a folder");
   std::vector<std::string> files;
-  if (left_out) left_out->clear();
+  std::vector<std::string> others;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    if (entry.is_directory(error)) continue;
-    if (!isImageFile(entry.path())) {
-      if (left_out) left_out->push_back(entry.path().filename().string());
+    const bool named_as_image = isImageFile(entry.path());
+    if (!named_as_image && entry.is_directory(error)) continue;
+    if (!named_as_image) {
+      others.push_back(entry.path().filename().string());
       continue;
+    }
+    if (entry.is_directory(error)) {
+      throw std::runtime_error("image '" + entry.path().string() + "' is a folder");
     }
     // An image that cannot be read is an error, not left out: every later frame would be numbered one
     // too low, and the evaluation's ground truth would be wrong without a word.
@@ -86,10 +101,21 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
     }
     files.push_back(entry.path().string());
   }
-  if (files.empty()) throw std::runtime_error("image folder '" + folder + "' holds no image files");
+  std::sort(others.begin(), others.end());
+  if (files.empty()) {
+    throw std::runtime_error("image folder '" + folder + "' holds no image files" +
+                             (others.empty() ? "" : " (" + namesOf(others) + " are not named as images: " +
+                                                        kImageExtensionsText + ")"));
+  }
   std::sort(files.begin(), files.end());
-  if (left_out) std::sort(left_out->begin(), left_out->end());
+  if (left_out) *left_out = std::move(others);
   return files;
+}
+
+std::string leftOutNote(const std::string& folder, const std::vector<std::string>& left_out) {
+  if (left_out.empty()) return "";
+  return "left out " + std::to_string(left_out.size()) + (left_out.size() == 1 ? " file" : " files") + " of '" +
+         folder + "' not named as an image (" + namesOf(left_out) + ")";
 }
 
 cv::Mat loadImage(const std::string& path) {

@@ -202,7 +202,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   auto_query_version_ = version;
   // Each keyframe since the last question is localised once (continuous_queries.hpp), within
   // kContinuousShare of the period by the last question's time.
-  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, first_size,
+  // first_size <= size here, so it fits an int.
+  const std::vector<int> ends = continuousQueryEnds(auto_query_size_, size, static_cast<int>(first_size),
                                                     affordableQueries(params_.auto_query_period, auto_query_ms_));
   auto_query_size_ = size;
   for (const int end : ends) {

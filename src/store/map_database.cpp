@@ -223,7 +223,7 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
       "COMMIT");
 }
 
-void MapDatabase::checkMetadata(bool params_given) {
+std::map<std::string, std::string> MapDatabase::readMetadata() const {
   std::map<std::string, std::string> stored;
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT key, value FROM metadata", -1, &raw, nullptr) != SQLITE_OK) {
@@ -237,6 +237,13 @@ void MapDatabase::checkMetadata(bool params_given) {
     if (key != nullptr && value != nullptr) stored[key] = value;
   }
   if (step != SQLITE_DONE) fail(lastProblem(db_));
+  return stored;
+}
+
+std::optional<MapTraversal> MapDatabase::readTraversal() const { return traversalOfMetadata(readMetadata()); }
+
+void MapDatabase::checkMetadata(bool params_given) {
+  std::map<std::string, std::string> stored = readMetadata();
   format_version_ = 0;
   for (int version = kOldestFormatVersion; version <= kFormatVersion; ++version) {
     if (stored["format_version"] == std::to_string(version)) format_version_ = version;

@@ -171,10 +171,10 @@ int PersistentMap::load(const std::string& path) {
   std::optional<MapTraversal> traversal;
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
-    traversal = saved.traversal();
     std::optional<PlaceRecognizer::PreparedMap> map;
     saved.readAtOneMoment([&] {
       saved.checkIntegrity();
+      traversal = saved.readTraversal();  // Of the frames read here, not of those when the file was opened.
       const std::int64_t frames = saved.size();
       requireCapacity(recognizer_, path, frames);
       map = recognizer_.prepareMap(static_cast<int>(frames));
@@ -311,7 +311,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::o
       copy.append(chunk);
     }
     // The loaded map's record holds while the snapshot is that map.
-    const std::optional<MapTraversal>& record = traversal || frames != loaded_frames_ ? traversal : loaded_traversal_;
+    const std::optional<MapTraversal>& record = (traversal || frames != loaded_frames_) ? traversal : loaded_traversal_;
     if (record) copy.setTraversal(*record);
     copy.backupTo(path);
   } catch (const MapDatabaseError& error) {

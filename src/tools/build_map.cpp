@@ -209,6 +209,7 @@ int run(int argc, char** argv) {
     throw std::invalid_argument("'" + output + "' is a folder; --output names the map file to write (e.g. " +
                                 (std::filesystem::path(output) / "map.db").string() + ")");
   }
+  mrs_vpr::tools::requireNoSpecialFile("--output", output);
   const bool exists = std::filesystem::exists(output);
   if (exists && !options.append && !options.force) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");

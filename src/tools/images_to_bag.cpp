@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <boost/program_options.hpp>
 #include <ros/names.h>
@@ -72,6 +73,7 @@ int run(int argc, char** argv) {
   if (std::filesystem::is_directory(bag_path)) {
     throw std::invalid_argument("'" + bag_path + "' is a folder; --bag names the bag file to write");
   }
+  mrs_vpr::tools::requireNoSpecialFile("--bag", bag_path);
   if (std::filesystem::exists(bag_path) && !force) {
     throw std::invalid_argument("'" + bag_path + "' exists; use --force to replace it");
   }
@@ -92,7 +94,9 @@ int run(int argc, char** argv) {
   }
 
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
-  const std::vector<std::string> files = mrs_vpr::listImageFiles(images);
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files = mrs_vpr::listImageFiles(images, &left_out);
+  if (!left_out.empty()) std::cerr << "images_to_bag: " << mrs_vpr::leftOutNote(images, left_out) << "\n";
   try {
     mrs_vpr::bag::frameStamp(start_time, static_cast<long long>(files.size()) - 1, rate);  // the latest stamp
   } catch (const std::invalid_argument& error) {

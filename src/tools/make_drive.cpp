@@ -97,7 +97,9 @@ void checkOutputFolder(const std::string& output, bool force) {
 void writeDrive(const Options& options) {
   mrs_vpr::tools::requireApartFromInputs({"--output", options.output}, {{"--images", options.images}});
   mrs_vpr::tools::requireNoInputInside({"--output", options.output}, {{"--images", options.images}});
-  const std::vector<std::string> files = mrs_vpr::listImageFiles(options.images);
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files = mrs_vpr::listImageFiles(options.images, &left_out);
+  if (!left_out.empty()) std::cerr << "make_drive: " << mrs_vpr::leftOutNote(options.images, left_out) << "\n";
   const int available = static_cast<int>(files.size());
   const int end = options.end < 0 ? available : options.end;
   if (options.begin < 0 || options.begin >= end || end > available) {

@@ -37,6 +37,18 @@ inline std::string linkTarget(const std::string& option, const std::string& link
   return std::filesystem::weakly_canonical(target).string();
 }
 
+/// Throws std::invalid_argument when `path` (named by `option`) exists and is neither a regular file
+/// nor a folder (a device, a pipe, a socket): an output renamed onto it when complete would replace it.
+inline void requireNoSpecialFile(const std::string& option, const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::file_status status = std::filesystem::status(path, ignored);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+      !std::filesystem::is_directory(status)) {
+    throw std::invalid_argument(option + " '" + path + "' is no regular file (a device, a pipe or a socket), which " +
+                                "the finished output would replace: name a file");
+  }
+}
+
 /// `path`.part while it is written; removed (file or folder) unless commit() renamed it to `path`.
 class OutputInProgress {
  public:

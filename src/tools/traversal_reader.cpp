@@ -1,6 +1,5 @@
 #include "traversal_reader.hpp"
 
-#include <algorithm>
 #include <iostream>
 #include <stdexcept>
 #include <vector>
@@ -21,18 +20,6 @@ bool isBag(const std::string& source, SourceKind kind) {
   return kind == SourceKind::kByName ? mrs_vpr::bag::isBagPath(source) : kind == SourceKind::kBag;
 }
 
-/// Says which files of `folder` are not frames: an image of an extension not known would be missing
-/// from the traversal, and every later frame's number with it.
-void reportLeftOut(const std::string& what, const std::string& folder, const std::vector<std::string>& left_out) {
-  if (left_out.empty()) return;
-  constexpr std::size_t kNamed = 3;
-  std::string names;
-  for (std::size_t i = 0; i < std::min(kNamed, left_out.size()); ++i) names += (i == 0 ? "" : ", ") + left_out[i];
-  if (left_out.size() > kNamed) names += ", ...";
-  std::cerr << "  " << what << ": left out " << left_out.size() << (left_out.size() == 1 ? " file" : " files")
-            << " of '" << folder << "' not named as an image (" << names << ")\n";
-}
-
 }  // namespace
 
 int countFrames(const std::string& source, const std::string& topic, SourceKind kind) {
@@ -51,7 +38,8 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
   } else {
     std::vector<std::string> left_out;
     total = static_cast<int>(mrs_vpr::listImageFiles(source, &left_out).size());
-    reportLeftOut(what, source, left_out);
+    const std::string note = mrs_vpr::leftOutNote(source, left_out);
+    if (!note.empty()) std::cerr << "  " << what << ": " << note << "\n";
   }
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;

@@ -372,11 +372,37 @@ TEST(ImageFolder, ListsImagesInFileNameOrder) {
       cv::imwrite(folder.path(name), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
     }
   }
-  const std::vector<std::string> files = listImageFiles(folder.path());
+  std::vector<std::string> left_out;
+  const std::vector<std::string> files = listImageFiles(folder.path(), &left_out);
   ASSERT_EQ(files.size(), 3U);
   EXPECT_EQ(fs::path(files[0]).filename(), "a.png");
   EXPECT_EQ(fs::path(files[1]).filename(), "b.png");
   EXPECT_EQ(fs::path(files[2]).filename(), "c.JPG");
+  EXPECT_EQ(left_out, std::vector<std::string>{"notes.txt"});
+  EXPECT_EQ(leftOutNote(folder.path(), left_out),
+            "left out 1 file of '" + folder.path() + "' not named as an image (notes.txt)");
+  EXPECT_EQ(leftOutNote(folder.path(), {}), "");
+}
+
+// A folder of images of an extension not known (.jfif, say) holds "no image": the message names its files.
+TEST(ImageFolder, AFolderWithoutImagesNamesTheFilesItHolds) {
+  TempFolder folder;
+  for (int i = 0; i < 7; ++i) folder.write("frame" + std::to_string(i) + ".jfif", "an image of another name");
+  const std::string message = errorOf([&] { listImageFiles(folder.path()); });
+  EXPECT_EQ(message, "image folder '" + folder.path() + "' holds no image files (frame0.jfif, frame1.jfif, " +
+                         "frame2.jfif, frame3.jfif, frame4.jfif and 2 more are not named as images: png, jpg, jpeg, " +
+                         "bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif)");
+}
+
+// Skipped, a folder named as an image would shift every later frame's number.
+TEST(ImageFolder, AFolderNamedAsAnImageIsAnError) {
+  TempFolder folder;
+  cv::imwrite(folder.path("0.png"), cv::Mat(4, 6, CV_8UC3, cv::Scalar(1, 2, 3)));
+  fs::create_directory(folder.path("1.png"));
+  EXPECT_EQ(errorOf([&] { listImageFiles(folder.path()); }), "image '" + folder.path("1.png") + "' is a folder");
+  fs::remove(folder.path("1.png"));
+  fs::create_directory(folder.path("subfolder"));  // Named as no image: skipped, as before.
+  EXPECT_EQ(listImageFiles(folder.path()).size(), 1U);
 }
 
 // An image left out would shift the number of every later frame, and with it the ground truth.

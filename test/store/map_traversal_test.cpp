@@ -72,6 +72,54 @@ TEST_F(MapTraversalTest, IsForgottenWhenTheFramesChange) {
   }
 }
 
+TEST_F(MapTraversalTest, ReplacedFramesRecordTheirOwnTraversalAndAFailedReplaceKeepsTheOld) {
+  const std::string file = recordedMap("replaced.db");
+  {
+    MapDatabase map(file, thumbnailParams());
+    // A failed replace (a frame of another size) rolls back, the record with it.
+    const auto bad = [](const auto& insert) {
+      insert(frames(1).front());
+      insert(StoredFrame{cv::Mat(1, 3, CV_8UC1, cv::Scalar(0)), Stamp::fromSecondsAndNanoseconds(9, 0), "", 9});
+    };
+    MapTraversal other;
+    other.frames = 3;
+    EXPECT_THROW(map.replace(bad, other), std::invalid_argument);
+  }
+  ASSERT_TRUE(MapDatabase(file, MapAccess::kReadOnly).traversal().has_value());
+  EXPECT_EQ(MapDatabase(file, MapAccess::kReadOnly).traversal()->frames, 8);
+  {
+    MapDatabase map(file, thumbnailParams());
+    MapTraversal replaced;
+    replaced.frames = 12;
+    replaced.min_appearance_change = 0.25;
+    map.replace([](const auto& insert) {
+      for (const StoredFrame& frame : frames(3)) insert(frame);
+    }, replaced);
+    ASSERT_TRUE(map.traversal().has_value());
+    EXPECT_EQ(map.traversal()->frames, 12);
+  }
+  const MapDatabase read(file, MapAccess::kReadOnly);
+  ASSERT_TRUE(read.traversal().has_value());
+  EXPECT_EQ(read.traversal()->frames, 12);
+  EXPECT_EQ(read.traversal()->min_appearance_change, 0.25);
+}
+
+TEST_F(MapTraversalTest, ReadAgainTheRecordIsThatOfTheFramesAsTheyAreNow) {
+  // A map opened, then extended by another program: the record read at the open no longer holds.
+  const std::string file = recordedMap("read_again.db");
+  const MapDatabase opened(file, MapAccess::kReadOnly);
+  ASSERT_TRUE(opened.readTraversal().has_value());
+  sqlite3* db = nullptr;
+  ASSERT_EQ(sqlite3_open(file.c_str(), &db), SQLITE_OK);
+  EXPECT_EQ(sqlite3_exec(db, "INSERT INTO frames SELECT id + 100, stamp_ns + 100, frame_id, sequence, descriptor "
+                             "FROM frames WHERE id = 1",
+                         nullptr, nullptr, nullptr),
+            SQLITE_OK);
+  sqlite3_close(db);
+  EXPECT_TRUE(opened.traversal().has_value());  // As it was at the open.
+  EXPECT_FALSE(opened.readTraversal().has_value());
+}
+
 TEST_F(MapTraversalTest, ADamagedOrStaleRecordIsNoneAndTheMapStillOpens) {
   // A hint for evaluating the map, never a reason to refuse it. Stale: frames that another program
   // (an older release of this package, sqlite3) added without forgetting the record.

@@ -3,6 +3,7 @@
 // errors with exit code 1 on bad input that leave no partial output.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <csignal>
@@ -774,6 +775,37 @@ TEST_F(BagToolsTest, ABagNamedThroughALinkIsWrittenWhereTheLinkPoints) {
   EXPECT_TRUE(fs::is_symlink(path("latest.bag")));
   EXPECT_NE(fileContents(path("bags/today.bag")), first_bytes);
   EXPECT_EQ(fileContents(path("latest.bag")), fileContents(path("bags/today.bag")));
+  // A link to a pipe (or a device, such as /dev/null): the finished bag would replace it.
+  ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+  fs::create_symlink(path("pipe"), path("to_pipe.bag"));
+  for (const std::string& named : {path("pipe"), path("to_pipe.bag")}) {
+    const CommandResult refused_pipe = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") +
+                                           " --bag " + named + " --topic /t --rate 5 --force");
+    EXPECT_EQ(refused_pipe.status, 1);
+    EXPECT_NE(refused_pipe.err.find("images_to_bag: error: --bag '" + path("pipe") +
+                                    "' is no regular file (a device, a pipe or a socket)"),
+              std::string::npos)
+        << refused_pipe.err;
+  }
+  EXPECT_TRUE(fs::is_fifo(path("pipe")));
+  EXPECT_TRUE(fs::is_symlink(path("to_pipe.bag")));
+}
+
+TEST_F(BagToolsTest, ImagesToBagNamesTheFilesOfTheFolderThatAreNoImages) {
+  fs::create_directories(path("with_notes"));
+  for (const std::string& image : mrs_vpr::listImageFiles(path("query"))) {
+    fs::copy_file(image, path("with_notes") + "/" + fs::path(image).filename().string());
+    if (fs::path(image).filename() == "00004.png") break;
+  }
+  std::ofstream(path("with_notes/zz.jfif")) << "an image of another name\n";
+  const CommandResult written = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("with_notes") + " --bag " +
+                                    path("with_notes.bag") + " --topic /t --rate 5");
+  ASSERT_EQ(written.status, 0) << written.err;
+  EXPECT_NE(written.err.find("images_to_bag: left out 1 file of '" + path("with_notes") +
+                             "' not named as an image (zz.jfif)"),
+            std::string::npos)
+      << written.err;
+  EXPECT_NE(written.err.find("wrote 5 images"), std::string::npos) << written.err;
 }
 
 TEST_F(BagToolsTest, NoToolWritesOverWhatItReads) {

@@ -2,6 +2,7 @@
 // it reports written is the one it wrote, and a failure leaves the map as it was.
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <csignal>
 
@@ -174,6 +175,15 @@ TEST_F(BuildMapTest, ALinkToAMapNotWrittenYetIsWrittenWhereItPoints) {
   EXPECT_TRUE(fs::is_symlink(path("current.db")));
   EXPECT_TRUE(fs::is_symlink(path("current_of_current.db")));
   EXPECT_EQ(framesIn(path("maps/today.db")), 150);
+  // A link to a pipe (or a device): the finished map would replace it.
+  ASSERT_EQ(::mkfifo(path("pipe").c_str(), 0600), 0);
+  fs::create_symlink(path("pipe"), path("to_pipe.db"));
+  const CommandResult pipe = run(build(path("to_pipe.db"), " --force"));
+  EXPECT_EQ(pipe.status, 1);
+  EXPECT_NE(pipe.err.find("--output '" + path("pipe") + "' is no regular file (a device, a pipe or a socket)"),
+            std::string::npos)
+      << pipe.err;
+  EXPECT_TRUE(fs::is_fifo(path("pipe")));
   // A loop of links leads to no file, and says so.
   fs::create_symlink(path("loop_b.db"), path("loop_a.db"));
   fs::create_symlink(path("loop_a.db"), path("loop_b.db"));

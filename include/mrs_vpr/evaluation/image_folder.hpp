@@ -16,10 +16,14 @@ namespace mrs_vpr {
  * Other files and folders are left out; `left_out`, when given, receives the names of the files, in
  * file-name order, so that a caller can say so (an image of another extension would be missing from
  * the frames). Throws std::runtime_error when the folder does not exist, is not a folder or holds no
- * image, and naming the entry when one named as an image is a broken symbolic link or not a regular
- * file (left out, it would shift every later frame's number).
+ * image (naming the files it holds), and naming the entry when one named as an image is a broken
+ * symbolic link, a folder or not a regular file (left out, it would shift every later frame's number).
  */
 std::vector<std::string> listImageFiles(const std::string& folder, std::vector<std::string>* left_out = nullptr);
+
+/// What a tool says of the files listImageFiles() left out of `folder` ("left out 2 files of 'F' not
+/// named as an image (a.csv, b.jfif)"); empty when none was.
+std::string leftOutNote(const std::string& folder, const std::vector<std::string>& left_out);
 
 /// Reads one image with cv::IMREAD_UNCHANGED. Throws std::runtime_error naming the file and why when
 /// unreadable (no permission, empty, no decoder), or a JPEG file cut short (which OpenCV would read,

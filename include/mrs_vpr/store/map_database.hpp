@@ -161,6 +161,9 @@ class MapDatabase {
   void setTraversal(const MapTraversal& traversal);
   /// What setTraversal() recorded; nullopt for a map that records none (the node's).
   const std::optional<MapTraversal>& traversal() const { return traversal_; }
+  /// The record as the file holds it now, read again: inside readAtOneMoment(), that of the frames read
+  /// there, whatever another program wrote since this map was opened.
+  std::optional<MapTraversal> readTraversal() const;
 
   const std::string& path() const { return path_; }
   /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).
@@ -175,6 +178,8 @@ class MapDatabase {
   /// Reads the format version and the front end: with `params_given` checks params_ against it, else
   /// adopts it.
   void checkMetadata(bool params_given);
+  /// The metadata table's keys and values.
+  std::map<std::string, std::string> readMetadata() const;
   /// The traversal the metadata records; nullopt when it records none, a damaged one, or one whose
   /// frames have changed since (traversal_last_frame is not the map's lastFrame()).
   std::optional<MapTraversal> traversalOfMetadata(const std::map<std::string, std::string>& stored) const;

@@ -76,12 +76,13 @@ class PersistentMap {
    * overwritten; written aside and renamed when complete). With a database it is SQLite's online
    * backup of it; in memory only, the map's frames as the database would hold them (descriptor,
    * stamp, frame id and number). Returns the frames written.
+   *
+   * `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
+   * is recorded as MapDatabase::setTraversal() records it; without it, a map saved before any frame
+   * joined the map last loaded keeps that map's record (loadedTraversal()). A map with a database
+   * saves what its database records (the same, and nothing once frames were added to it), and
+   * ignores `traversal`.
    */
-  /// `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
-  /// is recorded as MapDatabase::setTraversal() records it; without it, a map saved before any frame
-  /// joined the map last loaded keeps that map's record (loadedTraversal()). A map with a database
-  /// saves what its database records (the same, and nothing once frames were added to it), and
-  /// ignores `traversal`.
   std::int64_t save(const std::string& path, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Commits the queued frames now.
   void commit();
