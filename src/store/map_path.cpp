@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <climits>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
@@ -33,6 +35,10 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
     const bool tilde = path.rfind("~/", 0) == 0 || path == "~";
     return "there is no folder " + folder.string() +
            (tilde ? " (~ is not expanded to a home folder here: give the path in full)" : "");
+  }
+  // SQLite's only word for this would be "unable to open database file (No such file or directory)".
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    return "the folder " + folder.string() + " cannot be written to (" + std::strerror(errno) + ")";
   }
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
   const std::size_t longest = name_max > 0 ? static_cast<std::size_t>(name_max) : NAME_MAX;

@@ -19,7 +19,7 @@ inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"}
 /**
  * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
  * it); empty when it can. A file that exists must be a regular file; otherwise its folder must exist
- * and the file system must allow its name.
+ * and be writable by this process, and the file system must allow its name.
  */
 std::string mapPathProblem(const std::string& path, std::size_t suffix);
 

@@ -1,7 +1,11 @@
 // images_to_bag: an image folder (file-name order) -> a bag of sensor_msgs/Image at a fixed rate.
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <stdexcept>
@@ -80,6 +84,12 @@ int run(int argc, char** argv) {
   const std::filesystem::path folder = std::filesystem::path(bag_path).parent_path();
   if (!folder.empty() && !std::filesystem::is_directory(folder)) {
     throw std::invalid_argument("--bag '" + bag_path + "': there is no folder " + folder.string());
+  }
+  // rosbag's only word for this would be "Error opening file".
+  const std::string bag_folder = folder.empty() ? "." : folder.string();
+  if (::access(bag_folder.c_str(), W_OK | X_OK) != 0) {
+    throw std::invalid_argument("--bag '" + bag_path + "': the folder " + bag_folder + " cannot be written to (" +
+                                std::strerror(errno) + ")");
   }
   if (encoding != "bgr8" && encoding != "mono8") {
     throw std::invalid_argument("unknown encoding '" + encoding + "' (expected bgr8 or mono8)");

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -580,16 +581,8 @@ TEST_F(MapDatabaseTest, AMapIsCheckedBeforeItIsWritten) {
   EXPECT_EQ(fileContents(path("map.db")), before);
 }
 
-/// What opening `file` read-only tells a user who may not write to its folder: "N frames" or the
-/// error. Run as nobody when the test runs as root, whom no permission stops.
-std::string readWithoutWriteAccess(const std::string& file) {
-  const auto attempt = [&]() -> std::string {
-    try {
-      return std::to_string(MapDatabase(file, MapAccess::kReadOnly).size()) + " frames";
-    } catch (const MapDatabaseError& error) {
-      return error.what();
-    }
-  };
+/// What `attempt` returns, run as nobody when the test runs as root, whom no permission stops.
+std::string withoutPrivileges(const std::function<std::string()>& attempt) {
   if (geteuid() != 0) return attempt();
   int pipe_ends[2];
   if (pipe(pipe_ends) != 0) return "(no pipe)";
@@ -609,6 +602,34 @@ std::string readWithoutWriteAccess(const std::string& file) {
   close(pipe_ends[0]);
   waitpid(child, nullptr, 0);
   return result;
+}
+
+/// What opening `file` read-only tells a user who may not write to its folder: "N frames" or the
+/// error.
+std::string readWithoutWriteAccess(const std::string& file) {
+  return withoutPrivileges([&]() -> std::string {
+    try {
+      return std::to_string(MapDatabase(file, MapAccess::kReadOnly).size()) + " frames";
+    } catch (const MapDatabaseError& error) {
+      return error.what();
+    }
+  });
+}
+
+/// What writing a new map at `file`, or saving one there, tells a user who may not write to its folder.
+std::string writeWithoutWriteAccess(const std::string& file, bool save) {
+  return withoutPrivileges([&]() -> std::string {
+    try {
+      if (save) {
+        MapDatabase::checkSaveTarget(file);
+      } else {
+        MapDatabase database(file, thumbnailParams());
+      }
+      return "(no error)";
+    } catch (const MapDatabaseError& error) {
+      return error.what();
+    }
+  });
 }
 
 TEST_F(MapDatabaseTest, AMapInAFolderNobodyMayWriteToIsReadAsItIs) {
@@ -636,6 +657,14 @@ TEST_F(MapDatabaseTest, AMapInAFolderNobodyMayWriteToIsReadAsItIs) {
   }
   readOnly("shipped");
   EXPECT_EQ(readWithoutWriteAccess(path("shipped/map.db")), "7 frames");
+  // A new map there cannot be written, and says why: SQLite's words were "unable to open database file
+  // (No such file or directory)", and a save was refused only after the work.
+  for (const bool save : {false, true}) {
+    const std::string refused = writeWithoutWriteAccess(path("shipped/new.db"), save);
+    EXPECT_NE(refused.find("the folder " + path("shipped") + " cannot be written to (Permission denied)"),
+              std::string::npos)
+        << refused;
+  }
   // Through a link from a folder the reader may write to, and by a path that begins with two slashes.
   fs::create_directory(path("open"));
   fs::permissions(path("open"), fs::perms::all);
