@@ -2,6 +2,7 @@
 // answer as one JSON object on stdout.
 
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <iostream>
 #include <stdexcept>
@@ -23,6 +24,7 @@
 #include "mrs_vpr/node/node_parameters.hpp"
 #include "descriptor_options.hpp"
 #include "keyframing_options.hpp"
+#include "interruption.hpp"
 #include "tool_main.hpp"
 
 namespace po = boost::program_options;
@@ -153,9 +155,25 @@ json answerJson(const mrs_vpr::QuerySequence::Response& response, double round_t
           {"request", request}};
 }
 
+volatile std::sig_atomic_t g_interrupted = 0;
+
+/// roscpp's own handler, which ends a wait for the service (requestShutdown), noting the interruption
+/// so that it is reported as one, not as the service missing.
+void onSigint(int) {
+  g_interrupted = 1;
+  ros::requestShutdown();
+}
+
+/// Throws Interrupted after a Ctrl-C.
+void stopIfCtrlC() {
+  if (g_interrupted != 0) throw mrs_vpr::tools::Interrupted(SIGINT);
+}
+
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
-  ros::init(argc, argv, "query_bag", ros::init_options::AnonymousName | ros::init_options::NoRosout);
+  ros::init(argc, argv, "query_bag",
+            ros::init_options::AnonymousName | ros::init_options::NoRosout | ros::init_options::NoSigintHandler);
+  std::signal(SIGINT, onSigint);
   // roscpp prints its informational messages (e.g. while waiting for the service) on stdout, which
   // must hold nothing but the JSON answer; warnings and errors go to stderr.
   if (ros::console::set_logger_level(ROSCONSOLE_ROOT_LOGGER_NAME, ros::console::levels::Warn)) {
@@ -248,6 +266,12 @@ int run(int argc, char** argv) {
   }
 
   if (!ros::service::waitForService(service, ros::Duration(timeout))) {
+    stopIfCtrlC();  // Ctrl-C ends the wait at once: not a timeout.
+    if (!ros::master::check()) {
+      throw std::runtime_error("service " + service + " is not available after " + mrs_vpr::numberText(timeout) +
+                               " s: no ROS master answers at ROS_MASTER_URI=" + ros::master::getURI() +
+                               " (is roscore running?)");
+    }
     throw std::runtime_error("service " + service + " is not available after " + mrs_vpr::numberText(timeout) +
                              " s (is the mrs_vpr node running? ROS_MASTER_URI=" + ros::master::getURI() + ")");
   }
@@ -257,6 +281,7 @@ int run(int argc, char** argv) {
   ros::NodeHandle nh;
   ros::ServiceClient client = nh.serviceClient<mrs_vpr::QuerySequence>(service, /*persistent=*/true);
   if (!client.call(query)) {
+    stopIfCtrlC();
     throw std::runtime_error("calling " + service + " failed (the node may have died or the types differ)");
   }
   const double round_trip_ms =

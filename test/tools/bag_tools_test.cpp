@@ -592,6 +592,23 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   EXPECT_NE(help.out.find("--descriptor arg (=the node's)"), std::string::npos) << help.out;
 }
 
+TEST_F(BagToolsTest, QueryBagWithoutAMasterSaysSo) {
+  // It asked whether the mrs_vpr node was running, when no roscore was.
+  const CommandResult result = run("ROS_MASTER_URI=http://localhost:9 " + std::string(QUERY_BAG_PATH) +
+                                   " --recent-frames 10 --timeout 0.5");
+  EXPECT_EQ(result.status, 1);
+  EXPECT_NE(result.err.find("query_bag: error: service /mrs_vpr/query is not available after 0.5 s: no ROS master "
+                            "answers at ROS_MASTER_URI=http://localhost:9 (is roscore running?)"),
+            std::string::npos)
+      << result.err;
+  // Ctrl-C while it waits ends the wait (roscpp's handler shuts the node down): an interruption, not a
+  // timeout of 30 s after 1.
+  const CommandResult stopped = run("{ ROS_MASTER_URI=http://localhost:9 " + std::string(QUERY_BAG_PATH) +
+                                    " --recent-frames 10 --timeout 30 & pid=$!; sleep 1; kill -INT $pid; wait $pid; }");
+  EXPECT_EQ(stopped.status, 128 + SIGINT) << stopped.err;
+  EXPECT_NE(stopped.err.find("query_bag: interrupted by SIGINT"), std::string::npos) << stopped.err;
+}
+
 TEST_F(BagToolsTest, QueryBagRefusesATimeoutThatWouldWaitForEver) {
   // No master is needed: the options are checked first. -1 used to wait for the service for ever.
   for (const char* timeout : {"-1", "0", "1e9"}) {
