@@ -10,6 +10,7 @@
 #include <sensor_msgs/image_encodings.h>
 
 #include "mrs_vpr/node/ros_stamp.hpp"
+#include "mrs_vpr/number_text.hpp"
 #include "../plugin_loader/plugin_loader.hpp"
 #include "bag_reader_table.hpp"
 #include "image_message_copy.hpp"
@@ -58,6 +59,14 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
                              " do not exist");
   }
   return images;
+}
+
+void requireFrameRate(double rate) {
+  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
+  if (rate > kFastestFrameRate) {
+    throw std::invalid_argument("--rate must be at most 1e9 Hz, one frame a nanosecond (a stamp's resolution), got " +
+                                numberText(rate));
+  }
 }
 
 ros::Time frameStamp(double start_seconds, long long index, double rate) {

@@ -56,7 +56,7 @@ int run(int argc, char** argv) {
       ("bag", po::value(&bag_path)->required(), "bag to write")
       ("force", po::bool_switch(&force), "replace an existing bag")
       ("topic", po::value(&topic)->required(), "topic of the images, e.g. /camera/image_raw")
-      ("rate", po::value(&rate)->required(), "frames per second [Hz], > 0")
+      ("rate", po::value(&rate)->required(), "frames per second [Hz], > 0 and at most 1e9")
       ("encoding", po::value(&encoding)->default_value(encoding), "bgr8 | mono8")
       ("start-time", po::value(&start_time), "stamp of the first frame [s since the Unix epoch] (default: now)")
       ("frame-id", po::value(&frame_id)->default_value(frame_id), "header.frame_id of the images");
@@ -64,7 +64,7 @@ int run(int argc, char** argv) {
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag"});
-  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
+  mrs_vpr::bag::requireFrameRate(rate);
   if (topic.empty()) throw std::invalid_argument("--topic must not be empty");
   std::string why;
   if (!ros::names::validate(topic, why)) {

@@ -113,7 +113,7 @@ int run(int argc, char** argv) {
   po::variables_map variables;
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return 0;
   mrs_vpr::tools::refuseEmptyPaths(variables, {"output"});
-  if (!(rate > 0.0) || !std::isfinite(rate)) throw std::invalid_argument("--rate must be > 0 Hz");
+  mrs_vpr::bag::requireFrameRate(rate);
   if (!(start_time > 0.0)) throw std::invalid_argument("--start-time must be > 0 s");
   if (seed < 0) throw std::invalid_argument("--seed must be >= 0, got " + std::to_string(seed));
   route_params.seed = static_cast<std::uint64_t>(seed);

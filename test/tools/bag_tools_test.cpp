@@ -189,6 +189,14 @@ TEST_F(BagToolsTest, ImagesToBagRejectsBadArguments) {
                                     path("x.bag") + " --topic /t --rate 0");
   EXPECT_EQ(no_rate.status, 1);
   EXPECT_NE(no_rate.err.find("--rate must be > 0"), std::string::npos) << no_rate.err;
+  // Faster than a frame a nanosecond, every frame had one stamp.
+  const CommandResult too_fast = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("query") + " --bag " +
+                                     path("x.bag") + " --topic /t --rate 1e12");
+  EXPECT_EQ(too_fast.status, 1);
+  EXPECT_NE(too_fast.err.find("--rate must be at most 1e9 Hz, one frame a nanosecond (a stamp's resolution), got "
+                              "1000000000000"),
+            std::string::npos)
+      << too_fast.err;
   const CommandResult no_folder = run(std::string(IMAGES_TO_BAG_PATH) + " --images " + path("nowhere") + " --bag " +
                                       path("x.bag") + " --topic /t --rate 5");
   EXPECT_EQ(no_folder.status, 1);
@@ -634,6 +642,8 @@ TEST_F(BagToolsTest, MakeDemoRouteChecksItsOptionsFirstAndWritesWholeBagsOnly) {
   const std::string tool = std::string(MAKE_DEMO_ROUTE_PATH) + " --output " + path("demo");
   for (const auto& [options, problem] :
        std::vector<std::pair<std::string, std::string>>{{" --rate inf", "--rate must be > 0 Hz"},
+                                                        // Every frame would have one stamp.
+                                                        {" --rate 1e12", "--rate must be at most 1e9 Hz, one frame"},
                                                         {" --seed -1", "--seed must be >= 0, got -1"},
                                                         {" --topic 'bad topic'", "is not a valid ROS topic name"},
                                                         // The query traversal, an hour later, would not fit.

@@ -43,6 +43,12 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
 /// True when `path` names a bag file (by its extension), so that a tool can accept folders and bags.
 bool isBagPath(const std::string& path);
 
+/// The fastest frame rate that frameStamp() stamps: one frame a nanosecond, a stamp's resolution;
+/// faster frames would share stamps.
+constexpr double kFastestFrameRate = 1e9;
+/// Throws std::invalid_argument, in the words of a tool's `--rate`, unless 0 < `rate` <= kFastestFrameRate.
+void requireFrameRate(double rate);
+
 /**
  * The stamp of frame `index` of a recording at `rate` Hz from `start_seconds` (Unix time): start +
  * index / rate, to the nanosecond from the start (never accumulated, so it never drifts). Throws
