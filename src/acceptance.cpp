@@ -64,8 +64,8 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
   if (match.reference_index < 0) return "no match found";
   if (match.accepted) return "accepted";
   if (match.rivals < kMinRivalEnds) {
-    return "not accepted: the map holds " + std::to_string(match.rivals) +
-           " ends outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
+    return "not accepted: the map holds " + std::to_string(match.rivals) + (match.rivals == 1 ? " end" : " ends") +
+           " outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
            " to tell a place from chance";
   }
   if (match.repeated_view) {

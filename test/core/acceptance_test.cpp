@@ -168,6 +168,9 @@ TEST(AcceptanceVerdict, SaysWhyAnAnswerIsNotAccepted) {
   match.reference_index = 7;
   match.rivals = kMinRivalEnds - 1;
   EXPECT_NE(acceptanceVerdict(match, params).find("ends outside the answer's window"), std::string::npos);
+  match.rivals = 1;
+  EXPECT_NE(acceptanceVerdict(match, params).find("the map holds 1 end outside the answer's window"),
+            std::string::npos);
   match.rivals = kMinRivalEnds;
   match.rival_places = kPlacesForPlainThreshold;
   match.confidence = 2.0F;
