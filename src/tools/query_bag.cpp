@@ -33,7 +33,7 @@ using json = nlohmann::ordered_json;  // Keeps fields in the documented order.
 namespace {
 
 constexpr const char* kUsage =
-    "Usage: query_bag --bag B.bag --topic T --start I --count N [--min-travel M [--odom-frame F]\n"
+    "Usage: query_bag --bag B.bag --topic T [--start I] --count N [--min-travel M [--odom-frame F]\n"
     "                 [--base-frame B]] [--min-appearance-change C] [--method mrs|seqslam]\n"
     "                 [--service /mrs_vpr/query] [--timeout SEC]\n"
     "       query_bag --recent-frames K [--method mrs|seqslam] [--service /mrs_vpr/query]\n"
@@ -45,6 +45,7 @@ constexpr const char* kUsage =
     "Without it, the N frames are keyframes by appearance change, as the node keeps a camera's frames:\n"
     "by the node's own ~min_appearance_change and front end (read from its parameters, the namespace of\n"
     "--service), unless --min-appearance-change or front-end options are given (0: N consecutive frames).\n"
+    "The node keyframes the images it gets as its camera's: query_length counts those it searched.\n"
     "Exit code 0 when the node answered with success, 1 otherwise.\n";
 
 /// What --help shows as the default of an option whose default is the node's own setting.
