@@ -236,13 +236,13 @@ int run(int argc, char** argv) {
   const SequenceParams& sequence = options.params.sequence;
 
   if (options.threads > 0) cv::setNumThreads(options.threads);
-  // A ground truth of other traversals is refused before any image is described: the frames are
-  // counted first. A map database's frames are known once it is read, before the query is described.
+  // The query's frames are counted before the reference is described: a mistyped query folder or bag
+  // is named at once, and a ground truth of other traversals refused. A map database's frames are
+  // known once it is read, before the query is described.
+  const int query_frame_count = countFrames(options.query, options.topic);
   std::optional<GroundTruth> truth;
-  int query_frame_count = 0;
   if (!options.ground_truth.empty()) {
     truth = readGroundTruthCsv(options.ground_truth);
-    query_frame_count = countFrames(options.query, options.topic);
     const int reference_frames = isMapDatabase(options.reference) ? std::numeric_limits<int>::max()
                                                                   : countFrames(options.reference, options.topic);
     checkGroundTruth(*truth, query_frame_count, reference_frames);

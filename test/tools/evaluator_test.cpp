@@ -88,6 +88,13 @@ TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError("--reference " + path("nowhere") + " --query " + path("query") +
                   " --method seqslam --protocol per-frame --sequence-length 10",
               "image folder '" + path("nowhere") + "' does not exist");
+  // A mistyped query is named before the reference is described.
+  const CommandResult no_query = run(eval("--reference " + path("reference") + " --query " + path("nowhere") +
+                                          " --protocol per-frame"));
+  EXPECT_EQ(no_query.status, 1);
+  EXPECT_NE(no_query.err.find("image folder '" + path("nowhere") + "' does not exist"), std::string::npos)
+      << no_query.err;
+  EXPECT_EQ(no_query.err.find("reference:"), std::string::npos) << "work was done first: " << no_query.err;
   expectError(folders + " --method fastest --protocol per-frame --sequence-length 10", "unknown method 'fastest'");
   expectError(folders + " --method mrs --protocol sideways --sequence-length 10", "unknown protocol 'sideways'");
   expectError(folders + " --method seqslam --protocol global --sequence-length 151",
