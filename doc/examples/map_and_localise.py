@@ -127,7 +127,7 @@ def main():
     try:
         recognizer = mrs_vpr.PlaceRecognizer(sequence_length=args.length, **parameters)
     except ValueError as error:
-        sys.exit("bad parameter: %s" % error)
+        parser.error("bad parameter: %s" % error)  # A bad argument, before any work: exit code 2.
 
     start = time.perf_counter()
     map_images = read_folder(args.map_folder)

@@ -72,8 +72,12 @@ def test_the_example_run_as_documented_prints_its_help_without_a_prompt_or_a_war
 def test_the_example_reports_a_bad_parameter(tmp_path):
     result = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path), "--parameter", "tau=0"],
                             capture_output=True, text=True)
-    assert result.returncode != 0
+    assert result.returncode == 2  # A bad argument, as the documentation says.
     assert "bad parameter: mrs/tau must be in 1..16, got 0" in result.stderr
+    unknown = subprocess.run([sys.executable, str(SCRIPT), str(tmp_path), str(tmp_path), "--parameter", "foo=1"],
+                             capture_output=True, text=True)
+    assert unknown.returncode == 2
+    assert "bad parameter: unknown parameter 'foo'" in unknown.stderr
 
 
 def test_the_example_refuses_a_sequence_length_other_than_its_length_option(tmp_path):
