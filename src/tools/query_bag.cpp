@@ -2,11 +2,11 @@
 // answer as one JSON object on stdout.
 
 #include <chrono>
-#include <csignal>
 #include <cstdint>
 #include <iostream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <boost/program_options.hpp>
@@ -46,7 +46,7 @@ constexpr const char* kUsage =
     "by the node's own ~min_appearance_change and front end (read from its parameters, the namespace of\n"
     "--service), unless --min-appearance-change or front-end options are given (0: N consecutive frames).\n"
     "The node keyframes the images it gets as its camera's: query_length counts those it searched.\n"
-    "Exit code 0 when the node answered with success, 1 otherwise.\n";
+    "Exit code 0 when the node answered with success, 1 otherwise, 130 on Ctrl-C.\n";
 
 /// What --help shows as the default of an option whose default is the node's own setting.
 constexpr const char* kTheNodes = "the node's";
@@ -110,6 +110,7 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
     images = mrs_vpr::bag::readChosen(
         bag_path, topic, start, count,
         [&](const sensor_msgs::ImageConstPtr& image) {
+          mrs_vpr::tools::stopIfInterrupted();
           ++offered;
           cv::Mat descriptor;
           try {
@@ -156,25 +157,25 @@ json answerJson(const mrs_vpr::QuerySequence::Response& response, double round_t
           {"request", request}};
 }
 
-volatile std::sig_atomic_t g_interrupted = 0;
-
-/// roscpp's own handler, which ends a wait for the service (requestShutdown), noting the interruption
-/// so that it is reported as one, not as the service missing.
-void onSigint(int) {
-  g_interrupted = 1;
-  ros::requestShutdown();
-}
-
-/// Throws Interrupted after a Ctrl-C.
-void stopIfCtrlC() {
-  if (g_interrupted != 0) throw mrs_vpr::tools::Interrupted(SIGINT);
+/// Waits up to `timeout` seconds for `service` to be advertised; false when it is not. A Ctrl-C or
+/// SIGTERM ends the wait (Interrupted), as roscpp's own wait would not before the node has started.
+bool waitForQueryService(const std::string& service, double timeout) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
+  for (;;) {
+    mrs_vpr::tools::stopIfInterrupted();
+    if (ros::service::exists(service, false)) return true;
+    if (std::chrono::steady_clock::now() >= deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
+  // Ctrl-C is noted and acted on between steps (a second one ends the tool at once): roscpp's handler
+  // would only end its own waits, and only once the node has started.
   ros::init(argc, argv, "query_bag",
             ros::init_options::AnonymousName | ros::init_options::NoRosout | ros::init_options::NoSigintHandler);
-  std::signal(SIGINT, onSigint);
+  mrs_vpr::tools::catchInterruptions();
   // roscpp prints its informational messages (e.g. while waiting for the service) on stdout, which
   // must hold nothing but the JSON answer; warnings and errors go to stderr.
   if (ros::console::set_logger_level(ROSCONSOLE_ROOT_LOGGER_NAME, ros::console::levels::Warn)) {
@@ -260,14 +261,14 @@ int run(int argc, char** argv) {
     request["count"] = from_bag.count;
     keyframeAsTheNode(service, variables, from_bag, request);
     const std::vector<sensor_msgs::ImageConstPtr> images = readTestSequence(from_bag, request);
+    mrs_vpr::tools::stopIfInterrupted();
     for (const sensor_msgs::ImageConstPtr& image : images) query.request.images.push_back(*image);
     const ros::Time& last = query.request.images.back().header.stamp;
     request["last_stamp"] = last.toSec();
     request["last_stamp_ns"] = exactNanoseconds(last);
   }
 
-  if (!ros::service::waitForService(service, ros::Duration(timeout))) {
-    stopIfCtrlC();  // Ctrl-C ends the wait at once: not a timeout.
+  if (!waitForQueryService(service, timeout)) {
     if (!ros::master::check()) {
       throw std::runtime_error("service " + service + " is not available after " + mrs_vpr::numberText(timeout) +
                                " s: no ROS master answers at ROS_MASTER_URI=" + ros::master::getURI() +
@@ -281,8 +282,9 @@ int run(int argc, char** argv) {
   // when it sees the server hang up before reading that answer (ros/ros_comm#1976).
   ros::NodeHandle nh;
   ros::ServiceClient client = nh.serviceClient<mrs_vpr::QuerySequence>(service, /*persistent=*/true);
+  mrs_vpr::tools::stopIfInterrupted();
   if (!client.call(query)) {
-    stopIfCtrlC();
+    mrs_vpr::tools::stopIfInterrupted();
     throw std::runtime_error("calling " + service + " failed (the node may have died or the types differ)");
   }
   const double round_trip_ms =
