@@ -34,7 +34,13 @@ std::string extensionOf(const fs::path& path) {
 /// rather than left out, which would shift the frames after it.
 const char* const kImageExtensions[] = {".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm",
                                         ".ppm", ".pnm", ".pbm", ".webp", ".jp2", ".gif"};
-const char* const kImageExtensionsText = "png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif";
+
+/// "png, jpg, ...", for a message.
+std::string imageExtensionsText() {
+  std::string text;
+  for (const char* extension : kImageExtensions) text += (text.empty() ? "" : ", ") + std::string(extension + 1);
+  return text;
+}
 
 bool isImageFile(const fs::path& path) {
   const std::string extension = extensionOf(path);
@@ -80,9 +86,13 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
   if (!fs::is_directory(folder, error)) throw std::runtime_error("'" + folder + "' is not a folder");
   std::vector<std::string> files;
   std::vector<std::string> others;
+  std::vector<std::string> folders;
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     const bool named_as_image = isImageFile(entry.path());
-    if (!named_as_image && entry.is_directory(error)) continue;
+    if (!named_as_image && entry.is_directory(error)) {
+      folders.push_back(entry.path().filename().string());
+      continue;
+    }
     if (!named_as_image) {
       others.push_back(entry.path().filename().string());
       continue;
@@ -103,9 +113,18 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
   }
   std::sort(others.begin(), others.end());
   if (files.empty()) {
-    throw std::runtime_error("image folder '" + folder + "' holds no image files" +
-                             (others.empty() ? "" : " (" + namesOf(others) + " are not named as images: " +
-                                                        kImageExtensionsText + ")"));
+    // Named, so that a folder of images of another extension, or of folders of images, is told apart.
+    std::string message = "image folder '" + folder + "' holds no image files";
+    if (!others.empty()) {
+      message += " (" + namesOf(others) +
+                 (others.size() == 1 ? " is not named as an image: " : " are not named as images: ") +
+                 imageExtensionsText() + ")";
+    }
+    if (!folders.empty()) {
+      std::sort(folders.begin(), folders.end());
+      message += std::string(folders.size() == 1 ? ", only the folder " : ", only the folders ") + namesOf(folders);
+    }
+    throw std::runtime_error(message);
   }
   std::sort(files.begin(), files.end());
   if (left_out) *left_out = std::move(others);

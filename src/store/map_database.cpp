@@ -109,7 +109,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const std::string nul = nulByteProblem(path);
   if (!nul.empty()) throw MapDatabaseError(nul);
   if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
-  const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
+  const std::string path_problem = mapPathProblem(path, kDatabaseSuffix, LinkUse::kFollowed);
   if (!path_problem.empty()) fail(path_problem);
   int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   std::string name = sqliteFileName(path);
@@ -610,7 +610,7 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
                  "read it into the new one (remove it or choose another name)");
     }
   }
-  const std::string problem = mapPathProblem(path, kSaveSuffix);
+  const std::string problem = mapPathProblem(path, kSaveSuffix, LinkUse::kReplaced);
   if (!problem.empty()) refuseSave(path, problem);
 }
 

@@ -17,7 +17,7 @@ std::string nulByteProblem(const std::string& path) {
          "), which would end it there: no file name holds one";
 }
 
-std::string mapPathProblem(const std::string& path, std::size_t suffix) {
+std::string mapPathProblem(const std::string& path, std::size_t suffix, LinkUse links) {
   namespace fs = std::filesystem;
   std::error_code error;
   if (path.empty()) return "no path given";
@@ -28,7 +28,14 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
     return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
            std::to_string(PATH_MAX - 1 - suffix) + ")";
   }
-  const fs::path absolute = fs::absolute(path, error);
+  // SQLite creates the file a link names, not the link: that file's folder is the one that counts.
+  fs::path target = path;
+  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
+  for (int hops = 0; links == LinkUse::kFollowed && hops < kMostLinks && fs::is_symlink(target, error); ++hops) {
+    const fs::path next = fs::read_symlink(target, error);
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  const fs::path absolute = fs::absolute(target, error);
   const fs::path folder = absolute.parent_path();
   if (!fs::is_directory(folder, error)) {
     // A shell expands ~; a service request's path reaches the node as it was typed.

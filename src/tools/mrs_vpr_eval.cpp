@@ -145,10 +145,15 @@ std::optional<Keyframes> storedFrameNumbers(const std::vector<std::int64_t>& num
 Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const PlaceRecognizer& recognizer,
                           Keyframes& keyframes, const std::function<void(const cv::Mat&, Stamp)>& add_to_map) {
   std::vector<std::int64_t> stored_numbers;
-  map.forEachFrame([&](const StoredFrame& frame) {
-    const std::size_t kept = keyframes.frames.size();
-    add_to_map(frame.descriptor.clone(), frame.stamp);
-    if (keyframes.frames.size() > kept) stored_numbers.push_back(frame.sequence);
+  std::optional<MapTraversal> recorded;
+  // The frames and their record as the file holds them at one moment, whatever a node writes meanwhile.
+  map.readAtOneMoment([&] {
+    recorded = map.readTraversal();
+    map.forEachFrame([&](const StoredFrame& frame) {
+      const std::size_t kept = keyframes.frames.size();
+      add_to_map(frame.descriptor.clone(), frame.stamp);
+      if (keyframes.frames.size() > kept) stored_numbers.push_back(frame.sequence);
+    });
   });
   if (recognizer.size() == 0) throw std::invalid_argument("the map database " + options.reference + " holds no frame");
   std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
@@ -156,9 +161,8 @@ Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const Pl
     keyframes = *numbered;
     // build_map records how many frames the traversal had: those after the last keyframe, which it
     // stands for, are frames of the reference too.
-    const std::optional<MapTraversal>& traversal = map.traversal();
-    if (traversal && traversal->frames > keyframes.total && traversal->frames <= std::numeric_limits<int>::max()) {
-      keyframes.total = static_cast<int>(traversal->frames);
+    if (recorded && recorded->frames > keyframes.total && recorded->frames <= std::numeric_limits<int>::max()) {
+      keyframes.total = static_cast<int>(recorded->frames);
     }
     std::cerr << ", frames " << numbered->frames.front() << " to " << numbered->frames.back() << " of its traversal of "
               << keyframes.total << " frames by the numbers it stores\n";

@@ -392,6 +392,14 @@ TEST(ImageFolder, AFolderWithoutImagesNamesTheFilesItHolds) {
   EXPECT_EQ(message, "image folder '" + folder.path() + "' holds no image files (frame0.jfif, frame1.jfif, " +
                          "frame2.jfif, frame3.jfif, frame4.jfif and 2 more are not named as images: png, jpg, jpeg, " +
                          "bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif)");
+  // A folder of the traversals' folders (corridor/ for corridor/query), and a file alone.
+  TempFolder parent;
+  fs::create_directory(parent.path("query"));
+  fs::create_directory(parent.path("ref"));
+  parent.write("ground_truth.csv", "query_index,matching_ref_indices\n");
+  EXPECT_EQ(errorOf([&] { listImageFiles(parent.path()); }),
+            "image folder '" + parent.path() + "' holds no image files (ground_truth.csv is not named as an image: " +
+                "png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif), only the folders query, ref");
 }
 
 // Skipped, a folder named as an image would shift every later frame's number.
