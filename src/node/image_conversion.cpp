@@ -25,13 +25,17 @@ struct EncodingInfo {
   unsigned pixels_per_group = 1;
 };
 
-const std::array<EncodingInfo, 16> kEncodings{{
+const std::array<EncodingInfo, 20> kEncodings{{
     {"mono8", 1, ChannelOrder::kBgr, CV_8UC1},
     {"mono16", 2, ChannelOrder::kBgr, CV_16UC1},
     {"bgr8", 3, ChannelOrder::kBgr, CV_8UC3},
     {"rgb8", 3, ChannelOrder::kRgb, CV_8UC3},
     {"bgra8", 4, ChannelOrder::kBgr, CV_8UC4},
     {"rgba8", 4, ChannelOrder::kRgb, CV_8UC4},
+    {"bgr16", 6, ChannelOrder::kBgr, CV_16UC3},
+    {"rgb16", 6, ChannelOrder::kRgb, CV_16UC3},
+    {"bgra16", 8, ChannelOrder::kBgr, CV_16UC4},
+    {"rgba16", 8, ChannelOrder::kRgb, CV_16UC4},
     // What many cameras' drivers publish as image_raw: demosaiced straight to grey, which is all that
     // the front ends read, so that no image_proc node is needed in front of this one.
     {"bayer_rggb8", 1, ChannelOrder::kBgr, CV_8UC1, cv::COLOR_BayerRGGB2GRAY},

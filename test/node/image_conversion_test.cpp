@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <string>
+#include <utility>
+#include <vector>
+
 #include <boost/make_shared.hpp>
 #include <boost/weak_ptr.hpp>
 #include <cv_bridge/cv_bridge.h>
@@ -115,6 +119,31 @@ TEST(ImageConversion, RgbOrderGivesTheSameDescriptorAsBgr) {
   mono.convertTo(mono16, CV_16UC1, 256.0);
   EXPECT_EQ(cv::norm(describeImage(extractor, makeImage(mono16, "mono16")), extractor.compute(mono16), cv::NORM_INF),
             0.0);
+}
+
+TEST(ImageConversion, SixteenBitColourOfEitherOrderAndByteOrderIsDescribedAsItsDeepGrey) {
+  // A machine-vision camera's 16-bit colour: described from its own 16-bit grey, as the core does.
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  cv::Mat bgr16;
+  testing::redAcrossBlueDown().convertTo(bgr16, CV_16UC3, 257.0);
+  cv::Mat grey16;
+  cv::cvtColor(bgr16, grey16, cv::COLOR_BGR2GRAY);
+  const cv::Mat expected = extractor.compute(grey16);
+  cv::Mat rgb16;
+  cv::Mat bgra16;
+  cv::Mat rgba16;
+  cv::cvtColor(bgr16, rgb16, cv::COLOR_BGR2RGB);
+  cv::cvtColor(bgr16, bgra16, cv::COLOR_BGR2BGRA);
+  cv::cvtColor(bgr16, rgba16, cv::COLOR_BGR2RGBA);
+  for (const auto& [image, encoding] : std::vector<std::pair<cv::Mat, std::string>>{
+           {bgr16, "bgr16"}, {rgb16, "rgb16"}, {bgra16, "bgra16"}, {rgba16, "rgba16"}}) {
+    sensor_msgs::Image message = makeImage(image, encoding);
+    EXPECT_EQ(cv::norm(describeImage(extractor, message), expected, cv::NORM_INF), 0.0) << encoding;
+    // The same values sent big-endian.
+    for (std::size_t i = 0; i + 1 < message.data.size(); i += 2) std::swap(message.data[i], message.data[i + 1]);
+    message.is_bigendian = 1;
+    EXPECT_EQ(cv::norm(describeImage(extractor, message), expected, cv::NORM_INF), 0.0) << encoding << ", big-endian";
+  }
 }
 
 TEST(ImageConversion, BayerMosaicsBecomeTheGreyOfTheirColours) {
