@@ -97,21 +97,27 @@ TEST(ImageConversion, TheFrameKeepsTheTrackedMessageAlive) {
   EXPECT_TRUE(watch.expired());
 }
 
+/// `bgr` in the four channel orders a camera sends, with their encodings ("bgr" + `depth`: bgr8, ...).
+std::vector<std::pair<cv::Mat, std::string>> channelOrders(const cv::Mat& bgr, const std::string& depth) {
+  std::vector<std::pair<cv::Mat, std::string>> orders{{bgr, "bgr" + depth}};
+  for (const auto& [code, name] : std::vector<std::pair<int, std::string>>{
+           {cv::COLOR_BGR2RGB, "rgb"}, {cv::COLOR_BGR2BGRA, "bgra"}, {cv::COLOR_BGR2RGBA, "rgba"}}) {
+    cv::Mat converted;
+    cv::cvtColor(bgr, converted, code);
+    orders.emplace_back(converted, name + depth);
+  }
+  return orders;
+}
+
 TEST(ImageConversion, RgbOrderGivesTheSameDescriptorAsBgr) {
   const DescriptorExtractor extractor{DescriptorParams{}};
   const cv::Mat bgr = texturedBgr();
-  cv::Mat rgb;
-  cv::Mat bgra;
-  cv::Mat rgba;
-  cv::Mat mono;
-  cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
-  cv::cvtColor(bgr, rgba, cv::COLOR_BGR2RGBA);
   const cv::Mat reference = describeImage(extractor, makeImage(bgr, "bgr8"));
   ASSERT_EQ(reference.cols, extractor.size());
-  EXPECT_EQ(cv::norm(reference, describeImage(extractor, makeImage(rgb, "rgb8")), cv::NORM_INF), 0.0);
-  EXPECT_EQ(cv::norm(reference, describeImage(extractor, makeImage(bgra, "bgra8")), cv::NORM_INF), 0.0);
-  EXPECT_EQ(cv::norm(reference, describeImage(extractor, makeImage(rgba, "rgba8")), cv::NORM_INF), 0.0);
+  for (const auto& [image, encoding] : channelOrders(bgr, "8")) {
+    EXPECT_EQ(cv::norm(reference, describeImage(extractor, makeImage(image, encoding)), cv::NORM_INF), 0.0) << encoding;
+  }
+  cv::Mat mono;
   // Grey images are described as the extractor describes them itself: read with the right type and step.
   cv::cvtColor(bgr, mono, cv::COLOR_BGR2GRAY);
   EXPECT_EQ(cv::norm(describeImage(extractor, makeImage(mono, "mono8")), extractor.compute(mono), cv::NORM_INF), 0.0);
@@ -129,14 +135,7 @@ TEST(ImageConversion, SixteenBitColourOfEitherOrderAndByteOrderIsDescribedAsItsD
   cv::Mat grey16;
   cv::cvtColor(bgr16, grey16, cv::COLOR_BGR2GRAY);
   const cv::Mat expected = extractor.compute(grey16);
-  cv::Mat rgb16;
-  cv::Mat bgra16;
-  cv::Mat rgba16;
-  cv::cvtColor(bgr16, rgb16, cv::COLOR_BGR2RGB);
-  cv::cvtColor(bgr16, bgra16, cv::COLOR_BGR2BGRA);
-  cv::cvtColor(bgr16, rgba16, cv::COLOR_BGR2RGBA);
-  for (const auto& [image, encoding] : std::vector<std::pair<cv::Mat, std::string>>{
-           {bgr16, "bgr16"}, {rgb16, "rgb16"}, {bgra16, "bgra16"}, {rgba16, "rgba16"}}) {
+  for (const auto& [image, encoding] : channelOrders(bgr16, "16")) {
     sensor_msgs::Image message = makeImage(image, encoding);
     EXPECT_EQ(cv::norm(describeImage(extractor, message), expected, cv::NORM_INF), 0.0) << encoding;
     // The same values sent big-endian.
