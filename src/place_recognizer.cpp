@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/number_text.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
@@ -372,6 +373,7 @@ PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, 
     answer.match = mrs != nullptr ? mrs->match(reference, query, trace) : matcher.match(reference, query);
   }
   if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
+  answer.verdict = acceptanceVerdict(answer.match, params_.sequence);
   if (explanation != nullptr) {
     *explanation = explainMatch(reference, query, answer.match, params_.sequence, params_.descriptor);
     explanation->levels = std::move(levels);

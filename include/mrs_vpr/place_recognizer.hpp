@@ -38,6 +38,9 @@ struct PlaceAnswer {
   int localised_frame = -1;    ///< The localised frame's index in the map (matchRecent; else -1).
   int query_length = 0;        ///< Frames of the test sequence.
   std::string method;          ///< The method that answered.
+  /// Why the answer was accepted or not, in the words of the node's ~query message ("accepted", "not
+  /// accepted: ..."; acceptanceVerdict).
+  std::string verdict;
 };
 
 /// What became of a frame handed to addFrame.

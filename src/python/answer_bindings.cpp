@@ -72,6 +72,8 @@ void bindAnswers(py::module_& m) {
                              "Stamp of the localised frame [s] (match_recent; else 0).")
       .def_readonly("query_length", &PlaceAnswer::query_length, "Frames of the test sequence.")
       .def_readonly("method", &PlaceAnswer::method, "The method that answered.")
+      .def_readonly("verdict", &PlaceAnswer::verdict,
+                    "Why it was accepted or not, as the node's ~query message says ('accepted', 'not accepted: ...').")
       .def("__repr__", [](const PlaceAnswer& a) {
         return "Answer(reference_index=" + std::to_string(a.match.reference_index) +
                ", confidence=" + floatText(a.match.confidence) + ", accepted=" + (a.match.accepted ? "True" : "False") +

@@ -26,6 +26,15 @@ def test_a_stretch_of_the_route_is_found_within_3_frames_and_accepted(route, map
     assert answer.query_length == COUNT
     assert answer.method == (method or "mrs")
     assert answer.match.reference_index == answer.reference_index
+    assert answer.verdict == "accepted"
+
+
+def test_an_answer_not_accepted_says_why_as_the_node_does(route):
+    strict = mrs_vpr.PlaceRecognizer(**dict(ROUTE_PARAMETERS, accept_threshold=1000))
+    strict.add_frames(route["reference"])
+    answer = strict.match(route["query"][FIRST:FIRST + COUNT])
+    assert not answer.accepted
+    assert answer.verdict == "not accepted: confidence below sequence/accept_threshold"
 
 
 def test_frames_added_one_by_one_give_the_same_map_as_a_batch(route, mapped):
