@@ -21,6 +21,13 @@ std::string absolutePath(const std::string& path) {
   return absolute.empty() ? path : absolute.lexically_normal().string();
 }
 
+/// For a message about `path`: where a relative path led, which under roslaunch is ~/.ros, not the
+/// folder the user typed it in; empty for an absolute path, an empty one or one of ~ (said otherwise).
+std::string relativePathNote(const std::string& path) {
+  if (path.empty() || path.front() == '/' || path.front() == '~') return "";
+  return " ('" + path + "' is relative to the node's working folder: it names '" + absolutePath(path) + "')";
+}
+
 }  // namespace
 
 void PlaceRecognitionNode::openMap() {
@@ -33,7 +40,7 @@ void PlaceRecognitionNode::openMap() {
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
   startSession(recognizer_.size());
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
-           params_.database.c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
+           absolutePath(params_.database).c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
   const std::string mismatch = keyframingMismatchOfMap();
   if (!mismatch.empty()) ROS_WARN("mrs_vpr: map database '%s': %s", params_.database.c_str(), mismatch.c_str());
 }
@@ -99,7 +106,7 @@ bool PlaceRecognitionNode::saveMapCallback(SaveMap::Request& request, SaveMap::R
     ROS_INFO("mrs_vpr: %s", response.message.c_str());
   } catch (const std::exception& error) {
     response.success = false;
-    response.message = error.what();
+    response.message = error.what() + relativePathNote(request.path);
     ROS_WARN("mrs_vpr: save_map failed: %s", response.message.c_str());
   }
   return true;
@@ -125,7 +132,7 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
   } catch (const std::exception& error) {
     response.success = false;
     response.frames = static_cast<std::uint64_t>(recognizer_.size());
-    response.message = std::string(error.what()) + "; the current map is kept";
+    response.message = error.what() + relativePathNote(request.path) + "; the current map is kept";
     ROS_WARN("mrs_vpr: load_map failed: %s", response.message.c_str());
   }
   publishMapInfoIfChanged();

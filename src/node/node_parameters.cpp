@@ -244,6 +244,9 @@ NodeParameters loadParameters(const ros::NodeHandle& private_nh) {
   for (const auto& entry : entries()) {
     std::visit([&](auto* field) { read(private_nh, *entry.info, *field); }, entry.field(params));
   }
+  // Read by image_transport, which takes any other type for "raw" without a word.
+  XmlRpc::XmlRpcValue transport;
+  lookup(private_nh, "image_transport", transport, XmlRpc::XmlRpcValue::TypeString);
   params.validate();
   return params;
 }

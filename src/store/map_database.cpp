@@ -109,7 +109,7 @@ void MapDatabase::open(MapAccess access, bool params_given) {
   const std::string nul = nulByteProblem(path);
   if (!nul.empty()) throw MapDatabaseError(nul);
   if (read_only && !std::filesystem::exists(path, ignored)) fail("there is no such file");
-  const std::string path_problem = mapPathProblem(path, kDatabaseSuffix, LinkUse::kFollowed);
+  const std::string path_problem = mapPathProblem(path, kDatabaseSuffix);
   if (!path_problem.empty()) fail(path_problem);
   int flags = read_only ? SQLITE_OPEN_READONLY : SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
   std::string name = sqliteFileName(path);
@@ -604,13 +604,15 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
   if (std::filesystem::exists(path, error)) {
     refuseSave(path, "the file exists (a map is never overwritten: remove it or choose another name)");
   }
+  // Beside the file written, which through a link is the file it names.
+  const std::string file = linkedFile(path);
   for (const char* suffix : kCompanionSuffixes) {
-    if (std::filesystem::exists(path + suffix, error)) {
-      refuseSave(path, "'" + path + suffix + "' is left beside it by an earlier map of that name, and SQLite would "
+    if (std::filesystem::exists(file + suffix, error)) {
+      refuseSave(path, "'" + file + suffix + "' is left beside it by an earlier map of that name, and SQLite would "
                  "read it into the new one (remove it or choose another name)");
     }
   }
-  const std::string problem = mapPathProblem(path, kSaveSuffix, LinkUse::kReplaced);
+  const std::string problem = mapPathProblem(path, kSaveSuffix);
   if (!problem.empty()) refuseSave(path, problem);
 }
 
@@ -618,7 +620,9 @@ void MapDatabase::backupTo(const std::string& path) const {
   namespace fs = std::filesystem;
   const auto refuse = [&](const std::string& problem) { refuseSave(path, problem); };
   checkSaveTarget(path);
-  const std::string part = path + ".part";
+  // Through a link, the file it names is written, and the link stays (as build_map writes a map).
+  const std::string file = linkedFile(path);
+  const std::string part = file + ".part";
   const auto removePart = [&] {
     std::error_code ignored;
     fs::remove(part, ignored);
@@ -656,7 +660,7 @@ void MapDatabase::backupTo(const std::string& path) const {
   sqlite3_close(copy);
   if (problem.empty()) {
     std::error_code error;
-    fs::rename(part, path, error);
+    fs::rename(part, file, error);
     if (error) problem = error.message();
   }
   if (!problem.empty()) {

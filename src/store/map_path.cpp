@@ -17,7 +17,20 @@ std::string nulByteProblem(const std::string& path) {
          "), which would end it there: no file name holds one";
 }
 
-std::string mapPathProblem(const std::string& path, std::size_t suffix, LinkUse links) {
+std::string linkedFile(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  fs::path target = path;
+  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
+  for (int hops = 0; hops < kMostLinks && fs::is_symlink(target, error); ++hops) {
+    const fs::path next = fs::read_symlink(target, error);
+    if (error) break;
+    target = next.is_absolute() ? next : target.parent_path() / next;
+  }
+  return target.string();
+}
+
+std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   namespace fs = std::filesystem;
   std::error_code error;
   if (path.empty()) return "no path given";
@@ -28,14 +41,8 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix, LinkUse 
     return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
            std::to_string(PATH_MAX - 1 - suffix) + ")";
   }
-  // SQLite creates the file a link names, not the link: that file's folder is the one that counts.
-  fs::path target = path;
-  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
-  for (int hops = 0; links == LinkUse::kFollowed && hops < kMostLinks && fs::is_symlink(target, error); ++hops) {
-    const fs::path next = fs::read_symlink(target, error);
-    target = next.is_absolute() ? next : target.parent_path() / next;
-  }
-  const fs::path absolute = fs::absolute(target, error);
+  // The file a link names is created, not the link: that file's folder is the one that counts.
+  const fs::path absolute = fs::absolute(linkedFile(path), error);
   const fs::path folder = absolute.parent_path();
   if (!fs::is_directory(folder, error)) {
     // A shell expands ~; a service request's path reaches the node as it was typed.

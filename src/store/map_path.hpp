@@ -16,18 +16,18 @@ constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
 /// What SQLite keeps beside a database, and reads into whatever file next bears its name.
 inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
 
-/// How a map file that does not exist yet is created at a path that is a link.
-enum class LinkUse {
-  kFollowed,  ///< SQLite opens it: the file the link names is created, in that file's folder.
-  kReplaced,  ///< A save renames its copy onto the path: the link itself is replaced, in its folder.
-};
+/// The file that `path` names through a chain of symbolic links (at most 40, as the kernel follows),
+/// also one not written yet; `path` itself when it is no link. A map named through a link is that
+/// file: SQLite opens it, and a save writes it (as build_map does), leaving the link in place.
+std::string linkedFile(const std::string& path);
 
 /**
  * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
  * it); empty when it can. A file that exists must be a regular file; otherwise its folder (for a link,
- * as `links` says) must exist and be writable by this process, and the file system must allow its name.
+ * that of linkedFile()) must exist and be writable by this process, and the file system must allow its
+ * name.
  */
-std::string mapPathProblem(const std::string& path, std::size_t suffix, LinkUse links);
+std::string mapPathProblem(const std::string& path, std::size_t suffix);
 
 /**
  * Empty, or a whole message when `path` holds a NUL byte: every system call would read the path only

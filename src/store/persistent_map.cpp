@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "map_path.hpp"
+
 namespace mrs_vpr {
 namespace {
 
@@ -282,7 +284,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::o
   std::error_code ignored;
   // The frames go to a scratch database beside the target, which the online backup then turns into
   // the one-file snapshot, written aside and renamed like every saved map.
-  const std::string scratch = path + ".build";
+  const std::string scratch = linkedFile(path) + ".build";  // Beside the file written, through a link too.
   const auto removeScratch = [&] {
     fs::remove(scratch, ignored);
     MapDatabase::removeCompanions(scratch);

@@ -330,6 +330,15 @@ TEST_F(MapDatabaseNodeTest, SaveLoadAndResetKeepTheDatabaseEqualToTheMap) {
   EXPECT_EQ(fs::path(written).filename(), save.request.path) << save.response.message;
   EXPECT_TRUE(fs::exists(written)) << written;
   fs::remove(written);
+  // A relative path that leads nowhere says where it led (~/.ros under roslaunch, not where it was typed).
+  mrs_vpr::LoadMap missing;
+  missing.request.path = "mrs_vpr_no_such_map_" + std::to_string(::getpid()) + ".db";
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("load_map"), missing));
+  EXPECT_FALSE(missing.response.success);
+  EXPECT_NE(missing.response.message.find("there is no such file ('" + missing.request.path +
+                                          "' is relative to the node's working folder: it names '/"),
+            std::string::npos)
+      << missing.response.message;
 
   // A file that is not a map: refused, naming it, and the map is kept.
   {

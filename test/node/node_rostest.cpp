@@ -356,6 +356,11 @@ TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
   EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_capacity _max_frames:=99999999999", output), 0);
   EXPECT_NE(output.find("~max_frames must be "), std::string::npos) << output;
   EXPECT_NE(output.find(", got 99999999999"), std::string::npos) << output;
+
+  // image_transport reads its own parameter, and took a number for "raw" without a word.
+  output.clear();
+  EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_transport _image_transport:=5", output), 0);
+  EXPECT_NE(output.find("~image_transport must be a string, got an integer"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -302,6 +302,22 @@ TEST_F(PersistentMapTest, SaveNeverOverwritesAFile) {
   EXPECT_EQ(fileContents(path("notes.db")), "my notes\n");
   const std::string no_folder = errorOf([&] { map.save(path("missing/map.db")); });
   EXPECT_NE(no_folder.find("no folder"), std::string::npos) << no_folder;
+  // Through a link, to a file or to none yet: the file it names, never overwritten; the link stays
+  // (a save replaced it by the map), with a database and in memory alike.
+  fs::create_symlink(path("notes.db"), path("to_notes.db"));
+  EXPECT_NE(errorOf([&] { map.save(path("to_notes.db")); }).find("exists"), std::string::npos);
+  EXPECT_EQ(fileContents(path("notes.db")), "my notes\n");
+  fs::create_directory(path("maps"));
+  PlaceRecognizer in_memory_recognizer;
+  PersistentMap in_memory(in_memory_recognizer);
+  addReference(in_memory, 0, 4);
+  for (PersistentMap* saved : {&map, &in_memory}) {
+    const std::string name = saved == &map ? "with_database" : "in_memory";
+    fs::create_symlink("maps/" + name + ".db", path(name + "_link.db"));
+    ASSERT_EQ(saved->save(path(name + "_link.db")), saved == &map ? 10 : 4) << name;
+    EXPECT_TRUE(fs::is_symlink(path(name + "_link.db"))) << name;
+    EXPECT_EQ(framesOf(path("maps/" + name + ".db")).size(), saved == &map ? 10U : 4U) << name;
+  }
 }
 
 TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {
