@@ -65,15 +65,28 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
   if (!admit(descriptor, *stamp, header, seconds)) return;
 
   ++map_version_;
-  std::lock_guard<std::mutex> lock(state_mutex_);
-  keyframe_policy_.keep(seconds);
-  standing_frames_.keyframe(*stamp);
-  if (position) travel_policy_.keep(*position);
-  camera_frame_id_ = header.frame_id;
-  const double elapsed_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  frame_time_total_ms_ += elapsed_ms;
-  ++frames_timed_;
-  frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+  std::optional<double> stepped_back_from;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    stepped_back_from = keyframe_policy_.steppedBackFrom(seconds);
+    keyframe_policy_.keep(seconds);
+    standing_frames_.keyframe(*stamp);
+    if (position) travel_policy_.keep(*position);
+    camera_frame_id_ = header.frame_id;
+    const double elapsed_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    frame_time_total_ms_ += elapsed_ms;
+    ++frames_timed_;
+    frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
+  }
+  if (stepped_back_from) {
+    // Not refused: the frames are real, and a clock may be reset. But a bag played twice maps its route
+    // twice, and the second pass then finds the first as loop closures.
+    ROS_WARN_THROTTLE(kWarningPeriod,
+                      "mrs_vpr: image stamps went back from %.3f to %.3f s (a bag played again, a clock reset): "
+                      "the new keyframes join the map after the others; call ~reset first to map anew",
+                      *stepped_back_from, seconds);
+  }
 }
 
 std::optional<Stamp> PlaceRecognitionNode::frameStamp(const std_msgs::Header& header) {

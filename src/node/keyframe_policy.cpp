@@ -37,6 +37,11 @@ void KeyframePolicy::skip(double stamp) {
   last_frame_stamp_ = stamp;
 }
 
+std::optional<double> KeyframePolicy::steppedBackFrom(double stamp) const {
+  if (has_keyframe_ && stamp < last_stamp_) return last_stamp_;
+  return std::nullopt;
+}
+
 void KeyframePolicy::keep(double stamp) {
   has_keyframe_ = true;
   last_stamp_ = stamp;

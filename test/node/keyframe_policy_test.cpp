@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <random>
+#include <optional>
 #include <vector>
 
 #include "mrs_vpr/node/keyframe_policy.hpp"
@@ -98,6 +99,11 @@ TEST(KeyframePolicy, TimeRunningBackwardsRestarts) {
   KeyframePolicy policy(1.0, 1);
   EXPECT_EQ(keptFrames(policy, 3, 0.1, 100.0), (std::vector<int>{0}));
   EXPECT_TRUE(policy.wants(5.0));  // a bag replayed from its start
+  // Which the node warns about: the last keyframe's stamp, for the message.
+  EXPECT_EQ(policy.steppedBackFrom(5.0), 100.0);
+  EXPECT_EQ(policy.steppedBackFrom(100.5), std::nullopt);
+  policy.reset();
+  EXPECT_EQ(policy.steppedBackFrom(5.0), std::nullopt);  // A new map has no earlier keyframe.
 }
 
 TEST(KeyframePolicy, ResetForgetsTheLastKeyframe) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 
 namespace mrs_vpr {
 namespace node {
@@ -28,6 +29,9 @@ class KeyframePolicy {
   void skip(double stamp);
   /// Records a keyframe.
   void keep(double stamp);
+  /// The last keyframe's stamp when `stamp` comes before it (a bag played again, a clock reset); else
+  /// nullopt.
+  std::optional<double> steppedBackFrom(double stamp) const;
   /// Forgets the last keyframe (after the map is reset).
   void reset();
 
