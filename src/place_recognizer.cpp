@@ -520,6 +520,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     const MapFrames map_frames{map_.view(0, frames_in_map), size - recent};
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);
     refuseRepeatedViews(result.match, map_.view(size - recent, size), repeated_views);
+    result.verdict = acceptanceVerdict(result.match, params_.sequence);  // It may have refused it.
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_frame = size - recent + result.localised_row;
     result.localised_stamp = map_.stamp(result.localised_frame);

@@ -122,7 +122,8 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
     }
     if (!folders.empty()) {
       std::sort(folders.begin(), folders.end());
-      message += std::string(folders.size() == 1 ? ", only the folder " : ", only the folders ") + namesOf(folders);
+      const std::string which = folders.size() == 1 ? "the folder " : "the folders ";
+      message += (others.empty() ? ", only " : ", and ") + which + namesOf(folders);
     }
     throw std::runtime_error(message);
   }

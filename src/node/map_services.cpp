@@ -24,7 +24,8 @@ std::string absolutePath(const std::string& path) {
 /// For a message about `path`: where a relative path led, which under roslaunch is ~/.ros, not the
 /// folder the user typed it in; empty for an absolute path, an empty one or one of ~ (said otherwise).
 std::string relativePathNote(const std::string& path) {
-  if (path.empty() || path.front() == '/' || path.front() == '~') return "";
+  const bool tilde = path == "~" || path.rfind("~/", 0) == 0;
+  if (path.empty() || path.front() == '/' || tilde || path.find('\0') != std::string::npos) return "";
   return " ('" + path + "' is relative to the node's working folder: it names '" + absolutePath(path) + "')";
 }
 
@@ -42,7 +43,9 @@ void PlaceRecognitionNode::openMap() {
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
            absolutePath(params_.database).c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
   const std::string mismatch = keyframingMismatchOfMap();
-  if (!mismatch.empty()) ROS_WARN("mrs_vpr: map database '%s': %s", params_.database.c_str(), mismatch.c_str());
+  if (!mismatch.empty()) {
+    ROS_WARN("mrs_vpr: map database '%s': %s", absolutePath(params_.database).c_str(), mismatch.c_str());
+  }
 }
 
 std::string PlaceRecognitionNode::keyframingMismatchOfMap() const {

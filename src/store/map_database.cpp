@@ -606,6 +606,9 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
   }
   // Beside the file written, which through a link is the file it names.
   const std::string file = linkedFile(path);
+  if (file.empty()) {
+    refuseSave(path, "it is a link that leads to no file (a loop of links, or a chain of more than 40)");
+  }
   for (const char* suffix : kCompanionSuffixes) {
     if (std::filesystem::exists(file + suffix, error)) {
       refuseSave(path, "'" + file + suffix + "' is left beside it by an earlier map of that name, and SQLite would "

@@ -22,9 +22,10 @@ std::string linkedFile(const std::string& path) {
   std::error_code error;
   fs::path target = path;
   constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
-  for (int hops = 0; hops < kMostLinks && fs::is_symlink(target, error); ++hops) {
+  for (int hops = 0; fs::is_symlink(target, error); ++hops) {
+    if (hops == kMostLinks) return "";
     const fs::path next = fs::read_symlink(target, error);
-    if (error) break;
+    if (error) return "";
     target = next.is_absolute() ? next : target.parent_path() / next;
   }
   return target.string();
@@ -42,7 +43,9 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
            std::to_string(PATH_MAX - 1 - suffix) + ")";
   }
   // The file a link names is created, not the link: that file's folder is the one that counts.
-  const fs::path absolute = fs::absolute(linkedFile(path), error);
+  const std::string file = linkedFile(path);
+  if (file.empty()) return "it is a link that leads to no file (a loop of links, or a chain of more than 40)";
+  const fs::path absolute = fs::absolute(file, error);
   const fs::path folder = absolute.parent_path();
   if (!fs::is_directory(folder, error)) {
     // A shell expands ~; a service request's path reaches the node as it was typed.

@@ -17,8 +17,9 @@ constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
 inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
 
 /// The file that `path` names through a chain of symbolic links (at most 40, as the kernel follows),
-/// also one not written yet; `path` itself when it is no link. A map named through a link is that
-/// file: SQLite opens it, and a save writes it (as build_map does), leaving the link in place.
+/// also one not written yet; `path` itself when it is no link; empty for a loop of links or a longer
+/// chain. A map named through a link is that file: SQLite opens it, and a save writes it (as build_map
+/// does), leaving the link in place.
 std::string linkedFile(const std::string& path);
 
 /**

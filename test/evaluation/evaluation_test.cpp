@@ -399,7 +399,10 @@ TEST(ImageFolder, AFolderWithoutImagesNamesTheFilesItHolds) {
   parent.write("ground_truth.csv", "query_index,matching_ref_indices\n");
   EXPECT_EQ(errorOf([&] { listImageFiles(parent.path()); }),
             "image folder '" + parent.path() + "' holds no image files (ground_truth.csv is not named as an image: " +
-                "png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif), only the folders query, ref");
+                "png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif), and the folders query, ref");
+  fs::remove(parent.path("ground_truth.csv"));
+  EXPECT_EQ(errorOf([&] { listImageFiles(parent.path()); }),
+            "image folder '" + parent.path() + "' holds no image files, only the folders query, ref");
 }
 
 // Skipped, a folder named as an image would shift every later frame's number.

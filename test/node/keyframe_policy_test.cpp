@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 #include <optional>
+#include <random>
 #include <vector>
 
 #include "mrs_vpr/node/keyframe_policy.hpp"

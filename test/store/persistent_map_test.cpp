@@ -318,6 +318,14 @@ TEST_F(PersistentMapTest, SaveNeverOverwritesAFile) {
     EXPECT_TRUE(fs::is_symlink(path(name + "_link.db"))) << name;
     EXPECT_EQ(framesOf(path("maps/" + name + ".db")).size(), saved == &map ? 10U : 4U) << name;
   }
+  // A loop of links leads to no file: refused, and the links stay.
+  fs::create_symlink(path("loop_b.db"), path("loop_a.db"));
+  fs::create_symlink(path("loop_a.db"), path("loop_b.db"));
+  for (PersistentMap* saved : {&map, &in_memory}) {
+    const std::string loop = errorOf([&] { saved->save(path("loop_a.db")); });
+    EXPECT_NE(loop.find("it is a link that leads to no file (a loop of links"), std::string::npos) << loop;
+    EXPECT_TRUE(fs::is_symlink(path("loop_a.db")));
+  }
 }
 
 TEST_F(PersistentMapTest, AMapInMemoryIsSavedAsADatabase) {

@@ -612,10 +612,12 @@ TEST_F(BagToolsTest, QueryBagWithoutAMasterSaysSo) {
       << result.err;
   // A stop while it waits ends the wait at once: an interruption, not a timeout of 30 s after 1, nor
   // a wait of all 30. (SIGTERM: a shell that is not interactive starts a background job with SIGINT
-  // ignored, which the tool leaves ignored; Ctrl-C takes the same path.)
+  // ignored, as is this test when its runner was, and no shell may undo that; Ctrl-C takes the same
+  // path, catchInterruptions.)
   const auto began = std::chrono::steady_clock::now();
-  const CommandResult stopped = run("{ ROS_MASTER_URI=http://localhost:9 " + std::string(QUERY_BAG_PATH) +
-                                    " --recent-frames 10 --timeout 30 & pid=$!; sleep 1; kill -TERM $pid; wait $pid; }");
+  const CommandResult stopped =
+      run("{ ROS_MASTER_URI=http://localhost:9 " + std::string(QUERY_BAG_PATH) +
+          " --recent-frames 10 --timeout 30 & pid=$!; sleep 1; kill -TERM $pid; wait $pid; }");
   EXPECT_EQ(stopped.status, 128 + SIGTERM) << stopped.err;
   EXPECT_NE(stopped.err.find("query_bag: interrupted by SIGTERM"), std::string::npos) << stopped.err;
   EXPECT_LT(std::chrono::steady_clock::now() - began, std::chrono::seconds(15));

@@ -22,8 +22,9 @@ struct ImageFrame {
   const cv::Mat& image() const { return pixels; }
 };
 
-/// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8, the
-/// Bayer mosaics bayer_{rggb,bggr,gbrg,grbg}{8,16}, and yuv422 (UYVY) and yuv422_yuy2 (YUYV).
+/// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8, bgr16,
+/// rgb16, bgra16, rgba16, the Bayer mosaics bayer_{rggb,bggr,gbrg,grbg}{8,16}, and yuv422 (UYVY) and
+/// yuv422_yuy2 (YUYV).
 bool isSupportedEncoding(const std::string& encoding);
 
 /// The encodings accepted, for messages: "mono8, mono16, bgr8, ...".
