@@ -54,9 +54,10 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
       count);
   if (static_cast<int>(images.size()) < count) {
     const int available = countImages(bag_path, topic);
+    const std::string asked = "frames " + std::to_string(start) + ".." + std::to_string(start + count - 1);
     throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(available) +
-                             " images; frames " + std::to_string(start) + ".." + std::to_string(start + count - 1) +
-                             " do not exist");
+                             " images (0.." + std::to_string(available - 1) + "): " + asked +
+                             (start < available ? " run past its last" : " lie beyond it"));
   }
   return images;
 }

@@ -78,6 +78,11 @@ std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, 
                              std::to_string(count));
   }
   const int available = countImages(bag_path, topic);
+  if (start >= available) {
+    throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(available) +
+                             " messages (0.." + std::to_string(available - 1) + "): none from message " +
+                             std::to_string(start) + " on");
+  }
   std::vector<sensor_msgs::ImageConstPtr> chosen;
   // forEachImage cannot stop early, so the messages are read in growing chunks until enough are chosen.
   int next = start;

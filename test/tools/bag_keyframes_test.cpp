@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mrs_vpr/node/bag_images.hpp"
 #include "mrs_vpr/node/bag_keyframes.hpp"
 #include "support/error_message.hpp"
 #include "support/temporary_folder.hpp"
@@ -154,6 +155,21 @@ TEST_F(BagKeyframesTest, ReadChosenOffersEachMessageOnceInOrderAndNamesTheChoice
   const std::string message = testing_support::runtimeErrorMessage(
       [&] { readChosen(bag(), kTopic, 3, 100, every_fifth, [] { return std::string("every fifth"); }); });
   EXPECT_NE(message.find("fewer than 100: every fifth"), std::string::npos) << message;
+  // A start beyond the last message is said so: not "has 0 keyframes from message N on".
+  const int messages = static_cast<int>(driveStopDrive().size());
+  const std::string beyond = testing_support::runtimeErrorMessage(
+      [&] { readChosen(bag(), kTopic, messages + 10, 2, every_fifth, [] { return std::string("every fifth"); }); });
+  EXPECT_NE(beyond.find("has " + std::to_string(messages) + " messages (0.." + std::to_string(messages - 1) +
+                        "): none from message " + std::to_string(messages + 10) + " on"),
+            std::string::npos)
+      << beyond;
+  // Too few images from a start that exists: they run past the last, which is named.
+  const std::string past = testing_support::runtimeErrorMessage([&] { readImages(bag(), kTopic, messages - 1, 2); });
+  EXPECT_NE(past.find("has " + std::to_string(messages) + " images (0.." + std::to_string(messages - 1) +
+                      "): frames " + std::to_string(messages - 1) + ".." + std::to_string(messages) +
+                      " run past its last"),
+            std::string::npos)
+      << past;
 }
 
 }  // namespace
