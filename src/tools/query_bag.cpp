@@ -247,6 +247,10 @@ int run(int argc, char** argv) {
     query.request.recent_frames = static_cast<std::uint32_t>(recent_frames);
     request["recent_frames"] = recent_frames;
   } else {
+    // Given empty (an unset shell variable), an option is named as such, not as missing.
+    if (variables.count("topic") != 0 && !variables["topic"].defaulted() && from_bag.topic.empty()) {
+      throw std::invalid_argument("--topic is empty: name the image topic of the bag (rosbag info BAG lists them)");
+    }
     if (from_bag.bag_path.empty() || from_bag.topic.empty() || variables.count("count") == 0) {
       throw std::invalid_argument("--bag, --topic and --count are required (or --recent-frames)");
     }

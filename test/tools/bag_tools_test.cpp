@@ -592,6 +592,9 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
   const CommandResult one = run(std::string(QUERY_BAG_PATH) + " --recent-frames 1 --service /nope/query");
   EXPECT_EQ(one.status, 1);
   EXPECT_NE(one.err.find("--recent-frames must be >= 2"), std::string::npos) << one.err;
+  const CommandResult no_topic = run(std::string(QUERY_BAG_PATH) + " --bag /nope.bag --topic '' --count 5");
+  EXPECT_EQ(no_topic.status, 1);
+  EXPECT_NE(no_topic.err.find("--topic is empty: name the image topic of the bag"), std::string::npos) << no_topic.err;
   const CommandResult one_image = run(std::string(QUERY_BAG_PATH) + " --bag /nope.bag --topic /t --count 1");
   EXPECT_EQ(one_image.status, 1);
   EXPECT_NE(one_image.err.find("--count must be >= 2, as ~query takes it"), std::string::npos) << one_image.err;
