@@ -18,7 +18,7 @@ constexpr int kPixelsPerBand = 1 << 16;
 void convertInBands(const cv::Mat& colour, int code, cv::Mat& grey) {
   const cv::Mat image = colour;  // Shares the pixels: `grey` may be `colour` itself, reallocated below.
   // Of the colour's depth: a band of another type would be reallocated by cvtColor rather than written,
-  // and `grey` would keep the last frame's pixels.
+  // and `grey` would keep the pixels last written into it.
   grey.create(image.rows, image.cols, CV_MAKETYPE(image.depth(), 1));
   const int band_rows = std::max(1, kPixelsPerBand / image.cols);
   for (int top = 0; top < image.rows; top += band_rows) {

@@ -57,7 +57,7 @@ std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, 
     const std::string asked = "frames " + std::to_string(start) + ".." + std::to_string(start + count - 1);
     throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(available) +
                              " images (0.." + std::to_string(available - 1) + "): " + asked +
-                             (start < available ? " run past its last" : " lie beyond it"));
+                             (start < available ? " run past its last image" : " lie beyond its last image"));
   }
   return images;
 }

@@ -38,13 +38,13 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   const fs::file_status status = fs::status(path, error);
   if (fs::is_directory(status)) return "it is a folder, not a map file (give the path of a file)";
   if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
-  if (path.size() + suffix >= PATH_MAX) {
-    return "the path is " + std::to_string(path.size()) + " bytes long, too long for this system (at most " +
-           std::to_string(PATH_MAX - 1 - suffix) + ")";
-  }
   // The file a link names is created, not the link: that file's folder is the one that counts.
   const std::string file = linkedFile(path);
   if (file.empty()) return "it is a link that leads to no file (a loop of links, or a chain of more than 40)";
+  if (file.size() + suffix >= PATH_MAX) {
+    return "the path is " + std::to_string(file.size()) + " bytes long, too long for this system (at most " +
+           std::to_string(PATH_MAX - 1 - suffix) + ")";
+  }
   const fs::path absolute = fs::absolute(file, error);
   const fs::path folder = absolute.parent_path();
   if (!fs::is_directory(folder, error)) {

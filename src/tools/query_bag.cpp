@@ -291,6 +291,7 @@ int run(int argc, char** argv) {
     mrs_vpr::tools::stopIfInterrupted();
     throw std::runtime_error("calling " + service + " failed (the node may have died or the types differ)");
   }
+  mrs_vpr::tools::stopIfInterrupted();  // A Ctrl-C while the node answered: the tool was stopped.
   const double round_trip_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - sent).count();
 

@@ -481,7 +481,7 @@ TEST(RepeatedViews, ContinuousModesQuestionAboutKeyframesOfOneViewIsNotAccepted)
   EXPECT_GE(answer.match.confidence, 3.0F);  // distinct enough to pass the rest of the rule
   EXPECT_TRUE(answer.match.repeated_view);
   EXPECT_FALSE(answer.match.accepted);
-  // Said as the node says it, not "accepted" as before the repeated view was judged.
+  // The verdict follows the repeated view's refusal, in the node's words.
   EXPECT_EQ(answer.verdict.rfind("not accepted: most of the test sequence's keyframes show one view again", 0), 0U)
       << answer.verdict;
 }

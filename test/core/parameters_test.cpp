@@ -270,7 +270,7 @@ TEST(WindowAlignment, UnknownTextThrowsNamingItAndTheChoices) {
 }
 
 TEST(WindowAlignment, AValueThatIsNoEnumeratorIsRefusedByValidate) {
-  // Set from a number through the C++ API (a cast, a file read as an int): it was searched as centred.
+  // Set from a number through the C++ API (a cast, a file read as an int): refused, not searched as centred.
   SequenceParams sequence;
   sequence.alignment = static_cast<WindowAlignment>(7);
   EXPECT_EQ(toString(sequence.alignment), "7");

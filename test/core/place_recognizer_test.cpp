@@ -436,7 +436,7 @@ TEST(PlaceRecognizer, TheFewestFramesForARecentSequenceDoNotOverflowForAnyCount)
   const PlaceRecognizer recognizer(routeParameters(), limits);
   EXPECT_EQ(recognizer.fewestFramesForRecent(10), 70);
   const long long most = std::numeric_limits<int>::max();
-  EXPECT_EQ(recognizer.fewestFramesForRecent(most), 2 * most + 50);  // Was negative: any map was enough.
+  EXPECT_EQ(recognizer.fewestFramesForRecent(most), 2 * most + 50);  // Negative would let any map pass.
 }
 
 // The room is frames of over two minutes of a camera, but never more than 64 MB of descriptors:

@@ -432,7 +432,7 @@ TEST_F(MapDatabaseNodeTest, AMapInMemoryKeepsItsFramesIdsAndNumbersThroughSaveAn
                 "; warning: the map's keyframes were kept at an appearance change of 0.123, and ~min_appearance_change is"),
             std::string::npos)
       << load.response.message;
-  // Saved before any frame joins it, the loaded map keeps its record (~save_map dropped it).
+  // Saved before any frame joins it, the loaded map is still that traversal's, and keeps its record.
   save.request.path = path("other_scale_again.db");
   ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
   ASSERT_TRUE(save.response.success) << save.response.message;

@@ -357,7 +357,7 @@ TEST(NodeStartup, InvalidParametersAreFatalAndNamed) {
   EXPECT_NE(output.find("~max_frames must be "), std::string::npos) << output;
   EXPECT_NE(output.find(", got 99999999999"), std::string::npos) << output;
 
-  // image_transport reads its own parameter, and took a number for "raw" without a word.
+  // image_transport reads its own parameter and would take a number for "raw": the node checks its type.
   output.clear();
   EXPECT_NE(run("rosrun mrs_vpr mrs_vpr_node __name:=mrs_vpr_bad_transport _image_transport:=5", output), 0);
   EXPECT_NE(output.find("~image_transport must be a string, got an integer"), std::string::npos) << output;

@@ -120,7 +120,7 @@ def test_the_tool_prints_no_traceback_for_deeply_nested_json(tmp_path):
         (["pr", "e.json", "-o", "x.png", "--colours", "1"], "--colours must be in 2..256"),
         (["pr", "e.json", "-o", "x.png", "--size", "1e6", "1e6"],
          "--size and --dpi make a picture over 65535 pixels a side"),
-        # Within the limit a side, but 14 GB to draw: it was killed without a word.
+        # Within the limit a side, but 14 GB to draw: refused at once, not killed without a word.
         (["pr", "e.json", "-o", "x.png", "--size", "600", "600", "--dpi", "100"],
          "--size and --dpi make a picture of 3600 megapixels, more than the 100 it draws, at 4 bytes each in memory"),
         (["pr", "e.json"], "the following arguments are required: -o/--output"),

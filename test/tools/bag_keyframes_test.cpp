@@ -167,7 +167,7 @@ TEST_F(BagKeyframesTest, ReadChosenOffersEachMessageOnceInOrderAndNamesTheChoice
   const std::string past = testing_support::runtimeErrorMessage([&] { readImages(bag(), kTopic, messages - 1, 2); });
   EXPECT_NE(past.find("has " + std::to_string(messages) + " images (0.." + std::to_string(messages - 1) +
                       "): frames " + std::to_string(messages - 1) + ".." + std::to_string(messages) +
-                      " run past its last"),
+                      " run past its last image"),
             std::string::npos)
       << past;
 }

@@ -605,7 +605,7 @@ TEST_F(BagToolsTest, MinTravelWithoutPosesIsRefusedAndWritesNothing) {
 }
 
 TEST_F(BagToolsTest, QueryBagWithoutAMasterSaysSo) {
-  // It asked whether the mrs_vpr node was running, when no roscore was.
+  // The master, not the node, is what is missing: the message says so.
   const CommandResult result = run("ROS_MASTER_URI=http://localhost:9 " + std::string(QUERY_BAG_PATH) +
                                    " --recent-frames 10 --timeout 0.5");
   EXPECT_EQ(result.status, 1);

@@ -157,9 +157,11 @@ class MapDatabase {
   void makeSelfContained();
 
   /// Records the traversal the map's frames were kept of (build_map, a map saved from Python). Any
-  /// later change of the frames (append, replace, clear) forgets it: they are no longer its alone.
+  /// later change of the frames (append, clear) forgets it: they are no longer its alone; replace()
+  /// records the one it is given, if any.
   void setTraversal(const MapTraversal& traversal);
-  /// What setTraversal() recorded; nullopt for a map that records none (the node's).
+  /// What setTraversal() or replace() recorded, as read when the map was opened; nullopt for a map
+  /// that records none (a camera's frames).
   const std::optional<MapTraversal>& traversal() const { return traversal_; }
   /// The record as the file holds it now, read again: inside readAtOneMoment(), that of the frames read
   /// there, whatever another program wrote since this map was opened.
