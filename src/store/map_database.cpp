@@ -68,13 +68,6 @@ std::string preciseNumber(double value) {
   return text;
 }
 
-/// Whether this process may create files in the folder of `path`.
-bool folderIsWritable(const std::string& path) {
-  std::error_code ignored;
-  const std::filesystem::path folder = std::filesystem::absolute(path, ignored).parent_path();
-  return ::access(folder.c_str(), W_OK) == 0;
-}
-
 /// An SQLite URI that opens `path` as a file that cannot change: no lock, no index beside it.
 std::string immutableUri(const std::string& path) {
   std::string uri = "file:";
@@ -606,9 +599,7 @@ void MapDatabase::checkSaveTarget(const std::string& path) {
   }
   // Beside the file written, which through a link is the file it names.
   const std::string file = linkedFile(path);
-  if (file.empty()) {
-    refuseSave(path, "it is a link that leads to no file (a loop of links, or a chain of more than 40)");
-  }
+  if (file.empty()) refuseSave(path, std::string("it is ") + kNoLinkedFile);
   for (const char* suffix : kCompanionSuffixes) {
     if (std::filesystem::exists(file + suffix, error)) {
       refuseSave(path, "'" + file + suffix + "' is left beside it by an earlier map of that name, and SQLite would "

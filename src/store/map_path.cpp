@@ -17,18 +17,10 @@ std::string nulByteProblem(const std::string& path) {
          "), which would end it there: no file name holds one";
 }
 
-std::string linkedFile(const std::string& path) {
-  namespace fs = std::filesystem;
-  std::error_code error;
-  fs::path target = path;
-  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
-  for (int hops = 0; fs::is_symlink(target, error); ++hops) {
-    if (hops == kMostLinks) return "";
-    const fs::path next = fs::read_symlink(target, error);
-    if (error) return "";
-    target = next.is_absolute() ? next : target.parent_path() / next;
-  }
-  return target.string();
+bool folderIsWritable(const std::string& path) {
+  std::error_code ignored;
+  const std::filesystem::path folder = std::filesystem::absolute(path, ignored).parent_path();
+  return ::access(folder.c_str(), W_OK | X_OK) == 0;
 }
 
 std::string mapPathProblem(const std::string& path, std::size_t suffix) {
@@ -40,7 +32,7 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   if (fs::exists(status)) return fs::is_regular_file(status) ? "" : "it is not a regular file";
   // The file a link names is created, not the link: that file's folder is the one that counts.
   const std::string file = linkedFile(path);
-  if (file.empty()) return "it is a link that leads to no file (a loop of links, or a chain of more than 40)";
+  if (file.empty()) return std::string("it is ") + kNoLinkedFile;
   if (file.size() + suffix >= PATH_MAX) {
     return "the path is " + std::to_string(file.size()) + " bytes long, too long for this system (at most " +
            std::to_string(PATH_MAX - 1 - suffix) + ")";
@@ -54,7 +46,7 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
            (tilde ? " (~ is not expanded to a home folder here: give the path in full)" : "");
   }
   // SQLite's only word for this would be "unable to open database file (No such file or directory)".
-  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+  if (!folderIsWritable(absolute.string())) {
     return "the folder " + folder.string() + " cannot be written to (" + std::strerror(errno) + ")";
   }
   const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);

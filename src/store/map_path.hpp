@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <string>
 
+#include "linked_file.hpp"
+
 namespace mrs_vpr {
 
 /// The longest suffix SQLite and MapDatabase add to a map's name for the files beside it.
@@ -16,16 +18,13 @@ constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
 /// What SQLite keeps beside a database, and reads into whatever file next bears its name.
 inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
 
-/// The file that `path` names through a chain of symbolic links (at most 40, as the kernel follows),
-/// also one not written yet; `path` itself when it is no link; empty for a loop of links or a longer
-/// chain. A map named through a link is that file: SQLite opens it, and a save writes it (as build_map
-/// does), leaving the link in place.
-std::string linkedFile(const std::string& path);
+/// Whether this process may create files in the folder of `path`; when not, errno says why (access()).
+bool folderIsWritable(const std::string& path);
 
 /**
  * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
  * it); empty when it can. A file that exists must be a regular file; otherwise its folder (for a link,
- * that of linkedFile()) must exist and be writable by this process, and the file system must allow its
+ * that of linkedFile(): SQLite opens that file, and a save writes it) must exist and be writable by this process, and the file system must allow its
  * name.
  */
 std::string mapPathProblem(const std::string& path, std::size_t suffix);

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "map_path.hpp"
+#include "linked_file.hpp"
 
 namespace mrs_vpr {
 namespace {

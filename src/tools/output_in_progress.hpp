@@ -9,6 +9,8 @@
 #include <system_error>
 #include <utility>
 
+#include "../store/linked_file.hpp"
+
 namespace mrs_vpr {
 namespace tools {
 
@@ -24,17 +26,9 @@ inline bool writtenInPlace(const std::string& path) {
 /// one not written yet: an output named through a link replaces that file, not the link, as writing to
 /// the link would. Throws std::invalid_argument for a loop.
 inline std::string linkTarget(const std::string& option, const std::string& link) {
-  constexpr int kMostLinks = 40;  // As the kernel follows (ELOOP).
-  std::filesystem::path target = link;
-  for (int hops = 0; std::filesystem::is_symlink(target); ++hops) {
-    if (hops == kMostLinks) {
-      throw std::invalid_argument(option + " '" + link + "' is a link that leads to no file (a loop of links, or a " +
-                                  "chain of more than " + std::to_string(kMostLinks) + ")");
-    }
-    const std::filesystem::path next = std::filesystem::read_symlink(target);
-    target = next.is_absolute() ? next : target.parent_path() / next;
-  }
-  return std::filesystem::weakly_canonical(target).string();
+  const std::string file = linkedFile(link);
+  if (file.empty()) throw std::invalid_argument(option + " '" + link + "' is " + kNoLinkedFile);
+  return std::filesystem::weakly_canonical(file).string();
 }
 
 /// Throws std::invalid_argument when `path` (named by `option`) exists and is neither a regular file
