@@ -21,7 +21,7 @@ bool KeyframePolicy::wants(double stamp) const {
     return false;
   }
   // Time running backwards means a new recording or a clock reset, not a robot that stands still.
-  if (stamp < last_stamp_) {
+  if (steppedBackFrom(stamp)) {
     return true;
   }
   // Early by less than half a frame period, this frame is nearer the interval than the next one will
