@@ -84,7 +84,9 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
   } else if (!stopped) {
-    ROS_WARN_THROTTLE(1.0, "mrs_vpr: query failed: %s", response.message.c_str());
+    // Each call is logged: a caller's mistakes come one call at a time, and a throttle would hide
+    // the second of two different ones made within its period.
+    ROS_WARN("mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"
 }

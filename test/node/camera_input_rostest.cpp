@@ -1,7 +1,8 @@
 // Drives the nodes of camera_input.test: one route published raw, as JPEG and as PNG (the
 // `compressed` transport) and as a Bayer camera's raw mosaics, the answers compared, and bad
 // compressed frames counted; bursts of large frames into a one-frame queue, every frame counted; a
-// node whose topic nobody publishes, warning of it, and of a camera that stopped.
+// node whose topic nobody publishes, warning of it, and of a camera that stopped; failed queries,
+// each logged.
 
 #include <gtest/gtest.h>
 
@@ -87,6 +88,43 @@ TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesOfAPublisherThatSendsNothin
                      "mrs_vpr: no image has arrived on /camera/none for ",
                      "its publisher has gone (a camera driver that stopped, or a bag that ended)", 20.0))
       << "no warning of a camera that stopped";
+}
+
+TEST(FailedQueries, EveryFailedQueryIsLoggedEvenInQuickSuccession) {
+  // A user reads a failed call's reason in the node's log as well as in the response: each call
+  // is logged, even the same mistake twice within a second.
+  ros::NodeHandle nh;
+  mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
+  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_idle_camera/query", ros::Duration(30.0)));
+  ros::ServiceClient query =
+      mrs_vpr::testing_support::persistentClient<mrs_vpr::QuerySequence>(nh, "/mrs_vpr_idle_camera/query");
+  const auto failuresLogged = [&] {
+    int count = 0;
+    for (const rosgraph_msgs::Log& m : log.received()) {
+      count += m.name == "/mrs_vpr_idle_camera" && m.level == rosgraph_msgs::Log::WARN &&
+               m.msg.rfind("mrs_vpr: query failed: ", 0) == 0;
+    }
+    return count;
+  };
+  const auto failedCall = [&](const std::string& method) {
+    mrs_vpr::QuerySequence call;  // no images and no recent_frames: always refused
+    call.request.method = method;
+    return query.call(call) && !call.response.success;
+  };
+  // The node's log reaches this subscription only once connected: call until a failure is seen.
+  const ros::WallTime connected_by = ros::WallTime::now() + ros::WallDuration(20.0);
+  while (failuresLogged() == 0 && ros::WallTime::now() < connected_by) {
+    ASSERT_TRUE(failedCall(""));
+    ros::WallDuration(1.5).sleep();
+  }
+  ASSERT_GT(failuresLogged(), 0) << "no failed query was logged";
+  ros::WallDuration(1.5).sleep();  // past any throttle's period
+  log.clear();
+  for (const std::string method : {"", "no_such_method", ""}) EXPECT_TRUE(failedCall(method)) << method;
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(10.0);
+  while (failuresLogged() < 3 && ros::WallTime::now() < deadline) ros::WallDuration(0.05).sleep();
+  ros::WallDuration(0.5).sleep();  // and nothing more
+  EXPECT_EQ(failuresLogged(), 3);
 }
 
 class CompressedTransportTest : public ::testing::Test {
