@@ -99,9 +99,9 @@ class Recognizer {
   }
 
  private:
-  /// After the map was emptied or replaced: numbering goes on after its traversal (the frames it
-  /// records it was kept of, as build_map's and saved Python maps do) or its last frame's number, or
-  /// after its frames where it has none (-1: a map saved before frames were numbered).
+  /// After the map was emptied or replaced: numbering goes on after its frames' numbers and the
+  /// traversal it records (the frames it was kept of, as build_map's and saved Python maps do), as
+  /// build_map numbers a traversal appended to it.
   void startOver() {
     frames_left_out_ = 0;
     const int frames = recognizer_.size();
@@ -111,8 +111,9 @@ class Recognizer {
     const std::optional<MapTraversal>& loaded = map_.loadedTraversal();
     const bool as_own = loaded && loaded->min_appearance_change && *loaded->min_appearance_change == own;
     keyframing_ = frames == 0 || as_own ? std::optional<double>(own) : std::nullopt;
-    const std::int64_t last = frames == 0 ? -1 : map_.sequenceOf(frames - 1);
-    next_number_ = last < 0 ? frames : nextFrameNumber(last, loaded);
+    FrameNumbering numbering;
+    for (int i = 0; i < frames; ++i) numbering.see(map_.sequenceOf(i));
+    next_number_ = numbering.next(loaded);
   }
 
   PlaceRecognizer recognizer_;

@@ -12,6 +12,15 @@ std::int64_t nextFrameNumber(std::int64_t last, const std::optional<MapTraversal
   return map ? std::max(next, map->frames) : next;
 }
 
+void FrameNumbering::see(std::int64_t number) {
+  largest_ = std::max(largest_, number < 0 ? seen_ : number);
+  ++seen_;
+}
+
+std::int64_t FrameNumbering::next(const std::optional<MapTraversal>& map) const {
+  return nextFrameNumber(largest_, map);
+}
+
 std::string keyframingMismatch(const std::optional<MapTraversal>& map, double min_appearance_change,
                                const std::string& setting) {
   if (!map || !map->min_appearance_change || *map->min_appearance_change == min_appearance_change) return "";

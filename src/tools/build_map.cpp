@@ -38,8 +38,8 @@ constexpr const char* kUsage =
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps (a bag's; frame i of DIR at i s) and their frame's index in DIR or on T (the frame\n"
-    "numbers of mrs_vpr_eval's ground truth; with --append, numbered and stamped on from the map's last\n"
-    "frame), in the SQLite map database MAP.db. The map is written to MAP.db.part and renamed only when\n"
+    "numbers of mrs_vpr_eval's ground truth; with --append, numbered and stamped on after the map's\n"
+    "frames), in the SQLite map database MAP.db. The map is written to MAP.db.part and renamed only when\n"
     "complete; an existing MAP.db is extended with --append (a copy of it, with the front end and the\n"
     "appearance change it records unless given) or replaced with --force. A failure leaves MAP.db as it\n"
     "was. The map records its traversal's frames and appearance change, by which mrs_vpr_eval judges it.\n"
@@ -117,15 +117,14 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   const std::optional<mrs_vpr::MapTraversal> extended = map.traversal();  // Forgotten at the first append.
   mrs_vpr::AppearanceKeyframes appearance(options.params, keyframes ? 0.0 : options.min_appearance_change);
   // Each frame keeps its index in the traversal, so that a keyframed map can still be judged against
-  // the traversal's frame numbers; an appended traversal is numbered on from the map's last frame, or
-  // after the frames of the traversal the map records (those after its last keyframe too), or from the
-  // map's size when its last frame has no number (-1), as Python numbers them.
-  std::int64_t last_number = -1;
+  // the traversal's frame numbers; an appended traversal is numbered on after the map's frames and
+  // the traversal it records (those after its last keyframe too), as Python numbers them.
+  mrs_vpr::FrameNumbering numbering;
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
-    last_number = frame.sequence;
+    numbering.see(frame.sequence);
   });
-  std::int64_t next_index = mrs_vpr::nextFrameNumber(last_number < 0 ? before - 1 : last_number, extended);
+  std::int64_t next_index = numbering.next(extended);
   int stored = 0;
   int too_similar = 0;
   std::vector<mrs_vpr::StoredFrame> batch;

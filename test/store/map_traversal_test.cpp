@@ -199,6 +199,22 @@ TEST(NextFrameNumber, GoesOnAfterTheLastNumberAndTheRecordedTraversalWithoutWrap
   EXPECT_EQ(nextFrameNumber(largest), largest);
 }
 
+TEST(FrameNumbering, GoesOnAfterTheLargestNumberAFrameWithoutOneCountingAsItsIndex) {
+  EXPECT_EQ(FrameNumbering().next(), 0);  // An empty map.
+  FrameNumbering unnumbered;              // A map saved before frames were numbered.
+  for (int i = 0; i < 5; ++i) unnumbered.see(-1);
+  EXPECT_EQ(unnumbered.next(), 5);
+  FrameNumbering keyframed;  // Keyframes of frames 0..90, then one added without a number.
+  for (const std::int64_t number : {0, 30, 60, 90, -1}) keyframed.see(number);
+  EXPECT_EQ(keyframed.next(), 91);  // Not 5, the map's size: the next frames would repeat 30, 60 and 90.
+  MapTraversal traversal;
+  traversal.frames = 120;  // Frames 91..119 were offered and not kept.
+  EXPECT_EQ(keyframed.next(traversal), 120);
+  FrameNumbering unnumbered_last;  // Frame 3 has no number: it counts as 3, after 1 and 2.
+  for (const std::int64_t number : {0, 1, 2, -1}) unnumbered_last.see(number);
+  EXPECT_EQ(unnumbered_last.next(), 4);
+}
+
 TEST(KeyframingMismatch, IsSaidOnlyWhenTheMapRecordsAnotherAppearanceChange) {
   MapTraversal kept_at_04;
   kept_at_04.frames = 10;

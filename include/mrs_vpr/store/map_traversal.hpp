@@ -24,6 +24,23 @@ struct MapTraversal {
 std::int64_t nextFrameNumber(std::int64_t last, const std::optional<MapTraversal>& map = std::nullopt);
 
 /**
+ * Numbers frames offered after a map's own, so that no new number repeats one of the map's: shown the
+ * map's frame numbers in order, it goes on after the largest, a frame without one (-1, as in maps
+ * saved before frames were numbered) counting as its index, and after the traversal the map records.
+ */
+class FrameNumbering {
+ public:
+  /// The next of the map's frames has `number` (-1: none).
+  void see(std::int64_t number);
+  /// The number of the first frame offered after the map's.
+  std::int64_t next(const std::optional<MapTraversal>& map = std::nullopt) const;
+
+ private:
+  std::int64_t seen_ = 0;
+  std::int64_t largest_ = -1;
+};
+
+/**
  * A warning when the frames asked about are keyframed at `min_appearance_change` (named `setting` in
  * the words of the caller: "~min_appearance_change", "--min-appearance-change") and the map's were
  * kept at another appearance change; empty when they agree or the map records none. The test
