@@ -43,15 +43,20 @@ void forEachImage(const std::string& bag_path, const std::string& topic, const I
 }
 
 std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, const std::string& topic,
-                                                   int start, int count) {
+                                                   int start, int count, const BetweenMessages& between) {
   if (start < 0 || count < 0) {
     throw std::runtime_error("invalid message range: start " + std::to_string(start) + ", count " +
                              std::to_string(count));
   }
   std::vector<sensor_msgs::ImageConstPtr> images;
+  if (between) between();
   forEachImage(
-      bag_path, topic, [&images](int, const sensor_msgs::ImageConstPtr& image) { images.push_back(image); }, start,
-      count);
+      bag_path, topic,
+      [&](int, const sensor_msgs::ImageConstPtr& image) {
+        images.push_back(image);
+        if (between) between();
+      },
+      start, count);
   if (static_cast<int>(images.size()) < count) {
     const int available = countImages(bag_path, topic);
     const std::string asked = "frames " + std::to_string(start) + ".." + std::to_string(start + count - 1);

@@ -26,10 +26,10 @@ void validate(const TravelSettings& settings) {
 
 }  // namespace
 
-BagKeyframes::BagKeyframes(const std::string& bag_path, TravelSettings settings)
+BagKeyframes::BagKeyframes(const std::string& bag_path, TravelSettings settings, const BetweenMessages& between)
     : settings_(std::move(settings)), policy_(settings_.min_travel) {
   validate(settings_);
-  if (policy_.enabled()) poses_ = std::make_unique<BagPoses>(bag_path);
+  if (policy_.enabled()) poses_ = std::make_unique<BagPoses>(bag_path, between);
 }
 
 bool BagKeyframes::keep(const ros::Time& stamp) {
@@ -62,10 +62,14 @@ std::string BagKeyframes::summary() const {
 }
 
 std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_path, const std::string& topic, int start,
-                                                      int count, BagKeyframes& keyframes) {
+                                                      int count, BagKeyframes& keyframes,
+                                                      const BetweenMessages& between) {
   return readChosen(
       bag_path, topic, start, count,
-      [&](const sensor_msgs::ImageConstPtr& image) { return keyframes.keep(image->header.stamp); },
+      [&](const sensor_msgs::ImageConstPtr& image) {
+        if (between) between();
+        return keyframes.keep(image->header.stamp);
+      },
       [&] { return keyframes.summary(); });
 }
 

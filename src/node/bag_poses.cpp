@@ -19,8 +19,11 @@ void forEachTransform(const std::string& bag_path, const TransformVisitor& visit
   bagReader().for_each_transform(bag_path, visit);
 }
 
-BagPoses::BagPoses(const std::string& bag_path) : buffer_(std::make_unique<tf2::BufferCore>(kKeepEverything)) {
-  forEachTransform(bag_path, [this](const geometry_msgs::TransformStamped& transform, bool is_static) {
+BagPoses::BagPoses(const std::string& bag_path, const BetweenMessages& between)
+    : buffer_(std::make_unique<tf2::BufferCore>(kKeepEverything)) {
+  if (between) between();
+  forEachTransform(bag_path, [&](const geometry_msgs::TransformStamped& transform, bool is_static) {
+    if (between) between();
     // tf2 reports a transform it refuses (NaN, an empty or equal frame pair) on the console and
     // goes on, as the node's listener does.
     buffer_->setTransform(transform, "bag", is_static);

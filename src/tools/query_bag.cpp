@@ -126,10 +126,10 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
     request["min_appearance_change"] = min_appearance_change;
     request["frames_read"] = offered;
   } else if (travel.min_travel == 0.0) {
-    images = mrs_vpr::bag::readImages(bag_path, topic, start, count);
+    images = mrs_vpr::bag::readImages(bag_path, topic, start, count, mrs_vpr::tools::stopIfInterrupted);
   } else {
-    mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel);
-    images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes);
+    mrs_vpr::bag::BagKeyframes keyframes(bag_path, travel, mrs_vpr::tools::stopIfInterrupted);
+    images = mrs_vpr::bag::readKeyframes(bag_path, topic, start, count, keyframes, mrs_vpr::tools::stopIfInterrupted);
     request["min_travel"] = travel.min_travel;
     // Where the sequence ends in the bag: frames from --start on that were read to choose it.
     request["frames_read"] = keyframes.frames();
@@ -171,8 +171,8 @@ bool waitForQueryService(const std::string& service, double timeout) {
 
 int run(int argc, char** argv) {
   // Strips ROS remapping arguments (name:=value) before the options are parsed.
-  // Ctrl-C is noted and acted on between steps (a second one ends the tool at once): roscpp's handler
-  // would only end its own waits, and only once the node has started.
+  // Ctrl-C is noted and acted on between the bag's messages and steps (a second one ends the tool at
+  // once): roscpp's handler would only end its own waits, and only once the node has started.
   ros::init(argc, argv, "query_bag",
             ros::init_options::AnonymousName | ros::init_options::NoRosout | ros::init_options::NoSigintHandler);
   mrs_vpr::tools::catchInterruptions();

@@ -172,6 +172,36 @@ TEST_F(BagKeyframesTest, ReadChosenOffersEachMessageOnceInOrderAndNamesTheChoice
       << past;
 }
 
+TEST_F(BagKeyframesTest, EveryReaderStopsWhenItsCallBetweenMessagesThrows) {
+  // A tool's Ctrl-C: the call throws once it has come, and the read stops there with that error.
+  struct Stop {};
+  int calls = 0;
+  const auto stopAfter = [&calls](int allowed) {
+    return [&calls, allowed] {
+      if (++calls > allowed) throw Stop{};
+    };
+  };
+  const int messages = static_cast<int>(driveStopDrive().size());
+  EXPECT_THROW(readImages(bag(), kTopic, 0, messages, stopAfter(5)), Stop);
+  EXPECT_EQ(calls, 6);  // Before the first message and after each of the first five.
+  calls = 0;
+  EXPECT_EQ(readImages(bag(), kTopic, 0, messages, stopAfter(messages + 1)).size(),
+            static_cast<std::size_t>(messages));
+  EXPECT_EQ(calls, messages + 1);
+
+  TravelSettings travel;
+  travel.min_travel = 1.0;
+  calls = 0;
+  EXPECT_THROW(BagKeyframes(bag(), travel, stopAfter(3)), Stop);  // While it reads the bag's /tf.
+  EXPECT_EQ(calls, 4);
+  calls = 0;
+  BagKeyframes keyframes(bag(), travel, [&calls] { ++calls; });
+  EXPECT_GT(calls, messages);  // Once a transform of the bag's /tf, which has one a frame and more.
+  calls = 0;
+  EXPECT_THROW(readKeyframes(bag(), kTopic, 0, 7, keyframes, stopAfter(10)), Stop);
+  EXPECT_EQ(calls, 11);
+}
+
 }  // namespace
 }  // namespace bag
 }  // namespace mrs_vpr

@@ -9,6 +9,8 @@
 #include <ros/time.h>
 #include <sensor_msgs/Image.h>
 
+#include "mrs_vpr/node/between_messages.hpp"
+
 namespace mrs_vpr {
 namespace bag {
 
@@ -35,10 +37,10 @@ int countImages(const std::string& bag_path, const std::string& topic);
 void forEachImage(const std::string& bag_path, const std::string& topic, const ImageVisitor& visit, int start = 0,
                   int count = -1);
 
-/// Messages [start, start + count) of `topic`. Throws std::runtime_error as forEachImage does, and
-/// when the topic holds fewer messages.
+/// Messages [start, start + count) of `topic`, calling `between` between them. Throws
+/// std::runtime_error as forEachImage does, and when the topic holds fewer messages.
 std::vector<sensor_msgs::ImageConstPtr> readImages(const std::string& bag_path, const std::string& topic,
-                                                   int start, int count);
+                                                   int start, int count, const BetweenMessages& between = {});
 
 /// True when `path` names a bag file (by its extension), so that a tool can accept folders and bags.
 bool isBagPath(const std::string& path);

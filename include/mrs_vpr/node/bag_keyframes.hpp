@@ -28,10 +28,10 @@ struct TravelSettings {
  */
 class BagKeyframes {
  public:
-  /// Reads the bag's poses when settings.min_travel > 0. Throws std::invalid_argument for a
-  /// negative or non-finite min_travel or an empty or equal frame pair, and std::runtime_error as
-  /// BagPoses does (e.g. a bag without /tf).
-  BagKeyframes(const std::string& bag_path, TravelSettings settings);
+  /// Reads the bag's poses when settings.min_travel > 0, calling `between` between their messages.
+  /// Throws std::invalid_argument for a negative or non-finite min_travel or an empty or equal frame
+  /// pair, and std::runtime_error as BagPoses does (e.g. a bag without /tf).
+  BagKeyframes(const std::string& bag_path, TravelSettings settings, const BetweenMessages& between = {});
 
   /// True when the frame stamped `stamp` is a keyframe; it is then the last keyframe.
   bool keep(const ros::Time& stamp);
@@ -66,9 +66,11 @@ std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, 
                                                    const std::function<bool(const sensor_msgs::ImageConstPtr&)>& choose,
                                                    const std::function<std::string()>& summary);
 
-/// The first `count` keyframes of `topic` from message `start` on, chosen by `keyframes` (readChosen).
+/// The first `count` keyframes of `topic` from message `start` on, chosen by `keyframes` (readChosen),
+/// calling `between` between the messages.
 std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_path, const std::string& topic, int start,
-                                                      int count, BagKeyframes& keyframes);
+                                                      int count, BagKeyframes& keyframes,
+                                                      const BetweenMessages& between = {});
 
 }  // namespace bag
 }  // namespace mrs_vpr

@@ -9,6 +9,8 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 
+#include "mrs_vpr/node/between_messages.hpp"
+
 namespace tf2 {
 class BufferCore;
 }
@@ -30,8 +32,9 @@ void forEachTransform(const std::string& bag_path, const TransformVisitor& visit
  */
 class BagPoses {
  public:
-  /// Reads the bag's transforms. Throws std::runtime_error as forEachTransform does.
-  explicit BagPoses(const std::string& bag_path);
+  /// Reads the bag's transforms, calling `between` between their messages. Throws
+  /// std::runtime_error as forEachTransform does.
+  explicit BagPoses(const std::string& bag_path, const BetweenMessages& between = {});
   ~BagPoses();
   BagPoses(const BagPoses&) = delete;
   BagPoses& operator=(const BagPoses&) = delete;
