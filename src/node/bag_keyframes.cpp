@@ -1,6 +1,5 @@
 #include "mrs_vpr/node/bag_keyframes.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -66,17 +65,15 @@ std::vector<sensor_msgs::ImageConstPtr> readKeyframes(const std::string& bag_pat
                                                       const BetweenMessages& between) {
   return readChosen(
       bag_path, topic, start, count,
-      [&](const sensor_msgs::ImageConstPtr& image) {
-        if (between) between();
-        return keyframes.keep(image->header.stamp);
-      },
-      [&] { return keyframes.summary(); });
+      [&](const sensor_msgs::ImageConstPtr& image) { return keyframes.keep(image->header.stamp); },
+      [&] { return keyframes.summary(); }, between);
 }
 
 std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, const std::string& topic, int start,
                                                    int count,
                                                    const std::function<bool(const sensor_msgs::ImageConstPtr&)>& choose,
-                                                   const std::function<std::string()>& summary) {
+                                                   const std::function<std::string()>& summary,
+                                                   const BetweenMessages& between) {
   if (start < 0 || count < 0) {
     throw std::runtime_error("invalid keyframe range: start " + std::to_string(start) + ", count " +
                              std::to_string(count));
@@ -88,16 +85,20 @@ std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, 
                              std::to_string(start) + " on");
   }
   std::vector<sensor_msgs::ImageConstPtr> chosen;
-  // forEachImage cannot stop early, so the messages are read in growing chunks until enough are chosen.
-  int next = start;
-  for (int chunk = std::max(64, 2 * count); static_cast<int>(chosen.size()) < count && next < available;
-       next += chunk, chunk = std::min(2 * chunk, available)) {
+  if (count == 0) return chosen;
+  // The read ends once enough are chosen: forEachImage stops where its visitor throws.
+  struct EnoughChosen {};
+  try {
+    if (between) between();
     forEachImage(
         bag_path, topic,
         [&](int, const sensor_msgs::ImageConstPtr& image) {
-          if (static_cast<int>(chosen.size()) < count && choose(image)) chosen.push_back(image);
+          if (choose(image)) chosen.push_back(image);
+          if (static_cast<int>(chosen.size()) == count) throw EnoughChosen{};
+          if (between) between();
         },
-        next, std::min(chunk, available - next));
+        start);
+  } catch (const EnoughChosen&) {
   }
   if (static_cast<int>(chosen.size()) < count) {
     throw std::runtime_error("topic '" + topic + "' of bag '" + bag_path + "' has " + std::to_string(chosen.size()) +

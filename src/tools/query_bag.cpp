@@ -110,7 +110,6 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
     images = mrs_vpr::bag::readChosen(
         bag_path, topic, start, count,
         [&](const sensor_msgs::ImageConstPtr& image) {
-          mrs_vpr::tools::stopIfInterrupted();
           ++offered;
           cv::Mat descriptor;
           try {
@@ -122,7 +121,8 @@ std::vector<sensor_msgs::ImageConstPtr> readTestSequence(const BagSequence& from
           return keyframes.offer(descriptor);
         },
         [&] { return std::to_string(offered) + " frames offered at --min-appearance-change " +
-                     mrs_vpr::numberText(min_appearance_change); });
+                     mrs_vpr::numberText(min_appearance_change); },
+        mrs_vpr::tools::stopIfInterrupted);
     request["min_appearance_change"] = min_appearance_change;
     request["frames_read"] = offered;
   } else if (travel.min_travel == 0.0) {

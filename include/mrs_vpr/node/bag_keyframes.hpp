@@ -59,12 +59,14 @@ class BagKeyframes {
 };
 
 /// The first `count` messages of `topic` from message `start` on that `choose` takes, each offered
-/// once, in order. Throws std::runtime_error as forEachImage does, and when fewer follow `start`
-/// (naming what `summary` says of the choice).
+/// once, in order, calling `between` between the messages; the read ends with the last one chosen.
+/// Throws std::runtime_error as forEachImage does, and when fewer follow `start` (naming what
+/// `summary` says of the choice).
 std::vector<sensor_msgs::ImageConstPtr> readChosen(const std::string& bag_path, const std::string& topic, int start,
                                                    int count,
                                                    const std::function<bool(const sensor_msgs::ImageConstPtr&)>& choose,
-                                                   const std::function<std::string()>& summary);
+                                                   const std::function<std::string()>& summary,
+                                                   const BetweenMessages& between = {});
 
 /// The first `count` keyframes of `topic` from message `start` on, chosen by `keyframes` (readChosen),
 /// calling `between` between the messages.
