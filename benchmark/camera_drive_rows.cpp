@@ -32,7 +32,7 @@ constexpr double kQueryPeriod = 1.0;   // [s] launch/mrs_vpr.launch's auto_query
 /// stood are one place).
 constexpr int kRouteTolerance = 2;
 /// mrs_vpr_eval's --tolerance default [frames].
-constexpr int kEvaluatorTolerance = tools::kDefaultTolerance;
+constexpr int kEvaluatorTolerance = kDefaultTolerance;
 
 /**
  * Both drives, one after the other, into one recognizer at the node's defaults but for the front end,

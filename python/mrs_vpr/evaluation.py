@@ -28,8 +28,6 @@ precision_recall_curve = _bindings.precision_recall_curve
 #: The range of the core's int (tolerance, map frames) and of the global protocol's std::uint64_t seed.
 _INT_MAX = 2**31 - 1
 _SEED_MAX = 2**64 - 1
-#: As mrs_vpr_eval --queries: each test sequence keeps a record; a million of them took 1.7 GB.
-_QUERIES_MAX = 100000
 _METHODS = ("mrs", "seqslam", "")
 _PROTOCOLS = ("per-frame", "global")
 _CHANNEL_ORDERS = ("bgr", "rgb")
@@ -85,8 +83,8 @@ def _ground_truth_dict(ground_truth, query_frames, reference_frames):
     return truth
 
 
-def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol="per-frame", method="",
-             queries=100, seed=0, channel_order="bgr"):
+def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DEFAULT_TOLERANCE, protocol="per-frame",
+             method="", queries=_bindings.DEFAULT_GLOBAL_QUERIES, seed=_bindings.DEFAULT_SEED, channel_order="bgr"):
     """Localises a query traversal in the recognizer's map and scores the answers.
 
     protocol "per-frame": every query frame with a full sequence of sequence_length frames (OpenSeqSLAM's
@@ -100,8 +98,8 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     correct within `tolerance` frames of a true one. Returns an Evaluation (records, summary, pr_curve).
 
     Every argument is checked before any query is matched: a bad one raises ValueError naming it and
-    what it may be (tolerance 0..2147483647, queries 1..100000 and seed 0..2**64-1 whole numbers, as
-    mrs_vpr_eval takes them).
+    what it may be (tolerance 0..2147483647, queries 1..100000 and seed 0..2**64-1, whole numbers). The
+    defaults are mrs_vpr_eval's: tolerance 2, queries 200, seed 42.
     """
     if not isinstance(recognizer, _bindings.PlaceRecognizer):
         raise ValueError("recognizer must be a mrs_vpr.PlaceRecognizer, got %s" % type(recognizer).__name__)
@@ -113,7 +111,7 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=2, protocol=
     if not isinstance(method, str) or method not in _METHODS:
         raise ValueError("method must be 'mrs', 'seqslam' or '' (the recognizer's default_method), got %s"
                          % reprlib.repr(method))
-    queries = _whole_number("queries", queries, 1, _QUERIES_MAX)
+    queries = _whole_number("queries", queries, 1, _bindings.MAX_GLOBAL_QUERIES)
     seed = _whole_number("seed", seed, 0, _SEED_MAX)
     _one_of("channel_order", channel_order, _CHANNEL_ORDERS)
     parameters = recognizer.parameters

@@ -23,6 +23,11 @@ namespace mrs_vpr {
 namespace python {
 
 void bindEvaluation(py::module_& m) {
+  // evaluate()'s defaults and limits, mrs_vpr_eval's.
+  m.attr("DEFAULT_TOLERANCE") = kDefaultTolerance;
+  m.attr("DEFAULT_GLOBAL_QUERIES") = kDefaultGlobalQueries;
+  m.attr("MAX_GLOBAL_QUERIES") = kMaxGlobalQueries;
+  m.attr("DEFAULT_SEED") = MrsParams{}.seed;
   m.def(
       "per_frame_queries",
       [](int query_frames, int sequence_length, const std::string& alignment) {

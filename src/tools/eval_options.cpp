@@ -142,8 +142,9 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
     throw std::invalid_argument("unknown protocol '" + options.protocol + "' (expected per-frame or global)");
   }
   if (options.tolerance < 0) throw std::invalid_argument("--tolerance must be >= 0");
-  // Each test sequence keeps a record; a million of them took 1.7 GB.
-  if (options.queries < 1 || options.queries > 100000) throw std::invalid_argument("--queries must be in 1..100000");
+  if (options.queries < 1 || options.queries > kMaxGlobalQueries) {
+    throw std::invalid_argument("--queries must be in 1.." + std::to_string(kMaxGlobalQueries));
+  }
   // OpenCV's thread pool fails at exit with tens of thousands of threads; no machine needs that many.
   if (options.threads < 0 || options.threads > 1024) throw std::invalid_argument("--threads must be in 0..1024");
   if (options.out_of_map && !options.ground_truth.empty()) {

@@ -6,13 +6,11 @@
 #include <optional>
 #include <string>
 
+#include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/parameters.hpp"
 
 namespace mrs_vpr {
 namespace tools {
-
-/// --tolerance's default [frames]: an answer this near the truth is right.
-constexpr int kDefaultTolerance = 2;
 
 /// What an evaluation is asked to do.
 struct EvalOptions {
@@ -24,11 +22,12 @@ struct EvalOptions {
   std::string protocol;
   std::string output;
   std::string plots;
-  int queries = 200;
+  int queries = kDefaultGlobalQueries;
   int tolerance = kDefaultTolerance;
   int threads = 0;
   bool out_of_map = false;
-  std::int64_t seed = 42;  // Signed, so that a negative seed is seen and refused, not wrapped.
+  // Signed, so that a negative seed is seen and refused, not wrapped.
+  std::int64_t seed = static_cast<std::int64_t>(MrsParams{}.seed);
   Parameters params;
   bool descriptor_given = false;  ///< A descriptor option was set; else a map database's own front end is used.
   /// As the node's ~min_appearance_change: both traversals are keyframed as the node keyframes a camera.

@@ -1,5 +1,6 @@
 """Offline evaluation with the core's protocols and metrics."""
 
+import inspect
 import warnings
 
 import numpy as np
@@ -69,6 +70,14 @@ def test_ground_truth_as_a_dict_evaluates_only_its_frames(route, short_sequences
     evaluation = mrs_vpr.evaluate(short_sequences, route["query"], ground_truth=truth)
     assert [record["query_index"] for record in evaluation.records] == [100, 200]
     assert evaluation.records[1]["true_indices"] == []
+
+
+def test_the_defaults_are_mrs_vpr_evals():
+    # One place for them (the core's evaluation library); before, Python drew 100 sequences with seed 0
+    # and mrs_vpr_eval 200 with seed 42. The default seed is the recognizer's mrs/seed.
+    defaults = {name: parameter.default for name, parameter in inspect.signature(mrs_vpr.evaluate).parameters.items()}
+    mrs_seed = next(entry["default"] for entry in mrs_vpr.parameter_reference() if entry["name"] == "mrs/seed")
+    assert (defaults["tolerance"], defaults["queries"], defaults["seed"]) == (2, 200, mrs_seed) == (2, 200, 42)
 
 
 def test_the_global_protocol_draws_the_same_sequences_for_the_same_seed(route, short_sequences):

@@ -12,6 +12,12 @@
 
 namespace mrs_vpr {
 
+/// The protocols' defaults and limits, as mrs_vpr_eval and Python's evaluate() take them; the global
+/// protocol's default seed is MrsParams::seed's.
+constexpr int kDefaultTolerance = 2;        ///< [frames]: an answer this near the truth is right.
+constexpr int kDefaultGlobalQueries = 200;  ///< Test sequences of the global protocol.
+constexpr int kMaxGlobalQueries = 100000;   ///< Each keeps a record: a million of them took 1.7 GB.
+
 /// Ground truth: query frame -> the reference frames that show the same place (possibly several,
 /// possibly none). Query frames without an entry are not evaluated.
 using GroundTruth = std::map<int, std::vector<int>>;
