@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -35,20 +34,27 @@ double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float*
   return regions_->difference(a, b);
 }
 
+double AppearanceKeyframes::standIn(const float* view) const {
+  std::vector<std::uint8_t> unrelated(unrelated_view_.begin(), unrelated_view_.end());
+  return regionDifference(unrelated.data(), view);
+}
+
+std::optional<double> AppearanceKeyframes::learntScale() const {
+  if (static_cast<int>(samples_.size()) < kMinScaleSamples) return std::nullopt;
+  std::vector<double> values(samples_.begin(), samples_.end());
+  const double median = upperMedian(values);
+  // Zero when most pairs are one view (keyframes taken by travel or loaded from a map while the
+  // camera was covered): every change would then read as none, and no keyframe would ever come
+  // to change it. The stand-in measures the change instead.
+  return median > 0.0 ? std::optional<double>(median) : std::nullopt;
+}
+
 double AppearanceKeyframes::scale() const {
-  if (static_cast<int>(samples_.size()) >= kMinScaleSamples) {
-    std::vector<double> values(samples_.begin(), samples_.end());
-    const double median = upperMedian(values);
-    // Zero when most pairs are one view (keyframes taken by travel or loaded from a map while the
-    // camera was covered): every change would then read as none, and no keyframe would ever come
-    // to change it. The stand-in below measures the change instead.
-    if (median > 0.0) return median;
-  }
+  if (const std::optional<double> learnt = learntScale()) return *learnt;
   if (frames_in_mean_ == 0) return 0.0;
   std::vector<float> mean(mean_);
   for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
-  std::vector<std::uint8_t> unrelated(unrelated_view_.begin(), unrelated_view_.end());
-  return regionDifference(unrelated.data(), mean.data());
+  return standIn(mean.data());
 }
 
 bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
@@ -72,13 +78,17 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   const auto unchanged_from = [&](const std::vector<float>& other) {
     return regionDifference(descriptor.ptr<std::uint8_t>(), other.data()) < min_change_ * unrelated;
   };
-  // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one.
+  // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one,
+  // each on its own stand-in while a blank reference sets it (see the class).
+  const bool own_stand_ins = reference_blank_ && !learntScale();
   const std::size_t kept = recent_keyframes_.size();
-  const auto first =
-      recent_keyframes_.end() - static_cast<std::ptrdiff_t>(std::min<std::size_t>(kept, kRecentKeyframes));
-  if (compare_recent_ && std::any_of(first, std::prev(recent_keyframes_.end()), unchanged_from)) {
-    last_seen_before_ = true;
-    return false;
+  for (std::size_t k = kept - std::min<std::size_t>(kept, kRecentKeyframes); compare_recent_ && k + 1 < kept; ++k) {
+    const std::vector<float>& older = recent_keyframes_[k];
+    const double scale_k = own_stand_ins ? standIn(older.data()) : unrelated;
+    if (regionDifference(descriptor.ptr<std::uint8_t>(), older.data()) < min_change_ * scale_k) {
+      last_seen_before_ = true;
+      return false;
+    }
   }
   // A stray of a standing camera: the view of the newest keyframe, like one of its noisy copies.
   return last_keyframe_change_ >= kStrayShare * min_change_ ||
@@ -101,6 +111,10 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     if (static_cast<int>(samples_.size()) > kScaleSamples) samples_.pop_front();
     recent_keyframes_.pop_front();
   }
+  double lowest = 0.0;
+  double highest = 0.0;
+  cv::minMaxLoc(descriptor, &lowest, &highest);
+  reference_blank_ = lowest == highest;
   recent_keyframes_.push_back(values);
   joined_.clear();
   mean_ = std::move(values);
@@ -136,6 +150,7 @@ void AppearanceKeyframes::reset() {
   joined_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();
+  reference_blank_ = false;
   samples_.clear();
   last_change_ = 0.0;
   last_keyframe_change_ = 0.0;

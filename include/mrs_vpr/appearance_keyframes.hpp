@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -49,7 +50,12 @@ namespace mrs_vpr {
  *   over the last kScaleSamples such pairs. Until kMinScaleSamples pairs exist, the change from a view
  *   of noise (unrelated to any place by construction) stands in for it, so that a robot standing still
  *   from the start adds no keyframe either. It stands in as well while that median is 0 (most pairs
- *   one view: keyframes of a covered camera taken by travel, or loaded so).
+ *   one view: keyframes of a covered camera taken by travel, or loaded so). A blank reference (a
+ *   descriptor of one value throughout: a black, saturated or uniform frame of a camera starting up,
+ *   an exposure glitch, a covered lens; HOG is then zero) lies farther from noise than any place does,
+ *   and on its stand-in every later frame looked like an older keyframe's view (Nordland summer: one
+ *   black keyframe after 21 left the next 150 frames without a keyframe). While it is the reference,
+ *   a frame is compared with each older recent keyframe on that keyframe's own stand-in.
  *
  * No ROS inside; not thread-safe (one owner, one frame at a time).
  */
@@ -119,6 +125,10 @@ class AppearanceKeyframes {
 
   /// The median over regions of the mean absolute difference of `a` and `b` (descriptorSize() bytes).
   double regionDifference(const std::uint8_t* a, const float* b) const;
+  /// The change from the view of noise to `view`: what stands in for the scale (see the class).
+  double standIn(const float* view) const;
+  /// The data's own scale, once kMinScaleSamples pairs give one above 0.
+  std::optional<double> learntScale() const;
   /// The regions the differences are measured over (shared by every copy).
   const std::shared_ptr<const DescriptorRegions>& regions() const { return regions_; }
 
@@ -130,6 +140,7 @@ class AppearanceKeyframes {
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
   int frames_in_mean_ = 0;           ///< ... and how many there are.
   std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
+  bool reference_blank_ = false;  ///< The newest keyframe's descriptor holds one value throughout.
   /// False for a follower (see kRecentKeyframes), whose recent_keyframes_ start with the map's.
   bool compare_recent_ = true;
   std::deque<std::vector<float>> joined_;  ///< The last kJoinedFrames frames that joined the reference.

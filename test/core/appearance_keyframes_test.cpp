@@ -133,6 +133,27 @@ TEST_P(AppearanceKeyframesTest, ASmoothRouteKeepsItsKeyframesFewPlacesApart) {
   EXPECT_LE(largest_gap, 15);
 }
 
+TEST_P(AppearanceKeyframesTest, OneBlackOrUniformFrameDoesNotStopTheNextKeyframes) {
+  // A camera starting up, an exposure glitch, a covered lens: a uniform frame, whose HOG is zero,
+  // became a keyframe whose own distance to noise set the scale, and the frames after it stayed
+  // below min_change (none of 150 real Nordland frames after 21 keyframes became a keyframe).
+  const DescriptorExtractor extractor(GetParam());
+  for (const int grey : {0, 128}) {
+    cv::RNG rng(12);
+    AppearanceKeyframes keyframes(GetParam(), 0.4);
+    AppearanceKeyframes without(GetParam(), 0.4);
+    const std::vector<cv::Mat> before = drive(0.0, 12.0, 40, rng);
+    const std::vector<cv::Mat> after = drive(480.0, 12.0, 60, rng);
+    const int kept_before = keyframesOf(keyframes, extractor, before);
+    ASSERT_EQ(keyframesOf(without, extractor, before), kept_before);
+    ASSERT_LT(kept_before, AppearanceKeyframes::kUnrelatedGap);  // The stand-in still sets the scale.
+    EXPECT_TRUE(keyframes.offer(extractor.compute(cv::Mat(120, 160, CV_8UC1, cv::Scalar(grey))))) << grey;
+    const int kept_after = keyframesOf(keyframes, extractor, after);
+    const int kept_after_without = keyframesOf(without, extractor, after);
+    EXPECT_GE(kept_after, kept_after_without - 1) << grey;
+  }
+}
+
 TEST_P(AppearanceKeyframesTest, AViewAmongTheRecentKeyframesIsNotNewAgain) {
   const DescriptorExtractor extractor(GetParam());
   cv::RNG rng(6);
