@@ -180,6 +180,22 @@ TEST_P(LaunchFilesTest, EveryArgumentIsDocumentedAndOnlyTheBagIsRequired) {
   EXPECT_GE(arguments, 10);
 }
 
+TEST(ReplayLaunch, TheBagsClockIsTheMastersEvenInANamespace) {
+  // Included in a robot's namespace, the replay still sets /use_sim_time, which roscpp reads, and
+  // publishes the bag's clock on /clock, which it follows; not /robot/use_sim_time and /robot/clock.
+  const std::string replay = "replay.launch bag:=/tmp/run.bag clock:=true";
+  bool global_sim_time = false;
+  for (const std::string& text : outputLines("ROS_NAMESPACE=robot roslaunch --dump-params mrs_vpr " + replay)) {
+    EXPECT_EQ(text.find("/robot/use_sim_time"), std::string::npos) << text;
+    global_sim_time = global_sim_time || text == "/use_sim_time: true";
+  }
+  EXPECT_TRUE(global_sim_time);
+  const std::vector<std::string> player =
+      outputLines("ROS_NAMESPACE=robot roslaunch --args /robot/player mrs_vpr " + replay);
+  ASSERT_FALSE(player.empty());
+  EXPECT_NE(player.front().find(" clock:=/clock"), std::string::npos) << player.front();
+}
+
 INSTANTIATE_TEST_SUITE_P(BothLaunchFiles, LaunchFilesTest, ::testing::Values("mrs_vpr.launch", "replay.launch"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                            return info.param == "replay.launch" ? std::string("Replay") : std::string("Node");
