@@ -160,8 +160,11 @@ bool PlaceRecognitionNode::admit(const cv::Mat& descriptor, Stamp stamp, const s
     }
     case FrameAdmission::kMapFull:
       ++frames_dropped_;
-      ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames",
-                        params_.recognizer.max_frames);
+      // Continuous mode asks about new map keyframes only: once the map is full it asks nothing more.
+      ROS_WARN_THROTTLE(kWarningPeriod,
+                        "mrs_vpr: the reference map is full (~max_frames = %d); dropping frames%s",
+                        params_.recognizer.max_frames,
+                        params_.auto_query_period > 0.0 ? ", and continuous mode localises no new frame" : "");
       return false;
     case FrameAdmission::kPendingFull:
       ++frames_dropped_;

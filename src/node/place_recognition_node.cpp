@@ -7,12 +7,14 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 #include <std_msgs/Float64MultiArray.h>
 
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/node/ros_stamp.hpp"
+#include "mrs_vpr/number_text.hpp"
 #include "node_warnings.hpp"
 
 namespace mrs_vpr {
@@ -88,9 +90,15 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   info_spinner_->start();
   master_watch_ = std::make_unique<MasterWatch>();  // Last: it re-registers what is advertised above.
 
-  ROS_INFO("mrs_vpr: listening on %s (transport %s); front end %s, default method %s%s", imageTopic().c_str(),
+  // Said either way: a parameter file of one's own that leaves auto_query_period out turns
+  // continuous mode off, and the node would otherwise publish nothing without a word.
+  const std::string continuous =
+      params_.auto_query_period > 0.0
+          ? "continuous mode every " + numberText(params_.auto_query_period) + " s"
+          : "continuous mode off (~auto_query_period 0): ~loop_closure answers ~query calls only";
+  ROS_INFO("mrs_vpr: listening on %s (transport %s); front end %s, default method %s; %s", imageTopic().c_str(),
            hints.getTransport().c_str(), params_.core.descriptor.describe().c_str(),
-           params_.recognizer.default_method.c_str(), params_.auto_query_period > 0.0 ? ", continuous mode on" : "");
+           params_.recognizer.default_method.c_str(), continuous.c_str());
 }
 
 std::unique_ptr<PlaceRecognitionNode> PlaceRecognitionNode::start(const ros::NodeHandle& nh,
