@@ -83,9 +83,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     if (!input.images) publishStandingClosures(input.header, answered, response);
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
-  } else if (!stopped) {
-    // Each call is logged: a caller's mistakes come one call at a time, and a throttle would hide
-    // the second of two different ones made within its period.
+  } else if (!stopped && query_failure_warning_.allows(response.message, steadySeconds())) {
     ROS_WARN("mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"

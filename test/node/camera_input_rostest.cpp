@@ -91,8 +91,9 @@ TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesOfAPublisherThatSendsNothin
 }
 
 TEST(FailedQueries, EveryFailedQueryIsLoggedEvenInQuickSuccession) {
-  // A user reads a failed call's reason in the node's log as well as in the response: each call
-  // is logged, even the same mistake twice within a second.
+  // A user reads a failed call's reason in the node's log as well as in the response: each different
+  // mistake is logged at once, also one made again after another (a throttle of ROS's hid the second
+  // and third here); only the same one repeated within a second is not.
   ros::NodeHandle nh;
   mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log> log(nh, "/rosout");
   ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_idle_camera/query", ros::Duration(30.0)));
