@@ -11,6 +11,7 @@
 
 #include "drive_listings.hpp"
 #include "mrs_vpr/evaluation/camera_drive.hpp"
+#include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/evaluation/route_places.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/node_parameters.hpp"
@@ -18,7 +19,6 @@
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 #include "replayed_drive.hpp"
-#include "tools/eval_options.hpp"
 
 namespace mrs_vpr {
 namespace benchmark {

@@ -47,8 +47,8 @@ class Recognizer {
 
   /**
    * Offers camera frames (oldest first) to the map; returns how many became keyframes. Each is
-   * numbered by its place among the frames offered since the map was emptied, on from a loaded map's
-   * last frame, as build_map numbers a traversal: a saved map's frames keep the numbers a ground truth
+   * numbered by its place among the frames offered since the map was emptied, on after a loaded map's
+   * frames (FrameNumbering), as build_map numbers a traversal: a saved map's frames keep the numbers a ground truth
    * gives them. One lock orders numbering, offering, loading and emptying: a frame offered while
    * another thread loads a map waits for the load, and is numbered in the map it joins. A save keeps
    * loads and resets out (map_swap_mutex_), not frames.

@@ -28,7 +28,7 @@ struct TravelSettings {
  */
 class BagKeyframes {
  public:
-  /// Reads the bag's poses when settings.min_travel > 0, calling `between` between their messages.
+  /// Reads the bag's poses when settings.min_travel > 0, calling `between` between the transforms.
   /// Throws std::invalid_argument for a negative or non-finite min_travel or an empty or equal frame
   /// pair, and std::runtime_error as BagPoses does (e.g. a bag without /tf).
   BagKeyframes(const std::string& bag_path, TravelSettings settings, const BetweenMessages& between = {});

@@ -32,7 +32,7 @@ void forEachTransform(const std::string& bag_path, const TransformVisitor& visit
  */
 class BagPoses {
  public:
-  /// Reads the bag's transforms, calling `between` between their messages. Throws
+  /// Reads the bag's transforms, calling `between` between them. Throws
   /// std::runtime_error as forEachTransform does.
   explicit BagPoses(const std::string& bag_path, const BetweenMessages& between = {});
   ~BagPoses();
