@@ -79,13 +79,12 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
     return regionDifference(descriptor.ptr<std::uint8_t>(), other.data()) < min_change_ * unrelated;
   };
   // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one,
-  // each on its own stand-in while a blank reference sets it (see the class).
-  const bool own_stand_ins = reference_blank_ && !learntScale();
+  // on the stand-in of the two views that is nearer noise while no scale is learnt (see the class).
+  const bool stand_in = !learntScale();
   const std::size_t kept = recent_keyframes_.size();
   for (std::size_t k = kept - std::min<std::size_t>(kept, kRecentKeyframes); compare_recent_ && k + 1 < kept; ++k) {
-    const std::vector<float>& older = recent_keyframes_[k];
-    const double scale_k = own_stand_ins ? standIn(older.data()) : unrelated;
-    if (regionDifference(descriptor.ptr<std::uint8_t>(), older.data()) < min_change_ * scale_k) {
+    const double scale_k = stand_in ? std::min(keyframe_stand_ins_[k], unrelated) : unrelated;
+    if (regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_[k].data()) < min_change_ * scale_k) {
       last_seen_before_ = true;
       return false;
     }
@@ -110,11 +109,9 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     samples_.push_back(regionDifference(descriptor.ptr<std::uint8_t>(), recent_keyframes_.front().data()));
     if (static_cast<int>(samples_.size()) > kScaleSamples) samples_.pop_front();
     recent_keyframes_.pop_front();
+    keyframe_stand_ins_.pop_front();
   }
-  double lowest = 0.0;
-  double highest = 0.0;
-  cv::minMaxLoc(descriptor, &lowest, &highest);
-  reference_blank_ = lowest == highest;
+  keyframe_stand_ins_.push_back(standIn(values.data()));
   recent_keyframes_.push_back(values);
   joined_.clear();
   mean_ = std::move(values);
@@ -150,7 +147,7 @@ void AppearanceKeyframes::reset() {
   joined_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();
-  reference_blank_ = false;
+  keyframe_stand_ins_.clear();
   samples_.clear();
   last_change_ = 0.0;
   last_keyframe_change_ = 0.0;

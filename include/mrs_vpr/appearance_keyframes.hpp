@@ -50,12 +50,13 @@ namespace mrs_vpr {
  *   over the last kScaleSamples such pairs. Until kMinScaleSamples pairs exist, the change from a view
  *   of noise (unrelated to any place by construction) stands in for it, so that a robot standing still
  *   from the start adds no keyframe either. It stands in as well while that median is 0 (most pairs
- *   one view: keyframes of a covered camera taken by travel, or loaded so). A blank reference (a
- *   descriptor of one value throughout: a black, saturated or uniform frame of a camera starting up,
- *   an exposure glitch, a covered lens; HOG is then zero) lies farther from noise than any place does,
- *   and on its stand-in every later frame looked like an older keyframe's view (Nordland summer: one
- *   black keyframe after 21 left the next 150 frames without a keyframe). While it is the reference,
- *   a frame is compared with each older recent keyframe on that keyframe's own stand-in.
+ *   one view: keyframes of a covered camera taken by travel, or loaded so). A frame is compared with
+ *   an older recent keyframe on the smaller of the two stand-ins, the reference's and that keyframe's:
+ *   a reference without the structure of a place (a black, saturated or nearly uniform frame of a
+ *   camera starting up, an exposure glitch, a covered lens, a smooth gradient, a text overlay on
+ *   black; HOG is then zero or one orientation) lies farther from noise than any place does, and on
+ *   its stand-in every later frame looked like an older keyframe's view (Nordland summer: one black
+ *   keyframe after 21 left the next 150 frames without a keyframe).
  *
  * No ROS inside; not thread-safe (one owner, one frame at a time).
  */
@@ -140,7 +141,7 @@ class AppearanceKeyframes {
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
   int frames_in_mean_ = 0;           ///< ... and how many there are.
   std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
-  bool reference_blank_ = false;  ///< The newest keyframe's descriptor holds one value throughout.
+  std::deque<double> keyframe_stand_ins_;  ///< standIn() of each of recent_keyframes_.
   /// False for a follower (see kRecentKeyframes), whose recent_keyframes_ start with the map's.
   bool compare_recent_ = true;
   std::deque<std::vector<float>> joined_;  ///< The last kJoinedFrames frames that joined the reference.
