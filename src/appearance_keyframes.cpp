@@ -27,16 +27,20 @@ AppearanceKeyframes::AppearanceKeyframes(const DescriptorParams& front_end, doub
   cv::Mat noise(front_end.isHog() ? front_end.hog_window_height : front_end.image_height,
                 front_end.isHog() ? front_end.hog_window_width : front_end.image_width, CV_8UC1);
   cv::RNG(kNoiseSeed).fill(noise, cv::RNG::UNIFORM, 0, 256);
-  unrelated_view_ = asFloats(makeFrontEnd(front_end)->describeGrey(noise));
+  const cv::Mat unrelated = makeFrontEnd(front_end)->describeGrey(noise);
+  unrelated_view_.assign(unrelated.ptr<std::uint8_t>(), unrelated.ptr<std::uint8_t>() + unrelated.total());
 }
 
 double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float* b) const {
   return regions_->difference(a, b);
 }
 
-double AppearanceKeyframes::standIn(const float* view) const {
-  std::vector<std::uint8_t> unrelated(unrelated_view_.begin(), unrelated_view_.end());
-  return regionDifference(unrelated.data(), view);
+double AppearanceKeyframes::standIn(const float* view) const { return regionDifference(unrelated_view_.data(), view); }
+
+std::vector<float> AppearanceKeyframes::referenceMean() const {
+  std::vector<float> mean(mean_);
+  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
+  return mean;
 }
 
 std::optional<double> AppearanceKeyframes::learntScale() const {
@@ -51,10 +55,7 @@ std::optional<double> AppearanceKeyframes::learntScale() const {
 
 double AppearanceKeyframes::scale() const {
   if (const std::optional<double> learnt = learntScale()) return *learnt;
-  if (frames_in_mean_ == 0) return 0.0;
-  std::vector<float> mean(mean_);
-  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
-  return standIn(mean.data());
+  return frames_in_mean_ == 0 ? 0.0 : standIn(referenceMean().data());
 }
 
 bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
@@ -65,9 +66,10 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
     last_keyframe_change_ = 0.0;
     return true;
   }
-  std::vector<float> mean(mean_);
-  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
-  const double unrelated = scale();
+  const std::vector<float> mean = referenceMean();
+  // scale(), with the learnt scale and the mean at hand once.
+  const std::optional<double> learnt = learntScale();
+  const double unrelated = learnt ? *learnt : standIn(mean.data());
   last_change_ = unrelated > 0.0 ? regionDifference(descriptor.ptr<std::uint8_t>(), mean.data()) / unrelated : 0.0;
   // The mean is the keyframe until a frame joins it.
   last_keyframe_change_ =
@@ -80,7 +82,7 @@ bool AppearanceKeyframes::wants(const cv::Mat& descriptor) {
   };
   // The newest keyframe is the mean's; the kRecentKeyframes - 1 before it are compared one by one,
   // on the stand-in of the two views that is nearer noise while no scale is learnt (see the class).
-  const bool stand_in = !learntScale();
+  const bool stand_in = !learnt;
   const std::size_t kept = recent_keyframes_.size();
   for (std::size_t k = kept - std::min<std::size_t>(kept, kRecentKeyframes); compare_recent_ && k + 1 < kept; ++k) {
     const double scale_k = stand_in ? std::min(keyframe_stand_ins_[k], unrelated) : unrelated;

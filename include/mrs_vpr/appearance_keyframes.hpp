@@ -126,18 +126,21 @@ class AppearanceKeyframes {
 
   /// The median over regions of the mean absolute difference of `a` and `b` (descriptorSize() bytes).
   double regionDifference(const std::uint8_t* a, const float* b) const;
-  /// The change from the view of noise to `view`: what stands in for the scale (see the class).
-  double standIn(const float* view) const;
-  /// The data's own scale, once kMinScaleSamples pairs give one above 0.
-  std::optional<double> learntScale() const;
   /// The regions the differences are measured over (shared by every copy).
   const std::shared_ptr<const DescriptorRegions>& regions() const { return regions_; }
 
  private:
+  /// The change from the view of noise to `view`: what stands in for the scale (see the class).
+  double standIn(const float* view) const;
+  /// The data's own scale, once kMinScaleSamples pairs give one above 0.
+  std::optional<double> learntScale() const;
+  /// The reference the change is measured from: the mean of the keyframe and the frames that joined it.
+  std::vector<float> referenceMean() const;
+
   double min_change_;
   int size_;
   std::shared_ptr<const DescriptorRegions> regions_;
-  std::vector<float> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
+  std::vector<std::uint8_t> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
   std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
   int frames_in_mean_ = 0;           ///< ... and how many there are.
   std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
