@@ -7,6 +7,7 @@
 
 #include "mrs_vpr/node/place_recognition_node.hpp"
 #include "mrs_vpr/store/map_traversal.hpp"
+#include "../store/map_path.hpp"
 
 namespace mrs_vpr {
 namespace node {
@@ -24,8 +25,7 @@ std::string absolutePath(const std::string& path) {
 /// For a message about `path`: where a relative path led, which under roslaunch is ~/.ros, not the
 /// folder the user typed it in; empty for an absolute path, an empty one or one of ~ (said otherwise).
 std::string relativePathNote(const std::string& path) {
-  const bool tilde = path == "~" || path.rfind("~/", 0) == 0;
-  if (path.empty() || path.front() == '/' || tilde || path.find('\0') != std::string::npos) return "";
+  if (path.empty() || path.front() == '/' || beginsWithHome(path) || path.find('\0') != std::string::npos) return "";
   return " ('" + path + "' is relative to the node's working folder: it names '" + absolutePath(path) + "')";
 }
 

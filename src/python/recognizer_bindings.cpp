@@ -284,8 +284,9 @@ void bindRecognizer(py::module_& m) {
           },
           py::arg("index"),
           "Map frame `index`'s number: its place among the frames offered since the map was emptied (counted "
-          "on after a loaded map's recorded traversal or its last frame), or the number its map database records (-1: none, as in maps "
-          "saved from Python before frames were numbered); saved with the map, as build_map saves a "
+          "on after a loaded map's frame numbers and recorded traversal), or the number its map database "
+          "records (-1: none, as in maps saved from Python before frames were numbered); saved with the map, "
+          "as build_map saves a "
           "traversal's frame numbers, for ground truths that name the frames offered.")
       .def("__len__", [](Recognizer& self) { return self.core().size(); })
       .def_property_readonly(

@@ -40,10 +40,8 @@ std::string mapPathProblem(const std::string& path, std::size_t suffix) {
   const fs::path absolute = fs::absolute(file, error);
   const fs::path folder = absolute.parent_path();
   if (!fs::is_directory(folder, error)) {
-    // A shell expands ~; a service request's path reaches the node as it was typed.
-    const bool tilde = path.rfind("~/", 0) == 0 || path == "~";
     return "there is no folder " + folder.string() +
-           (tilde ? " (~ is not expanded to a home folder here: give the path in full)" : "");
+           (beginsWithHome(path) ? " (~ is not expanded to a home folder here: give the path in full)" : "");
   }
   // SQLite's only word for this would be "unable to open database file (No such file or directory)".
   if (!folderIsWritable(absolute.string())) {

@@ -18,14 +18,18 @@ constexpr std::size_t kSaveSuffix = sizeof(".build-journal") - 1;
 /// What SQLite keeps beside a database, and reads into whatever file next bears its name.
 inline constexpr const char* kCompanionSuffixes[] = {"-wal", "-shm", "-journal"};
 
+/// Whether `path` begins with ~, which a shell expands to a home folder; a path sent in a service
+/// request, or read from a parameter, reaches this process as it was typed.
+inline bool beginsWithHome(const std::string& path) { return path == "~" || path.rfind("~/", 0) == 0; }
+
 /// Whether this process may create files in the folder of `path`; when not, errno says why (access()).
 bool folderIsWritable(const std::string& path);
 
 /**
  * Why `path` cannot name a map file (one that SQLite then names `path` + up to `suffix` bytes beside
  * it); empty when it can. A file that exists must be a regular file; otherwise its folder (for a link,
- * that of linkedFile(): SQLite opens that file, and a save writes it) must exist and be writable by this process, and the file system must allow its
- * name.
+ * that of linkedFile(): SQLite opens that file, and a save writes it) must exist and be writable by
+ * this process, and the file system must allow its name.
  */
 std::string mapPathProblem(const std::string& path, std::size_t suffix);
 
