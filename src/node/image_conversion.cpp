@@ -25,7 +25,7 @@ struct EncodingInfo {
   unsigned pixels_per_group = 1;
 };
 
-const std::array<EncodingInfo, 20> kEncodings{{
+const std::array<EncodingInfo, 23> kEncodings{{
     {"mono8", 1, ChannelOrder::kBgr, CV_8UC1},
     {"mono16", 2, ChannelOrder::kBgr, CV_16UC1},
     {"bgr8", 3, ChannelOrder::kBgr, CV_8UC3},
@@ -49,6 +49,12 @@ const std::array<EncodingInfo, 20> kEncodings{{
     // USB cameras (usb_cam): "yuv422" is UYVY, "yuv422_yuy2" YUYV; grey is their luma.
     {"yuv422", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_UYVY, 2},
     {"yuv422_yuy2", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_YUY2, 2},
+    // OpenCV's own types, which cv_bridge's cv2_to_imgmsg and CvImage publish for an image without a
+    // named encoding: grey, and colour in OpenCV's order, as cv_bridge reads them as mono8, bgr8, bgra8.
+    // 16UC1 is left out: it is what depth cameras publish, and depth is not a view of a place.
+    {"8UC1", 1, ChannelOrder::kBgr, CV_8UC1},
+    {"8UC3", 3, ChannelOrder::kBgr, CV_8UC3},
+    {"8UC4", 4, ChannelOrder::kBgr, CV_8UC4},
 }};
 
 bool hostIsBigEndian() {
@@ -100,8 +106,12 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
                             const boost::shared_ptr<void const>& tracked_object) {
   const EncodingInfo* info = findEncoding(message.encoding);
   if (info == nullptr) {
+    const std::string depth_hint = message.encoding == "16UC1" || message.encoding == "32FC1"
+                                       ? "; a depth camera's image is not a view of a place, and a 16-bit grey "
+                                         "camera is published as mono16"
+                                       : "";
     throw std::invalid_argument("unsupported encoding '" + message.encoding + "' (supported: " +
-                                supportedEncodings() + ")");
+                                supportedEncodings() + ")" + depth_hint);
   }
   if (message.width == 0 || message.height == 0) {
     throw std::invalid_argument("empty image (" + std::to_string(message.width) + " x " +

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -216,6 +217,31 @@ TEST(ImageConversion, Yuv422OfAnOddWidthIsRefused) {
               std::string::npos)
         << errorOf(message);
   }
+}
+
+TEST(ImageConversion, OpenCvTypesAreReadAsCvBridgeReadsThem) {
+  // What cv_bridge's cv2_to_imgmsg publishes for an image given no encoding: OpenCV's type.
+  const DescriptorExtractor extractor{DescriptorParams{}};
+  const cv::Mat bgr = texturedBgr();
+  cv::Mat grey;
+  cv::Mat bgra;
+  cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+  cv::cvtColor(bgr, bgra, cv::COLOR_BGR2BGRA);
+  for (const auto& [image, named, generic] :
+       std::vector<std::tuple<cv::Mat, std::string, std::string>>{
+           {grey, "mono8", "8UC1"}, {bgr, "bgr8", "8UC3"}, {bgra, "bgra8", "8UC4"}}) {
+    const ImageFrame frame = fromImageMessage(makeImage(image, generic));
+    EXPECT_EQ(frame.image().type(), image.type()) << generic;
+    EXPECT_EQ(frame.order, ChannelOrder::kBgr) << generic;
+    EXPECT_EQ(cv::norm(describeImage(extractor, makeImage(image, generic)),
+                       describeImage(extractor, makeImage(image, named)), cv::NORM_INF),
+              0.0)
+        << generic;
+  }
+  // A depth camera's 16UC1 is not a view of a place: refused, with what a grey camera would send instead.
+  const std::string depth = errorOf(makeImage(cv::Mat(8, 8, CV_16UC1, cv::Scalar(1000)), "16UC1"));
+  EXPECT_NE(depth.find("unsupported encoding '16UC1'"), std::string::npos) << depth;
+  EXPECT_NE(depth.find("published as mono16"), std::string::npos) << depth;
 }
 
 TEST(ImageConversion, RejectsUnsupportedEncodingsByName) {
