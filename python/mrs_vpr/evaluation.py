@@ -15,10 +15,10 @@ from mrs_vpr import _bindings
 
 #: records: one dict per evaluated query (query_index, true_index, true_indices, predicted_index,
 #: predicted_last, score, confidence, accepted, rival_places, at_velocity_bound, repeated_view, time_ms,
-#: correct: within the tolerance of a true frame, as mrs_vpr_eval's records; time_ms includes describing
-#: the images, which mrs_vpr_eval does before it times the queries); summary: a dict of
-#: the figures (top1, pr_auc, recall_at_100_precision, accepted, accepted_precision, ...); pr_curve:
-#: NumPy arrays threshold, precision and recall.
+#: correct: within the tolerance of a true frame, as mrs_vpr_eval's records; time_ms, as there, leaves
+#: out describing the images); summary: a dict of the figures (top1, pr_auc, recall_at_100_precision,
+#: accepted, accepted_precision, ...; None where a figure does not exist, as mrs_vpr_eval's null);
+#: pr_curve: NumPy arrays threshold, precision and recall.
 Evaluation = collections.namedtuple("Evaluation", "records summary pr_curve")
 
 summarise = _bindings.summarise
@@ -83,23 +83,47 @@ def _ground_truth_dict(ground_truth, query_frames, reference_frames):
     return truth
 
 
+def _numbering_warning(recognizer):
+    """Why query frame i may not show map frame i (the identity ground truth), or None."""
+    if recognizer.frames_left_out > 0:
+        return ("the map left out %d of the frames offered to it (keyframes by min_appearance_change): its frame "
+                "i is not the i-th image" % recognizer.frames_left_out)
+    frames = len(recognizer)
+    last = recognizer.frame_number(frames - 1) if frames > 0 else -1
+    if last > frames - 1:  # A loaded map numbers its keyframes by the traversal they were kept from.
+        return ("the map's %d frames are keyframes of a traversal of at least %d frames (map frame %d is its frame "
+                "%d, by the number the map records)" % (frames, last + 1, frames - 1, last))
+    return None
+
+
+def _check_one_size(query_images):
+    """ValueError unless every query image has one size, as mrs_vpr_eval requires of a folder."""
+    # What is no image at all is left to the describing, which names it.
+    sizes = [(index, np.shape(image)[:2]) for index, image in enumerate(query_images) if np.ndim(image) >= 2]
+    for index, size in sizes[1:]:
+        if size != sizes[0][1]:
+            raise ValueError("all query images must have one size (one camera): image %d is %d x %d, image %d is "
+                             "%d x %d" % (sizes[0][0], sizes[0][1][1], sizes[0][1][0], index, size[1], size[0]))
+
+
 def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DEFAULT_TOLERANCE, protocol="per-frame",
              method="", queries=_bindings.DEFAULT_GLOBAL_QUERIES, seed=_bindings.DEFAULT_SEED, channel_order="bgr"):
-    """Localises a query traversal in the recognizer's map and scores the answers.
+    """Localises a query traversal in the recognizer's map and scores the answers, as mrs_vpr_eval does.
 
-    protocol "per-frame": every query frame with a full sequence of sequence_length frames (OpenSeqSLAM's
-    protocol); "global": `queries` test sequences of sequence_length frames at random positions drawn
-    with `seed`. ground_truth: None (query frame i shows map frame i), a dict {query frame: [map
-    frames]} or a sequence of one map frame per query frame. Map frames are those the recognizer holds
-    (its keyframes; build the map with min_appearance_change=0 to keep every frame). The per-frame
-    protocol matches every query frame; a global test sequence is keyframed by match(), and its record
-    names the image the answer localises (the middle or newest keyframe kept, not always the window's
-    middle or newest image); a test sequence whose localised image has no truth is skipped. An answer is
-    correct within `tolerance` frames of a true one. Returns an Evaluation (records, summary, pr_curve).
+    The query is keyframed first, as the map's frames are (keyframes_of: every image when
+    min_appearance_change is 0), and both protocols run on its keyframes. protocol "per-frame": every
+    keyframe with a full sequence of sequence_length keyframes (OpenSeqSLAM's protocol); "global":
+    `queries` test sequences of sequence_length keyframes at random positions drawn with `seed`. A
+    record names the query image its answer localises; one without a truth is skipped. ground_truth:
+    None (query image i shows map frame i), a dict {query image: [map frames]} or a sequence of one map
+    frame per query image. Map frames are those the recognizer holds (its keyframes; build the map with
+    min_appearance_change=0 to keep every frame). An answer is correct within `tolerance` frames of a
+    true one. Returns an Evaluation (records, summary, pr_curve).
 
     Every argument is checked before any query is matched: a bad one raises ValueError naming it and
-    what it may be (tolerance 0..2147483647, queries 1..100000 and seed 0..2**64-1, whole numbers). The
-    defaults are mrs_vpr_eval's: tolerance 2, queries 200, seed 42.
+    what it may be (tolerance 0..2147483647, queries 1..100000 and seed 0..2**64-1, whole numbers; query
+    images of one size, at least sequence_length of them keyframes). The defaults are mrs_vpr_eval's:
+    tolerance 2, queries 200, seed 42.
     """
     if not isinstance(recognizer, _bindings.PlaceRecognizer):
         raise ValueError("recognizer must be a mrs_vpr.PlaceRecognizer, got %s" % type(recognizer).__name__)
@@ -120,38 +144,44 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DE
     frames = len(query_images)
     if frames < length:  # Else no query would be matched, and every figure would be NaN.
         raise ValueError("the query has %d images, fewer than the sequence length %d" % (frames, length))
-    if ground_truth is None and recognizer.frames_left_out > 0:
-        warnings.warn("without ground_truth, query frame i is taken to show map frame i, but the map left out %d "
-                      "of the frames offered to it (keyframes by min_appearance_change): its frame i is not the "
-                      "i-th image. Give ground_truth in map frames, or build the map with "
-                      "min_appearance_change=0" % recognizer.frames_left_out, UserWarning, stacklevel=2)
+    _check_one_size(query_images)
+    if ground_truth is None:
+        numbering = _numbering_warning(recognizer)
+        if numbering:
+            warnings.warn("without ground_truth, query image i is taken to show map frame i, but %s. Give "
+                          "ground_truth in map frames, or build the map with min_appearance_change=0" % numbering,
+                          UserWarning, stacklevel=2)
     truths = _bindings.truths(_ground_truth_dict(ground_truth, frames, len(recognizer)), frames, len(recognizer))
+    # Describes every image (a bad one raises ValueError naming it) and keyframes them once.
+    traversal = recognizer._keyframed_traversal(query_images, channel_order)
+    keyframes = len(traversal)
+    if keyframes < length:
+        raise ValueError("the query's %d images hold %d keyframes, fewer than the sequence length %d: its view "
+                         "hardly changes (a stop), or min_appearance_change (%g) is too high for these images; 0 "
+                         "keeps every image" % (frames, keyframes, length,
+                                                parameters["min_appearance_change"]))
+    chosen = traversal.chosen
     records = []
     if protocol == "per-frame":
-        evaluated = _bindings.per_frame_queries(frames, length, alignment)
+        evaluated = _bindings.per_frame_queries(keyframes, length, alignment)
         start = time.perf_counter()
-        matches = recognizer.match_every_frame(query_images, method, channel_order)
+        matches = recognizer._match_every_keyframe(traversal, method)
         per_query_ms = 1000.0 * (time.perf_counter() - start) / max(len(evaluated), 1)
-        for query in evaluated:
+        for keyframe in evaluated:
+            query = chosen[keyframe]
             if truths[query] is not None:
-                records.append(_bindings.query_record(query, truths[query], matches[query], per_query_ms))
+                records.append(_bindings.query_record(query, truths[query], matches[keyframe], per_query_ms))
     else:  # "global"
-        # Every image first, as match_every_frame checks them: a window meets a bad one only if it covers it.
-        recognizer._check_images(query_images, channel_order, "the traversal")
-        repeated = _bindings.repeated_global_queries(frames, length, queries)
+        repeated = _bindings.repeated_global_queries(keyframes, length, queries)
         if repeated:
             warnings.warn(repeated, UserWarning, stacklevel=2)
-        for first, count, _ in _bindings.global_queries(frames, length, queries, seed, alignment):
-            start = time.perf_counter()
-            answer = recognizer.match(query_images[first:first + count], method, channel_order)
-            elapsed_ms = 1000.0 * (time.perf_counter() - start)
-            # match() keyframes the window, so the image it localises is not always the window's anchor
-            # (a stop drops images): judge the answer at that image, and skip the window when it has no
-            # truth, as mrs_vpr_eval does.
-            query = first + answer.localised_row
+        for first, count, keyframe in _bindings.global_queries(keyframes, length, queries, seed, alignment):
+            query = chosen[keyframe]
             if truths[query] is None:
                 continue
-            records.append(_bindings.query_record(query, truths[query], answer.match, elapsed_ms))
+            start = time.perf_counter()
+            match = recognizer._match_keyframes(traversal, first, count, method)
+            records.append(_bindings.query_record(query, truths[query], match, 1000.0 * (time.perf_counter() - start)))
     for record in records:
         record["correct"] = _bindings.is_correct(record, tolerance)
     return Evaluation(records, summarise(records, tolerance), precision_recall_curve(records, tolerance))

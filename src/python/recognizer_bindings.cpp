@@ -126,9 +126,20 @@ class Recognizer {
   std::optional<double> keyframing_ = recognizer_.recognizerParameters().min_appearance_change;
 };
 
+/// A query traversal's keyframes, described once and chosen as the map's frames are (keyframesOf), as
+/// mrs_vpr_eval keyframes its query before either protocol; for evaluate().
+struct KeyframedTraversal {
+  DescriptorSequence keyframes;
+  std::vector<int> chosen;  ///< Each keyframe's index among the traversal's images.
+};
+
 }  // namespace
 
 void bindRecognizer(py::module_& m) {
+  py::class_<KeyframedTraversal>(m, "_KeyframedTraversal", "A query traversal's keyframes, for evaluate().")
+      .def_readonly("chosen", &KeyframedTraversal::chosen, "Each keyframe's index among the traversal's images.")
+      .def("__len__", [](const KeyframedTraversal& self) { return self.keyframes.size(); });
+
   py::class_<Recognizer>(m, "PlaceRecognizer",
                          "Sequence-based place recognition over a map of frames (mrs_vpr/place_recognizer.hpp).")
       .def(py::init([](const py::dict& parameters) { return std::make_unique<Recognizer>(settingsFrom(parameters)); }),
@@ -224,6 +235,39 @@ void bindRecognizer(py::module_& m) {
           py::arg("images"), py::arg("method") = "", py::arg("channel_order") = "bgr",
           "The per-frame protocol over a traversal: for every frame, the Match of the sequence of "
           "sequence_length frames that localises it (reference_index -1 where that sequence is incomplete).")
+      .def(
+          "_keyframed_traversal",
+          [](Recognizer& self, const py::handle& images, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const std::vector<Image> views = imagesFrom(images, "the traversal");
+            py::gil_scoped_release released;
+            std::vector<int> chosen;
+            DescriptorSequence keyframes =
+                self.core().keyframesOf(describeAll(self.core(), views, order, "the traversal"), &chosen);
+            return KeyframedTraversal{std::move(keyframes), std::move(chosen)};
+          },
+          py::arg("images"), py::arg("channel_order"),
+          "The traversal's keyframes (keyframes_of), described once; for evaluate().")
+      .def(
+          "_match_every_keyframe",
+          [](Recognizer& self, const KeyframedTraversal& traversal, const std::string& method) {
+            py::gil_scoped_release released;
+            return self.core().matchEveryFrame(traversal.keyframes.view(), method);
+          },
+          py::arg("traversal"), py::arg("method"),
+          "match_every_frame over the traversal's keyframes; for evaluate().")
+      .def(
+          "_match_keyframes",
+          [](Recognizer& self, const KeyframedTraversal& traversal, int first, int count, const std::string& method) {
+            if (first < 0 || count < 0 || first > traversal.keyframes.size() - count) {
+              throw py::index_error("keyframes " + std::to_string(first) + " + " + std::to_string(count) +
+                                    " of a traversal of " + std::to_string(traversal.keyframes.size()));
+            }
+            py::gil_scoped_release released;
+            return self.core().match(traversal.keyframes.view(first, first + count), method).match;
+          },
+          py::arg("traversal"), py::arg("first"), py::arg("count"), py::arg("method"),
+          "The Match of keyframes [first, first + count) of the traversal, as they are; for evaluate().")
       .def(
           "_check_images",
           [](Recognizer& self, const py::handle& images, const std::string& channel_order, const std::string& what) {

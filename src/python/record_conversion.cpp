@@ -2,6 +2,7 @@
 
 #include "record_conversion.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -35,6 +36,9 @@ QueryRecord recordFrom(const py::handle& row) {
   record.time_ms = row["time_ms"].cast<double>();
   return record;
 }
+
+/// A figure, or None where it does not exist (NaN in the core), as mrs_vpr_eval writes null in its JSON.
+py::object figure(double value) { return std::isnan(value) ? py::object(py::none()) : py::float_(value); }
 
 }  // namespace
 
@@ -89,17 +93,17 @@ py::dict summaryDict(const EvaluationSummary& summary) {
   row["tolerance"] = summary.tolerance;
   row["queries"] = summary.queries;
   row["queries_in_map"] = summary.queries_in_map;
-  row["top1"] = summary.top1;
-  row["pr_auc"] = summary.pr_auc;
-  row["recall_at_100_precision"] = summary.recall_at_100_precision;
+  row["top1"] = figure(summary.top1);
+  row["pr_auc"] = figure(summary.pr_auc);
+  row["recall_at_100_precision"] = figure(summary.recall_at_100_precision);
   row["accepted"] = summary.accepted;
-  row["accepted_rate"] = summary.accepted_rate;
-  row["accepted_precision"] = summary.accepted_precision;
-  row["accepted_recall"] = summary.accepted_recall;
-  row["largest_wrong_accepted_error"] = summary.largest_wrong_accepted_error;
-  row["median_abs_error"] = summary.median_abs_error;
-  row["median_time_ms"] = summary.median_time_ms;
-  row["total_time_s"] = summary.total_time_s;
+  row["accepted_rate"] = figure(summary.accepted_rate);
+  row["accepted_precision"] = figure(summary.accepted_precision);
+  row["accepted_recall"] = figure(summary.accepted_recall);
+  row["largest_wrong_accepted_error"] = figure(summary.largest_wrong_accepted_error);
+  row["median_abs_error"] = figure(summary.median_abs_error);
+  row["median_time_ms"] = figure(summary.median_time_ms);
+  row["total_time_s"] = figure(summary.total_time_s);
   return row;
 }
 

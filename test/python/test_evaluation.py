@@ -17,7 +17,7 @@ class MatchesNothing(mrs_vpr.PlaceRecognizer):
     def match(self, *args, **kwargs):
         raise AssertionError("evaluate() matched a query before it checked its arguments")
 
-    match_every_frame = match
+    match_every_frame = _match_every_keyframe = _match_keyframes = match
 
 
 @pytest.fixture
@@ -49,7 +49,7 @@ def test_per_frame_records_every_query_frame_with_a_full_sequence(route, short_s
     assert summary["tolerance"] == 3
     assert summary["top1"] > 0.9
     assert summary["accepted_precision"] == 1.0
-    assert np.isnan(summary["largest_wrong_accepted_error"])  # no accepted answer is wrong
+    assert summary["largest_wrong_accepted_error"] is None  # no accepted answer is wrong: null, as in mrs_vpr_eval
     curve = evaluation.pr_curve
     assert len(curve["threshold"]) == len(curve["precision"]) == len(curve["recall"]) > 0
     assert np.all(np.diff(curve["recall"]) >= 0)
@@ -234,7 +234,7 @@ def test_without_ground_truth_a_map_that_left_frames_out_is_warned_about(route):
     recognizer.add_frames(route["reference"][:100])
     assert recognizer.add_frame(route["reference"][99]) is False  # The same view again: left out.
     assert recognizer.frames_left_out >= 1
-    with pytest.warns(UserWarning, match="query frame i is taken to show map frame i"):
+    with pytest.warns(UserWarning, match="query image i is taken to show map frame i"):
         mrs_vpr.evaluate(recognizer, route["query"][:100])
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -255,32 +255,65 @@ def test_arguments_at_the_ends_of_their_ranges_evaluate(route, short_sequences):
         assert record["true_indices"] == ([] if record["query_index"] < 200 else [truth[record["query_index"]]])
 
 
-def test_a_global_record_is_judged_at_the_image_the_answer_localises(route):
-    # A stop: query image 150 held for 15 images with pixel noise. match() keeps only the first of them,
-    # so a window that holds the stop localises an image before the window's middle one.
-    stop, held, length = 150, 15, 20
+def _with_a_stop(route, held):
+    """The query with image 150 held for `held` images with pixel noise (a stop), and its ground truth."""
+    stop = 150
     noise = np.random.default_rng(0).integers(-2, 3, (held,) + route["query"].shape[1:])
     still = np.clip(route["query"][stop].astype(np.int16) + noise, 0, 255).astype(np.uint8)
     images = np.concatenate([route["query"][:stop], still, route["query"][stop + 1:]])
     truth = [int(frame) for frame in route["query_to_reference"]]
-    truth = truth[:stop] + [truth[stop]] * held + truth[stop + 1:]
-    recognizer = mrs_vpr.PlaceRecognizer(sequence_length=length, **dict(ROUTE_PARAMETERS, alignment="centred"))
+    return images, truth[:stop] + [truth[stop]] * held + truth[stop + 1:]
+
+
+@pytest.mark.parametrize("protocol", ["per-frame", "global"])
+def test_both_protocols_run_on_the_querys_keyframes_as_mrs_vpr_eval_does(route, protocol):
+    # A stop of 60 images, longer than a sequence: the query's keyframes hold one of them, so no test
+    # sequence is mostly one view, and a window inside the stop is not a query (it was: "fewer than 2
+    # keyframes" ended the whole global evaluation).
+    images, truth = _with_a_stop(route, held=60)
+    recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **dict(ROUTE_PARAMETERS, alignment="centred"))
     recognizer.add_frames(route["reference"])
-    windows = len(images) - length + 1  # every start once, in ascending order
-    localised = []
-    for first in range(windows):
-        kept = recognizer.keyframes_of(images[first:first + length])
-        localised.append(first + kept[len(kept) // 2])
-    assert localised[136] == 143  # window 136..155 keeps images 136..150: the middle one kept, not 146
+    chosen = recognizer.keyframes_of(images)
+    assert len([i for i in chosen if 150 <= i < 210]) <= 2  # The stop keeps its first image, at most one more.
+    evaluation = mrs_vpr.evaluate(recognizer, images, ground_truth=truth, protocol=protocol, queries=300)
+    localised = [record["query_index"] for record in evaluation.records]
+    assert set(localised) <= set(chosen)
+    if protocol == "per-frame":  # Each keyframe with a full sequence of keyframes, answered as its own keyframes.
+        keyframes = images[chosen]
+        assert localised == sorted(localised) and len(localised) == len(chosen) - 19
+        matches = recognizer.match_every_frame(keyframes)
+        for record in evaluation.records:
+            assert record["predicted_index"] == matches[chosen.index(record["query_index"])].reference_index
+    assert evaluation.summary["top1"] > 0.9
+    assert evaluation.summary["accepted_precision"] == 1.0
 
-    evaluation = mrs_vpr.evaluate(recognizer, images, ground_truth=truth, protocol="global", queries=windows)
-    assert [record["query_index"] for record in evaluation.records] == localised
-    record = evaluation.records[136]
-    assert record["true_indices"] == [truth[143]]
-    assert abs(record["predicted_index"] - truth[143]) <= 2  # right, though 3 map frames from image 146's place
+def test_query_images_of_other_sizes_are_refused(route, short_sequences):
+    images = list(route["query"][:100])
+    images[40] = images[40][:, :-8]  # another camera, or a cropped file among the others
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(short_sequences, images)
+    height, width = route["query"].shape[1:3]
+    assert str(error.value) == ("all query images must have one size (one camera): image 0 is %d x %d, image 40 is "
+                                "%d x %d" % (width, height, width - 8, height))
 
-    # Only windows that localise image 143 are evaluated, whatever their middle image.
-    only = mrs_vpr.evaluate(recognizer, images, ground_truth={143: [truth[143]]}, protocol="global",
-                            queries=windows)
-    assert [record["query_index"] for record in only.records] == [143] * localised.count(143)
-    assert localised.count(143) >= 2
+
+def test_a_query_that_hardly_changes_names_its_keyframes(route, short_sequences):
+    images, _ = _with_a_stop(route, held=60)
+    with pytest.raises(ValueError) as error:
+        mrs_vpr.evaluate(short_sequences, images[150:210])
+    assert str(error.value).startswith("the query's 60 images hold 1 keyframes, fewer than the sequence length 20: "
+                                       "its view hardly changes (a stop)")
+
+
+def test_without_ground_truth_a_loaded_map_of_keyframes_is_warned_about(route, tmp_path):
+    # Its frames keep the numbers of the frames they were kept from: map frame i is not query image i.
+    images, _ = _with_a_stop(route, held=30)
+    recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
+    recognizer.add_frames(images)
+    assert recognizer.frames_left_out > 0
+    recognizer.save(str(tmp_path / "map.db"))
+    loaded = mrs_vpr.PlaceRecognizer.from_map(str(tmp_path / "map.db"), sequence_length=20, **ROUTE_PARAMETERS)
+    assert loaded.frames_left_out == 0
+    with pytest.warns(UserWarning, match=r"the map.s %d frames are keyframes of a traversal of at least"
+                      % len(loaded)):
+        mrs_vpr.evaluate(loaded, route["query"][:100])
