@@ -10,6 +10,7 @@
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,41 @@ bool isImageFile(const fs::path& path) {
   const std::string extension = extensionOf(path);
   return std::any_of(std::begin(kImageExtensions), std::end(kImageExtensions),
                      [&extension](const char* known) { return extension == known; });
+}
+
+/// The digits of `text` from `at` on, without leading zeros, and where they end.
+std::pair<std::string_view, std::size_t> numberAt(std::string_view text, std::size_t at) {
+  std::size_t end = at;
+  while (end < text.size() && std::isdigit(static_cast<unsigned char>(text[end]))) ++end;
+  std::size_t first = at;
+  while (first + 1 < end && text[first] == '0') ++first;
+  return {text.substr(first, end - first), end};
+}
+
+/// File-name order in which a run of digits counts as its number, so that frame2.png comes before
+/// frame10.png as a camera wrote them (zero-padded names sort as they do byte by byte); names that
+/// differ only by leading zeros fall back to byte order.
+bool namedBefore(std::string_view a, std::string_view b) {
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.size() && j < b.size()) {
+    const bool digit_a = std::isdigit(static_cast<unsigned char>(a[i])) != 0;
+    const bool digit_b = std::isdigit(static_cast<unsigned char>(b[j])) != 0;
+    if (digit_a && digit_b) {
+      const auto [number_a, end_a] = numberAt(a, i);
+      const auto [number_b, end_b] = numberAt(b, j);
+      if (number_a.size() != number_b.size()) return number_a.size() < number_b.size();
+      if (number_a != number_b) return number_a < number_b;
+      i = end_a;
+      j = end_b;
+    } else {
+      if (a[i] != b[j]) return static_cast<unsigned char>(a[i]) < static_cast<unsigned char>(b[j]);
+      ++i;
+      ++j;
+    }
+  }
+  if (a.size() - i != b.size() - j) return a.size() - i < b.size() - j;
+  return a < b;
 }
 
 /// The first few of `names`, for a message.
@@ -127,7 +163,7 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
     }
     throw std::runtime_error(message);
   }
-  std::sort(files.begin(), files.end());
+  std::sort(files.begin(), files.end(), namedBefore);  // Full paths in one folder: their names decide.
   if (left_out) *left_out = std::move(others);
   return files;
 }

@@ -384,6 +384,29 @@ TEST(ImageFolder, ListsImagesInFileNameOrder) {
   EXPECT_EQ(leftOutNote(folder.path(), {}), "");
 }
 
+// A camera that numbers its frames without zeros in front: frame 10 after frame 9, not after frame 1.
+TEST(ImageFolder, NumbersInNamesSortAsNumbers) {
+  TempFolder folder;
+  for (const char* name : {"10.png", "9.png", "0.png", "1.png", "100.png", "2.png", "cam1_frame10.png",
+                           "cam1_frame9.png", "cam2_frame1.png", "007.png"}) {
+    folder.write(name, "");
+  }
+  std::vector<std::string> names;
+  for (const std::string& file : listImageFiles(folder.path())) names.push_back(fs::path(file).filename().string());
+  EXPECT_EQ(names, (std::vector<std::string>{"0.png", "1.png", "2.png", "007.png", "9.png", "10.png", "100.png",
+                                             "cam1_frame9.png", "cam1_frame10.png", "cam2_frame1.png"}));
+  // Zero-padded names, as most recordings write them, keep byte order.
+  fs::create_directory(folder.path("padded"));
+  for (const char* name : {"images-00190.png", "images-00180.png", "images-01000.png"}) {
+    folder.write("padded/" + std::string(name), "");
+  }
+  std::vector<std::string> padded_names;
+  for (const std::string& file : listImageFiles(folder.path("padded"))) {
+    padded_names.push_back(fs::path(file).filename().string());
+  }
+  EXPECT_EQ(padded_names, (std::vector<std::string>{"images-00180.png", "images-00190.png", "images-01000.png"}));
+}
+
 // A folder of images of an extension not known (.jfif, say) holds "no image": the message names its files.
 TEST(ImageFolder, AFolderWithoutImagesNamesTheFilesItHolds) {
   TempFolder folder;
