@@ -47,7 +47,8 @@ constexpr const char* kUsage =
     "frame is in the reference, so every accepted answer is a false loop closure. The summary is\n"
     "printed on stdout; --output writes parameters, per-query records, summary and PR curve as JSON.\n"
     "--plots DIR writes that JSON (DIR/evaluation.json), pictures of the difference matrix, and the\n"
-    "plots of mrs_vpr_plot (PR curve, difference matrix and band, error along the route) into DIR.\n";
+    "plots of mrs_vpr_plot (PR curve, difference matrix and band, error along the route) into DIR;\n"
+    "a picture or plot that an earlier run left there and this one does not make is removed.\n";
 
 /**
  * Creates `folder` when missing and writes and removes a file in it, so that results that could not
@@ -172,7 +173,14 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
       throw std::invalid_argument("--output '" + options.output + "' is a folder; give the JSON file to write");
     }
     const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
-    if (!folder.empty() && !std::filesystem::is_directory(folder)) {
+    // The --plots folder may not exist yet: --plots creates it.
+    const bool in_plots =
+        !options.plots.empty() && !folder.empty() && writtenAt(folder.string()) == writtenAt(options.plots);
+    if (in_plots && normalPath(options.output).filename() == "evaluation.json") {
+      throw std::invalid_argument("--output '" + options.output + "' is the JSON that --plots writes there; leave " +
+                                  "--output out, or name another file");
+    }
+    if (!in_plots && !folder.empty() && !std::filesystem::is_directory(folder)) {
       throw std::invalid_argument("--output '" + options.output + "': there is no folder " + folder.string());
     }
     if (writtenInPlace(options.output)) {

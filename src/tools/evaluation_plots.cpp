@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <limits>
 #include <stdexcept>
+#include <system_error>
 
 #include "mrs_vpr/evaluation/difference_picture.hpp"
 #include "mrs_vpr/image_codecs.hpp"
@@ -66,6 +67,11 @@ json writeQuantised(const cv::Mat& values, const fs::path& file) {
 
 json writeDifferencePictures(const std::string& folder, SequenceView query, SequenceView reference,
                              const std::vector<QueryRecord>& records, int contrast_window) {
+  // An earlier evaluation's pictures, which this one may not make, would pass for this one's.
+  for (const char* name : {"difference_overview_values.png", "difference_band_values.png"}) {
+    std::error_code ignored;
+    fs::remove(fs::path(folder) / name, ignored);
+  }
   json pictures = {{"contrast_window", contrast_window}};
   if (reference.count <= kOverviewMaxReference) {
     const DifferenceOverview overview =

@@ -150,6 +150,34 @@ TEST_F(PlotsTest, OutOfMapQueriesHaveNoBandAndNoErrorToDraw) {
   EXPECT_FALSE(document.at("difference_pictures").contains("band"));
 }
 
+TEST_F(PlotsTest, AFolderUsedAgainKeepsNoPlotOfTheEarlierRun) {
+  // --output inside the --plots folder, which --plots makes: allowed; --output on the JSON it writes: not.
+  const fs::path plots = root() / "used_again";
+  std::string err;
+  ASSERT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + (plots / "run.json").string(), nullptr, &err), 0)
+      << err;
+  EXPECT_TRUE(fs::exists(plots / "run.json"));
+  for (const char* name : {"difference_band.png", "error_along_route.png", "difference_band_values.png"}) {
+    ASSERT_TRUE(fs::exists(plots / name)) << name;
+  }
+  EXPECT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + (plots / "evaluation.json").string(), nullptr, &err),
+            1);
+  EXPECT_NE(err.find("is the JSON that --plots writes there"), std::string::npos) << err;
+  // Queries outside the map have no band and no error to draw: the earlier run's must not pass for theirs.
+  ASSERT_EQ(exitStatus(std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root() / "reference").string() +
+                           " --query " + (root() / "query").string() +
+                           " --out-of-map --method mrs --protocol per-frame --sequence-length 10 --plots " +
+                           plots.string(),
+                       nullptr, &err),
+            0)
+      << err;
+  expectPng(plots / "pr_curve.png", 640, 480);
+  for (const char* name : {"difference_band.png", "error_along_route.png", "difference_band_values.png"}) {
+    EXPECT_FALSE(fs::exists(plots / name)) << name;
+  }
+  EXPECT_TRUE(fs::exists(plots / "run.json"));  // Not a plot: the user's, left alone.
+}
+
 TEST_F(PlotsTest, PlotToolDrawsTwoMethodsInOneFigureAtTheAskedSize) {
   const fs::path mrs = root() / "mrs";
   const fs::path seqslam = root() / "seqslam";
