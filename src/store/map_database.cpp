@@ -548,19 +548,24 @@ void MapDatabase::removeCompanions(const std::string& path) {
 
 void MapDatabase::checkNotHeld(const std::string& path) { const MapHold hold(path); }
 
+bool MapDatabase::isSqliteFile(const std::string& path) {
+  static constexpr char kSqliteHeader[] = "SQLite format 3";  // With its NUL: the first 16 bytes.
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
+  std::string head(sizeof(kSqliteHeader), '\0');
+  std::ifstream file(path, std::ios::binary);
+  return file.read(head.data(), static_cast<std::streamsize>(head.size())) &&
+         head == std::string(kSqliteHeader, sizeof(kSqliteHeader));
+}
+
 void MapDatabase::removeUnfinished(const std::string& part, const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
   const fs::file_status status = fs::symlink_status(part, error);
   if (fs::exists(status)) {
-    static constexpr char kSqliteHeader[] = "SQLite format 3";  // With its NUL: the first 16 bytes.
-    std::string head(sizeof(kSqliteHeader), '\0');
-    bool unfinished = fs::is_regular_file(status);
-    if (unfinished && fs::file_size(part, error) > 0) {
-      std::ifstream file(part, std::ios::binary);
-      unfinished = file.read(head.data(), static_cast<std::streamsize>(head.size())) &&
-                   head == std::string(kSqliteHeader, sizeof(kSqliteHeader));
-    }
+    // An empty file, or an SQLite database that is no link to one.
+    const bool unfinished =
+        fs::is_regular_file(status) && (fs::file_size(part, error) == 0 || isSqliteFile(part));
     if (!unfinished) {
       refuseSave(path, "'" + part + "', which the map is written to on its way there, is a folder or a file " +
                            "other than an unfinished map (remove it or choose another name)");

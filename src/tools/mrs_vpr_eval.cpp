@@ -1,6 +1,8 @@
 // mrs_vpr_eval: offline evaluation of `seqslam` and `mrs` on two traversals (image folders or bags)
 // with either protocol of the paper notes: per-frame (SeqSLAM style) or global localisation.
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -16,6 +18,7 @@
 #include "eval_options.hpp"
 #include "evaluation_json.hpp"
 #include "evaluation_plots.hpp"
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
@@ -54,17 +57,29 @@ std::optional<std::vector<int>> truthOfFrame(int frame, const GroundTruth* truth
   return truthFor(frame, truth, reference.total);
 }
 
+/// The error of a query with fewer keyframes than a test sequence needs.
+std::invalid_argument tooShortQuery(const Keyframes& query, int sequence_length) {
+  const int kept = static_cast<int>(query.frames.size());
+  return std::invalid_argument(
+      "the query's " + std::to_string(query.total) + " frames hold " + std::to_string(kept) + " keyframes, fewer " +
+      "than the sequence length " + std::to_string(sequence_length) +
+      (kept < query.total ? ": its view hardly changes (a stop), or --min-appearance-change is too high for these "
+                            "frames (0 keeps every frame)"
+                          : ""));
+}
+
+/// An answer whose confidence the acceptance rule leaves at 0: the map holds too few ends outside its window.
+bool tooFewRivals(const Match& match) { return match.reference_index >= 0 && match.rivals < kMinRivalEnds; }
+
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
 std::vector<QueryRecord> runPerFrame(PlaceRecognizer& reference, const std::string& method,
                                      const DescriptorSequence& query, const GroundTruth* truth,
-                                     const SequenceParams& sequence, const Keyframed& keyframes) {
+                                     const SequenceParams& sequence, const Keyframed& keyframes,
+                                     int& without_rivals) {
   const std::vector<int> frames = perFrameQueries(query.size(), sequence);
-  if (frames.empty()) {
-    throw std::invalid_argument("the query has " + std::to_string(query.size()) +
-                                " frames, fewer than the sequence length " + std::to_string(sequence.sequence_length));
-  }
+  if (frames.empty()) throw tooShortQuery(keyframes.query, sequence.sequence_length);
   std::cerr << "  matching " << frames.size() << " query frames with " << method << "\n";
   const Clock::time_point start = Clock::now();
   const std::vector<Match> matches = reference.matchEveryFrame(query.view(), method);
@@ -79,8 +94,9 @@ std::vector<QueryRecord> runPerFrame(PlaceRecognizer& reference, const std::stri
       ++skipped;
       continue;
     }
-    records.push_back(keyframeRecordOf(frame, *true_indices, matches.at(static_cast<std::size_t>(keyframe)),
-                                       keyframes.reference, per_query_ms));
+    const Match& match = matches.at(static_cast<std::size_t>(keyframe));
+    if (tooFewRivals(match)) ++without_rivals;
+    records.push_back(keyframeRecordOf(frame, *true_indices, match, keyframes.reference, per_query_ms));
   }
   if (skipped > 0) std::cerr << "  " << skipped << " query frames skipped: they have no ground truth\n";
   return records;
@@ -88,12 +104,10 @@ std::vector<QueryRecord> runPerFrame(PlaceRecognizer& reference, const std::stri
 
 /// Global localisation protocol: each test sequence is searched on its own and timed.
 std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorSequence& query,
-                                   const GroundTruth* truth, const EvalOptions& options, const Keyframed& keyframes) {
+                                   const GroundTruth* truth, const EvalOptions& options, const Keyframed& keyframes,
+                                   int& without_rivals) {
   const SequenceParams& sequence = options.params.sequence;
-  if (sequence.sequence_length > query.size()) {
-    throw std::invalid_argument("sequence length " + std::to_string(sequence.sequence_length) +
-                                " is larger than the query of " + std::to_string(query.size()) + " frames");
-  }
+  if (sequence.sequence_length > query.size()) throw tooShortQuery(keyframes.query, sequence.sequence_length);
   const std::vector<TestSequence> tests = globalQueries(query.size(), sequence.sequence_length, options.queries,
                                                         static_cast<std::uint64_t>(options.seed), sequence.alignment);
   const std::string repeated = repeatedGlobalQueries(query.size(), sequence.sequence_length, options.queries);
@@ -113,6 +127,7 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
     }
     const Clock::time_point start = Clock::now();
     const Match match = reference.match(query.view(test.start, test.start + test.length), options.method).match;
+    if (tooFewRivals(match)) ++without_rivals;
     records.push_back(keyframeRecordOf(frame, *true_indices, match, keyframes.reference, 1000.0 * secondsSince(start)));
   }
   progress.update(done);
@@ -121,8 +136,13 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
   return records;
 }
 
-/// A reference given as a map database (*.db) rather than as images.
-bool isMapDatabase(const std::string& path) { return path.size() > 3 && path.compare(path.size() - 3, 3, ".db") == 0; }
+/// A reference given as a map database rather than as images: named *.db (in any case), or an SQLite file
+/// of another name.
+bool isMapDatabase(const std::string& path) {
+  std::string suffix = std::filesystem::path(path).extension().string();
+  std::transform(suffix.begin(), suffix.end(), suffix.begin(), [](unsigned char c) { return std::tolower(c); });
+  return suffix == ".db" || MapDatabase::isSqliteFile(path);
+}
 
 /// A map database's keyframes as frames of the traversal they were taken from, by the number each
 /// stores (build_map stores the frame's index in its folder or bag), so that the ground truth names
@@ -243,6 +263,10 @@ int run(int argc, char** argv) {
   // The query's frames are counted before the reference is described: a mistyped query folder or bag
   // is named at once, and a ground truth of other traversals refused. A map database's frames are
   // known once it is read, before the query is described.
+  if (isMapDatabase(options.query)) {
+    throw std::invalid_argument("--query '" + options.query + "' is a map database, which holds a map's keyframes; " +
+                                "the query is a traversal to keyframe and match: a folder of images or a bag");
+  }
   const int query_frame_count = countFrames(options.query, options.topic);
   std::optional<GroundTruth> truth;
   if (!options.ground_truth.empty()) {
@@ -330,12 +354,24 @@ int run(int argc, char** argv) {
   }
   const GroundTruth* truth_ptr = truth ? &*truth : nullptr;
   const Clock::time_point match_start = Clock::now();
+  int without_rivals = 0;
   const std::vector<QueryRecord> records =
       options.protocol == "per-frame"
-          ? runPerFrame(recognizer, options.method, query_descriptors, truth_ptr, sequence, keyframes)
-          : runGlobal(recognizer, query_descriptors, truth_ptr, options, keyframes);
+          ? runPerFrame(recognizer, options.method, query_descriptors, truth_ptr, sequence, keyframes, without_rivals)
+          : runGlobal(recognizer, query_descriptors, truth_ptr, options, keyframes, without_rivals);
   const double match_s = secondsSince(match_start);
   if (records.empty()) throw std::invalid_argument("no query frame has ground truth: nothing to evaluate");
+  if (without_rivals > 0) {
+    // Else a small map's figures (no answer accepted, no PR curve) would look like a method that fails.
+    std::cerr << "  " << without_rivals << " of " << records.size() << " answers found fewer than " << kMinRivalEnds
+              << " trajectory ends outside their window in the map of " << recognizer.size()
+              << " keyframes: the acceptance rule gives them confidence 0 and accepts none of them"
+              << (without_rivals == static_cast<int>(records.size())
+                      ? "; every confidence is equal, so there is no PR curve (a map of a few hundred keyframes "
+                        "or more has one)"
+                      : "")
+              << " (doc/acceptance.md)\n";
+  }
 
   EvaluationSummary summary = summarise(records, options.tolerance);
   summary.total_time_s = secondsSince(start);  // The whole evaluation: reading, describing, matching.

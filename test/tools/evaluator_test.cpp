@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -142,6 +143,63 @@ TEST_F(EvaluatorTest, BadInputGivesOneLineAndExitCodeOne) {
   expectError(folders.substr(0, folders.find(" --query")) + " --query " + path("small") +
                   " --method seqslam --protocol per-frame --sequence-length 2",
               "query images are 10x10 but reference images are 128x64");
+}
+
+TEST_F(EvaluatorTest, AMapDatabaseIsKnownByItsContentsAndRefusedAsTheQuery) {
+  const std::string map = path("named_otherwise.sqlite");
+  ASSERT_EQ(run(buildMap() + " --images " + path("reference") + " --output " + map).status, 0);
+  const std::string arguments = " --protocol per-frame --sequence-length 10 --method seqslam";
+  // Read as the map it is, not as an image folder it is not.
+  const CommandResult as_reference = run(eval("--reference " + map + " --query " + path("query") + arguments));
+  EXPECT_EQ(as_reference.status, 0) << as_reference.err;
+  EXPECT_NE(as_reference.err.find("keyframes from the map database " + map), std::string::npos) << as_reference.err;
+  expectError("--reference " + path("reference") + " --query " + map + arguments,
+              "--query '" + map + "' is a map database, which holds a map's keyframes; the query is a traversal to "
+              "keyframe and match: a folder of images or a bag");
+}
+
+TEST_F(EvaluatorTest, AQueryOfTooFewKeyframesSaysSo) {
+  // One view shown again and again: a robot standing still, whose frames keyframing keeps one of.
+  fs::create_directories(path("standing"));
+  for (int i = 0; i < 30; ++i) {
+    fs::create_symlink(path("query/00050.png"), path("standing/" + std::to_string(1000 + i) + ".png"));
+  }
+  for (const char* protocol : {"per-frame", "global"}) {
+    const CommandResult result =
+        run(std::string(MRS_VPR_EVAL_PATH) + " --descriptor thumbnail --reference " + path("reference") +
+            " --query " + path("standing") + " --sequence-length 10 --protocol " + protocol);
+    EXPECT_EQ(result.status, 1) << result.err;
+    EXPECT_NE(result.err.find("the query's 30 frames hold 1 keyframes, fewer than the sequence length 10: its view "
+                              "hardly changes (a stop), or --min-appearance-change is too high for these frames (0 "
+                              "keeps every frame)"),
+              std::string::npos)
+        << result.err;
+  }
+}
+
+TEST_F(EvaluatorTest, AMapTooSmallForTheAcceptanceRuleIsNamed) {
+  // 40 places: too few trajectory ends outside an answer's window for a confidence, so none is accepted
+  // and there is no PR curve; the tool says why rather than leave it to look like a method that fails.
+  fs::create_directories(path("small_map"));
+  for (int i = 0; i < 40; ++i) {
+    char name[16];
+    std::snprintf(name, sizeof(name), "%05d.png", i);
+    fs::create_symlink(path(std::string("reference/") + name), path(std::string("small_map/") + name));
+  }
+  const CommandResult result = run(eval("--reference " + path("small_map") + " --query " + path("query") +
+                                        " --protocol per-frame --sequence-length 10 --method seqslam"));
+  ASSERT_EQ(result.status, 0) << result.err;
+  EXPECT_EQ(json::parse(result.out).at("summary").at("accepted").get<int>(), 0);
+  EXPECT_NE(result.err.find("trajectory ends outside their window in the map of 40 keyframes: the acceptance rule "
+                            "gives them confidence 0 and accepts none of them; every confidence is equal, so there is "
+                            "no PR curve"),
+            std::string::npos)
+      << result.err;
+  // The whole route's map says nothing of it.
+  const CommandResult whole = run(eval("--reference " + path("reference") + " --query " + path("query") +
+                                       " --protocol per-frame --sequence-length 10 --method seqslam"));
+  ASSERT_EQ(whole.status, 0) << whole.err;
+  EXPECT_EQ(whole.err.find("trajectory ends outside"), std::string::npos) << whole.err;
 }
 
 /// Records of `records` whose boolean `field` is true.

@@ -144,6 +144,8 @@ class MapDatabase {
   /// SQLite would otherwise read into a new file renamed to `path`. Only for a path no other process
   /// holds (the caller's own MapHold keeps any writer out).
   static void removeCompanions(const std::string& path);
+  /// Whether `path` is a regular file that begins with SQLite's header (a map database, whatever its name).
+  static bool isSqliteFile(const std::string& path);
   /// Removes `part`, the unfinished copy of the map `path` that an earlier run left (an empty file or
   /// an SQLite database), with its companions. Throws MapDatabaseError naming `path` when anything
   /// else is there (a folder, a file of the user's), which is left alone.
