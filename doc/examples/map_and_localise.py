@@ -22,6 +22,7 @@ Ctrl-C.
 import argparse
 import ast
 import os
+import re
 import sys
 import time
 
@@ -54,7 +55,10 @@ def read_folder(folder):
         names = os.listdir(folder)
     except OSError as error:
         sys.exit("cannot read folder '%s': %s" % (folder, error.strerror))
-    files = sorted(os.path.join(folder, name) for name in names if name.lower().endswith(IMAGE_EXTENSIONS))
+    # As mrs_vpr_eval orders them: a number in a name counts as a number (2.png before 10.png).
+    files = sorted((os.path.join(folder, name) for name in names if name.lower().endswith(IMAGE_EXTENSIONS)),
+                   key=lambda path: [(0, int(part), part) if part.isdigit() else (1, 0, part)
+                                     for part in re.split(r"(\d+)", os.path.basename(path))])
     if not files:
         sys.exit("no images in '%s'" % folder)
     images = [read_image(path) for path in files]
