@@ -12,6 +12,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/number_text.hpp"
+#include "mrs_vpr/stamp.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -37,6 +38,23 @@ std::string printable(const std::string& text) {
     }
   }
   return result;
+}
+
+/**
+ * Takes back the acceptance of a loop closure whose place was recorded within its own test sequence's
+ * time, [earliest, latest]: the same recording mapped twice (a bag played again without a reset), whose
+ * frames find their own first pass. A revisit's place was recorded before the frames that see it again;
+ * two recordings that a clock reset put out of order keep apart in time, so their closures stand. A
+ * zero stamp (not known) decides nothing.
+ */
+void refuseSameRecording(PlaceAnswer& answer, Stamp earliest, Stamp latest) {
+  const Stamp place = answer.reference_stamp;
+  if (!answer.match.accepted || place.isZero() || earliest.isZero() || place < earliest || latest < place) return;
+  answer.match.accepted = false;
+  answer.verdict = "not accepted: the place found was recorded at " + place.toString() +
+                   " s, while the test sequence itself was (" + earliest.toString() + " to " + latest.toString() +
+                   " s): the same recording is in the map twice (a bag played again without ~reset), and a frame " +
+                   "that finds its own first pass is no loop closure";
 }
 
 }  // namespace
@@ -524,6 +542,13 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_frame = size - recent + result.localised_row;
     result.localised_stamp = map_.stamp(result.localised_frame);
+    Stamp earliest = map_.stamp(size - recent);
+    Stamp latest = earliest;
+    for (int frame = size - recent; frame < size; ++frame) {
+      earliest = std::min(earliest, map_.stamp(frame));
+      latest = std::max(latest, map_.stamp(frame));
+    }
+    refuseSameRecording(result, earliest, latest);
   }
   flush();
   return result;

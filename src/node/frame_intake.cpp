@@ -84,7 +84,8 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     // twice, and the second pass then finds the first as loop closures.
     ROS_WARN_THROTTLE(kWarningPeriod,
                       "mrs_vpr: image stamps went back from %.3f to %.3f s (a bag played again, a clock reset): "
-                      "the new keyframes join the map after the others; call ~reset first to map anew",
+                      "the new keyframes join the map after the others, and closures to frames recorded at the "
+                      "same time are not accepted; call ~reset first to map anew",
                       *stepped_back_from, seconds);
   }
 }
@@ -101,6 +102,16 @@ std::optional<Stamp> PlaceRecognitionNode::frameStamp(const std_msgs::Header& he
   }
   if (stamp.isZero()) {
     stamp = stampOf(ros::Time::now());  // unstamped camera: the arrival time is the best we have
+  }
+  if (stamp.isZero()) {
+    // Simulated time before the first /clock message: a keyframe of no time would join every closure
+    // to stamp 0, which ~loop_closure_stamps cannot send and a SLAM back end cannot place.
+    ++frames_failed_;
+    ROS_WARN_THROTTLE(kWarningPeriod,
+                      "mrs_vpr: dropping a frame from %s: it has no stamp (header.stamp 0), and the clock has not "
+                      "started (/use_sim_time is true and nothing has published /clock yet)",
+                      imageTopic().c_str());
+    return std::nullopt;
   }
   return stamp;
 }

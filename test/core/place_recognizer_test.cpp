@@ -109,6 +109,33 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
             "a test sequence cannot end at frame -5 (-1: after the newest frame)");
 }
 
+// A bag played twice without a reset maps its route twice, with the same stamps: each frame of the second
+// pass finds its own first pass, which is no loop closure. Another recording whose clock lies before the
+// map's (a clock reset) is kept apart in time: its closures stand.
+TEST(PlaceRecognizer, AFrameThatFindsItsOwnRecordingIsNoLoopClosure) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  for (const bool same_clock : {true, false}) {
+    PlaceRecognizer recognizer(globalSearchParams(), limits);
+    mapReference(recognizer);  // stamped 100 + frame / 10 s
+    const std::int64_t start_ns = same_clock ? 100'000'000'000 : 10'000'000'000;
+    for (int i = 0; i < 300; ++i) {
+      recognizer.addFrame(route().reference[static_cast<std::size_t>(i)],
+                          Stamp::fromNanoseconds(start_ns + 100'000'000LL * i));
+    }
+    const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
+    EXPECT_TRUE(within(answer.match.reference_index, 299, 3)) << answer.match.reference_index;  // Causal: the newest.
+    EXPECT_GT(answer.match.confidence, 3.0F);
+    EXPECT_EQ(answer.match.accepted, !same_clock) << answer.verdict;
+    if (same_clock) {
+      EXPECT_EQ(answer.verdict.rfind("not accepted: the place found was recorded at ", 0), 0U) << answer.verdict;
+      EXPECT_NE(answer.verdict.find("the same recording is in the map twice"), std::string::npos) << answer.verdict;
+    } else {
+      EXPECT_EQ(answer.verdict, "accepted");
+    }
+  }
+}
+
 // Questions about the newest frames after each new one, as continuous mode asks: once MRS has kept
 // their rows (mrs/recent_rows.hpp), its answers are the brute force's; the rows are counted in the
 // map's memory and go with a reset.

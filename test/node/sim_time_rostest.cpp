@@ -43,6 +43,29 @@ TEST(SimulatedTime, WithoutAClockTheMapIsReportedAndContinuousModeAnswers) {
   EXPECT_GT(answered.front().header.stamp.toSec(), 1000.0);  // a frame's stamp, not ROS time
 }
 
+// A camera that leaves its stamps 0 gets its frames' arrival times, which before the first /clock are 0
+// too: such frames are dropped and counted, not mapped at no time (every closure to them would name 0).
+TEST(SimulatedTime, AFrameOfNoStampBeforeTheClockIsDroppedAndCounted) {
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::Time::now().isZero()) << "a /clock runs: the test needs ROS time standing at 0";
+  ros::Publisher images = nh.advertise<sensor_msgs::Image>("camera/image", 1000);
+  mrs_vpr::testing_support::MapInfoWatch map_info(nh, "mrs_vpr");
+  ASSERT_TRUE(mrs_vpr::testing_support::waitForSubscribers(images, 1, 30.0));
+  ASSERT_TRUE(map_info.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames > 0; }, 30.0));
+  const mrs_vpr::MapInfo before = map_info.latest();
+  const std::vector<cv::Mat>& query = defaultRouteImages().query;
+  constexpr std::uint64_t kUnstamped = 5;
+  for (std::uint64_t i = 0; i < kUnstamped; ++i) {
+    images.publish(mrs_vpr::testing_support::imageMessage(query[200 + 10 * i], 0.0));
+    ros::WallDuration(0.002).sleep();
+  }
+  EXPECT_TRUE(map_info.waitFor(
+      [&](const mrs_vpr::MapInfo& m) { return m.frames_failed == before.frames_failed + kUnstamped; }, 30.0))
+      << "~map_info counts " << map_info.latest().frames_failed << " failed frames";
+  EXPECT_EQ(map_info.latest().frames, before.frames);
+  EXPECT_EQ(map_info.latest().frames_received, before.frames_received + kUnstamped);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) { return mrs_vpr::testing_support::runRostests(argc, argv, "sim_time_test"); }

@@ -88,7 +88,8 @@ class PlaceRecognitionNode {
   template <typename Convert, typename Summary>
   void addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary);
   /// The frame's exact stamp (its arrival time when the camera leaves it 0), or nothing when the stamp
-  /// lies beyond ROS's range (counted as failed and reported).
+  /// lies beyond ROS's range or neither it nor the clock gives a time (simulated time before /clock):
+  /// counted as failed and reported.
   std::optional<Stamp> frameStamp(const std_msgs::Header& header);
   /// Whether the keyframe policies (interval, stride, then travel by tf) want the frame taken at
   /// `seconds`; `position` gets the robot's position when ~min_travel is set. What they refuse is
