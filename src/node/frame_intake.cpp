@@ -58,8 +58,10 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
       std::lock_guard<std::mutex> lock(state_mutex_);
       keyframe_policy_.skip(seconds);
     }
-    ROS_WARN_THROTTLE(kWarningPeriod, "mrs_vpr: dropping a frame from %s (%s): %s", imageTopic().c_str(),
-                      summary().c_str(), error.what());
+    // Each kind of problem once a period: a second kind within it would be hidden by a throttle.
+    if (frame_failure_warning_.allows(kindOf(error.what()), steadySeconds())) {
+      ROS_WARN("mrs_vpr: dropping a frame from %s (%s): %s", imageTopic().c_str(), summary().c_str(), error.what());
+    }
     return;
   }
   if (!admit(descriptor, *stamp, header, seconds)) return;

@@ -33,6 +33,7 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
       recognizer_(params.core, params.recognizer),
       keyframe_policy_(params.min_frame_interval, params.frame_stride),
       travel_policy_(params.min_travel),
+      frame_failure_warning_(kWarningPeriod),
       standing_frames_(params.auto_query_period),
       nh_(nh),
       private_nh_(private_nh),
