@@ -47,7 +47,9 @@ PYBIND11_MODULE(_bindings, m) {
         }
         // Frames asked about are keyframed as the map's were: on the map's scale.
         const std::optional<MapTraversal>& traversal = map.traversal();
-        if (traversal && traversal->min_appearance_change) own["min_appearance_change"] = *traversal->min_appearance_change;
+        if (traversal && traversal->min_appearance_change) {
+          own["min_appearance_change"] = *traversal->min_appearance_change;
+        }
         return own;
       },
       py::arg("path"),
