@@ -82,6 +82,16 @@ cv::Size pngSize(const std::vector<std::uint8_t>& data) {
   return cv::Size(static_cast<int>(width), static_cast<int>(height));
 }
 
+/// The message's codec: the one its format names, or where it names none (a publisher of its own that
+/// left `format` empty) the one its bytes begin with, as cv_bridge and the bag tools read it.
+CompressedCodec codecOf(const sensor_msgs::CompressedImage& message) {
+  if (message.format.find_first_not_of(" \t") != std::string::npos) return parseCompressedFormat(message.format);
+  if (startsWith(message.data, kJpegSignature)) return CompressedCodec::kJpeg;
+  if (startsWith(message.data, kPngSignature)) return CompressedCodec::kPng;
+  throw std::invalid_argument("the format is empty, and the " + std::to_string(message.data.size()) +
+                              " bytes begin as neither a jpeg nor a png stream");
+}
+
 bool isDescribable(int type) { return type == CV_8UC1 || type == CV_16UC1 || type == CV_8UC3 || type == CV_8UC4; }
 
 }  // namespace
@@ -111,7 +121,7 @@ cv::Size compressedImageSize(const std::vector<std::uint8_t>& data, CompressedCo
 }
 
 ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
-  const CompressedCodec codec = parseCompressedFormat(message.format);
+  const CompressedCodec codec = codecOf(message);
   const cv::Size size = compressedImageSize(message.data, codec);
   if (size.width <= 0 || size.height <= 0) {
     throw std::invalid_argument(std::string("empty ") + codecName(codec) + " image (" + std::to_string(size.width) +

@@ -156,6 +156,20 @@ TEST(CompressedImage, RefusesFormatsAndDataThatDoNotMatch) {
   EXPECT_NE(errorOf(empty).find("0 bytes that are not a JPEG stream"), std::string::npos) << errorOf(empty);
 }
 
+TEST(CompressedImage, WithoutAFormatTheBytesNameTheCodec) {
+  // A publisher of its own that leaves `format` empty: read as cv_bridge and the bag tools read it.
+  const cv::Mat bgr = texturedBgr();
+  for (const std::string codec : {"jpeg", "png"}) {
+    sensor_msgs::CompressedImage unnamed = compress(bgr, codec);
+    const cv::Mat labelled = decodeCompressedImage(unnamed).image();
+    unnamed.format = "";
+    EXPECT_EQ(cv::norm(decodeCompressedImage(unnamed).image(), labelled, cv::NORM_INF), 0.0) << codec;
+  }
+  sensor_msgs::CompressedImage neither;
+  neither.data = {'B', 'M', 0, 0, 0, 0};
+  EXPECT_EQ(errorOf(neither), "the format is empty, and the 6 bytes begin as neither a jpeg nor a png stream");
+}
+
 TEST(CompressedImage, RefusesCorruptData) {
   const cv::Mat bgr = texturedBgr();
   sensor_msgs::CompressedImage short_png = compress(bgr, "png");
