@@ -68,6 +68,11 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            " outside the answer's window, and the acceptance rule needs " + std::to_string(kMinRivalEnds) +
            " to tell a place from chance";
   }
+  if (match.same_recording) {
+    return "not accepted: the test sequence's keyframes are in the map already, with the same stamps and views "
+           "(one recording added to the map twice, as a bag played again without emptying the map), and a frame "
+           "that finds itself is no loop closure";
+  }
   if (match.repeated_view) {
     return "not accepted: most of the test sequence's keyframes show one view again (a camera standing in a "
            "dark or textureless place, whose noise made keyframes), which says nothing about the place";

@@ -41,20 +41,24 @@ std::string printable(const std::string& text) {
 }
 
 /**
- * Takes back the acceptance of a loop closure whose place was recorded within its own test sequence's
- * time, [earliest, latest]: the same recording mapped twice (a bag played again without a reset), whose
- * frames find their own first pass. A revisit's place was recorded before the frames that see it again;
- * two recordings that a clock reset put out of order keep apart in time, so their closures stand. A
- * zero stamp (not known) decides nothing.
+ * Whether a keyframe of the test sequence (map frames [test_begin, test_end)) is in the map already near
+ * its answer (map frames [near_begin, near_end)): one with the same stamp and the same descriptor, as
+ * when one recording is added to the map twice (a bag played again). Stamps alone cannot tell: another
+ * traversal may run on the same clock (simulated time starts at 0 every run). A zero stamp (not known)
+ * decides nothing.
  */
-void refuseSameRecording(PlaceAnswer& answer, Stamp earliest, Stamp latest) {
-  const Stamp place = answer.reference_stamp;
-  if (!answer.match.accepted || place.isZero() || earliest.isZero() || place < earliest || latest < place) return;
-  answer.match.accepted = false;
-  answer.verdict = "not accepted: the place found was recorded at " + place.toString() +
-                   " s, while the test sequence itself was (" + earliest.toString() + " to " + latest.toString() +
-                   " s): the same recording is in the map twice (a bag played again without ~reset), and a frame " +
-                   "that finds its own first pass is no loop closure";
+bool mapHoldsTestFrames(const DescriptorSequence& map, int test_begin, int test_end, int near_begin, int near_end) {
+  const std::size_t bytes = static_cast<std::size_t>(map.descriptorSize());
+  for (int test = test_begin; test < test_end; ++test) {
+    const Stamp stamp = map.stamp(test);
+    if (stamp.isZero()) continue;
+    for (int frame = near_begin; frame < near_end; ++frame) {
+      if (map.stamp(frame) == stamp && std::memcmp(map.view().frame(frame), map.view().frame(test), bytes) == 0) {
+        return true;
+      }
+    }
+  }
+  return false;
 }
 
 }  // namespace
@@ -542,13 +546,17 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_frame = size - recent + result.localised_row;
     result.localised_stamp = map_.stamp(result.localised_frame);
-    Stamp earliest = map_.stamp(size - recent);
-    Stamp latest = earliest;
-    for (int frame = size - recent; frame < size; ++frame) {
-      earliest = std::min(earliest, map_.stamp(frame));
-      latest = std::max(latest, map_.stamp(frame));
+    // A frame that finds itself is no loop closure; its first pass lies within the sequence's reach.
+    if (result.match.accepted) {
+      const int reach = recent + params_.sequence.match_exclusion;
+      const int answer = result.match.reference_index;
+      result.match.same_recording = mapHoldsTestFrames(map_, size - recent, size, std::max(0, answer - reach),
+                                                       std::min(searchable, answer + reach + 1));
+      if (result.match.same_recording) {
+        result.match.accepted = false;
+        result.verdict = acceptanceVerdict(result.match, params_.sequence);
+      }
     }
-    refuseSameRecording(result, earliest, latest);
   }
   flush();
   return result;

@@ -35,6 +35,11 @@ struct Match {
   /// where its noise made keyframes. Set on an answer that passed the rest of the acceptance rule, which
   /// is then not accepted.
   bool repeated_view = false;
+  /// The test sequence's keyframes are in the map already near the answer, with the same stamps and
+  /// descriptors (one recording added to the map twice, as a bag played again): a frame that finds
+  /// itself, no loop closure (PlaceRecognizer::matchRecent). Set, as repeated_view, on an answer that is
+  /// then not accepted.
+  bool same_recording = false;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

@@ -134,8 +134,9 @@ class PlaceRecognizer {
    * the place just passed. `explanation` as for match(). With `end` >= 0 the test sequence is the
    * `frames` frames before map frame `end` instead of the newest ones (and the searched frames end as
    * much earlier): continuous mode localises each keyframe that came since its last question. `end`
-   * below -1 throws std::invalid_argument. An answer whose place was recorded within the test
-   * sequence's own time span (by the frames' stamps: one recording mapped twice) is not accepted.
+   * below -1 throws std::invalid_argument. An answer near which the map holds the test sequence's own
+   * keyframes (the same stamps and descriptors: one recording mapped twice) is not accepted
+   * (Match::same_recording).
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);
