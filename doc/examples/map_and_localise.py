@@ -21,8 +21,6 @@ Ctrl-C.
 
 import argparse
 import ast
-import os
-import re
 import sys
 import time
 
@@ -30,8 +28,6 @@ import numpy as np
 from PIL import Image
 
 import mrs_vpr
-
-IMAGE_EXTENSIONS = (".png", ".jpg", ".jpeg", ".bmp", ".tif", ".tiff", ".pgm", ".ppm", ".pnm")
 
 
 def read_image(path):
@@ -50,17 +46,11 @@ def read_image(path):
 
 
 def read_folder(folder):
-    """The folder's images, in file-name order, as one N x H x W (x 3) array."""
+    """The folder's images, in the order mrs_vpr_eval reads them, as one N x H x W (x 3) array."""
     try:
-        names = os.listdir(folder)
-    except OSError as error:
-        sys.exit("cannot read folder '%s': %s" % (folder, error.strerror))
-    # As mrs_vpr_eval orders them: a number in a name counts as a number (2.png before 10.png).
-    files = sorted((os.path.join(folder, name) for name in names if name.lower().endswith(IMAGE_EXTENSIONS)),
-                   key=lambda path: [(0, int(part), part) if part.isdigit() else (1, 0, part)
-                                     for part in re.split(r"(\d+)", os.path.basename(path))])
-    if not files:
-        sys.exit("no images in '%s'" % folder)
+        files = mrs_vpr.image_files(folder)
+    except RuntimeError as error:
+        sys.exit(str(error))
     images = [read_image(path) for path in files]
     for path, image in zip(files, images):
         if image.shape != images[0].shape:

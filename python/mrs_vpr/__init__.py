@@ -22,6 +22,7 @@ _LAZY_NAMES = {
     "MapDatabaseError": "mrs_vpr._bindings",
     "synthetic_route": "mrs_vpr._bindings",
     "evaluate": "mrs_vpr.evaluation",
+    "image_files": "mrs_vpr._bindings",
     "Evaluation": "mrs_vpr.evaluation",
 }
 

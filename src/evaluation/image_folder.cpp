@@ -58,9 +58,15 @@ std::pair<std::string_view, std::size_t> numberAt(std::string_view text, std::si
   return {text.substr(first, end - first), end};
 }
 
+/// Whether the digits at `at` are a decimal fraction: they follow a point that follows a digit.
+bool isFraction(std::string_view text, std::size_t at) {
+  return at >= 2 && text[at - 1] == '.' && std::isdigit(static_cast<unsigned char>(text[at - 2])) != 0;
+}
+
 /// File-name order in which a run of digits counts as its number, so that frame2.png comes before
-/// frame10.png as a camera wrote them (zero-padded names sort as they do byte by byte); names that
-/// differ only by leading zeros fall back to byte order.
+/// frame10.png as a camera wrote them (zero-padded names sort as they do byte by byte), and the digits
+/// after a decimal point as a fraction, so that 1614000000.05.png comes before 1614000000.1.png (stamps
+/// written as seconds); names that differ only by leading zeros fall back to byte order.
 bool namedBefore(std::string_view a, std::string_view b) {
   std::size_t i = 0;
   std::size_t j = 0;
@@ -70,8 +76,15 @@ bool namedBefore(std::string_view a, std::string_view b) {
     if (digit_a && digit_b) {
       const auto [number_a, end_a] = numberAt(a, i);
       const auto [number_b, end_b] = numberAt(b, j);
-      if (number_a.size() != number_b.size()) return number_a.size() < number_b.size();
-      if (number_a != number_b) return number_a < number_b;
+      if (isFraction(a, i) && isFraction(b, j)) {
+        // Digit by digit, leading zeros included: the order of the fractions' values.
+        const std::string_view digits_a = a.substr(i, end_a - i);
+        const std::string_view digits_b = b.substr(j, end_b - j);
+        if (digits_a != digits_b) return digits_a < digits_b;
+      } else {
+        if (number_a.size() != number_b.size()) return number_a.size() < number_b.size();
+        if (number_a != number_b) return number_a < number_b;
+      }
       i = end_a;
       j = end_b;
     } else {

@@ -14,6 +14,7 @@
 
 #include "binding_parts.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
+#include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "record_conversion.hpp"
 
@@ -28,6 +29,16 @@ void bindEvaluation(py::module_& m) {
   m.attr("DEFAULT_GLOBAL_QUERIES") = kDefaultGlobalQueries;
   m.attr("MAX_GLOBAL_QUERIES") = kMaxGlobalQueries;
   m.attr("DEFAULT_SEED") = MrsParams{}.seed;
+  m.def(
+      "image_files",
+      [](const std::string& folder) {
+        py::gil_scoped_release released;
+        return listImageFiles(folder);
+      },
+      py::arg("folder"),
+      "The image files of `folder` as full paths, in the order mrs_vpr_eval and build_map read them (numbers in "
+      "names as numbers, 2.png before 10.png); RuntimeError naming the problem when the folder is missing, holds "
+      "no image or an entry named as an image is no file.");
   m.def(
       "per_frame_queries",
       [](int query_frames, int sequence_length, const std::string& alignment) {

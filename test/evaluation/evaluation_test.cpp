@@ -405,6 +405,18 @@ TEST(ImageFolder, NumbersInNamesSortAsNumbers) {
     padded_names.push_back(fs::path(file).filename().string());
   }
   EXPECT_EQ(padded_names, (std::vector<std::string>{"images-00180.png", "images-00190.png", "images-01000.png"}));
+  // Stamps written as seconds: the digits after the point are a fraction, not a number.
+  fs::create_directory(folder.path("stamps"));
+  for (const char* name : {"1614000000.3.png", "1614000000.05.png", "1614000000.25.png", "1614000000.1.png",
+                           "1614000001.png", "999999999.9.png"}) {
+    folder.write("stamps/" + std::string(name), "");
+  }
+  std::vector<std::string> stamp_names;
+  for (const std::string& file : listImageFiles(folder.path("stamps"))) {
+    stamp_names.push_back(fs::path(file).filename().string());
+  }
+  EXPECT_EQ(stamp_names, (std::vector<std::string>{"999999999.9.png", "1614000000.05.png", "1614000000.1.png",
+                                                   "1614000000.25.png", "1614000000.3.png", "1614000001.png"}));
 }
 
 // A folder of images of an extension not known (.jfif, say) holds "no image": the message names its files.

@@ -13,7 +13,8 @@ namespace mrs_vpr {
 /**
  * Image files (png, jpg, jpeg, bmp, tif, tiff, pgm, ppm, pnm, pbm, webp, jp2, gif; any letter case) of
  * a folder, as full paths in file-name order, a run of digits counting as its number (frame2.png before
- * frame10.png; zero-padded names sort as they do byte by byte).
+ * frame10.png; zero-padded names sort as they do byte by byte) and digits after a decimal point as a
+ * fraction (1614000000.05.png before 1614000000.1.png).
  * Other files and folders are left out; `left_out`, when given, receives the names of the files, in
  * file-name order, so that a caller can say so (an image of another extension would be missing from
  * the frames). Throws std::runtime_error when the folder does not exist, is not a folder or holds no
