@@ -89,10 +89,14 @@ def _numbering_warning(recognizer):
         return ("the map left out %d of the frames offered to it (keyframes by min_appearance_change): its frame "
                 "i is not the i-th image" % recognizer.frames_left_out)
     frames = len(recognizer)
-    last = recognizer.frame_number(frames - 1) if frames > 0 else -1
-    if last > frames - 1:  # A loaded map numbers its keyframes by the traversal they were kept from.
-        return ("the map's %d frames are keyframes of a traversal of at least %d frames (map frame %d is its frame "
-                "%d, by the number the map records)" % (frames, last + 1, frames - 1, last))
+    if frames == 0:
+        return None
+    # A loaded map numbers its keyframes by the traversal they were kept from: gaps between its first and
+    # last number are frames left out (numbers that merely start later, as a camera's counter, are not).
+    first, last = recognizer.frame_number(0), recognizer.frame_number(frames - 1)
+    if first >= 0 and last - first > frames - 1:
+        return ("the map's %d frames are keyframes of %d frames of a traversal (frames %d to %d, by the numbers the "
+                "map records)" % (frames, last - first + 1, first, last))
     return None
 
 

@@ -1,6 +1,7 @@
 """Offline evaluation with the core's protocols and metrics."""
 
 import inspect
+import pathlib
 import warnings
 
 import numpy as np
@@ -314,6 +315,16 @@ def test_without_ground_truth_a_loaded_map_of_keyframes_is_warned_about(route, t
     recognizer.save(str(tmp_path / "map.db"))
     loaded = mrs_vpr.PlaceRecognizer.from_map(str(tmp_path / "map.db"), sequence_length=20, **ROUTE_PARAMETERS)
     assert loaded.frames_left_out == 0
-    with pytest.warns(UserWarning, match=r"the map.s %d frames are keyframes of a traversal of at least"
+    with pytest.warns(UserWarning, match=r"the map.s %d frames are keyframes of \d+ frames of a traversal"
                       % len(loaded)):
         mrs_vpr.evaluate(loaded, route["query"][:100])
+
+
+def test_image_files_are_listed_in_the_tools_order(tmp_path):
+    for name in ("10.png", "2.png", "1.png", "notes.txt", "0.jpg"):
+        (tmp_path / name).write_bytes(b"")
+    assert [pathlib.Path(path).name for path in mrs_vpr.image_files(str(tmp_path))] == ["0.jpg", "1.png", "2.png",
+                                                                                         "10.png"]
+    with pytest.raises(RuntimeError) as error:
+        mrs_vpr.image_files(str(tmp_path / "missing"))
+    assert "does not exist" in str(error.value)
