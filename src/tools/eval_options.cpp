@@ -173,9 +173,9 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
       throw std::invalid_argument("--output '" + options.output + "' is a folder; give the JSON file to write");
     }
     const std::filesystem::path folder = std::filesystem::path(options.output).parent_path();
-    // The --plots folder may not exist yet: --plots creates it.
-    const bool in_plots =
-        !options.plots.empty() && !folder.empty() && writtenAt(folder.string()) == writtenAt(options.plots);
+    // The --plots folder may not exist yet: --plots creates it. Compared with links and dots resolved.
+    const std::filesystem::path plots = options.plots.empty() ? "" : resolved(normalPath(options.plots).string());
+    const bool in_plots = !plots.empty() && resolved(folder.empty() ? "." : folder.string()) == plots;
     if (in_plots && normalPath(options.output).filename() == "evaluation.json") {
       throw std::invalid_argument("--output '" + options.output + "' is the JSON that --plots writes there; leave " +
                                   "--output out, or name another file");

@@ -136,9 +136,10 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
   return records;
 }
 
-/// A reference given as a map database rather than as images: named *.db (in any case), or an SQLite file
-/// of another name.
+/// A reference given as a map database rather than as images: no folder, and named *.db (in any case) or
+/// an SQLite file of another name.
 bool isMapDatabase(const std::string& path) {
+  if (std::filesystem::is_directory(path)) return false;
   std::string suffix = std::filesystem::path(path).extension().string();
   std::transform(suffix.begin(), suffix.end(), suffix.begin(), [](unsigned char c) { return std::tolower(c); });
   return suffix == ".db" || MapDatabase::isSqliteFile(path);
@@ -263,9 +264,10 @@ int run(int argc, char** argv) {
   // The query's frames are counted before the reference is described: a mistyped query folder or bag
   // is named at once, and a ground truth of other traversals refused. A map database's frames are
   // known once it is read, before the query is described.
-  if (isMapDatabase(options.query)) {
-    throw std::invalid_argument("--query '" + options.query + "' is a map database, which holds a map's keyframes; " +
-                                "the query is a traversal to keyframe and match: a folder of images or a bag");
+  if (std::filesystem::is_regular_file(options.query) && isMapDatabase(options.query)) {
+    throw std::invalid_argument("--query '" + options.query + "' is an SQLite file (a map database holds a " +
+                                "map's keyframes); the query is a traversal to keyframe and match: a folder of " +
+                                "images or a bag");
   }
   const int query_frame_count = countFrames(options.query, options.topic);
   std::optional<GroundTruth> truth;

@@ -163,6 +163,13 @@ TEST_F(PlotsTest, AFolderUsedAgainKeepsNoPlotOfTheEarlierRun) {
   EXPECT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + (plots / "evaluation.json").string(), nullptr, &err),
             1);
   EXPECT_NE(err.find("is the JSON that --plots writes there"), std::string::npos) << err;
+  // The same file named through a link to the folder.
+  fs::create_directory_symlink(plots, root() / "link_to_used_again");
+  EXPECT_EQ(exitStatus(evaluate("seqslam", root() / "link_to_used_again") + " --output " +
+                           (plots / "evaluation.json").string(),
+                       nullptr, &err),
+            1);
+  EXPECT_NE(err.find("is the JSON that --plots writes there"), std::string::npos) << err;
   // Queries outside the map have no band and no error to draw: the earlier run's must not pass for theirs.
   ASSERT_EQ(exitStatus(std::string(MRS_VPR_EVAL_PATH) + " --reference " + (root() / "reference").string() +
                            " --query " + (root() / "query").string() +
