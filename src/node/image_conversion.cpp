@@ -50,8 +50,8 @@ const std::array<EncodingInfo, 23> kEncodings{{
     {"yuv422", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_UYVY, 2},
     {"yuv422_yuy2", 2, ChannelOrder::kBgr, CV_8UC2, cv::COLOR_YUV2GRAY_YUY2, 2},
     // OpenCV's own types, which cv_bridge's cv2_to_imgmsg and CvImage publish for an image without a
-    // named encoding: grey, and colour in OpenCV's order, as cv_bridge reads them as mono8, bgr8, bgra8.
-    // 16UC1 is left out: it is what depth cameras publish, and depth is not a view of a place.
+    // named encoding: read as OpenCV's images are, grey, and colour in its blue-first order (cv_bridge
+    // passes them on as they are). 16UC1 is left out: depth cameras publish it, and depth is no view.
     {"8UC1", 1, ChannelOrder::kBgr, CV_8UC1},
     {"8UC3", 3, ChannelOrder::kBgr, CV_8UC3},
     {"8UC4", 4, ChannelOrder::kBgr, CV_8UC4},
@@ -107,8 +107,8 @@ ImageFrame fromImageMessage(const sensor_msgs::Image& message,
   const EncodingInfo* info = findEncoding(message.encoding);
   if (info == nullptr) {
     const std::string depth_hint = message.encoding == "16UC1" || message.encoding == "32FC1"
-                                       ? "; a depth camera's image is not a view of a place, and a 16-bit grey "
-                                         "camera is published as mono16"
+                                       ? "; a depth camera's image is not a view of a place, and a grey camera "
+                                         "is published as mono8 or mono16"
                                        : "";
     throw std::invalid_argument("unsupported encoding '" + message.encoding + "' (supported: " +
                                 supportedEncodings() + ")" + depth_hint);

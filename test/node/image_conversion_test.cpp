@@ -219,7 +219,7 @@ TEST(ImageConversion, Yuv422OfAnOddWidthIsRefused) {
   }
 }
 
-TEST(ImageConversion, OpenCvTypesAreReadAsCvBridgeReadsThem) {
+TEST(ImageConversion, OpenCvTypesAreReadAsOpenCvsImages) {
   // What cv_bridge's cv2_to_imgmsg publishes for an image given no encoding: OpenCV's type.
   const DescriptorExtractor extractor{DescriptorParams{}};
   const cv::Mat bgr = texturedBgr();
@@ -241,7 +241,7 @@ TEST(ImageConversion, OpenCvTypesAreReadAsCvBridgeReadsThem) {
   // A depth camera's 16UC1 is not a view of a place: refused, with what a grey camera would send instead.
   const std::string depth = errorOf(makeImage(cv::Mat(8, 8, CV_16UC1, cv::Scalar(1000)), "16UC1"));
   EXPECT_NE(depth.find("unsupported encoding '16UC1'"), std::string::npos) << depth;
-  EXPECT_NE(depth.find("published as mono16"), std::string::npos) << depth;
+  EXPECT_NE(depth.find("a grey camera is published as mono8 or mono16"), std::string::npos) << depth;
 }
 
 TEST(ImageConversion, RejectsUnsupportedEncodingsByName) {

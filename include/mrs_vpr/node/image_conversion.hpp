@@ -24,7 +24,7 @@ struct ImageFrame {
 
 /// True for the encodings the descriptor accepts: mono8, mono16, bgr8, rgb8, bgra8, rgba8, bgr16,
 /// rgb16, bgra16, rgba16, the Bayer mosaics bayer_{rggb,bggr,gbrg,grbg}{8,16}, yuv422 (UYVY) and
-/// yuv422_yuy2 (YUYV), and OpenCV's 8UC1, 8UC3 and 8UC4 (read as mono8, bgr8 and bgra8, as cv_bridge does).
+/// yuv422_yuy2 (YUYV), and OpenCV's 8UC1, 8UC3 and 8UC4 (read as OpenCV's images: mono8, bgr8, bgra8).
 bool isSupportedEncoding(const std::string& encoding);
 
 /// The encodings accepted, for messages: "mono8, mono16, bgr8, ...".

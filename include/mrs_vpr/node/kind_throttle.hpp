@@ -12,12 +12,12 @@ namespace node {
 /**
  * Lets a warning of each kind through once a `period` (seconds on a steady clock), whatever other
  * kinds come between: a camera that sends broken frames of two kinds, one after the other, has both
- * reported, and neither floods the log. ROS's throttle, one period for every message of a call site,
- * would hide the second kind. Thread-safe.
+ * reported, and a client that makes two mistakes in turn sees both, while neither floods the log.
+ * ROS's throttle, one period for every message of a call site, would hide the second kind. Thread-safe.
  */
 class KindThrottle {
  public:
-  /// Kinds remembered at most; beyond, those last let through a period ago are forgotten.
+  /// Kinds told apart within one period at most; further kinds share one period among them.
   static constexpr std::size_t kRemembered = 64;
 
   explicit KindThrottle(double period) : period_(period) {}
@@ -25,12 +25,21 @@ class KindThrottle {
   /// Whether a warning of `kind`, at `now`, is to be logged; if so, the kind's period starts again.
   bool allows(const std::string& kind, double now) {
     const std::lock_guard<std::mutex> lock(mutex_);
-    const auto last = let_through_.find(kind);
+    auto last = let_through_.find(kind);
+    if (last == let_through_.end() && let_through_.size() >= kRemembered) {
+      forgetOlderThan(now - period_);
+      // Still as many kinds within one period: the rest share one, rather than flood the log.
+      if (let_through_.size() >= kRemembered) last = let_through_.emplace(kOtherKinds, -period_).first;
+    }
     if (last != let_through_.end() && now - last->second < period_) return false;
-    if (let_through_.size() >= kRemembered) forgetOlderThan(now - period_);
-    if (let_through_.size() >= kRemembered) let_through_.clear();  // Very many kinds within one period.
-    let_through_[kind] = now;
+    let_through_[last != let_through_.end() ? last->first : kind] = now;
     return true;
+  }
+
+  /// Kinds remembered now (at most kRemembered + 1): for tests.
+  std::size_t remembered() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return let_through_.size();
   }
 
  private:
@@ -40,8 +49,11 @@ class KindThrottle {
     }
   }
 
+  /// The key the kinds beyond kRemembered share (no message is empty).
+  static constexpr const char* kOtherKinds = "";
+
   const double period_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::map<std::string, double> let_through_;  ///< Each kind's last time let through.
 };
 
