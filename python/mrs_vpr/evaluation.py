@@ -100,6 +100,17 @@ def _numbering_warning(recognizer):
     return None
 
 
+def _warn_of_too_few_rivals(matches, map_frames):
+    """Warns, as mrs_vpr_eval says on stderr, of answers in a map too small for the acceptance rule."""
+    few = sum(1 for match in matches if match.reference_index >= 0 and match.rivals < _bindings.MIN_RIVAL_ENDS)
+    if few > 0:
+        warnings.warn("%d of %d answers found fewer than %d trajectory ends outside their window in the map of %d "
+                      "frames: the acceptance rule gives them confidence 0 and accepts none of them%s"
+                      % (few, len(matches), _bindings.MIN_RIVAL_ENDS, map_frames,
+                         "; every confidence is equal, so there is no PR curve" if few == len(matches) else ""),
+                      UserWarning, stacklevel=3)
+
+
 def _check_one_size(query_images):
     """ValueError unless every query image has one size, as mrs_vpr_eval requires of a folder."""
     # What is no image at all is left to the describing, which names it.
@@ -166,6 +177,7 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DE
                                                 parameters["min_appearance_change"]))
     chosen = traversal.chosen
     records = []
+    matched = []  # the Match of each record
     if protocol == "per-frame":
         evaluated = _bindings.per_frame_queries(keyframes, length, alignment)
         start = time.perf_counter()
@@ -174,6 +186,7 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DE
         for keyframe in evaluated:
             query = chosen[keyframe]
             if truths[query] is not None:
+                matched.append(matches[keyframe])
                 records.append(_bindings.query_record(query, truths[query], matches[keyframe], per_query_ms))
     else:  # "global"
         repeated = _bindings.repeated_global_queries(keyframes, length, queries)
@@ -185,7 +198,9 @@ def evaluate(recognizer, query_images, ground_truth=None, tolerance=_bindings.DE
                 continue
             start = time.perf_counter()
             match = recognizer._match_keyframes(traversal, first, count, method)
+            matched.append(match)
             records.append(_bindings.query_record(query, truths[query], match, 1000.0 * (time.perf_counter() - start)))
+    _warn_of_too_few_rivals(matched, len(recognizer))
     for record in records:
         record["correct"] = _bindings.is_correct(record, tolerance)
     return Evaluation(records, summarise(records, tolerance), precision_recall_curve(records, tolerance))

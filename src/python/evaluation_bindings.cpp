@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "binding_parts.hpp"
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
@@ -29,6 +30,7 @@ void bindEvaluation(py::module_& m) {
   m.attr("DEFAULT_GLOBAL_QUERIES") = kDefaultGlobalQueries;
   m.attr("MAX_GLOBAL_QUERIES") = kMaxGlobalQueries;
   m.attr("DEFAULT_SEED") = MrsParams{}.seed;
+  m.attr("MIN_RIVAL_ENDS") = kMinRivalEnds;
   m.def(
       "image_files",
       [](const std::string& folder) {

@@ -238,7 +238,8 @@ def test_without_ground_truth_a_map_that_left_frames_out_is_warned_about(route):
     with pytest.warns(UserWarning, match="query image i is taken to show map frame i"):
         mrs_vpr.evaluate(recognizer, route["query"][:100])
     with warnings.catch_warnings():
-        warnings.simplefilter("error")
+        warnings.simplefilter("ignore")  # 100 map frames are too few for the acceptance rule, which it says
+        warnings.filterwarnings("error", message="without ground_truth")
         truth = [min(i, len(recognizer) - 1) for i in range(100)]
         mrs_vpr.evaluate(recognizer, route["query"][:100], ground_truth=truth)
     recognizer.reset()
@@ -328,3 +329,14 @@ def test_image_files_are_listed_in_the_tools_order(tmp_path):
     with pytest.raises(RuntimeError) as error:
         mrs_vpr.image_files(str(tmp_path / "missing"))
     assert "does not exist" in str(error.value)
+
+
+def test_a_map_too_small_for_the_acceptance_rule_is_named(route):
+    # As mrs_vpr_eval says on stderr: confidences of 0 and no PR curve, not a method that fails.
+    recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"][:60])
+    with pytest.warns(UserWarning, match="answers found fewer than 100 trajectory ends outside their window in the "
+                                         "map of 60 frames.*every confidence is equal, so there is no PR curve"):
+        evaluation = mrs_vpr.evaluate(recognizer, route["query"][:80])
+    assert evaluation.summary["accepted"] == 0
+    assert evaluation.summary["pr_auc"] is None
