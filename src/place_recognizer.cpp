@@ -48,14 +48,19 @@ std::string printable(const std::string& text) {
  * decides nothing.
  */
 bool mapHoldsTestFrames(const DescriptorSequence& map, int test_begin, int test_end, int near_begin, int near_end) {
-  const std::size_t bytes = static_cast<std::size_t>(map.descriptorSize());
+  // The test keyframes by stamp, so that one pass over the map's frames near the answer finds a twin.
+  std::vector<std::pair<Stamp, int>> test_frames;
   for (int test = test_begin; test < test_end; ++test) {
-    const Stamp stamp = map.stamp(test);
-    if (stamp.isZero()) continue;
-    for (int frame = near_begin; frame < near_end; ++frame) {
-      if (map.stamp(frame) == stamp && std::memcmp(map.view().frame(frame), map.view().frame(test), bytes) == 0) {
-        return true;
-      }
+    if (!map.stamp(test).isZero()) test_frames.emplace_back(map.stamp(test), test);
+  }
+  std::sort(test_frames.begin(), test_frames.end());
+  const std::size_t bytes = static_cast<std::size_t>(map.descriptorSize());
+  const SequenceView frames = map.view();
+  for (int frame = near_begin; frame < near_end; ++frame) {
+    const Stamp stamp = map.stamp(frame);
+    auto twin = std::lower_bound(test_frames.begin(), test_frames.end(), std::make_pair(stamp, 0));
+    for (; twin != test_frames.end() && twin->first == stamp; ++twin) {
+      if (std::memcmp(frames.frame(frame), frames.frame(twin->second), bytes) == 0) return true;
     }
   }
   return false;
