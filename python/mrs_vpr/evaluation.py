@@ -105,7 +105,7 @@ def _warn_of_too_few_rivals(matches, map_frames):
     few = sum(1 for match in matches if match.reference_index >= 0 and match.rivals < _bindings.MIN_RIVAL_ENDS)
     if few > 0:
         warnings.warn("%d of %d answers found fewer than %d trajectory ends outside their window in the map of %d "
-                      "frames: the acceptance rule gives them confidence 0 and accepts none of them%s"
+                      "keyframes: the acceptance rule gives them confidence 0 and accepts none of them%s"
                       % (few, len(matches), _bindings.MIN_RIVAL_ENDS, map_frames,
                          "; every confidence is equal, so there is no PR curve" if few == len(matches) else ""),
                       UserWarning, stacklevel=3)

@@ -83,7 +83,7 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     if (!input.images) publishStandingClosures(input.header, answered, response);
     ROS_DEBUG("mrs_vpr: query (%s, %d frames) -> %d, confidence %.3f, %.1f ms", answered.method.c_str(),
               answered.query_length, response.reference_index, response.confidence, response.elapsed_ms);
-  } else if (!stopped && query_failure_warning_.allows(response.message, steadySeconds())) {
+  } else if (!stopped && query_failure_warning_.allows(kindOf(response.message), steadySeconds())) {
     ROS_WARN("mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"

@@ -39,7 +39,7 @@ void bindEvaluation(py::module_& m) {
       },
       py::arg("folder"),
       "The image files of `folder` as full paths, in the order mrs_vpr_eval and build_map read them (numbers in "
-      "names as numbers, 2.png before 10.png); RuntimeError naming the problem when the folder is missing, holds "
+      "names as numbers, 2.png before 10.png; digits after a decimal point as a fraction); RuntimeError naming the problem when the folder is missing, holds "
       "no image or an entry named as an image is no file.");
   m.def(
       "per_frame_queries",

@@ -176,7 +176,10 @@ std::optional<EvalOptions> parseEvalOptions(int argc, char** argv) {
     // The --plots folder may not exist yet: --plots creates it. Compared with links and dots resolved.
     const std::filesystem::path plots = options.plots.empty() ? "" : resolved(normalPath(options.plots).string());
     const bool in_plots = !plots.empty() && resolved(folder.empty() ? "." : folder.string()) == plots;
-    if (in_plots && normalPath(options.output).filename() == "evaluation.json") {
+    // Named in the folder, or a link to the file there, which --plots would write over.
+    const std::filesystem::path plots_json = plots.empty() ? "" : plots / "evaluation.json";
+    if (!plots_json.empty() &&
+        (writtenAt(options.output) == plots_json || resolved(options.output) == plots_json)) {
       throw std::invalid_argument("--output '" + options.output + "' is the JSON that --plots writes there; leave " +
                                   "--output out, or name another file");
     }

@@ -265,9 +265,9 @@ int run(int argc, char** argv) {
   // is named at once, and a ground truth of other traversals refused. A map database's frames are
   // known once it is read, before the query is described.
   if (std::filesystem::is_regular_file(options.query) && isMapDatabase(options.query)) {
-    throw std::invalid_argument("--query '" + options.query + "' is an SQLite file (a map database holds a " +
-                                "map's keyframes); the query is a traversal to keyframe and match: a folder of " +
-                                "images or a bag");
+    throw std::invalid_argument("--query '" + options.query + "' is a map database (named *.db or an SQLite " +
+                                "file), which holds a map's keyframes; the query is a traversal to keyframe and " +
+                                "match: a folder of images or a bag");
   }
   const int query_frame_count = countFrames(options.query, options.topic);
   std::optional<GroundTruth> truth;

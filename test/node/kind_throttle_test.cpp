@@ -28,13 +28,16 @@ TEST(KindThrottle, KindsBeyondTheRememberedShareOnePeriodAndMemoryStaysBounded) 
   // Messages that differ in more than numbers could be ever new kinds: together they are one.
   EXPECT_TRUE(throttle.allows("one more", 0.5));
   EXPECT_FALSE(throttle.allows("and another", 0.6));
-  EXPECT_FALSE(throttle.allows("kind 3", 0.7));  // The kinds told apart keep their own periods.
+  EXPECT_FALSE(throttle.allows("kind 3", 0.7));
   for (int i = 0; i < 1000; ++i) EXPECT_FALSE(throttle.allows("new " + std::to_string(i) + "x", 1.0 + 0.001 * i));
   EXPECT_LE(throttle.remembered(), KindThrottle::kRemembered + 1);
-  // A period later the old kinds are forgotten, and a new kind is told apart again.
+  // The kinds told apart keep their own periods: kind 3's is over while the shared one (from 0.5) is not.
+  EXPECT_TRUE(throttle.allows("kind 3", 5.1));
+  // A period later the old kinds are forgotten, and new kinds are told apart again.
   EXPECT_TRUE(throttle.allows("a new kind", 6.0));
+  EXPECT_EQ(throttle.remembered(), 2U);  // kind 3 (5.1) and the new one
+  EXPECT_TRUE(throttle.allows("another new kind", 6.1));
   EXPECT_FALSE(throttle.allows("a new kind", 7.0));
-  EXPECT_LE(throttle.remembered(), KindThrottle::kRemembered + 1);
 }
 
 TEST(KindThrottle, AProblemsKindLeavesOutTheFramesNumbers) {

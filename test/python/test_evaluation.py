@@ -336,7 +336,7 @@ def test_a_map_too_small_for_the_acceptance_rule_is_named(route):
     recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
     recognizer.add_frames(route["reference"][:60])
     with pytest.warns(UserWarning, match="answers found fewer than 100 trajectory ends outside their window in the "
-                                         "map of 60 frames.*every confidence is equal, so there is no PR curve"):
+                                         "map of 60 keyframes.*every confidence is equal, so there is no PR curve"):
         evaluation = mrs_vpr.evaluate(recognizer, route["query"][:80])
     assert evaluation.summary["accepted"] == 0
     assert evaluation.summary["pr_auc"] is None

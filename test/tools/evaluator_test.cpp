@@ -154,8 +154,8 @@ TEST_F(EvaluatorTest, AMapDatabaseIsKnownByItsContentsAndRefusedAsTheQuery) {
   EXPECT_EQ(as_reference.status, 0) << as_reference.err;
   EXPECT_NE(as_reference.err.find("keyframes from the map database " + map), std::string::npos) << as_reference.err;
   expectError("--reference " + path("reference") + " --query " + map + arguments,
-              "--query '" + map + "' is an SQLite file (a map database holds a map's keyframes); the query is a "
-              "traversal to keyframe and match: a folder of images or a bag");
+              "--query '" + map + "' is a map database (named *.db or an SQLite file), which holds a map's "
+              "keyframes; the query is a traversal to keyframe and match: a folder of images or a bag");
   // A folder of images named as a database is a folder; a missing one is named as missing.
   fs::create_directories(path("frames.DB"));
   for (int i = 0; i < 30; ++i) {

@@ -163,6 +163,12 @@ TEST_F(PlotsTest, AFolderUsedAgainKeepsNoPlotOfTheEarlierRun) {
   EXPECT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + (plots / "evaluation.json").string(), nullptr, &err),
             1);
   EXPECT_NE(err.find("is the JSON that --plots writes there"), std::string::npos) << err;
+  // A link to the file there.
+  fs::create_symlink(plots / "evaluation.json", root() / "link_to_plots_json.json");
+  EXPECT_EQ(exitStatus(evaluate("seqslam", plots) + " --output " + (root() / "link_to_plots_json.json").string(),
+                       nullptr, &err),
+            1);
+  EXPECT_NE(err.find("is the JSON that --plots writes there"), std::string::npos) << err;
   // The same file named through a link to the folder.
   fs::create_directory_symlink(plots, root() / "link_to_used_again");
   EXPECT_EQ(exitStatus(evaluate("seqslam", root() / "link_to_used_again") + " --output " +

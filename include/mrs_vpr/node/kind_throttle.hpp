@@ -49,8 +49,8 @@ class KindThrottle {
     }
   }
 
-  /// The key the kinds beyond kRemembered share (no message is empty).
-  static constexpr const char* kOtherKinds = "";
+  /// The key the kinds beyond kRemembered share: a control character no message holds.
+  static constexpr const char* kOtherKinds = "\x01 other kinds";
 
   const double period_;
   mutable std::mutex mutex_;

@@ -165,7 +165,7 @@ class PlaceRecognitionNode {
   TravelPolicy travel_policy_;
   SequenceGaps sequence_gaps_;  // frames lost before the image callback
   CameraSilence camera_silence_;  // thread-safe: outside state_mutex_
-  KindThrottle query_failure_warning_{1.0};  // thread-safe; each failed ~query's reason once a second
+  KindThrottle query_failure_warning_{1.0};  // thread-safe; each kind of failed ~query once a second
   KindThrottle frame_failure_warning_;  // thread-safe; each kind of dropped frame once a kWarningPeriod
   StandingFrames standing_frames_;  // frames too similar to a recent keyframe, one per ~auto_query_period
   std::string camera_frame_id_;
