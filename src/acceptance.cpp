@@ -69,9 +69,9 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            " to tell a place from chance";
   }
   if (match.same_recording) {
-    return "not accepted: the test sequence's keyframes are in the map already, with the same stamps and views "
-           "(one recording added to the map twice, as a bag played again without emptying the map), and a frame "
-           "that finds itself is no loop closure";
+    return "not accepted: the test sequence's keyframes are in the map already, at the same times with the same "
+           "views (one recording added to the map twice, as a bag played again without emptying the map), and a "
+           "frame that finds itself is no loop closure";
   }
   if (match.repeated_view) {
     return "not accepted: most of the test sequence's keyframes show one view again (a camera standing in a "

@@ -6,7 +6,10 @@
 namespace mrs_vpr {
 
 RepeatedViews::RepeatedViews(const AppearanceKeyframes& keyframes) : regions_(keyframes.regions()) {
-  if (keyframes.enabled()) same_view_ = AppearanceKeyframes::kStrayShare * keyframes.minChange() * keyframes.scale();
+  if (keyframes.enabled()) {
+    new_view_ = keyframes.minChange() * keyframes.scale();
+    same_view_ = AppearanceKeyframes::kStrayShare * new_view_;
+  }
 }
 
 bool RepeatedViews::mostlyRepeated(SequenceView sequence) const {

@@ -35,8 +35,8 @@ struct Match {
   /// where its noise made keyframes. Set on an answer that passed the rest of the acceptance rule, which
   /// is then not accepted.
   bool repeated_view = false;
-  /// The test sequence's keyframes are in the map already near the answer, with the same stamps and
-  /// descriptors (one recording added to the map twice, as a bag played again): a frame that finds
+  /// The test sequence's keyframes are in the map already near the answer, at the same times with the
+  /// same views (one recording added to the map twice, as a bag played again): a frame that finds
   /// itself, no loop closure (PlaceRecognizer::matchRecent). Set, as repeated_view, on an answer that is
   /// then not accepted.
   bool same_recording = false;

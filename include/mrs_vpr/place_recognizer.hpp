@@ -135,7 +135,7 @@ class PlaceRecognizer {
    * `frames` frames before map frame `end` instead of the newest ones (and the searched frames end as
    * much earlier): continuous mode localises each keyframe that came since its last question. `end`
    * below -1 throws std::invalid_argument. An answer near which the map holds the test sequence's own
-   * keyframes (the same stamps and descriptors: one recording mapped twice) is not accepted
+   * keyframes (at the same times with the same views: one recording mapped twice) is not accepted
    * (Match::same_recording).
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,

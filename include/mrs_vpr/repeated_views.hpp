@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "mrs_vpr/appearance_keyframes.hpp"
@@ -45,11 +46,18 @@ class RepeatedViews {
   bool enabled() const { return same_view_ > 0.0; }
   /// Whether more than half the judged keyframes of `sequence` repeat a view.
   bool mostlyRepeated(SequenceView sequence) const;
+  /// Whether two descriptors differ by less than `min_appearance_change`: a frame like `b` would not
+  /// have become a keyframe after `a`. False while the rule cannot judge.
+  bool withinNewView(const std::uint8_t* a, const std::uint8_t* b) const {
+    return enabled() && regions_->difference(a, b) < new_view_;
+  }
 
  private:
   std::shared_ptr<const DescriptorRegions> regions_;
   /// Region difference below which two keyframes show one view (bytes); 0 when the rule is off.
   double same_view_ = 0.0;
+  /// Region difference below which a frame is no new keyframe: `min_appearance_change` on the scale.
+  double new_view_ = 0.0;
 };
 
 /// Takes back the acceptance of `match` when its test sequence mostly repeats a view, and says so

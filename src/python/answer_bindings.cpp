@@ -43,8 +43,8 @@ void bindAnswers(py::module_& m) {
                     "Most of the test sequence's keyframes show one view again, as a camera standing in the dark "
                     "makes them (never accepted).")
       .def_readonly("same_recording", &Match::same_recording,
-                    "The test sequence's keyframes are in the map already, with the same stamps and views (one "
-                    "recording added twice; match_recent only; never accepted).")
+                    "The test sequence's keyframes are in the map already, at the same times with the same views "
+                    "(one recording added twice; match_recent only; never accepted).")
       .def_readonly("sequence_difference", &Match::sequence_difference,
                     "Mean difference along the best trajectory; compare within one method and length only.")
       .def_readonly("comparisons", &Match::comparisons, "Image comparisons the search made.")
