@@ -12,7 +12,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/number_text.hpp"
-#include "mrs_vpr/stamp.hpp"
+#include "mrs_vpr/same_recording.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
 namespace mrs_vpr {
@@ -38,44 +38,6 @@ std::string printable(const std::string& text) {
     }
   }
   return result;
-}
-
-/**
- * Whether a keyframe of the test sequence (map frames [test_begin, test_end)) is in the map already near
- * its answer (map frames [near_begin, near_end)), as when one recording is added to the map twice (a bag
- * played again): a map keyframe with the same stamp and the same descriptor, or, where the second pass
- * kept other frames than the first, two consecutive map keyframes whose stamps enclose the test
- * keyframe's, the earlier of which (or one of the kRecentKeyframes before it) it differs from by less
- * than `min_appearance_change`: the frame the first pass left out as too similar. Stamps alone cannot
- * tell: another traversal may run on the same clock (simulated time starts at 0 every run), and is a
- * revisit unless it shows the same view at the same time. A zero stamp (not known) decides nothing.
- */
-bool mapHoldsTestFrames(const DescriptorSequence& map, int test_begin, int test_end, int near_begin, int near_end,
-                        const RepeatedViews& views) {
-  // The test keyframes by stamp, so that one pass over the map's frames near the answer finds them.
-  std::vector<std::pair<Stamp, int>> test_frames;
-  for (int test = test_begin; test < test_end; ++test) {
-    if (!map.stamp(test).isZero()) test_frames.emplace_back(map.stamp(test), test);
-  }
-  std::sort(test_frames.begin(), test_frames.end());
-  const std::size_t bytes = static_cast<std::size_t>(map.descriptorSize());
-  const SequenceView frames = map.view();
-  for (int frame = near_begin; frame < near_end; ++frame) {
-    const Stamp stamp = map.stamp(frame);
-    const bool enclosing = frame + 1 < near_end && stamp < map.stamp(frame + 1);
-    const Stamp until = enclosing ? map.stamp(frame + 1) : stamp;
-    auto test = std::lower_bound(test_frames.begin(), test_frames.end(), std::make_pair(stamp, 0));
-    for (; test != test_frames.end() && (test->first == stamp || test->first < until); ++test) {
-      if (test->first == stamp && std::memcmp(frames.frame(frame), frames.frame(test->second), bytes) == 0) {
-        return true;
-      }
-      for (int before = frame; before >= std::max(near_begin, frame - AppearanceKeyframes::kRecentKeyframes);
-           --before) {
-        if (views.withinNewView(frames.frame(before), frames.frame(test->second))) return true;
-      }
-    }
-  }
-  return false;
 }
 
 }  // namespace
@@ -567,8 +529,9 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     if (result.match.accepted) {
       const int reach = recent + params_.sequence.match_exclusion;
       const int answer = result.match.reference_index;
-      result.match.same_recording = mapHoldsTestFrames(map_, size - recent, size, std::max(0, answer - reach),
-                                                       std::min(searchable, answer + reach + 1), repeated_views);
+      result.match.same_recording =
+          holdsOwnRecording(map_, {size - recent, size},
+                            {std::max(0, answer - reach), std::min(searchable, answer + reach + 1)}, repeated_views);
       if (result.match.same_recording) {
         result.match.accepted = false;
         result.verdict = acceptanceVerdict(result.match, params_.sequence);

@@ -122,21 +122,26 @@ TEST(PlaceRecognizer, AFrameThatFindsItselfIsNoLoopClosure) {
     const std::vector<cv::Mat>* frames;
     int first;
     std::int64_t start_ns;
+    std::int64_t step_ns;
     bool accepted;
   };
-  for (const Case& pass :
-       {Case{"the same bag again", &route().reference, 0, 100'000'000'000, false},
-        // As a camera-rate replay whose second pass keeps other frames than the first: no keyframe of
-        // it has a twin in the map, but each lies between two map keyframes in time and shows a view
-        // that would not have become a keyframe after the earlier one.
-        Case{"the same bag again, other frames kept", &route().reference, 0, 100'050'000'000, false},
-        Case{"the same frames, another clock", &route().reference, 0, 10'000'000'000, true},
-        Case{"another traversal, the same clock, elsewhere", &route().query, 100, 100'000'000'000, true}}) {
+  constexpr std::int64_t kMapStart = 100'000'000'000;  // mapReference: 100 + frame / 10 s
+  constexpr std::int64_t kStep = 100'000'000;
+  for (const Case& pass : {
+           Case{"the same bag again", &route().reference, 0, kMapStart, kStep, false},
+           // As a camera-rate replay whose second pass keeps other frames than the first: no keyframe of
+           // it has a twin in the map, but each lies between two map keyframes in time and shows a view
+           // that would not have become a keyframe by them; a little later or earlier.
+           Case{"the same bag again, other frames kept", &route().reference, 0, kMapStart + kStep / 2, kStep, false},
+           Case{"the same bag again, a little earlier", &route().reference, 0, kMapStart - kStep / 2, kStep, false},
+           Case{"the same frames, unstamped", &route().reference, 0, 0, 0, false},
+           Case{"the same frames, another clock", &route().reference, 0, 10'000'000'000, kStep, true},
+           Case{"another traversal, the same clock, elsewhere", &route().query, 100, kMapStart, kStep, true}}) {
     PlaceRecognizer recognizer(globalSearchParams(), limits);
-    mapReference(recognizer);  // stamped 100 + frame / 10 s
+    mapReference(recognizer);
     for (int i = 0; i < 300; ++i) {
       recognizer.addFrame((*pass.frames)[static_cast<std::size_t>(pass.first + i)],
-                          Stamp::fromNanoseconds(pass.start_ns + 100'000'000LL * i));
+                          Stamp::fromNanoseconds(pass.start_ns + pass.step_ns * i));
     }
     const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
     const int newest = pass.first + 299;
@@ -148,9 +153,31 @@ TEST(PlaceRecognizer, AFrameThatFindsItselfIsNoLoopClosure) {
     const std::string verdict = pass.accepted ? "accepted"
                                               : "not accepted: the test sequence's keyframes are in the map already, "
                                                 "at the same times with the same views";
-    EXPECT_EQ(answer.verdict.rfind(verdict, 0), 0U)
-        << pass.name << ": " << answer.verdict;
+    EXPECT_EQ(answer.verdict.rfind(verdict, 0), 0U) << pass.name << ": " << answer.verdict;
   }
+}
+
+// A map of two sessions, the second begun long after the first ended, and a revisit of the first's
+// places stamped between them (bags played out of order): the two sessions' keyframes enclose its
+// stamps, but no recording leaves such a gap between two keyframes, and the closures stand.
+TEST(PlaceRecognizer, ARevisitStampedBetweenTwoSessionsOfTheMapIsALoopClosure) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(globalSearchParams(), limits);
+  for (int i = 0; i < 600; ++i) {
+    const std::int64_t session_start = i < 300 ? 100'000'000'000 : 500'000'000'000;
+    ASSERT_EQ(recognizer.addFrame(route().reference[static_cast<std::size_t>(i)],
+                                  Stamp::fromNanoseconds(session_start + 100'000'000LL * (i % 300))),
+              FrameAdmission::kAdmitted);
+  }
+  for (int i = 100; i < 300; ++i) {
+    recognizer.addFrame(route().query[static_cast<std::size_t>(i)],
+                        Stamp::fromNanoseconds(300'000'000'000 + 100'000'000LL * i));
+  }
+  const PlaceAnswer answer = recognizer.matchRecent(150, "seqslam");
+  EXPECT_TRUE(within(answer.match.reference_index, route().query_to_reference[299], 3)) << answer.match.reference_index;
+  EXPECT_TRUE(answer.match.accepted) << answer.verdict;
+  EXPECT_FALSE(answer.match.same_recording);
 }
 
 // Questions about the newest frames after each new one, as continuous mode asks: once MRS has kept
