@@ -64,10 +64,11 @@ bool isFraction(std::string_view text, std::size_t at) {
 }
 
 /// File-name order in which a run of digits counts as its number, so that frame2.png comes before
-/// frame10.png as a camera wrote them (zero-padded names sort as they do byte by byte), and the digits
-/// after a decimal point as a fraction, so that 1614000000.05.png comes before 1614000000.1.png (stamps
-/// written as seconds); names that differ only by leading zeros fall back to byte order.
-bool namedBefore(std::string_view a, std::string_view b) {
+/// frame10.png as a camera wrote them (zero-padded names sort as they do byte by byte), and, with
+/// `fractions`, the digits after a decimal point as a fraction, so that 1614000000.05.png comes before
+/// 1614000000.1.png (stamps written as seconds); names that differ only by leading zeros fall back to
+/// byte order.
+bool namedBefore(std::string_view a, std::string_view b, bool fractions = true) {
   std::size_t i = 0;
   std::size_t j = 0;
   while (i < a.size() && j < b.size()) {
@@ -76,7 +77,7 @@ bool namedBefore(std::string_view a, std::string_view b) {
     if (digit_a && digit_b) {
       const auto [number_a, end_a] = numberAt(a, i);
       const auto [number_b, end_b] = numberAt(b, j);
-      if (isFraction(a, i) && isFraction(b, j)) {
+      if (fractions && isFraction(a, i) && isFraction(b, j)) {
         // Digit by digit, leading zeros included: the order of the fractions' values.
         const std::string_view digits_a = a.substr(i, end_a - i);
         const std::string_view digits_b = b.substr(j, end_b - j);
@@ -176,9 +177,23 @@ std::vector<std::string> listImageFiles(const std::string& folder, std::vector<s
     }
     throw std::runtime_error(message);
   }
-  std::sort(files.begin(), files.end(), namedBefore);  // Full paths in one folder: their names decide.
+  // Full paths in one folder: their names decide.
+  std::sort(files.begin(), files.end(), [](const std::string& a, const std::string& b) { return namedBefore(a, b); });
   if (left_out) *left_out = std::move(others);
   return files;
+}
+
+std::string fractionOrderNote(const std::vector<std::string>& files) {
+  // Two orders that differ invert a pair of neighbours in one of them.
+  for (std::size_t i = 0; i + 1 < files.size(); ++i) {
+    if (namedBefore(files[i + 1], files[i], false)) {
+      const std::string first = fs::path(files[i]).filename().string();
+      const std::string second = fs::path(files[i + 1]).filename().string();
+      return "read '" + first + "' before '" + second + "', the digits after a point as a decimal fraction (stamps " +
+             "in seconds); if they count frames, write them with as many digits each (zeros in front)";
+    }
+  }
+  return "";
 }
 
 std::string leftOutNote(const std::string& folder, const std::vector<std::string>& left_out) {

@@ -106,7 +106,9 @@ int run(int argc, char** argv) {
   // Read (and check) the folder before creating the bag, so that a bad folder leaves no empty bag.
   std::vector<std::string> left_out;
   const std::vector<std::string> files = mrs_vpr::listImageFiles(images, &left_out);
-  if (!left_out.empty()) std::cerr << "images_to_bag: " << mrs_vpr::leftOutNote(images, left_out) << "\n";
+  for (const std::string& note : {mrs_vpr::leftOutNote(images, left_out), mrs_vpr::fractionOrderNote(files)}) {
+    if (!note.empty()) std::cerr << "images_to_bag: " << note << "\n";
+  }
   try {
     mrs_vpr::bag::frameStamp(start_time, static_cast<long long>(files.size()) - 1, rate);  // the latest stamp
   } catch (const std::invalid_argument& error) {

@@ -99,7 +99,9 @@ void writeDrive(const Options& options) {
   mrs_vpr::tools::requireNoInputInside({"--output", options.output}, {{"--images", options.images}});
   std::vector<std::string> left_out;
   const std::vector<std::string> files = mrs_vpr::listImageFiles(options.images, &left_out);
-  if (!left_out.empty()) std::cerr << "make_drive: " << mrs_vpr::leftOutNote(options.images, left_out) << "\n";
+  for (const std::string& note : {mrs_vpr::leftOutNote(options.images, left_out), mrs_vpr::fractionOrderNote(files)}) {
+    if (!note.empty()) std::cerr << "make_drive: " << note << "\n";
+  }
   const int available = static_cast<int>(files.size());
   const int end = options.end < 0 ? available : options.end;
   if (options.begin < 0 || options.begin >= end || end > available) {

@@ -37,9 +37,11 @@ Traversal readTraversal(const std::string& source, const std::string& topic, con
     total = countFrames(source, topic, kind);
   } else {
     std::vector<std::string> left_out;
-    total = static_cast<int>(mrs_vpr::listImageFiles(source, &left_out).size());
-    const std::string note = mrs_vpr::leftOutNote(source, left_out);
-    if (!note.empty()) std::cerr << "  " << what << ": " << note << "\n";
+    const std::vector<std::string> files = mrs_vpr::listImageFiles(source, &left_out);
+    total = static_cast<int>(files.size());
+    for (const std::string& note : {mrs_vpr::leftOutNote(source, left_out), mrs_vpr::fractionOrderNote(files)}) {
+      if (!note.empty()) std::cerr << "  " << what << ": " << note << "\n";
+    }
   }
   ProgressLine progress = ProgressLine::onStderr("  " + what, "frames", total);
   Traversal traversal;

@@ -417,6 +417,12 @@ TEST(ImageFolder, NumbersInNamesSortAsNumbers) {
   }
   EXPECT_EQ(stamp_names, (std::vector<std::string>{"999999999.9.png", "1614000000.05.png", "1614000000.1.png",
                                                    "1614000000.25.png", "1614000000.3.png", "1614000001.png"}));
+  // Read as counters the digits after the points would give another order: the tools say which they took.
+  EXPECT_EQ(fractionOrderNote(listImageFiles(folder.path("stamps"))),
+            "read '1614000000.05.png' before '1614000000.1.png', the digits after a point as a decimal fraction "
+            "(stamps in seconds); if they count frames, write them with as many digits each (zeros in front)");
+  EXPECT_EQ(fractionOrderNote(listImageFiles(folder.path("padded"))), "");
+  EXPECT_EQ(fractionOrderNote(listImageFiles(folder.path())), "");
 }
 
 // A folder of images of an extension not known (.jfif, say) holds "no image": the message names its files.

@@ -23,6 +23,11 @@ namespace mrs_vpr {
  */
 std::vector<std::string> listImageFiles(const std::string& folder, std::vector<std::string>* left_out = nullptr);
 
+/// What a tool says when the files listImageFiles() returned are in another order than if the digits
+/// after a point counted as numbers (cam1.9.png, cam1.10.png: unpadded counters, not fractions); empty
+/// when both orders agree.
+std::string fractionOrderNote(const std::vector<std::string>& files);
+
 /// What a tool says of the files listImageFiles() left out of `folder` ("left out 2 files of 'F' not
 /// named as an image (a.csv, b.jfif)"); empty when none was.
 std::string leftOutNote(const std::string& folder, const std::vector<std::string>& left_out);
