@@ -100,15 +100,11 @@ def _numbering_warning(recognizer):
     return None
 
 
-def _warn_of_too_few_rivals(matches, map_frames):
+def _warn_of_too_few_rivals(matches, map_keyframes):
     """Warns, as mrs_vpr_eval says on stderr, of answers in a map too small for the acceptance rule."""
-    few = sum(1 for match in matches if match.reference_index >= 0 and match.rivals < _bindings.MIN_RIVAL_ENDS)
-    if few > 0:
-        warnings.warn("%d of %d answers found fewer than %d trajectory ends outside their window in the map of %d "
-                      "keyframes: the acceptance rule gives them confidence 0 and accepts none of them%s"
-                      % (few, len(matches), _bindings.MIN_RIVAL_ENDS, map_frames,
-                         "; every confidence is equal, so there is no PR curve" if few == len(matches) else ""),
-                      UserWarning, stacklevel=3)
+    note = _bindings.too_few_rivals_note(matches, map_keyframes)
+    if note:
+        warnings.warn(note, UserWarning, stacklevel=3)
 
 
 def _check_one_size(query_images):

@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/median.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -294,6 +295,20 @@ std::string repeatedGlobalQueries(int query_frames, int length, int count) {
   return std::to_string(count) + " test sequences, but the query has " + std::to_string(positions) +
          " positions for one: each position once, and " + std::to_string(count - positions) +
          " of them again (the summary counts every test sequence)";
+}
+
+bool hasTooFewRivals(const Match& match) { return match.reference_index >= 0 && match.rivals < kMinRivalEnds; }
+
+std::string tooFewRivalsNote(int too_few, int answers, int map_keyframes) {
+  if (too_few <= 0) return "";
+  return std::to_string(too_few) + " of " + std::to_string(answers) + " answers found fewer than " +
+         std::to_string(kMinRivalEnds) + " trajectory ends outside their window in the map of " +
+         std::to_string(map_keyframes) + " keyframes: the acceptance rule gives them confidence 0 and accepts none " +
+         "of them" +
+         (too_few == answers ? "; every confidence is equal, so there is no PR curve (a map of a few hundred "
+                               "keyframes or more has one)"
+                             : "") +
+         " (doc/acceptance.md)";
 }
 
 std::optional<std::vector<int>> truthFor(int query_index, const GroundTruth* ground_truth, int reference_frames) {

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -13,7 +14,6 @@
 #include <vector>
 
 #include "binding_parts.hpp"
-#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
 #include "mrs_vpr/evaluation/image_folder.hpp"
 #include "mrs_vpr/parameters.hpp"
@@ -30,7 +30,6 @@ void bindEvaluation(py::module_& m) {
   m.attr("DEFAULT_GLOBAL_QUERIES") = kDefaultGlobalQueries;
   m.attr("MAX_GLOBAL_QUERIES") = kMaxGlobalQueries;
   m.attr("DEFAULT_SEED") = MrsParams{}.seed;
-  m.attr("MIN_RIVAL_ENDS") = kMinRivalEnds;
   m.def(
       "image_files",
       [](const std::string& folder) {
@@ -39,8 +38,17 @@ void bindEvaluation(py::module_& m) {
       },
       py::arg("folder"),
       "The image files of `folder` as full paths, in the order mrs_vpr_eval and build_map read them (numbers in "
-      "names as numbers, 2.png before 10.png; digits after a decimal point as a fraction); RuntimeError naming the problem when the folder is missing, holds "
-      "no image or an entry named as an image is no file.");
+      "names as numbers, 2.png before 10.png; digits after a decimal point as a fraction); RuntimeError naming "
+      "the problem when the folder is missing, holds no image or an entry named as an image is no file.");
+  m.def(
+      "too_few_rivals_note",
+      [](const std::vector<Match>& matches, int map_keyframes) {
+        const auto too_few = std::count_if(matches.begin(), matches.end(), hasTooFewRivals);
+        return tooFewRivalsNote(static_cast<int>(too_few), static_cast<int>(matches.size()), map_keyframes);
+      },
+      py::arg("matches"), py::arg("map_keyframes"),
+      "mrs_vpr_eval's note on the answers among `matches` that a map too small for the acceptance rule left "
+      "at confidence 0; empty when there are none.");
   m.def(
       "per_frame_queries",
       [](int query_frames, int sequence_length, const std::string& alignment) {

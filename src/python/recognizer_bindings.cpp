@@ -269,16 +269,6 @@ void bindRecognizer(py::module_& m) {
           py::arg("traversal"), py::arg("first"), py::arg("count"), py::arg("method"),
           "The Match of keyframes [first, first + count) of the traversal, as they are; for evaluate().")
       .def(
-          "_check_images",
-          [](Recognizer& self, const py::handle& images, const std::string& channel_order, const std::string& what) {
-            const ChannelOrder order = channelOrder(channel_order);
-            const std::vector<Image> views = imagesFrom(images, what);
-            py::gil_scoped_release released;
-            describeAll(self.core(), views, order, what);
-          },
-          py::arg("images"), py::arg("channel_order"), py::arg("what"),
-          "Raises ValueError naming the first image (of `what`) that cannot be described; for evaluate().")
-      .def(
           "describe",
           [](Recognizer& self, const py::handle& image, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);

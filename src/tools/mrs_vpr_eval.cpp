@@ -18,7 +18,6 @@
 #include "eval_options.hpp"
 #include "evaluation_json.hpp"
 #include "evaluation_plots.hpp"
-#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/evaluation/evaluation.hpp"
@@ -68,9 +67,6 @@ std::invalid_argument tooShortQuery(const Keyframes& query, int sequence_length)
                           : ""));
 }
 
-/// An answer whose confidence the acceptance rule leaves at 0: the map holds too few ends outside its window.
-bool tooFewRivals(const Match& match) { return match.reference_index >= 0 && match.rivals < kMinRivalEnds; }
-
 /// Per-frame protocol: one search per query frame with a full sequence, all in one call so that a
 /// method can share work between frames (seqslam computes the difference matrix once). The time of
 /// a query is therefore the call's time divided by the number of frames searched.
@@ -95,7 +91,7 @@ std::vector<QueryRecord> runPerFrame(PlaceRecognizer& reference, const std::stri
       continue;
     }
     const Match& match = matches.at(static_cast<std::size_t>(keyframe));
-    if (tooFewRivals(match)) ++without_rivals;
+    if (hasTooFewRivals(match)) ++without_rivals;
     records.push_back(keyframeRecordOf(frame, *true_indices, match, keyframes.reference, per_query_ms));
   }
   if (skipped > 0) std::cerr << "  " << skipped << " query frames skipped: they have no ground truth\n";
@@ -127,7 +123,7 @@ std::vector<QueryRecord> runGlobal(PlaceRecognizer& reference, const DescriptorS
     }
     const Clock::time_point start = Clock::now();
     const Match match = reference.match(query.view(test.start, test.start + test.length), options.method).match;
-    if (tooFewRivals(match)) ++without_rivals;
+    if (hasTooFewRivals(match)) ++without_rivals;
     records.push_back(keyframeRecordOf(frame, *true_indices, match, keyframes.reference, 1000.0 * secondsSince(start)));
   }
   progress.update(done);
@@ -363,17 +359,9 @@ int run(int argc, char** argv) {
           : runGlobal(recognizer, query_descriptors, truth_ptr, options, keyframes, without_rivals);
   const double match_s = secondsSince(match_start);
   if (records.empty()) throw std::invalid_argument("no query frame has ground truth: nothing to evaluate");
-  if (without_rivals > 0) {
-    // Else a small map's figures (no answer accepted, no PR curve) would look like a method that fails.
-    std::cerr << "  " << without_rivals << " of " << records.size() << " answers found fewer than " << kMinRivalEnds
-              << " trajectory ends outside their window in the map of " << recognizer.size()
-              << " keyframes: the acceptance rule gives them confidence 0 and accepts none of them"
-              << (without_rivals == static_cast<int>(records.size())
-                      ? "; every confidence is equal, so there is no PR curve (a map of a few hundred keyframes "
-                        "or more has one)"
-                      : "")
-              << " (doc/acceptance.md)\n";
-  }
+  const std::string rivals_note =
+      tooFewRivalsNote(without_rivals, static_cast<int>(records.size()), recognizer.size());
+  if (!rivals_note.empty()) std::cerr << "  " << rivals_note << "\n";
 
   EvaluationSummary summary = summarise(records, options.tolerance);
   summary.total_time_s = secondsSince(start);  // The whole evaluation: reading, describing, matching.

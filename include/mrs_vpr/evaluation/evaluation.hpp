@@ -167,6 +167,14 @@ std::vector<TestSequence> globalQueries(int query_frames, int length, int count,
 /// the summary then counts a repeated test sequence again; empty when every position is distinct.
 std::string repeatedGlobalQueries(int query_frames, int length, int count);
 
+/// Whether the acceptance rule left `match`'s confidence at 0 because the map holds fewer than
+/// kMinRivalEnds trajectory ends outside its window (acceptance.hpp).
+bool hasTooFewRivals(const Match& match);
+/// What to tell a user of the `too_few` of `answers` answers that hasTooFewRivals() in a map of
+/// `map_keyframes`, so that a small map's figures (none accepted, no PR curve) do not look like a method
+/// that fails; empty when there are none.
+std::string tooFewRivalsNote(int too_few, int answers, int map_keyframes);
+
 /**
  * Throws std::invalid_argument naming the query row when ground truth lists a query frame outside
  * [0, query_frames) or a reference frame outside [0, reference_frames): a file for other traversals
