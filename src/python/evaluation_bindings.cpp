@@ -33,13 +33,23 @@ void bindEvaluation(py::module_& m) {
   m.def(
       "image_files",
       [](const std::string& folder) {
-        py::gil_scoped_release released;
-        return listImageFiles(folder);
+        std::vector<std::string> files;
+        {
+          py::gil_scoped_release released;
+          files = listImageFiles(folder);
+        }
+        // As the tools print it: names such as cam1.9.png and cam1.10.png read otherwise as counters.
+        const std::string note = fractionOrderNote(files);
+        if (!note.empty()) {
+          py::module_::import("warnings").attr("warn")(note, py::module_::import("builtins").attr("UserWarning"), 2);
+        }
+        return files;
       },
       py::arg("folder"),
       "The image files of `folder` as full paths, in the order mrs_vpr_eval and build_map read them (numbers in "
-      "names as numbers, 2.png before 10.png; digits after a decimal point as a fraction); RuntimeError naming "
-      "the problem when the folder is missing, holds no image or an entry named as an image is no file.");
+      "names as numbers, 2.png before 10.png; digits after a decimal point as a fraction, with a UserWarning "
+      "where reading them as counters would order the folder otherwise); RuntimeError naming the problem when "
+      "the folder is missing, holds no image or an entry named as an image is no file.");
   m.def(
       "too_few_rivals_note",
       [](const std::vector<Match>& matches, int map_keyframes) {

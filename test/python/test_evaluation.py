@@ -331,6 +331,23 @@ def test_image_files_are_listed_in_the_tools_order(tmp_path):
     assert "does not exist" in str(error.value)
 
 
+def test_image_files_say_where_digits_after_a_point_read_as_a_fraction(tmp_path):
+    # As the tools print it: an id digit, a point and an unpadded counter are not read as counters.
+    for name in ("cam1.9.png", "cam1.10.png"):
+        (tmp_path / name).write_bytes(b"")
+    with pytest.warns(UserWarning, match=r"read 'cam1.10.png' before 'cam1.9.png', the digits after a point as a "
+                      r"decimal fraction"):
+        names = [pathlib.Path(path).name for path in mrs_vpr.image_files(str(tmp_path))]
+    assert names == ["cam1.10.png", "cam1.9.png"]
+    agreeing = tmp_path / "agreeing"  # both readings order these alike: nothing to say
+    agreeing.mkdir()
+    for name in ("1.5.png", "2.25.png"):
+        (agreeing / name).write_bytes(b"")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert [pathlib.Path(path).name for path in mrs_vpr.image_files(str(agreeing))] == ["1.5.png", "2.25.png"]
+
+
 def test_a_map_too_small_for_the_acceptance_rule_is_named(route):
     # As mrs_vpr_eval says on stderr: confidences of 0 and no PR curve, not a method that fails.
     recognizer = mrs_vpr.PlaceRecognizer(sequence_length=20, **ROUTE_PARAMETERS)
