@@ -1,15 +1,10 @@
 #pragma once
 
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/frame_range.hpp"
 #include "mrs_vpr/repeated_views.hpp"
 
 namespace mrs_vpr {
-
-/// Map frames [begin, end): the test sequence, or the frames near an answer.
-struct FrameRange {
-  int begin = 0;
-  int end = 0;
-};
 
 /**
  * Whether the map holds, near an answer (`near`), frames of the test sequence's own recording (`test`,
