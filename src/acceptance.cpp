@@ -73,6 +73,10 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            "views (one recording added to the map twice, as a bag played again without emptying the map), and a "
            "frame that finds itself is no loop closure";
   }
+  if (match.turned_back) {
+    return "not accepted: the test sequence returns to a place it passed (the robot turned back or backed up), "
+           "and the search's trajectories, which run forwards, would place it where the way out leads";
+  }
   if (match.repeated_view) {
     return "not accepted: most of the test sequence's keyframes show one view again (a camera standing in a "
            "dark or textureless place, whose noise made keyframes), which says nothing about the place";

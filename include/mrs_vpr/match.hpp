@@ -40,6 +40,10 @@ struct Match {
   /// itself, no loop closure (PlaceRecognizer::matchRecent). Set, as repeated_view, on an answer that is
   /// then not accepted.
   bool same_recording = false;
+  /// The test sequence returns to a place it passed (turn_back.hpp): a robot that turned back or backed
+  /// up, which trajectories running forwards place where the way out leads. Set, as repeated_view, on an
+  /// answer that is then not accepted.
+  bool turned_back = false;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

@@ -45,6 +45,9 @@ void bindAnswers(py::module_& m) {
       .def_readonly("same_recording", &Match::same_recording,
                     "The test sequence's keyframes are in the map already, at the same times with the same views "
                     "(one recording added twice; match_recent only; never accepted).")
+      .def_readonly("turned_back", &Match::turned_back,
+                    "The test sequence returns to a place it passed, as a robot that turned back or backed up "
+                    "(match_recent only; never accepted).")
       .def_readonly("sequence_difference", &Match::sequence_difference,
                     "Mean difference along the best trajectory; compare within one method and length only.")
       .def_readonly("comparisons", &Match::comparisons, "Image comparisons the search made.")

@@ -180,6 +180,99 @@ TEST(PlaceRecognizer, ARevisitStampedBetweenTwoSessionsOfTheMapIsALoopClosure) {
   EXPECT_FALSE(answer.match.same_recording);
 }
 
+/// A recognizer whose map is the route's reference traversal, keyframed at the defaults, that asks after
+/// each new keyframe of a revisit as continuous mode does and counts its answers.
+class ContinuousRevisit {
+ public:
+  struct Counts {
+    int right = 0;
+    int wrong = 0;
+    int turned_back = 0;
+  };
+
+  ContinuousRevisit() : recognizer_(routeParameters(), limits()) {
+    for (int frame = 0; frame < 600; ++frame) offer(frame);
+  }
+
+  /// Drives over the reference frames `frames` (the same images again, on a later clock).
+  Counts drive(const std::vector<int>& frames) {
+    Counts counts;
+    for (int frame : frames) {
+      if (!offer(frame)) continue;
+      const PlaceAnswer answer = recognizer_.matchRecent(20);
+      if (answer.match.turned_back) {
+        ++counts.turned_back;
+        EXPECT_FALSE(answer.match.accepted);
+        EXPECT_EQ(answer.verdict.rfind("not accepted: the test sequence returns to a place it passed", 0), 0U)
+            << answer.verdict;
+      }
+      if (!answer.match.accepted) continue;
+      const int truth = place_of_keyframe_[static_cast<std::size_t>(answer.localised_frame)];
+      const int found = place_of_keyframe_[static_cast<std::size_t>(answer.match.reference_index)];
+      ++(within(found, truth, 5) ? counts.right : counts.wrong);
+    }
+    return counts;
+  }
+
+ private:
+  static RecognizerParams limits() {
+    RecognizerParams limits;
+    limits.recent_exclusion = 50;
+    return limits;
+  }
+
+  bool offer(int frame) {
+    stamp_ns_ += 100'000'000;
+    const cv::Mat& image = route().reference[static_cast<std::size_t>(frame)];
+    if (recognizer_.addFrame(image, Stamp::fromNanoseconds(stamp_ns_)) != FrameAdmission::kAdmitted) return false;
+    place_of_keyframe_.push_back(frame);
+    return true;
+  }
+
+  PlaceRecognizer recognizer_;
+  std::vector<int> place_of_keyframe_;  // the reference frame each map keyframe shows
+  std::int64_t stamp_ns_ = 100'000'000'000;
+};
+
+std::vector<int> framesFromTo(int first, int last) {
+  std::vector<int> frames;
+  for (int frame = first; frame != last; frame += first < last ? 1 : -1) frames.push_back(frame);
+  frames.push_back(last);
+  return frames;
+}
+
+// A revisit that drives part of the route and backs up over part of it: a sequence that holds both
+// sides of the turn fits a forward trajectory by its way out only, which leads on past the turn
+// (without the rule, 5 answers about the way back were accepted 17 to 25 frames ahead). None is
+// accepted, and the verdict says why; the way out's answers, and a revisit that drives on, stand.
+TEST(PlaceRecognizer, ARevisitThatTurnsBackIsNotPlacedWhereItsWayOutLeads) {
+  ContinuousRevisit revisit;
+  const ContinuousRevisit::Counts out = revisit.drive(framesFromTo(100, 299));
+  EXPECT_GT(out.right, 100);
+  EXPECT_EQ(out.wrong, 0);
+  EXPECT_EQ(out.turned_back, 0);
+  const ContinuousRevisit::Counts back = revisit.drive(framesFromTo(298, 200));
+  EXPECT_EQ(back.wrong, 0);
+  EXPECT_GT(back.turned_back, 0);
+  const ContinuousRevisit::Counts onwards = revisit.drive(framesFromTo(300, 399));
+  EXPECT_GT(onwards.right, 40);
+  EXPECT_EQ(onwards.wrong, 0);
+  EXPECT_EQ(onwards.turned_back, 0);
+}
+
+// A robot that goes round a small loop again and again shows its places again within a few dozen
+// keyframes too, but forwards: its closures stand.
+TEST(PlaceRecognizer, ARobotGoingRoundASmallLoopDoesNotTurnBack) {
+  ContinuousRevisit revisit;
+  std::vector<int> laps;
+  for (int lap = 0; lap < 4; ++lap) {
+    for (int frame : framesFromTo(100, 149)) laps.push_back(frame);
+  }
+  const ContinuousRevisit::Counts counts = revisit.drive(laps);
+  EXPECT_GT(counts.right, 40);
+  EXPECT_EQ(counts.turned_back, 0);
+}
+
 // Questions about the newest frames after each new one, as continuous mode asks: once MRS has kept
 // their rows (mrs/recent_rows.hpp), its answers are the brute force's; the rows are counted in the
 // map's memory and go with a reset.
