@@ -75,7 +75,7 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
   }
   if (match.turned_back) {
     return "not accepted: the test sequence returns to a place it passed (the robot turned back or backed up), "
-           "and the search's trajectories, which run forwards, would place it where the way out leads";
+           "and the search's trajectories, which run forwards, do not fit the keyframe placed";
   }
   if (match.repeated_view) {
     return "not accepted: most of the test sequence's keyframes show one view again (a camera standing in a "

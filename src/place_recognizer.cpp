@@ -522,7 +522,8 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     const MapFrames map_frames{map_.view(0, frames_in_map), size - recent};
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);
     refuseRepeatedViews(result.match, map_.view(size - recent, size), repeated_views);
-    refuseTurnsBack(result.match, map_, {size - recent, size}, result.localised_row, repeated_views);
+    refuseTurnsBack(result.match, map_, {size - recent, size}, result.localised_row, recognizer_.recent_exclusion,
+                    repeated_views);
     result.verdict = acceptanceVerdict(result.match, params_.sequence);  // It may have refused it.
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_frame = size - recent + result.localised_row;
