@@ -14,7 +14,9 @@ bool returnsToPassedPlace(const DescriptorSequence& map, FrameRange test, int lo
   if (!views.enabled() || first >= test.end) return false;
   constexpr int kRecent = AppearanceKeyframes::kRecentKeyframes;
   const SequenceView frames = map.view();
-  const int earliest = std::max(0, test.begin - std::max(test.size() + kRecent, unsearched));
+  const int within_sequence = test.size() + kRecent;
+  const int reach = std::max(within_sequence, std::min(unsearched, kMaxReachOfSequence * within_sequence));
+  const int earliest = std::max(0, test.begin - reach);
   // The oldest passed keyframe within reach that `keyframe` shows again, or -1: after a robot backed up
   // and drives on, the way out's keyframe, not the way back's, tells which way it goes.
   const auto passedPlace = [&](int keyframe) {
@@ -27,28 +29,30 @@ bool returnsToPassedPlace(const DescriptorSequence& map, FrameRange test, int lo
   std::vector<int> judged;  // the keyframes judged, oldest first ...
   for (int keyframe = test.begin; keyframe < test.end; keyframe += step) judged.push_back(keyframe);
   std::vector<int> places(judged.size(), -1);  // ... and the place each returns to
-  const auto from_localised = static_cast<std::size_t>(
+  const auto localised = static_cast<std::size_t>(
       std::lower_bound(judged.begin(), judged.end(), first) - judged.begin());
   // Most keyframes from the localised one on must return; in a forward drive a few that do not decide.
-  const int after = static_cast<int>(judged.size() - from_localised);
+  const int after = static_cast<int>(judged.size() - localised);
   if (after == 0) return false;
   int staying = 0;  // judged keyframes from the localised one on that do not return
-  for (std::size_t i = from_localised; i < judged.size(); ++i) {
+  for (std::size_t i = localised; i < judged.size(); ++i) {
     places[i] = passedPlace(judged[i]);
     if (places[i] < 0 && 2 * ++staying >= after) return false;
   }
-  for (std::size_t i = 0; i < from_localised; ++i) places[i] = passedPlace(judged[i]);
-  int onwards = 0;  // returning keyframes that show a place passed after the previous one's ...
-  int backwards = 0;  // ... and before it
-  int last_place = -1;
-  for (int place : places) {
-    if (place < 0) continue;
-    if (last_place >= 0 && place != last_place) ++(place > last_place ? onwards : backwards);
-    last_place = place;
-  }
-  // A robot going round a small loop returns too, but onwards. A keyframe returning alone gives no
-  // direction; it is taken as a turn just begun (with the causal alignment, the newest keyframe only).
-  return onwards <= backwards;
+  // The localised keyframe must lie where the robot went back: judged by the returning keyframes next
+  // to it (itself among them when it returns, else it lies between them). A keyframe of the way out
+  // before the turn is the way out's answer, and one of a way forward again after backing up (a
+  // zig-zag) too.
+  int previous = -1;
+  for (std::size_t i = localised; i-- > 0 && previous < 0;) previous = places[i] = passedPlace(judged[i]);
+  int next = -1;
+  for (std::size_t i = localised + 1; i < judged.size() && next < 0; ++i) next = places[i];
+  const int place = places[localised];
+  if (place < 0) return previous >= 0 && next >= 0 && next < previous;
+  // Alone, it gives no direction; it is taken as a turn just begun (with the causal alignment, the
+  // newest keyframe only).
+  if (previous < 0 && next < 0) return true;
+  return previous > place || (next >= 0 && next < place);
 }
 
 void refuseTurnsBack(Match& match, const DescriptorSequence& map, FrameRange test, int localised_row, int unsearched,

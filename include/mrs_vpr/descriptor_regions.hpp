@@ -27,8 +27,16 @@ class DescriptorRegions {
   template <typename Value>
   double medianRegionDifference(const std::uint8_t* a, const Value* b) const;
 
+  /// Consecutive descriptor bytes [begin, end) of one region.
+  struct Run {
+    int begin;
+    int end;
+    int region;
+  };
+
   std::vector<int> region_of_;       ///< Per descriptor byte, its region.
   std::vector<double> region_size_;  ///< Per region, its bytes.
+  std::vector<Run> runs_;            ///< The descriptor's bytes as runs of one region each, in order.
 };
 
 }  // namespace mrs_vpr
