@@ -24,8 +24,9 @@ class DescriptorRegions {
   double difference(const std::uint8_t* a, const std::uint8_t* b) const;
 
  private:
-  template <typename Value>
-  double medianRegionDifference(const std::uint8_t* a, const Value* b) const;
+  /// The median over regions of `sums` (each region's summed absolute differences) by its bytes; `sums`
+  /// becomes the means.
+  double medianRegionMean(std::vector<double>& sums) const;
 
   /// Consecutive descriptor bytes [begin, end) of one region.
   struct Run {
@@ -34,7 +35,6 @@ class DescriptorRegions {
     int region;
   };
 
-  std::vector<int> region_of_;       ///< Per descriptor byte, its region.
   std::vector<double> region_size_;  ///< Per region, its bytes.
   std::vector<Run> runs_;            ///< The descriptor's bytes as runs of one region each, in order.
 };
