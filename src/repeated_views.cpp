@@ -14,7 +14,7 @@ RepeatedViews::RepeatedViews(const AppearanceKeyframes& keyframes) : regions_(ke
 
 bool RepeatedViews::mostlyRepeated(SequenceView sequence) const {
   if (!enabled() || sequence.count <= kMinGap) return false;
-  const int step = (sequence.count + kMaxJudged - 1) / kMaxJudged;
+  const int step = judgingStride(sequence.count);
   int judged_count = 0;
   int repeats = 0;
   const int to_judge = (sequence.count + step - 1) / step;

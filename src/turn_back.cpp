@@ -25,15 +25,15 @@ bool returnsToPassedPlace(const DescriptorSequence& map, FrameRange test, int lo
     }
     return -1;
   };
-  const int step = (test.size() + RepeatedViews::kMaxJudged - 1) / RepeatedViews::kMaxJudged;
-  std::vector<int> judged;  // the keyframes judged, oldest first ...
-  for (int keyframe = test.begin; keyframe < test.end; keyframe += step) judged.push_back(keyframe);
+  const int step = RepeatedViews::judgingStride(test.size());
+  std::vector<int> judged;  // the keyframes judged, oldest first, the localised one among them ...
+  for (int keyframe = test.begin + (first - test.begin) % step; keyframe < test.end; keyframe += step) {
+    judged.push_back(keyframe);
+  }
   std::vector<int> places(judged.size(), -1);  // ... and the place each returns to
-  const auto localised = static_cast<std::size_t>(
-      std::lower_bound(judged.begin(), judged.end(), first) - judged.begin());
+  const auto localised = static_cast<std::size_t>((first - judged.front()) / step);
   // Most keyframes from the localised one on must return; in a forward drive a few that do not decide.
   const int after = static_cast<int>(judged.size() - localised);
-  if (after == 0) return false;
   int staying = 0;  // judged keyframes from the localised one on that do not return
   for (std::size_t i = localised; i < judged.size(); ++i) {
     places[i] = passedPlace(judged[i]);
@@ -44,7 +44,7 @@ bool returnsToPassedPlace(const DescriptorSequence& map, FrameRange test, int lo
   // before the turn is the way out's answer, and one of a way forward again after backing up (a
   // zig-zag) too.
   int previous = -1;
-  for (std::size_t i = localised; i-- > 0 && previous < 0;) previous = places[i] = passedPlace(judged[i]);
+  for (std::size_t i = localised; i-- > 0 && previous < 0;) previous = passedPlace(judged[i]);
   int next = -1;
   for (std::size_t i = localised + 1; i < judged.size() && next < 0; ++i) next = places[i];
   const int place = places[localised];

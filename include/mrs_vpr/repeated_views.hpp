@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 
@@ -38,6 +39,8 @@ class RepeatedViews {
   static constexpr int kMinGap = 3;
   /// Keyframes judged at most; longer sequences are sampled evenly.
   static constexpr int kMaxJudged = 64;
+  /// Every how many keyframes of a sequence of `keyframes` one is judged, so that at most kMaxJudged are.
+  static constexpr int judgingStride(int keyframes) { return std::max(1, (keyframes + kMaxJudged - 1) / kMaxJudged); }
 
   /// Judged on the regions and the scale of `keyframes` as they are now.
   explicit RepeatedViews(const AppearanceKeyframes& keyframes);

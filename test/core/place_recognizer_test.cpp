@@ -191,7 +191,9 @@ class ContinuousRevisit {
     int turned_back_right = 0;  // of those, answers that named the right place
   };
 
-  ContinuousRevisit() : recognizer_(routeParameters(), limits()) {
+  /// Asks about the newest `sequence_length` keyframes, localising the newest (routeParameters()).
+  explicit ContinuousRevisit(int sequence_length = 20)
+      : recognizer_(routeParameters(), limits()), sequence_length_(sequence_length) {
     for (int frame = 0; frame < 600; ++frame) offer(frame);
   }
 
@@ -200,7 +202,7 @@ class ContinuousRevisit {
     Counts counts;
     for (int frame : frames) {
       if (!offer(frame)) continue;
-      const PlaceAnswer answer = recognizer_.matchRecent(20);
+      const PlaceAnswer answer = recognizer_.matchRecent(sequence_length_);
       const int truth = place_of_keyframe_[static_cast<std::size_t>(answer.localised_frame)];
       const int found = place_of_keyframe_[static_cast<std::size_t>(answer.match.reference_index)];
       if (answer.match.turned_back) {
@@ -232,6 +234,7 @@ class ContinuousRevisit {
   }
 
   PlaceRecognizer recognizer_;
+  int sequence_length_;
   std::vector<int> place_of_keyframe_;  // the reference frame each map keyframe shows
   std::int64_t stamp_ns_ = 100'000'000'000;
 };
@@ -263,6 +266,21 @@ TEST(PlaceRecognizer, ARevisitThatTurnsBackIsNotPlacedWhereItsWayOutLeads) {
   EXPECT_GT(forward_again.right, 50);
   EXPECT_EQ(forward_again.wrong, 0);
   EXPECT_LT(forward_again.turned_back, 10);
+}
+
+// The same with sequences longer than the keyframes the rule judges (RepeatedViews::kMaxJudged): the
+// localised keyframe, the newest here, is judged whatever the sequence's length.
+TEST(PlaceRecognizer, ALongSequenceThatTurnsBackIsNotPlacedWhereItsWayOutLeads) {
+  for (const int length : {70, 100}) {
+    ContinuousRevisit revisit(length);
+    const ContinuousRevisit::Counts out = revisit.drive(framesFromTo(100, 299));
+    EXPECT_GT(out.right, 50) << length;
+    EXPECT_EQ(out.wrong, 0) << length;
+    EXPECT_EQ(out.turned_back, 0) << length;
+    const ContinuousRevisit::Counts back = revisit.drive(framesFromTo(298, 200));
+    EXPECT_EQ(back.wrong, 0) << length;
+    EXPECT_GT(back.turned_back, 0) << length;
+  }
 }
 
 // A robot that goes round a small loop again and again shows its places again within a few dozen
@@ -682,6 +700,27 @@ TEST(PlaceRecognizer, TryFlushLeavesFramesPendingWhileTheMapIsHeldAndFlushesThem
   EXPECT_TRUE(recognizer.tryFlush());
   EXPECT_EQ(recognizer.pending(), 0);
   EXPECT_EQ(recognizer.size(), 21);
+}
+
+// A caller that describes frames into one buffer of its own and reuses it: a frame that waits as
+// pending while a query reads the map keeps its own bytes, not what the buffer holds by the flush.
+TEST(PlaceRecognizer, AFrameWaitingForAQueryKeepsItsOwnCopyOfTheDescriptor) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 0;
+  PlaceRecognizer recognizer(routeParameters(), limits);
+  for (int i = 0; i < 20; ++i) recognizer.addFrame(route().reference[static_cast<std::size_t>(i)]);
+  cv::Mat buffer = recognizer.describe(route().reference[20]);
+  const cv::Mat expected = buffer.clone();
+  recognizer.visitFrames(0, 1, [&](const cv::Mat&, Stamp) {
+    std::thread other([&] {
+      recognizer.addDescriptor(buffer);
+      buffer.setTo(0);  // the caller's next frame
+    });
+    other.join();
+  });
+  ASSERT_EQ(recognizer.pending(), 1);
+  ASSERT_TRUE(recognizer.tryFlush());
+  recognizer.visitFrames(20, 21, [&](const cv::Mat& stored, Stamp) { EXPECT_EQ(cv::norm(stored, expected), 0.0); });
 }
 
 }  // namespace
