@@ -125,7 +125,8 @@ FrameAdmission PlaceRecognizer::append(const cv::Mat& descriptor, Stamp stamp) {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     if (recognizer_.max_frames > 0 && frames_admitted_ >= recognizer_.max_frames) return FrameAdmission::kMapFull;
     if (static_cast<int>(pending_.size()) >= recognizer_.max_pending_frames) return FrameAdmission::kPendingFull;
-    pending_.push_back({descriptor, stamp});
+    // A copy: the caller may reuse its buffer while the frame waits for a query to release the map.
+    pending_.push_back({descriptor.clone(), stamp});
     ++frames_admitted_;
   }
   // Never wait for a query: if one holds the map, the frame stays pending until the map is free.
@@ -489,11 +490,12 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
                                 std::to_string(frames));
   }
   flush();  // The newest frames must be in the map before they can be the test sequence.
-  // Judged on the scale of the camera that made both the map and these keyframes (repeated_views.hpp).
-  const RepeatedViews repeated_views = repeatedViews();
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    // Judged on the scale of the camera that made both the map and these keyframes (repeated_views.hpp),
+    // taken under the map's lock: a map loaded or reset meanwhile brings its own.
+    const RepeatedViews repeated_views = repeatedViews();
     const int frames_in_map = framesToSearchLocked();
     if (end < -1) {
       throw std::invalid_argument("a test sequence cannot end at frame " + std::to_string(end) +
@@ -524,22 +526,13 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
     refuseRepeatedViews(result.match, map_.view(size - recent, size), repeated_views);
     refuseTurnsBack(result.match, map_, {size - recent, size}, result.localised_row, recognizer_.recent_exclusion,
                     repeated_views);
-    result.verdict = acceptanceVerdict(result.match, params_.sequence);  // It may have refused it.
-    result.newest_stamp = map_.stamp(size - 1);
-    result.localised_frame = size - recent + result.localised_row;
-    result.localised_stamp = map_.stamp(result.localised_frame);
     // A frame that finds itself is no loop closure; its first pass lies within the sequence's reach.
-    if (result.match.accepted) {
-      const int reach = recent + params_.sequence.match_exclusion;
-      const int answer = result.match.reference_index;
-      result.match.same_recording =
-          holdsOwnRecording(map_, {size - recent, size},
-                            {std::max(0, answer - reach), std::min(searchable, answer + reach + 1)}, repeated_views);
-      if (result.match.same_recording) {
-        result.match.accepted = false;
-        result.verdict = acceptanceVerdict(result.match, params_.sequence);
-      }
-    }
+    refuseSameRecording(result.match, map_, {size - recent, size}, searchable,
+                        recent + params_.sequence.match_exclusion, repeated_views);
+    result.verdict = acceptanceVerdict(result.match, params_.sequence);  // A rule above may have refused it.
+    result.localised_frame = size - recent + result.localised_row;
+    result.newest_stamp = map_.stamp(size - 1);
+    result.localised_stamp = map_.stamp(result.localised_frame);
   }
   flush();
   return result;

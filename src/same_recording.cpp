@@ -71,4 +71,14 @@ bool holdsOwnRecording(const DescriptorSequence& map, FrameRange test, FrameRang
   return holdsTwin(map, test, near) || holdsLeftOutFrame(map, test, near, views);
 }
 
+void refuseSameRecording(Match& match, const DescriptorSequence& map, FrameRange test, int searched_frames, int reach,
+                         const RepeatedViews& views) {
+  if (!match.accepted) return;
+  const int answer = match.reference_index;
+  const FrameRange near{std::max(0, answer - reach), std::min(searched_frames, answer + reach + 1)};
+  if (!holdsOwnRecording(map, test, near, views)) return;
+  match.same_recording = true;
+  match.accepted = false;
+}
+
 }  // namespace mrs_vpr

@@ -83,10 +83,11 @@ class PlaceRecognizer {
   FrameAdmission addFrame(const cv::Mat& image, Stamp stamp = Stamp(), ChannelOrder order = ChannelOrder::kBgr);
   /// Offers a frame's descriptor (from describe(), for callers that describe outside their own locks):
   /// it joins the map when its view has changed enough since the last keyframe
-  /// (RecognizerParams::min_appearance_change, appearance_keyframes.hpp), else kTooSimilar.
+  /// (RecognizerParams::min_appearance_change, appearance_keyframes.hpp), else kTooSimilar. Its bytes
+  /// are copied: the caller may reuse the buffer at once.
   FrameAdmission offerDescriptor(const cv::Mat& descriptor, Stamp stamp = Stamp());
   /// Appends a descriptor that is a keyframe already (a saved map's, or one chosen by travel): no
-  /// keyframe decision, but the next offers are compared with it.
+  /// keyframe decision, but the next offers are compared with it. Its bytes are copied.
   FrameAdmission addDescriptor(const cv::Mat& descriptor, Stamp stamp = Stamp());
   /// The appearance change of the frame last offered, in units of the difference between unrelated
   /// views (0 when keyframes are not chosen by appearance).
@@ -134,9 +135,12 @@ class PlaceRecognizer {
    * the place just passed. `explanation` as for match(). With `end` >= 0 the test sequence is the
    * `frames` frames before map frame `end` instead of the newest ones (and the searched frames end as
    * much earlier): continuous mode localises each keyframe that came since its last question. `end`
-   * below -1 throws std::invalid_argument. An answer near which the map holds the test sequence's own
-   * keyframes (at the same times with the same views: one recording mapped twice) is not accepted
-   * (Match::same_recording).
+   * below -1 throws std::invalid_argument. These keyframes are the map's camera's own, so three more
+   * rules judge an accepted answer on its scale, and take it back: a sequence that mostly shows one
+   * view again (Match::repeated_view, repeated_views.hpp), one whose localised keyframe lies where the
+   * robot went back over its path (Match::turned_back, turn_back.hpp), and an answer near which the map
+   * holds the test sequence's own keyframes (at the same times with the same views: one recording mapped
+   * twice; Match::same_recording, same_recording.hpp).
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);
@@ -239,8 +243,8 @@ class PlaceRecognizer {
   /// as they are), which a sequence longer than the map is told in.
   PlaceAnswer matchSequence(SequenceView test_sequence, const std::string& method, MatchExplanation* explanation,
                             int images);
-  /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock, before and
-  /// apart from the map's.
+  /// The repeated-view rule on the keyframes' scale as it stands, taken under their lock; the caller
+  /// holds the map's, so that the scale is that of the map it reads.
   RepeatedViews repeatedViews() const;
   /// The map's frames; throws std::invalid_argument when there are none. The caller holds map_mutex_.
   int framesToSearchLocked() const;

@@ -2,6 +2,7 @@
 
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/frame_range.hpp"
+#include "mrs_vpr/match.hpp"
 #include "mrs_vpr/repeated_views.hpp"
 
 namespace mrs_vpr {
@@ -22,5 +23,11 @@ namespace mrs_vpr {
  * Costs one hash of each frame of both ranges, and view comparisons only for enclosed test keyframes.
  */
 bool holdsOwnRecording(const DescriptorSequence& map, FrameRange test, FrameRange near, const RepeatedViews& views);
+
+/// Takes back the acceptance of `match` when the map holds frames of the test sequence's own recording
+/// within `reach` frames of its answer (among the first `searched_frames`), and says so
+/// (Match::same_recording): a frame that finds itself is no loop closure. Judges only accepted answers.
+void refuseSameRecording(Match& match, const DescriptorSequence& map, FrameRange test, int searched_frames, int reach,
+                         const RepeatedViews& views);
 
 }  // namespace mrs_vpr
