@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 namespace mrs_vpr {
@@ -26,6 +27,8 @@ TEST(ContinuousQueryEnds, TheBudgetIsAFifthOfThePeriodByTheLastQuestionsTime) {
   EXPECT_EQ(affordableQueries(1.0, 20.0), 10);   // 200 ms of a second
   EXPECT_EQ(affordableQueries(2.0, 20.0), 20);
   EXPECT_EQ(affordableQueries(1.0, 300.0), 0);   // continuousQueryEnds still asks about the newest
+  // A day's period and a question of a microsecond: more than an int holds, bounded.
+  EXPECT_EQ(affordableQueries(86400.0, 0.001), std::numeric_limits<int>::max());
 }
 
 TEST(ContinuousQueryEnds, TheFirstQuestionAndOneAfterTheMapShrankAskAboutTheNewestOnly) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
 namespace mrs_vpr {
@@ -14,7 +15,9 @@ constexpr double kContinuousShare = 0.2;
 /// `last_query_ms` (1 before any was timed).
 inline int affordableQueries(double period_s, double last_query_ms) {
   if (last_query_ms <= 0.0) return 1;
-  return static_cast<int>(kContinuousShare * period_s * 1000.0 / last_query_ms);
+  // Bounded before the conversion: a long period and a quick question exceed an int.
+  return static_cast<int>(std::min(kContinuousShare * period_s * 1000.0 / last_query_ms,
+                                   static_cast<double>(std::numeric_limits<int>::max())));
 }
 
 /**
