@@ -15,7 +15,6 @@
 #include <opencv2/core/utility.hpp>
 
 #include "mrs_vpr/LoopClosure.h"
-#include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/loop_closure_stamps.hpp"
@@ -126,7 +125,7 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   response.reference_stamp = rosTimeOf(answered.reference_stamp);
   response.localised_stamp = input.header.stamp;
   response.accepted = match.accepted;
-  response.message = acceptanceVerdict(match, params_.core.sequence);
+  response.message = answered.verdict;
   response.method = answered.method;
   response.query_length = static_cast<std::uint32_t>(answered.query_length);
   return answered;
