@@ -38,8 +38,10 @@ double AppearanceKeyframes::regionDifference(const std::uint8_t* a, const float*
 double AppearanceKeyframes::standIn(const float* view) const { return regionDifference(unrelated_view_.data(), view); }
 
 std::vector<float> AppearanceKeyframes::referenceMean() const {
-  std::vector<float> mean(mean_);
-  for (float& value : mean) value /= static_cast<float>(frames_in_mean_);
+  std::vector<float> mean(sum_.size());
+  // In floats, as when the sums were floats: the same means while those were exact (below 2^24).
+  const auto frames = static_cast<float>(frames_in_mean_);
+  for (std::size_t i = 0; i < mean.size(); ++i) mean[i] = static_cast<float>(sum_[i]) / frames;
   return mean;
 }
 
@@ -114,9 +116,9 @@ void AppearanceKeyframes::keep(const cv::Mat& descriptor) {
     keyframe_stand_ins_.pop_front();
   }
   keyframe_stand_ins_.push_back(standIn(values.data()));
-  recent_keyframes_.push_back(values);
   joined_.clear();
-  mean_ = std::move(values);
+  sum_.assign(descriptor.ptr<std::uint8_t>(), descriptor.ptr<std::uint8_t>() + size_);
+  recent_keyframes_.push_back(std::move(values));
   frames_in_mean_ = 1;
 }
 
@@ -127,7 +129,7 @@ void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
   // from the mean at three quarters of min_change: gaps of 128 places on the generated route).
   if (last_keyframe_change_ >= min_change_ * kReferenceShare) return;
   const std::uint8_t* bytes = descriptor.ptr<std::uint8_t>();
-  for (int i = 0; i < size_; ++i) mean_[static_cast<std::size_t>(i)] += bytes[i];
+  for (int i = 0; i < size_; ++i) sum_[static_cast<std::size_t>(i)] += bytes[i];
   ++frames_in_mean_;
   joined_.push_front(asFloats(descriptor));
   if (static_cast<int>(joined_.size()) > kJoinedFrames) joined_.pop_back();
@@ -135,7 +137,7 @@ void AppearanceKeyframes::skip(const cv::Mat& descriptor) {
 
 AppearanceKeyframes AppearanceKeyframes::follower() const {
   AppearanceKeyframes next(*this);
-  next.mean_.clear();
+  next.sum_.clear();
   next.joined_.clear();
   next.compare_recent_ = false;
   next.frames_in_mean_ = 0;
@@ -145,7 +147,7 @@ AppearanceKeyframes AppearanceKeyframes::follower() const {
 }
 
 void AppearanceKeyframes::reset() {
-  mean_.clear();
+  sum_.clear();
   joined_.clear();
   frames_in_mean_ = 0;
   recent_keyframes_.clear();

@@ -141,8 +141,9 @@ class AppearanceKeyframes {
   int size_;
   std::shared_ptr<const DescriptorRegions> regions_;
   std::vector<std::uint8_t> unrelated_view_;  ///< The descriptor of seeded noise, the scale's stand-in.
-  std::vector<float> mean_;          ///< Sum of the descriptors since the last keyframe ...
-  int frames_in_mean_ = 0;           ///< ... and how many there are.
+  /// Sum of the descriptors since the last keyframe (whole numbers, exact in a double for any stop) ...
+  std::vector<double> sum_;
+  int frames_in_mean_ = 0;  ///< ... and how many there are.
   std::deque<std::vector<float>> recent_keyframes_;  ///< The last kUnrelatedGap keyframes.
   std::deque<double> keyframe_stand_ins_;  ///< standIn() of each of recent_keyframes_.
   /// False for a follower (see kRecentKeyframes), whose recent_keyframes_ start with the map's.

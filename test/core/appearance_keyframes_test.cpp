@@ -293,6 +293,23 @@ TEST(AppearanceKeyframes, AStandingCamerasStrayLikeAFrameThatJoinedTheReferenceI
   EXPECT_TRUE(without.wants(stray));
 }
 
+TEST(AppearanceKeyframes, TheReferenceOfACameraStandingForDaysIsItsView) {
+  // A parked robot's camera: every frame joins the reference. Summed in floats, the reference drifted
+  // off the view it stood at once its sums passed 2^24 (a few hundred thousand frames), rounding every
+  // byte the same way frame after frame: by 1.3 grey levels here after a million frames (9 hours at
+  // 30 Hz), 0.05 of the scale.
+  const DescriptorParams params;
+  cv::RNG rng(5);
+  AppearanceKeyframes keyframes = keyframesScaledByADrive(DescriptorExtractor(params), params, rng);
+  const cv::Mat view(1, params.descriptorSize(), CV_8UC1, cv::Scalar(100));
+  ASSERT_TRUE(keyframes.wants(view));
+  keyframes.keep(view);
+  ASSERT_FALSE(keyframes.wants(view));  // What offer() asks before each skip(), the same every frame.
+  for (int frame = 0; frame < 1'000'000; ++frame) keyframes.skip(view);
+  EXPECT_FALSE(keyframes.wants(view));
+  EXPECT_LT(keyframes.lastChange(), 1e-6);  // the mean's last rounding, not a drift
+}
+
 TEST(PlaceRecognizer, AViewLikeAnOlderKeyframeIsSeenRecentlyNotTooSimilar) {
   // The node restates closures only for frames too similar to the newest keyframe: a frame that looks
   // like an older one (a robot swinging back) must say so.
