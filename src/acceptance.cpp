@@ -86,7 +86,8 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
     message << "not accepted: the best trajectory runs at " << match.velocity
             << " map frames a frame, the slowest or fastest of sequence/velocity_min..velocity_max ("
             << params.velocity_min << ".." << params.velocity_max
-            << "): the robot may be moving outside that range (another speed, a stop, backwards)";
+            << "): the robot may be moving outside that range (another speed, a stop, backwards), or the "
+               "place may not be in the map";
     return message.str();
   }
   const double required = requiredConfidence(match.rival_places, params);
