@@ -54,6 +54,7 @@ PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParam
   for (const char* method : {"mrs", "seqslam"}) {
     matchers_[method] = makeMatcher(method, params_);
     matchers_[method]->stopWith(&stop_);
+    matchers_[method]->linkPlacesWith(&links_);
   }
   // The map keeps MRS's coarse cells up to date as frames arrive, so that a query does not
   // transform the whole map again.
@@ -320,6 +321,7 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   map_ = std::move(prepared.map_);
   pending_.clear();
   recent_rows_->clear();
+  links_.clear();  // A loaded map's visits are not linked (yet): its places are rivals as before.
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = prepared.reserved_frames_;
@@ -331,7 +333,7 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     state.frames = map_.size();
-    state.memory_bytes = map_.memoryBytes() + recent_rows_->memoryBytes();
+    state.memory_bytes = map_.memoryBytes() + recent_rows_->memoryBytes() + links_.memoryBytes();
     state.descriptor_size = map_.descriptorSize();
     if (!map_.empty()) {
       state.first_stamp = map_.stamp(0);
@@ -531,6 +533,9 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
                         recent + params_.sequence.match_exclusion, repeated_views);
     result.verdict = acceptanceVerdict(result.match, params_.sequence);  // A rule above may have refused it.
     result.localised_frame = size - recent + result.localised_row;
+    // The map's own keyframe shows the answer's place: an accepted closure links the two visits, so
+    // that the next visit's answers have neither as a rival (place_links.hpp).
+    if (result.match.accepted) links_.link(result.localised_frame, result.match.reference_index);
     result.newest_stamp = map_.stamp(size - 1);
     result.localised_stamp = map_.stamp(result.localised_frame);
   }

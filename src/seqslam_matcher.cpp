@@ -33,7 +33,7 @@ Match SeqSlamMatcher::match(SequenceView reference, SequenceView query) const {
   computeDifferenceMatrix(query, reference, differences, stop_);
   enhanceContrastInPlace(differences, sequence_.contrast_window, stop_);
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
-  Match match = searchTrajectories(differences, rows, sequence_, stop_);
+  Match match = searchTrajectories(differences, rows, sequence_, stop_, links_);
   placeAnswer(match, reference, query, rows);
   applyAcceptance(match, sequence_);
   return match;

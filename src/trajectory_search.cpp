@@ -98,40 +98,80 @@ SequenceRows wholeSequenceRows(int count, WindowAlignment alignment) {
   return rows;
 }
 
-Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion) {
+std::vector<FrameRange> ownPlaceEnds(int winner, int exclusion, int columns, const PlaceLinks* links,
+                                     int frames_per_end) {
+  const int half = exclusion / 2;
+  std::vector<FrameRange> own{{std::max(0, winner - half), std::min(columns, winner + half + 1)}};
+  if (links == nullptr) return own;
+  for (const FrameRange& frames : links->samePlaceAs(winner * frames_per_end, half * frames_per_end)) {
+    const FrameRange ends{frames.begin / frames_per_end,
+                          std::min(columns, (frames.end + frames_per_end - 1) / frames_per_end)};
+    if (ends.begin < ends.end) own.push_back(ends);
+  }
+  std::sort(own.begin(), own.end(), [](const FrameRange& a, const FrameRange& b) { return a.begin < b.begin; });
+  std::vector<FrameRange> merged;
+  for (const FrameRange& range : own) {
+    if (!merged.empty() && range.begin <= merged.back().end) {
+      merged.back().end = std::max(merged.back().end, range.end);
+    } else {
+      merged.push_back(range);
+    }
+  }
+  return merged;
+}
+
+Rivals rivalsOutside(const std::vector<float>& cost_by_anchor, const std::vector<FrameRange>& own) {
+  Rivals rivals{std::numeric_limits<float>::infinity(), 0};
+  const float* costs = cost_by_anchor.data();
+  int begin = 0;
+  const auto gap = [&](int end) {
+    if (end <= begin) return;
+    rivals.lowest = std::min(rivals.lowest, lowestCost(costs + begin, end - begin));
+    rivals.finite += finiteCosts(costs + begin, end - begin);
+  };
+  for (const FrameRange& range : own) {
+    gap(range.begin);
+    begin = std::max(begin, range.end);
+  }
+  gap(static_cast<int>(cost_by_anchor.size()));
+  return rivals;
+}
+
+Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion, const PlaceLinks* links,
+                  int frames_per_end) {
   Match match;
   const int columns = static_cast<int>(cost_by_anchor.size());
   if (winner < 0 || winner >= columns) return match;
   const int half = exclusion / 2;
-  // The ends within half of the winner, [near_begin, near_end), are its own; all others are rivals.
+  // The ends within half of the winner are its own; so are its place's on other visits. All others are rivals.
   const int near_begin = std::max(0, winner - half);
   const int near_end = std::min(columns, winner + half + 1);
-  const float* costs = cost_by_anchor.data();
-  const float best = lowestCost(costs + near_begin, near_end - near_begin);
-  const float runner_up = std::min(lowestCost(costs, near_begin), lowestCost(costs + near_end, columns - near_end));
-  const int rivals = finiteCosts(costs, near_begin) + finiteCosts(costs + near_end, columns - near_end);
+  const float best = lowestCost(cost_by_anchor.data() + near_begin, near_end - near_begin);
+  const Rivals rivals =
+      rivalsOutside(cost_by_anchor, ownPlaceEnds(winner, exclusion, columns, links, frames_per_end));
+  const float runner_up = rivals.lowest;
   match.reference_index = winner;
   match.sequence_difference = best;
   // Without a distinct runner-up there is nothing to be sure about: score 1, confidence 0.
   match.score = (std::isfinite(best) && std::isfinite(runner_up) && runner_up > 0.0F)
                     ? std::clamp(best / runner_up, 0.0F, 1.0F)
                     : 1.0F;
-  match.rivals = rivals;
-  match.rival_places = placesAmong(rivals, 1, exclusion);
-  match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor), rivals);
+  match.rivals = rivals.finite;
+  match.rival_places = placesAmong(rivals.finite, 1, exclusion);
+  match.confidence = distinctiveness(best, runner_up, costSpread(cost_by_anchor), rivals.finite);
   return match;
 }
 
-Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion) {
+Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion, const PlaceLinks* links) {
   const float lowest = lowestCost(cost_by_anchor.data(), static_cast<int>(cost_by_anchor.size()));
   if (!std::isfinite(lowest)) return Match{};  // No trajectory fits.
   // The first end at the lowest cost, as a scan from the start would pick.
   const auto best = std::find(cost_by_anchor.begin(), cost_by_anchor.end(), lowest);
-  return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion);
+  return scoreAround(cost_by_anchor, static_cast<int>(best - cost_by_anchor.begin()), exclusion, links);
 }
 
-Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion) {
-  Match match = scoreFromCosts(costs.cost, exclusion);
+Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion, const PlaceLinks* links) {
+  Match match = scoreFromCosts(costs.cost, exclusion, links);
   if (match.reference_index >= 0) match.velocity = costs.velocity[static_cast<std::size_t>(match.reference_index)];
   return match;
 }
@@ -216,8 +256,9 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
 }
 
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params,
-                         const QueryStop* stop) {
-  Match match = scoreAnchorCosts(costsByAnchor(enhanced, rows, velocities(params), stop), params.match_exclusion);
+                         const QueryStop* stop, const PlaceLinks* links) {
+  Match match =
+      scoreAnchorCosts(costsByAnchor(enhanced, rows, velocities(params), stop), params.match_exclusion, links);
   match.comparisons = static_cast<long long>(rows.last - rows.first + 1) * enhanced.cols;
   return match;
 }

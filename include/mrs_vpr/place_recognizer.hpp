@@ -274,6 +274,7 @@ class PlaceRecognizer {
   RecognizerParams recognizer_;
   DescriptorExtractor extractor_;
   QueryStop stop_;  // before the matchers, which point to it
+  PlaceLinks links_;  // the same; its own lock (continuous mode links while queries read)
   std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
 
   // Held while a frame is offered, so that frames are decided and added one at a time, in order.

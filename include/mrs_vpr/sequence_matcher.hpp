@@ -7,6 +7,7 @@
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_links.hpp"
 #include "mrs_vpr/query_stop.hpp"
 #include "mrs_vpr/trajectory_search.hpp"
 
@@ -36,6 +37,10 @@ class SequenceMatcher {
   /// Queries of this matcher that can take long (the brute force over a large map) stop with
   /// QueryStopped once `stop` (which outlives the matcher) asks to; null: never.
   void stopWith(const QueryStop* stop) { stop_ = stop; }
+  /// Places that `links` (which outlives the matcher) joins across visits of the reference are no
+  /// rivals of each other in match()'s confidence (PlaceLinks); null: every other place is a rival.
+  /// The per-frame protocol (matchEveryFrame) judges without them.
+  void linkPlacesWith(const PlaceLinks* links) { links_ = links; }
 
  protected:
   explicit SequenceMatcher(const SequenceParams& sequence);
@@ -47,6 +52,7 @@ class SequenceMatcher {
 
   SequenceParams sequence_;
   const QueryStop* stop_ = nullptr;
+  const PlaceLinks* links_ = nullptr;
 };
 
 /// "seqslam" (brute force) or "mrs"; throws std::invalid_argument for any other name or bad parameters.

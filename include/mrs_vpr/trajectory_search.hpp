@@ -4,8 +4,10 @@
 
 #include <opencv2/core.hpp>
 
+#include "mrs_vpr/frame_range.hpp"
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_links.hpp"
 #include "mrs_vpr/query_stop.hpp"
 
 namespace mrs_vpr {
@@ -51,18 +53,36 @@ void costsByAnchor(const std::vector<const float*>& enhanced_rows, int columns, 
  * scoreFromCosts (runner-up outside +-match_exclusion/2 of the best); acceptance is the caller's.
  */
 Match searchTrajectories(const cv::Mat& enhanced, const SequenceRows& rows, const SequenceParams& params,
-                         const QueryStop* stop = nullptr);
+                         const QueryStop* stop = nullptr, const PlaceLinks* links = nullptr);
+
+/**
+ * The ends of a table of `columns` ends that are the answer's own place, not its rivals: those within
+ * exclusion/2 of `winner`, and with `links` those where the map shows its place on other visits
+ * (PlaceLinks::samePlaceAs of its frame, within the same half-width). Ends lie `frames_per_end` map
+ * frames apart (a pooled table's). Sorted, apart, within [0, columns); the winner's window first
+ * among them in its order.
+ */
+std::vector<FrameRange> ownPlaceEnds(int winner, int exclusion, int columns, const PlaceLinks* links = nullptr,
+                                     int frames_per_end = 1);
+
+/// The lowest of the costs outside `own` (ownPlaceEnds), and how many of them are finite.
+struct Rivals {
+  float lowest = 0.0F;
+  int finite = 0;
+};
+Rivals rivalsOutside(const std::vector<float>& cost_by_anchor, const std::vector<FrameRange>& own);
 
 /// Scores `winner` against the rest: best = lowest cost within exclusion/2 of it, runner-up = lowest
-/// cost farther away; score = best / runner-up, confidence = (runner-up - best) / costSpread(all), 0
-/// with fewer than kMinRivalEnds finite ends farther away; rival_places = placesAmong(those ends, 1, exclusion).
-Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion);
+/// cost outside ownPlaceEnds (with `links`, the answer's place on other visits is no rival); score =
+/// best / runner-up, confidence = (runner-up - best) / costSpread(all), 0 with fewer than kMinRivalEnds
+/// finite rival ends; rival_places = placesAmong(those ends, 1, exclusion).
+Match scoreAround(const std::vector<float>& cost_by_anchor, int winner, int exclusion,
+                  const PlaceLinks* links = nullptr, int frames_per_end = 1);
 
-/// Picks the lowest cost (infinity = no trajectory) and scores it against the lowest cost more than
-/// exclusion/2 frames away, as scoreAround does.
-Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion);
+/// Picks the lowest cost (infinity = no trajectory) and scores it against its rivals, as scoreAround does.
+Match scoreFromCosts(const std::vector<float>& cost_by_anchor, int exclusion, const PlaceLinks* links = nullptr);
 /// scoreFromCosts of a table of ends and velocities; the answer's velocity is its end's.
-Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion);
+Match scoreAnchorCosts(const AnchorCosts& costs, int exclusion, const PlaceLinks* links = nullptr);
 
 /// Up to `count` ends with the lowest finite costs, lowest first, each more than `separation`
 /// ends from every one chosen before it: the distinct places a table of end costs suggests.

@@ -35,9 +35,9 @@ class CoarseToFineSearch {
  public:
   CoarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                      const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
-                     const QueryStop* stop)
+                     const QueryStop* stop, const PlaceLinks* links)
       : reference_(reference), query_(query), rows_(rows), levels_(levels), sequence_(sequence), mrs_(mrs),
-        compact_(compact), stop_(stop),
+        compact_(compact), stop_(stop), links_(links),
         velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
   Match run(std::vector<MrsLevelTrace>* trace) {
@@ -230,7 +230,8 @@ class CoarseToFineSearch {
           distinctMinima(coarse_costs_->costs(), hypothesisSeparation(), MrsLevelTrace::kTracedMinima);
       for (int index : minima) trace.table_minima.push_back(index * level_.stride);
       if (!minima.empty()) {
-        trace.table_confidence = scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion()).confidence;
+        trace.table_confidence =
+            scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion(), links_, 1 << levels_).confidence;
       }
     }
     return trace;
@@ -301,7 +302,8 @@ class CoarseToFineSearch {
     result_.sequence_difference = best_.cost;
     result_.velocity = best_.velocity;
     const int coarse_stride = 1 << levels_;
-    const Match coarse = scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion());
+    const Match coarse =
+        scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion(), links_, coarse_stride);
     result_.score = coarse.score;
     result_.confidence = coarse.confidence;
     result_.rivals = coarse.rivals;
@@ -318,6 +320,7 @@ class CoarseToFineSearch {
   const MrsParams& mrs_;
   const CompactCells& compact_;
   const QueryStop* stop_;
+  const PlaceLinks* links_;
   std::vector<double> velocities_;
   std::mt19937_64 rng_;
 
@@ -334,8 +337,8 @@ class CoarseToFineSearch {
 
 Match coarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                          const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
-                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop) {
-  return CoarseToFineSearch(reference, query, rows, levels, sequence, mrs, compact, stop).run(trace);
+                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop, const PlaceLinks* links) {
+  return CoarseToFineSearch(reference, query, rows, levels, sequence, mrs, compact, stop, links).run(trace);
 }
 
 }  // namespace mrs_vpr

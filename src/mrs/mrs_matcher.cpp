@@ -53,7 +53,8 @@ Match MrsMatcher::match(SequenceView reference, SequenceView query, std::vector<
     return firstPass(reference, query, trace);
   }
   const SequenceRows rows = wholeSequenceRows(query.count, sequence_.alignment);
-  Match match = coarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_, trace, stop_);
+  Match match =
+      coarseToFineSearch(reference, query, rows, levels, sequence_, mrs_, *compact_, trace, stop_, links_);
   placeAnswer(match, reference, query, rows);  // As the brute force places its answer.
   return match;
 }
@@ -67,7 +68,7 @@ Match MrsMatcher::matchByFirstPass(SequenceView reference, SequenceView query,
 Match MrsMatcher::firstPass(SequenceView reference, SequenceView query, std::vector<MrsLevelTrace>* trace) const {
   MrsLevelTrace level;
   Match match = searchShortSequence(reference, query, sequence_, *compact_, kShortSearchHypotheses,
-                                    trace != nullptr ? &level : nullptr);
+                                    trace != nullptr ? &level : nullptr, links_);
   if (trace != nullptr) trace->push_back(std::move(level));
   placeAnswer(match, reference, query, wholeSequenceRows(query.count, sequence_.alignment));
   applyAcceptance(match, sequence_);
@@ -91,7 +92,7 @@ Match MrsMatcher::matchMapFrames(SequenceView map, int reference_count, int firs
   thread_local AnchorCosts costs;  // Map-sized: kept by the querying thread for its next query.
   const long long comparisons =
       recent.costs(map, first, count, reference_count, rows, velocities(sequence_), costs);
-  Match result = scoreAnchorCosts(costs, sequence_.match_exclusion);  // As the brute force scores its table.
+  Match result = scoreAnchorCosts(costs, sequence_.match_exclusion, links_);  // As the brute force scores its table.
   result.comparisons = comparisons;
   if (trace != nullptr) {
     MrsLevelTrace level;

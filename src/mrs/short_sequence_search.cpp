@@ -83,7 +83,8 @@ bool shortSearchPays(int query_length, int reference_count, const SequenceParams
 }
 
 Match searchShortSequence(SequenceView reference, SequenceView query, const SequenceParams& sequence,
-                          const CompactCells& compact, int hypotheses, MrsLevelTrace* trace) {
+                          const CompactCells& compact, int hypotheses, MrsLevelTrace* trace,
+                          const PlaceLinks* links) {
   compact.requireDescriptorsOf(reference);
   const int columns = reference.count;
   const SequenceRows rows = wholeSequenceRows(query.count, sequence.alignment);
@@ -161,15 +162,9 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   samples.reserve(sampled.size());
   for (int end : sampled) samples.push_back(cost[static_cast<std::size_t>(end)]);
 
-  const int half = sequence.match_exclusion / 2;
-  float runner_up = kInfinity;
-  for (int end = 0; end < columns; ++end) {
-    if (std::abs(end - winner) > half) runner_up = std::min(runner_up, cost[static_cast<std::size_t>(end)]);
-  }
-  int rivals = 0;
-  for (int end = 0; end < columns; ++end) {
-    if (std::abs(end - winner) > half && std::isfinite(first.cost[static_cast<std::size_t>(end)])) ++rivals;
-  }
+  const std::vector<FrameRange> own = ownPlaceEnds(winner, sequence.match_exclusion, columns, links);
+  const float runner_up = rivalsOutside(cost, own).lowest;
+  const int rivals = rivalsOutside(first.cost, own).finite;
 
   const float best = cost[static_cast<std::size_t>(winner)];
   match.reference_index = winner;

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <opencv2/imgproc.hpp>
+
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "support/route_fixture.hpp"
@@ -218,6 +220,24 @@ class ContinuousRevisit {
     return counts;
   }
 
+  /// A question about the newest `frames` keyframes.
+  PlaceAnswer ask(int frames, const std::string& method) { return recognizer_.matchRecent(frames, method); }
+
+  /// Drives `frames` frames over ground the route does not hold (views of noise), as a robot does
+  /// between two visits of a stretch.
+  void driveElsewhere(int frames) {
+    cv::RNG rng(static_cast<std::uint64_t>(place_of_keyframe_.size()));
+    for (int i = 0; i < frames; ++i) {
+      stamp_ns_ += 100'000'000;
+      cv::Mat view(route().reference[0].size(), route().reference[0].type());
+      rng.fill(view, cv::RNG::UNIFORM, 0, 256);
+      cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
+      if (recognizer_.addFrame(view, Stamp::fromNanoseconds(stamp_ns_)) == FrameAdmission::kAdmitted) {
+        place_of_keyframe_.push_back(-1000);  // no place of the route
+      }
+    }
+  }
+
  private:
   static RecognizerParams limits() {
     RecognizerParams limits;
@@ -281,6 +301,40 @@ TEST(PlaceRecognizer, ALongSequenceThatTurnsBackIsNotPlacedWhereItsWayOutLeads) 
     EXPECT_EQ(back.wrong, 0) << length;
     EXPECT_GT(back.turned_back, 0) << length;
   }
+}
+
+// A robot that drives the same stretch again and again, elsewhere in between, its map growing by each
+// visit: from the third visit on the map holds each place twice, once per visit before, and the two
+// cost the same. The closures of the second visit link them, so that neither is the other's rival,
+// and the third and fourth visits close their loops as the second did (without the links: none).
+TEST(PlaceRecognizer, AStretchDrivenAgainAndAgainKeepsClosingItsLoops) {
+  ContinuousRevisit revisit;
+  revisit.driveElsewhere(60);
+  const ContinuousRevisit::Counts second = revisit.drive(framesFromTo(100, 299));
+  EXPECT_GT(second.right, 100);
+  EXPECT_EQ(second.wrong, 0);
+  for (int visit = 3; visit <= 4; ++visit) {
+    revisit.driveElsewhere(60);
+    const ContinuousRevisit::Counts again = revisit.drive(framesFromTo(100, 299));
+    EXPECT_GE(again.right, second.right - 5) << "visit " << visit;
+    EXPECT_EQ(again.wrong, 0) << "visit " << visit;
+  }
+}
+
+// The same judged by both methods over a sequence long enough for MRS's coarser level, whose
+// confidence is read on pooled ends: the place linked across visits is no rival of either.
+TEST(PlaceRecognizer, BothMethodsTakeAPlaceLinkedAcrossVisitsForNoRival) {
+  ContinuousRevisit revisit;
+  for (int visit = 2; visit <= 3; ++visit) {
+    revisit.driveElsewhere(60);
+    revisit.drive(framesFromTo(100, 399));
+  }
+  const PlaceAnswer mrs = revisit.ask(150, "mrs");
+  const PlaceAnswer seqslam = revisit.ask(150, "seqslam");
+  EXPECT_TRUE(mrs.match.accepted) << mrs.verdict;
+  EXPECT_TRUE(seqslam.match.accepted) << seqslam.verdict;
+  EXPECT_EQ(mrs.match.reference_index, seqslam.match.reference_index);
+  EXPECT_LT(mrs.match.comparisons, seqslam.match.comparisons / 2);  // MRS searched on a coarser level
 }
 
 // A robot that goes round a small loop again and again shows its places again within a few dozen

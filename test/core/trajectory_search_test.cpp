@@ -250,6 +250,31 @@ TEST(ScoreAround, ScoresAGivenWinner) {
   EXPECT_EQ(scoreAround(costs, -1, 2).reference_index, -1);
 }
 
+// A place the map holds twice: the other visit costs as much as the answer, and is its rival until an
+// accepted closure has linked the two visits; then the rival is the best other place.
+TEST(ScoreAround, APlaceLinkedToTheAnswersIsNoRival) {
+  std::vector<float> costs(400, 0.0F);
+  for (std::size_t i = 0; i < costs.size(); ++i) costs[i] = 5.0F + static_cast<float>(i % 7) * 0.25F;
+  costs[100] = 1.0F;
+  costs[300] = 1.0F;  // the same place, on the second visit
+  costs[200] = 4.0F;  // the best other place
+  const Match unlinked = scoreAround(costs, 100, 10);
+  EXPECT_FLOAT_EQ(unlinked.score, 1.0F);
+  EXPECT_FLOAT_EQ(unlinked.confidence, 0.0F);
+  PlaceLinks links;
+  links.link(301, 101);
+  const Match linked = scoreAround(costs, 100, 10, &links);
+  EXPECT_FLOAT_EQ(linked.score, 1.0F / 4.0F);
+  EXPECT_GT(linked.confidence, 3.0F);
+  EXPECT_EQ(linked.rivals, unlinked.rivals - 11);  // the second visit's window
+  EXPECT_FLOAT_EQ(scoreAround(costs, 300, 10, &links).confidence, linked.confidence);
+  // In a table pooled over 4 frames the same frames are ends 75 and 25.
+  std::vector<float> pooled(100);
+  for (std::size_t end = 0; end < pooled.size(); ++end) pooled[end] = costs[4 * end];
+  EXPECT_FLOAT_EQ(scoreAround(pooled, 25, 2, nullptr, 4).confidence, 0.0F);
+  EXPECT_EQ(ownPlaceEnds(25, 2, 100, &links, 4).size(), 2U);
+}
+
 TEST(DistinctMinima, LowestFirstEachMoreThanTheSeparationFromTheOnesBefore) {
   std::vector<float> costs(40, 9.0F);
   costs[20] = 1.0F;

@@ -31,6 +31,7 @@ int rivalExclusion(const SequenceParams& sequence, const MrsParams& mrs, int lev
  */
 Match coarseToFineSearch(SequenceView reference, SequenceView query, const SequenceRows& rows, int levels,
                          const SequenceParams& sequence, const MrsParams& mrs, const CompactCells& compact,
-                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop = nullptr);
+                         std::vector<MrsLevelTrace>* trace, const QueryStop* stop = nullptr,
+                         const PlaceLinks* links = nullptr);
 
 }  // namespace mrs_vpr

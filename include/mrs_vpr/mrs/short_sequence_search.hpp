@@ -4,6 +4,7 @@
 #include "mrs_vpr/match.hpp"
 #include "mrs_vpr/mrs/compact_cells.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_links.hpp"
 
 namespace mrs_vpr {
 
@@ -17,7 +18,8 @@ struct MrsLevelTrace;
  *    velocity), but on compact cells (mrs/compact_cells.hpp; the map keeps them for its frames).
  * 2. Its `hypotheses` lowest distinct minima, and every end within match_exclusion of each, are
  *    scored on the full descriptors (ChosenEndCosts): the answer is the lowest of those ends, its
- *    rival the lowest of them outside the answer's exclusion window.
+ *    rival the lowest of them outside the answer's own place (ownPlaceEnds: its exclusion window, and
+ *    with `links` its place on other visits).
  *
  * The first pass only chooses which ends the full descriptors examine. When the brute force's
  * answer and rival lie within match_exclusion of those minima, both are the brute force's own. The
@@ -30,7 +32,8 @@ struct MrsLevelTrace;
  * at the same ends).
  */
 Match searchShortSequence(SequenceView reference, SequenceView query, const SequenceParams& sequence,
-                          const CompactCells& compact, int hypotheses, MrsLevelTrace* trace = nullptr);
+                          const CompactCells& compact, int hypotheses, MrsLevelTrace* trace = nullptr,
+                          const PlaceLinks* links = nullptr);
 
 /// Whether the full-descriptor work of searchShortSequence (the hypotheses' bands of ends) is at most
 /// 1 / kShortSearchGain of the brute force's comparisons for this query and map.

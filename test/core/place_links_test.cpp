@@ -1,0 +1,69 @@
+#include "mrs_vpr/place_links.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <vector>
+
+namespace mrs_vpr {
+namespace {
+
+std::vector<std::pair<int, int>> pairsOf(const std::vector<FrameRange>& ranges) {
+  std::vector<std::pair<int, int>> pairs;
+  for (const FrameRange& range : ranges) pairs.emplace_back(range.begin, range.end);
+  return pairs;
+}
+
+using Pairs = std::vector<std::pair<int, int>>;
+
+TEST(PlaceLinks, NothingLinkedShowsNoOtherVisit) {
+  const PlaceLinks links;
+  EXPECT_TRUE(links.samePlaceAs(50, 5).empty());
+  EXPECT_EQ(links.linkedFrames(), 0);
+}
+
+TEST(PlaceLinks, ASecondVisitShowsTheFirstVisitsPlaceAndTheOtherWayRound) {
+  PlaceLinks links;
+  // Frames 200..203 of a second visit showed frames 50..53 of the first.
+  for (int i = 0; i < 4; ++i) links.link(200 + i, 50 + i);
+  EXPECT_EQ(links.linkedFrames(), 4);
+  // From the second visit: the first visit's frames within 2 of the places its window shows.
+  EXPECT_EQ(pairsOf(links.samePlaceAs(201, 2)), (Pairs{{46, 58}}));
+  // From the first: the second visit's frames linked within 2 of it (its own window left out).
+  EXPECT_EQ(pairsOf(links.samePlaceAs(51, 2)), (Pairs{{198, 206}}));
+  // Far from the linked places: nothing.
+  EXPECT_TRUE(links.samePlaceAs(120, 2).empty());
+}
+
+TEST(PlaceLinks, AThirdVisitLinkedToTheSecondShowsTheFirstToo) {
+  PlaceLinks links;
+  links.link(200, 50);  // second visit -> first
+  links.link(400, 200);  // third -> second: the first visit's place
+  EXPECT_EQ(pairsOf(links.samePlaceAs(400, 1)), (Pairs{{48, 53}, {199, 202}}));
+  EXPECT_EQ(pairsOf(links.samePlaceAs(50, 1)), (Pairs{{199, 202}, {399, 402}}));
+  // A link between two places already joined changes nothing.
+  links.link(400, 50);
+  EXPECT_EQ(links.linkedFrames(), 2);
+}
+
+TEST(PlaceLinks, TwoPlacesJoinedLaterAreNamedByTheOlder) {
+  PlaceLinks links;
+  links.link(300, 100);  // frame 300 shows 100
+  links.link(120, 10);   // frame 120 shows 10 ...
+  links.link(100, 120);  // ... and 100 shows 120: 300, 100 and 120 show 10
+  EXPECT_EQ(links.linkedFrames(), 3);
+  EXPECT_EQ(pairsOf(links.samePlaceAs(300, 0)), (Pairs{{10, 11}, {100, 101}, {120, 121}}));
+}
+
+TEST(PlaceLinks, RangesNearTheMapsStartAreClippedAndClearForgetsEveryLink) {
+  PlaceLinks links;
+  links.link(500, 1);
+  EXPECT_EQ(pairsOf(links.samePlaceAs(500, 3)), (Pairs{{0, 8}}));
+  links.clear();
+  EXPECT_TRUE(links.samePlaceAs(500, 3).empty());
+  EXPECT_EQ(links.linkedFrames(), 0);
+  EXPECT_THROW(links.link(-1, 3), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace mrs_vpr
