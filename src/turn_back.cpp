@@ -15,7 +15,7 @@ bool returnsToPassedPlace(const DescriptorSequence& map, FrameRange test, int lo
   constexpr int kRecent = AppearanceKeyframes::kRecentKeyframes;
   const SequenceView frames = map.view();
   const int within_sequence = test.size() + kRecent;
-  const int reach = std::max(within_sequence, std::min(unsearched, kMaxReachOfSequence * within_sequence));
+  const int reach = std::max(within_sequence, std::min(unsearched, kReachInSequenceLengths * within_sequence));
   const int earliest = std::max(0, test.begin - reach);
   // The oldest passed keyframe within reach that `keyframe` shows again, or -1: after a robot backed up
   // and drives on, the way out's keyframe, not the way back's, tells which way it goes.

@@ -80,8 +80,8 @@ class AppearanceKeyframes {
   /// A skipped frame joins the reference when it lies within this share of `min_change` of the
   /// keyframe. A standing camera's frames differ from its keyframe by 0.5 to 1.1 of `min_change` on the
   /// real-data benchmark's camera drives (noise that block normalisation amplifies, gain, a passer-by),
-  /// so at half (before) few joined and the noise never averaged out. Chosen on the tune half (0.75
-  /// and 0.9 tried): doc/keyframes.md. Near 1 the reference follows slow motion again (1.0 left 130
+  /// so at half of it few would join and the noise would not average out. Chosen on the tune half
+  /// (0.75 and 0.9 tried): doc/keyframes.md. Near 1 the reference follows slow motion again (1.0 left 130
   /// frames between two keyframes of the generated route).
   static constexpr double kReferenceShare = 0.75;
   /// Seed of the noise image whose view stands in for an unrelated one.

@@ -7,9 +7,9 @@
 
 namespace mrs_vpr {
 
-/// The turn-back rule looks back at most this many times the keyframes of a sequence and the last
-/// AppearanceKeyframes::kRecentKeyframes, which bounds its cost where `recent_exclusion` is large.
-constexpr int kMaxReachOfSequence = 4;
+/// How far the turn-back rule looks back at most, in units of a sequence's keyframes plus the last
+/// AppearanceKeyframes::kRecentKeyframes: a bound on its cost where `recent_exclusion` is large.
+constexpr int kReachInSequenceLengths = 4;
 
 /**
  * Whether the keyframe a test sequence's answer localises (`localised_row` of `test`, the map's newest
@@ -27,7 +27,7 @@ constexpr int kMaxReachOfSequence = 4;
  * A test keyframe returns when its view differs by less than `min_appearance_change` (`views`) from a
  * keyframe more than kRecentKeyframes before it and no earlier than the keyframes before the sequence
  * that the search leaves out (`unsearched`: recent_exclusion), or kRecentKeyframes plus the sequence's
- * length if more, and at most kMaxReachOfSequence times that. Each returning keyframe is taken to show
+ * length if more, and at most kReachInSequenceLengths times that. Each returning keyframe is taken to show
  * the oldest keyframe within reach that it looks like, so that a robot driving forward again after
  * backing up is judged by its way out, which it follows, not by its way back. The localised keyframe
  * lies on a way back when
