@@ -21,7 +21,7 @@ constexpr const char* kUsage =
     "                              [--per-frame-lengths 10,50] [--references 1.8k,9k] [--threads T] [--tolerance T] [--seed S]\n"
     "                              [--skip-per-frame] [--skip-global] [--skip-drives] [--drive-length L]\n"
     "                              [--drive-alignment-slack S] [--drive-accept-threshold C]\n"
-    "                              [--drive-alignment causal|centred]\n"
+    "                              [--drive-alignment causal|centred] [--drive-min-appearance-change M]\n"
     "                              [--drive-queries newest|each] [--drive-seeds K] [--diagnose]\n"
     "                              [--hypotheses K] [--min-coarse-frames F]   (mrs settings to explore)\n"
     "                              [--velocity-min V] [--velocity-max V]      (speeds to explore)\n"
