@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace mrs_vpr {
 
@@ -36,72 +37,50 @@ void PlaceLinks::link(int frame, int reference) {
   ++linked_;  // the newer place's first frame; its other frames were linked to it already
 }
 
-namespace {
-
-/// Sorted, merged copies of `ranges`.
-std::vector<FrameRange> merged(std::vector<FrameRange> ranges) {
-  std::sort(ranges.begin(), ranges.end(), [](const FrameRange& a, const FrameRange& b) { return a.begin < b.begin; });
-  std::vector<FrameRange> result;
-  for (const FrameRange& range : ranges) {
-    if (!result.empty() && range.begin <= result.back().end) {
-      result.back().end = std::max(result.back().end, range.end);
-    } else {
-      result.push_back(range);
-    }
-  }
-  return result;
-}
-
-bool inAny(const std::vector<FrameRange>& ranges, int value) {
-  return std::any_of(ranges.begin(), ranges.end(),
-                     [value](const FrameRange& range) { return value >= range.begin && value < range.end; });
-}
-
-}  // namespace
-
 std::vector<FrameRange> PlaceLinks::samePlaceAs(int frame, int half) const {
   std::lock_guard<std::mutex> lock(mutex_);
   if (linked_ == 0) return {};
-  // The places the frames of the answer's window show, widened by `half` ...
+  // The places the frames of the answer's window show, runs of them apart by at most `half` joined.
   std::vector<FrameRange> shown;
-  // ... and those of its frames linked to an older visit: the first visit's frames there are the place.
-  std::vector<FrameRange> first_visit;
   for (int i = std::max(0, frame - half); i <= frame + half; ++i) {
     const int place = placeOfLocked(i);
-    shown.push_back({place - half, place + half + 1});
-    if (place != i) first_visit.push_back(shown.back());
+    shown.push_back({place, place + half + 1});
   }
-  shown = merged(std::move(shown));
-  first_visit = merged(std::move(first_visit));
-  std::vector<FrameRange> frames;
-  const auto add = [&](int centre) {
-    if (std::abs(centre - frame) <= half) return;  // the answer's own window
-    const FrameRange range{std::max(0, centre - half), centre + half + 1};
-    if (!frames.empty() && range.begin <= frames.back().end) {
-      frames.back().end = std::max(frames.back().end, range.end);
+  shown = mergedRanges(std::move(shown));
+  for (FrameRange& range : shown) range.end -= half;
+  const auto showsThePlace = [&](int place) {
+    return std::any_of(shown.begin(), shown.end(),
+                       [place](const FrameRange& range) { return place >= range.begin && place < range.end; });
+  };
+  // Every other visit's frames that show one of those places, in runs apart by at most `half`: the
+  // first visit's frames there (they show themselves) and every frame linked to one of them. Frames
+  // beyond the newest linked one show themselves. The answer's own window is its own.
+  std::vector<FrameRange> runs;
+  const auto add = [&](int i) {
+    if (std::abs(i - frame) <= half) return;
+    if (!runs.empty() && i <= runs.back().end + half) {
+      runs.back().end = i + 1;
     } else {
-      frames.push_back(range);
+      runs.push_back({i, i + 1});
     }
   };
-  // Frames in ascending order, so that the ranges come sorted: a linked frame when it shows one of the
-  // places, a frame of a first visit (showing itself) when it is one of them. The answer's own
-  // traversal beyond its window is neither. Frames beyond the newest linked one show themselves.
   const int held = static_cast<int>(place_.size());
-  // Bounds first: most frames lie far from every place (a scan of a million frames in about a millisecond).
-  const int shown_begin = shown.front().begin;
-  const int shown_end = shown.back().end;
-  const int first_begin = first_visit.empty() ? 0 : first_visit.front().begin;
-  const int first_end = first_visit.empty() ? 0 : first_visit.back().end;
+  const int lowest = shown.front().begin;  // bounds first: most frames show none (1 ms a million frames)
+  const int highest = shown.back().end;
   for (int i = 0; i < held; ++i) {
     const int place = place_[static_cast<std::size_t>(i)];
-    const bool near = place != i ? place >= shown_begin && place < shown_end && inAny(shown, place)
-                                 : i >= first_begin && i < first_end && inAny(first_visit, i);
-    if (near) add(i);
+    if (place >= lowest && place < highest && showsThePlace(place)) add(i);
   }
-  for (const FrameRange& range : first_visit) {
+  for (const FrameRange& range : shown) {
     for (int i = std::max(held, range.begin); i < range.end; ++i) add(i);
   }
-  return frames;
+  // Each run is that visit's window at the place: as wide as the answer's own at least, where its
+  // frames are few (where few of its keyframes were linked).
+  for (FrameRange& run : runs) {
+    const int centre = (run.begin + run.end - 1) / 2;
+    run = {std::max(0, std::min(run.begin, centre - half)), std::max(run.end, centre + half + 1)};
+  }
+  return mergedRanges(std::move(runs));
 }
 
 int PlaceLinks::linkedFrames() const {

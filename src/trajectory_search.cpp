@@ -104,20 +104,12 @@ std::vector<FrameRange> ownPlaceEnds(int winner, int exclusion, int columns, con
   std::vector<FrameRange> own{{std::max(0, winner - half), std::min(columns, winner + half + 1)}};
   if (links == nullptr) return own;
   for (const FrameRange& frames : links->samePlaceAs(winner * frames_per_end, half * frames_per_end)) {
-    const FrameRange ends{frames.begin / frames_per_end,
+    // End J of a pooled table is the cell ending at frame J * frames_per_end.
+    const FrameRange ends{(frames.begin + frames_per_end - 1) / frames_per_end,
                           std::min(columns, (frames.end + frames_per_end - 1) / frames_per_end)};
     if (ends.begin < ends.end) own.push_back(ends);
   }
-  std::sort(own.begin(), own.end(), [](const FrameRange& a, const FrameRange& b) { return a.begin < b.begin; });
-  std::vector<FrameRange> merged;
-  for (const FrameRange& range : own) {
-    if (!merged.empty() && range.begin <= merged.back().end) {
-      merged.back().end = std::max(merged.back().end, range.end);
-    } else {
-      merged.push_back(range);
-    }
-  }
-  return merged;
+  return mergedRanges(std::move(own));
 }
 
 Rivals rivalsOutside(const std::vector<float>& cost_by_anchor, const std::vector<FrameRange>& own) {

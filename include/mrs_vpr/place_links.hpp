@@ -26,9 +26,11 @@ class PlaceLinks {
  public:
   /// An accepted loop closure: map frame `frame` shows the place of map frame `reference`.
   void link(int frame, int reference);
-  /// The map frames, other than those within `half` of `frame` itself, that show the place of `frame`
-  /// within `half` frames: those linked to the frames of its first visit near its place, and those
-  /// frames. Ranges sorted, apart, clipped at 0; none while nothing is linked.
+  /// Where other visits show the place of the window of `half` frames around `frame`: the frames that
+  /// show a place one of the window's frames shows (the first visit's frames there, and those linked to
+  /// them), each visit's run of them widened to the window's width where it is narrower (where few of
+  /// its keyframes were linked). The window itself is left out. Ranges sorted, apart, clipped at 0;
+  /// none while nothing is linked.
   std::vector<FrameRange> samePlaceAs(int frame, int half) const;
   /// Frames linked to an older frame's place.
   int linkedFrames() const;

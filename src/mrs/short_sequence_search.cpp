@@ -24,12 +24,6 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 /// Every kSpreadThinning-th of the ends costSpread reads in a table of `columns` ends.
 int spreadStep(int columns) { return std::max<int>(1, columns / kSpreadSamples) * kSpreadThinning; }
 
-/// A stretch of ends whose full costs are wanted.
-struct EndRange {
-  int begin;
-  int end;
-};
-
 /// Map-sized tables of one query, kept by the thread that queries (the node's service or timer
 /// thread) so that the next query reuses them instead of faulting in fresh pages.
 struct QueryTables {
@@ -54,19 +48,10 @@ void firstPass(SequenceView reference, SequenceView query_cells, const SequenceR
 }
 
 /// Sorted, merged ranges of ends within `radius` of each of `centres`, clipped to the table.
-std::vector<EndRange> windowsAround(const std::vector<int>& centres, int radius, int columns) {
-  std::vector<EndRange> ranges;
+std::vector<FrameRange> windowsAround(const std::vector<int>& centres, int radius, int columns) {
+  std::vector<FrameRange> ranges;
   for (int centre : centres) ranges.push_back({std::max(0, centre - radius), std::min(columns, centre + radius + 1)});
-  std::sort(ranges.begin(), ranges.end(), [](const EndRange& a, const EndRange& b) { return a.begin < b.begin; });
-  std::vector<EndRange> merged;
-  for (const EndRange& range : ranges) {
-    if (!merged.empty() && range.begin <= merged.back().end) {
-      merged.back().end = std::max(merged.back().end, range.end);
-    } else {
-      merged.push_back(range);
-    }
-  }
-  return merged;
+  return mergedRanges(std::move(ranges));
 }
 
 }  // namespace
@@ -104,7 +89,7 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
     trace->table_minima = distinctMinima(first.cost, sequence.match_exclusion, MrsLevelTrace::kTracedMinima);
     if (!trace->table_minima.empty()) {
       trace->table_confidence =
-          scoreAround(first.cost, trace->table_minima.front(), sequence.match_exclusion).confidence;
+          scoreAround(first.cost, trace->table_minima.front(), sequence.match_exclusion, links).confidence;
     }
   }
   match.comparisons = std::llround(static_cast<double>(cell_comparisons) * compact.cellSize() /
@@ -120,11 +105,11 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   velocity.assign(static_cast<std::size_t>(columns), 0.0F);
   known.assign(static_cast<std::size_t>(columns), 0);
   long long full_comparisons = 0;
-  const auto computeRanges = [&](const std::vector<EndRange>& ranges) {
+  const auto computeRanges = [&](const std::vector<FrameRange>& ranges) {
     std::vector<long long> counts(ranges.size(), 0);
     cv::parallel_for_(cv::Range(0, static_cast<int>(ranges.size())), [&](const cv::Range& part) {
       for (int i = part.start; i < part.end; ++i) {
-        const EndRange& range = ranges[static_cast<std::size_t>(i)];
+        const FrameRange& range = ranges[static_cast<std::size_t>(i)];
         counts[static_cast<std::size_t>(i)] = chosen.compute(range.begin, range.end, cost.data() + range.begin,
                                                              velocity.data() + range.begin);
       }
@@ -142,13 +127,13 @@ Match searchShortSequence(SequenceView reference, SequenceView query, const Sequ
   // The rival may lie on the answer's own slope, just outside its exclusion window: make sure every
   // end there is known. Then the spread's sample. An end is queued once (marked known as it is), so
   // that no two threads compute it and it is counted once.
-  std::vector<EndRange> missing;
+  std::vector<FrameRange> missing;
   const auto queue = [&](int end) {
     if (known[static_cast<std::size_t>(end)]) return;
     known[static_cast<std::size_t>(end)] = 1;
     missing.push_back({end, end + 1});
   };
-  for (const EndRange& range : windowsAround({winner}, sequence.match_exclusion, columns)) {
+  for (const FrameRange& range : windowsAround({winner}, sequence.match_exclusion, columns)) {
     for (int end = range.begin; end < range.end; ++end) queue(end);
   }
   std::vector<int> sampled;

@@ -27,10 +27,10 @@ TEST(PlaceLinks, ASecondVisitShowsTheFirstVisitsPlaceAndTheOtherWayRound) {
   // Frames 200..203 of a second visit showed frames 50..53 of the first.
   for (int i = 0; i < 4; ++i) links.link(200 + i, 50 + i);
   EXPECT_EQ(links.linkedFrames(), 4);
-  // From the second visit: the first visit's frames within 2 of the places its window shows.
-  EXPECT_EQ(pairsOf(links.samePlaceAs(201, 2)), (Pairs{{46, 58}}));
-  // From the first: the second visit's frames linked within 2 of it (its own window left out).
-  EXPECT_EQ(pairsOf(links.samePlaceAs(51, 2)), (Pairs{{198, 206}}));
+  // From the second visit: the first visit's frames at the places its window shows, as wide as a window.
+  EXPECT_EQ(pairsOf(links.samePlaceAs(201, 2)), (Pairs{{49, 54}}));
+  // From the first: the second visit's frames linked to its window's places (its own window left out).
+  EXPECT_EQ(pairsOf(links.samePlaceAs(51, 2)), (Pairs{{199, 204}}));
   // Far from the linked places: nothing.
   EXPECT_TRUE(links.samePlaceAs(120, 2).empty());
 }
@@ -39,11 +39,20 @@ TEST(PlaceLinks, AThirdVisitLinkedToTheSecondShowsTheFirstToo) {
   PlaceLinks links;
   links.link(200, 50);  // second visit -> first
   links.link(400, 200);  // third -> second: the first visit's place
-  EXPECT_EQ(pairsOf(links.samePlaceAs(400, 1)), (Pairs{{48, 53}, {199, 202}}));
+  EXPECT_EQ(pairsOf(links.samePlaceAs(400, 1)), (Pairs{{49, 52}, {199, 202}}));
   EXPECT_EQ(pairsOf(links.samePlaceAs(50, 1)), (Pairs{{199, 202}, {399, 402}}));
   // A link between two places already joined changes nothing.
   links.link(400, 50);
   EXPECT_EQ(links.linkedFrames(), 2);
+}
+
+// A second visit linked frame by frame: from its middle, the first visit's window at the place, no
+// wider than the answer's own, and none of the second visit's own frames beyond its window.
+TEST(PlaceLinks, AVisitLinkedFrameByFrameShowsTheOtherVisitsWindowOnly) {
+  PlaceLinks links;
+  for (int i = 0; i < 300; ++i) links.link(300 + i, i);
+  EXPECT_EQ(pairsOf(links.samePlaceAs(450, 5)), (Pairs{{145, 156}}));
+  EXPECT_EQ(pairsOf(links.samePlaceAs(150, 5)), (Pairs{{445, 456}}));
 }
 
 TEST(PlaceLinks, TwoPlacesJoinedLaterAreNamedByTheOlder) {
@@ -58,7 +67,7 @@ TEST(PlaceLinks, TwoPlacesJoinedLaterAreNamedByTheOlder) {
 TEST(PlaceLinks, RangesNearTheMapsStartAreClippedAndClearForgetsEveryLink) {
   PlaceLinks links;
   links.link(500, 1);
-  EXPECT_EQ(pairsOf(links.samePlaceAs(500, 3)), (Pairs{{0, 8}}));
+  EXPECT_EQ(pairsOf(links.samePlaceAs(500, 3)), (Pairs{{0, 5}}));
   links.clear();
   EXPECT_TRUE(links.samePlaceAs(500, 3).empty());
   EXPECT_EQ(links.linkedFrames(), 0);
