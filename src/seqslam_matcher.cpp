@@ -54,7 +54,7 @@ std::vector<Match> SeqSlamMatcher::matchEveryFrame(SequenceView reference, Seque
     for (int frame = range.start; frame < range.end; ++frame) {
       const SequenceRows rows = sequenceRowsFor(frame, sequence_);
       if (rows.first < 0 || rows.last >= query.count) continue;
-      matches[frame] = searchTrajectories(enhanced, rows, sequence_);
+      matches[frame] = searchTrajectories(enhanced, rows, sequence_, nullptr, links_);
       placeAnswer(matches[frame], reference, query, rows);
       matches[frame].comparisons = static_cast<long long>(reference.count);  // One new row per frame.
       applyAcceptance(matches[frame], sequence_);

@@ -38,8 +38,8 @@ class SequenceMatcher {
   /// QueryStopped once `stop` (which outlives the matcher) asks to; null: never.
   void stopWith(const QueryStop* stop) { stop_ = stop; }
   /// Places that `links` (which outlives the matcher) joins across visits of the reference are no
-  /// rivals of each other in match()'s confidence (PlaceLinks); null: every other place is a rival.
-  /// The per-frame protocol (matchEveryFrame) judges without them.
+  /// rivals of each other in the confidence of match() and matchEveryFrame() (PlaceLinks); null: every
+  /// other place is a rival.
   void linkPlacesWith(const PlaceLinks* links) { links_ = links; }
 
  protected:

@@ -39,7 +39,9 @@ std::vector<Match> MrsMatcher::matchEveryFrame(SequenceView reference, SequenceV
   // Without a coarser level MRS scores every end at full resolution, as the brute force does; the
   // brute force's per-frame path computes the difference matrix once for all frames.
   if (levelsFor(sequence_.sequence_length, reference.count) == 0) {
-    return SeqSlamMatcher(sequence_).matchEveryFrame(reference, query);
+    SeqSlamMatcher brute_force(sequence_);
+    brute_force.linkPlacesWith(links_);
+    return brute_force.matchEveryFrame(reference, query);
   }
   return SequenceMatcher::matchEveryFrame(reference, query);
 }

@@ -194,8 +194,9 @@ class ContinuousRevisit {
   };
 
   /// Asks about the newest `sequence_length` keyframes, localising the newest (routeParameters()).
-  explicit ContinuousRevisit(int sequence_length = 20)
-      : recognizer_(routeParameters(), limits()), sequence_length_(sequence_length) {
+  /// `per_frame_length`: the sequences of the per-frame protocol (everyFrame).
+  explicit ContinuousRevisit(int sequence_length = 20, int per_frame_length = 10)
+      : recognizer_(parameters(per_frame_length), limits()), sequence_length_(sequence_length) {
     for (int frame = 0; frame < 600; ++frame) offer(frame);
   }
 
@@ -222,6 +223,12 @@ class ContinuousRevisit {
 
   /// A question about the newest `frames` keyframes.
   PlaceAnswer ask(int frames, const std::string& method) { return recognizer_.matchRecent(frames, method); }
+  /// The per-frame protocol over the reference frames `frames`, described as a traversal of their own.
+  std::vector<Match> everyFrame(const std::vector<int>& frames, const std::string& method) {
+    DescriptorSequence traversal(recognizer_.extractor().size());
+    for (int frame : frames) traversal.append(recognizer_.describe(route().reference[static_cast<std::size_t>(frame)]));
+    return recognizer_.matchEveryFrame(traversal.view(), method);
+  }
 
   /// Drives `frames` frames over ground the route does not hold (views of noise), as a robot does
   /// between two visits of a stretch.
@@ -239,6 +246,12 @@ class ContinuousRevisit {
   }
 
  private:
+  static Parameters parameters(int per_frame_length) {
+    Parameters params = routeParameters();
+    params.sequence.sequence_length = per_frame_length;
+    return params;
+  }
+
   static RecognizerParams limits() {
     RecognizerParams limits;
     limits.recent_exclusion = 50;
@@ -335,6 +348,22 @@ TEST(PlaceRecognizer, BothMethodsTakeAPlaceLinkedAcrossVisitsForNoRival) {
   EXPECT_TRUE(seqslam.match.accepted) << seqslam.verdict;
   EXPECT_EQ(mrs.match.reference_index, seqslam.match.reference_index);
   EXPECT_LT(mrs.match.comparisons, seqslam.match.comparisons / 2);  // MRS searched on a coarser level
+}
+
+// And the per-frame protocol, through every method's own path: a traversal of the stretch asked frame by
+// frame (30-frame sequences) of a map that holds it three times, linked, has most of its 100 frames
+// accepted, as of a map that holds it once (71); without the links, none.
+TEST(PlaceRecognizer, ThePerFrameProtocolTakesAPlaceLinkedAcrossVisitsForNoRival) {
+  ContinuousRevisit revisit(20, 30);
+  for (int visit = 2; visit <= 3; ++visit) {
+    revisit.driveElsewhere(60);
+    revisit.drive(framesFromTo(100, 399));
+  }
+  for (const std::string method : {"mrs", "seqslam"}) {
+    int accepted = 0;
+    for (const Match& match : revisit.everyFrame(framesFromTo(150, 249), method)) accepted += match.accepted ? 1 : 0;
+    EXPECT_GT(accepted, 50) << method;
+  }
 }
 
 // A robot that goes round a small loop again and again shows its places again within a few dozen
