@@ -41,7 +41,7 @@ class CoarseToFineSearch {
         velocities_(velocities(sequence)), rng_(mrs.seed) {}
 
   Match run(std::vector<MrsLevelTrace>* trace) {
-    level_ = SamplingLevel::make(1 << levels_, rows_, reference_.count, velocities_.front());
+    level_ = SamplingLevel::make(coarseStride(), rows_, reference_.count, velocities_.front());
     if (level_.empty()) return result_;  // No trajectory fits in the reference.
     scoreCoarsestLevel();
     spreadParticles();
@@ -231,13 +231,15 @@ class CoarseToFineSearch {
       for (int index : minima) trace.table_minima.push_back(index * level_.stride);
       if (!minima.empty()) {
         trace.table_confidence =
-            scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion(), links_, 1 << levels_).confidence;
+            scoreAround(coarse_costs_->costs(), minima.front(), rivalExclusion(), links_, coarseStride()).confidence;
       }
     }
     return trace;
   }
 
   int rivalExclusion() const { return mrs_vpr::rivalExclusion(sequence_, mrs_, levels_); }
+  /// The stride of the coarsest level, whose table scores every end of the map.
+  int coarseStride() const { return 1 << levels_; }
   int hypothesisSeparation() const { return mrs_vpr::hypothesisSeparation(sequence_, mrs_, levels_); }
 
   /// Algorithm 2 for every particle: move to the best end within `radius`. Particles where no
@@ -259,7 +261,7 @@ class CoarseToFineSearch {
 
   /// A hypothesis searches the velocities within fanSpread() of its own from the level above.
   std::vector<double> levelVelocities(const Particle& particle) const {
-    const bool after_coarsest = 2 * level_.stride == (1 << levels_);
+    const bool after_coarsest = 2 * level_.stride == coarseStride();
     const double spread = fanSpread(sequence_.velocity_step, previous_rows_, after_coarsest);
     return velocitiesNear(velocities_, particle.velocity, spread);
   }
@@ -301,7 +303,7 @@ class CoarseToFineSearch {
     result_.reference_index = best_.index;
     result_.sequence_difference = best_.cost;
     result_.velocity = best_.velocity;
-    const int coarse_stride = 1 << levels_;
+    const int coarse_stride = coarseStride();
     const Match coarse =
         scoreAround(coarse_costs_->costs(), best_.index / coarse_stride, rivalExclusion(), links_, coarse_stride);
     result_.score = coarse.score;
