@@ -13,7 +13,7 @@ int PlaceLinks::placeOfLocked(int frame) const {
   return frame < static_cast<int>(place_.size()) ? place_[static_cast<std::size_t>(frame)] : frame;
 }
 
-void PlaceLinks::link(int frame, int reference) {
+bool PlaceLinks::link(int frame, int reference) {
   if (frame < 0 || reference < 0) {
     throw std::invalid_argument("a place link joins two map frames, got " + std::to_string(frame) + " and " +
                                 std::to_string(reference));
@@ -27,7 +27,8 @@ void PlaceLinks::link(int frame, int reference) {
   }
   const int a = placeOfLocked(frame);
   const int b = placeOfLocked(reference);
-  if (a == b) return;
+  if (a == b) return false;
+  if (keep_unsaved_) unsaved_.push_back({frame, reference});  // Before the change: a failure changes nothing.
   // The older place names both: every frame of the newer one joins it.
   const int kept = std::min(a, b);
   const int joined = std::max(a, b);
@@ -35,6 +36,7 @@ void PlaceLinks::link(int frame, int reference) {
     if (place_[i] == joined) place_[i] = kept;
   }
   ++linked_;  // the newer place's first frame; its other frames were linked to it already
+  return true;
 }
 
 std::vector<FrameRange> PlaceLinks::samePlaceAs(int frame, int half) const {
@@ -97,6 +99,68 @@ void PlaceLinks::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<int>().swap(place_);  // its memory too
   linked_ = 0;
+  std::vector<PlaceLink>().swap(unsaved_);
+}
+
+std::vector<int> PlaceLinks::placesOf(const std::vector<PlaceLink>& links, int frames) {
+  int held = 0;
+  for (const PlaceLink& link : links) {
+    if (link.frame < 0 || link.reference < 0 || link.frame >= frames || link.reference >= frames) {
+      throw std::invalid_argument("a place link joins frames " + std::to_string(link.frame) + " and " +
+                                  std::to_string(link.reference) + ", outside a map of " + std::to_string(frames) +
+                                  " frames");
+    }
+    held = std::max({held, link.frame + 1, link.reference + 1});
+  }
+  // Union-find whose root is always its set's oldest frame, the name link() gives a place.
+  std::vector<int> place(static_cast<std::size_t>(held));
+  std::iota(place.begin(), place.end(), 0);
+  const auto root = [&place](int frame) {
+    while (place[static_cast<std::size_t>(frame)] != frame) {
+      auto& parent = place[static_cast<std::size_t>(frame)];
+      parent = place[static_cast<std::size_t>(parent)];  // path halving
+      frame = parent;
+    }
+    return frame;
+  };
+  for (const PlaceLink& link : links) {
+    const int a = root(link.frame);
+    const int b = root(link.reference);
+    place[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  // A frame's parent is older than it, so in increasing order each parent is already its root.
+  for (std::size_t i = 0; i < place.size(); ++i) place[i] = place[static_cast<std::size_t>(place[i])];
+  return place;
+}
+
+void PlaceLinks::adopt(std::vector<int>&& places) noexcept {
+  std::lock_guard<std::mutex> lock(mutex_);
+  place_ = std::move(places);
+  linked_ = 0;
+  for (std::size_t i = 0; i < place_.size(); ++i) linked_ += place_[i] != static_cast<int>(i) ? 1 : 0;
+  unsaved_.clear();
+}
+
+std::vector<PlaceLink> PlaceLinks::asLinks(int frames) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PlaceLink> links;
+  const int held = std::min(frames, static_cast<int>(place_.size()));
+  for (int i = 0; i < held; ++i) {
+    if (place_[static_cast<std::size_t>(i)] != i) links.push_back({i, place_[static_cast<std::size_t>(i)]});
+  }
+  return links;
+}
+
+void PlaceLinks::keepUnsaved() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  keep_unsaved_ = true;
+}
+
+std::vector<PlaceLink> PlaceLinks::takeUnsaved() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PlaceLink> taken;
+  taken.swap(unsaved_);
+  return taken;
 }
 
 }  // namespace mrs_vpr

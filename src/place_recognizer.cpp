@@ -289,6 +289,10 @@ void PlaceRecognizer::PreparedMap::append(const cv::Mat& descriptor, Stamp stamp
   keyframes_.keep(descriptor);
 }
 
+void PlaceRecognizer::PreparedMap::linkPlaces(const std::vector<PlaceLink>& links) {
+  places_ = PlaceLinks::placesOf(links, map_.size());
+}
+
 bool PlaceRecognizer::PreparedMap::holds(int index, const cv::Mat& descriptor, Stamp stamp) const {
   if (index < 0 || index >= map_.size() || !(map_.stamp(index) == stamp)) return false;
   const auto bytes = static_cast<std::size_t>(map_.descriptorSize());
@@ -321,7 +325,7 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   map_ = std::move(prepared.map_);
   pending_.clear();
   recent_rows_->clear();
-  links_.clear();  // A loaded map's visits are not linked (yet): its places are rivals as before.
+  links_.adopt(std::move(prepared.places_));  // Those its database kept; none for a map of frames alone.
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = prepared.reserved_frames_;
@@ -335,6 +339,7 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
     state.frames = map_.size();
     state.memory_bytes = map_.memoryBytes() + recent_rows_->memoryBytes() + links_.memoryBytes();
     state.descriptor_size = map_.descriptorSize();
+    state.linked_frames = links_.linkedFrames();
     if (!map_.empty()) {
       state.first_stamp = map_.stamp(0);
       state.last_stamp = map_.stamp(map_.size() - 1);

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """A map that holds a stretch of route more than once: what continuous mode accepts on the next visit.
 
-  doc/experiments/repeated_traversals.py DATA [--visits N] [--first F] [--last L]
+  doc/experiments/repeated_traversals.py DATA [--visits N] [--first F] [--last L] [--restart]
 
 A robot that maps as it drives appends every visit to its map (the node with ~database, day after day).
 Here the first visit is Nordland summer frames 0..799, the second winter frames F..L (default 300..699),
@@ -17,13 +17,16 @@ recording train stood count as one place, as the real-data benchmark counts them
 accepted that named the right place, and their median confidence. A last visit drives on into winter
 1000..1299, which the map does not hold: every answer accepted about a keyframe there is wrong (at the
 centred alignment the first answers of that visit localise the last keyframes of the one before, and are
-judged as that visit's). Needs python3-numpy and python3-opencv.
+judged as that visit's). With --restart, the map is saved after each visit and loaded into a new
+recognizer, as a node restarted on its ~database reads it (frames and place links, in one file).
+Needs python3-numpy and python3-opencv.
 """
 
 import argparse
 import glob
 import os
 import statistics
+import tempfile
 
 import cv2
 import numpy as np
@@ -61,6 +64,8 @@ def main():
     parser.add_argument("--visits", type=int, default=4, help="visits in all, the summer map's included")
     parser.add_argument("--first", type=int, default=300, help="first winter frame of the revisits")
     parser.add_argument("--last", type=int, default=699, help="last winter frame of the revisits")
+    parser.add_argument("--restart", action="store_true",
+                        help="save the map after each visit and go on with a new recognizer that loads it")
     args = parser.parse_args()
     summer = sorted(glob.glob(os.path.join(args.data, "nordland", "summer", "*.png")))
     winter = sorted(glob.glob(os.path.join(args.data, "nordland", "winter", "*.png")))
@@ -71,7 +76,13 @@ def main():
         if recognizer.add_frame(cv2.imread(summer[frame], cv2.IMREAD_GRAYSCALE), 1000.0 + 0.1 * step):
             places.append(frame)
     print("visit 1 (the map): summer 0..799, %d keyframes" % len(recognizer))
+    scratch = tempfile.TemporaryDirectory()
     for visit in range(2, args.visits + 2):
+        if args.restart:
+            saved = os.path.join(scratch.name, "before_visit_%d.db" % visit)
+            recognizer.save(saved)
+            recognizer = mrs_vpr.PlaceRecognizer()
+            recognizer.load(saved)
         new_ground = visit == args.visits + 1
         frames = range(1000, 1300) if new_ground else range(args.first, args.last + 1)
         answers = accepted = right = 0

@@ -18,6 +18,7 @@
 #include "mrs_vpr/match_explanation.hpp"
 #include "mrs_vpr/mrs/recent_rows.hpp"
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_links.hpp"
 #include "mrs_vpr/query_stop.hpp"
 #include "mrs_vpr/repeated_views.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
@@ -177,6 +178,9 @@ class PlaceRecognizer {
     void append(const cv::Mat& descriptor, Stamp stamp);
     /// Whether frame `index` holds exactly these bytes and this stamp.
     bool holds(int index, const cv::Mat& descriptor, Stamp stamp) const;
+    /// The place links the map keeps (a map database's), once its frames are appended. Throws
+    /// std::invalid_argument for a link to a frame it does not hold.
+    void linkPlaces(const std::vector<PlaceLink>& links);
 
    private:
     friend class PlaceRecognizer;
@@ -184,6 +188,7 @@ class PlaceRecognizer {
     DescriptorParams descriptor_;
     DescriptorSequence map_;
     AppearanceKeyframes keyframes_;
+    std::vector<int> places_;  // PlaceLinks::placesOf() its links
     int expected_frames_ = 0;  // frames it was prepared for
     int reserved_frames_ = 0;  // frames map_ holds storage for
   };
@@ -219,10 +224,19 @@ class PlaceRecognizer {
     int pending = 0;
     std::size_t memory_bytes = 0;
     int descriptor_size = 0;
+    int linked_frames = 0;  ///< PlaceLinks::linkedFrames()
     Stamp first_stamp;
     Stamp last_stamp;
   };
   MapState state() const;
+
+  /// The place links among map frames [0, frames), as PlaceLinks::asLinks() gives them: for a copy of the map.
+  std::vector<PlaceLink> placeLinks(int frames) const { return links_.asLinks(frames); }
+  /// From now on, logs the links accepted answers make until takeUnsavedLinks() (for a map database).
+  void keepUnsavedLinks() { links_.keepUnsaved(); }
+  /// The links accepted answers made since the last call (PlaceLinks::takeUnsaved()); a map put in
+  /// place (install(), reset()) drops those of the map it replaced.
+  std::vector<PlaceLink> takeUnsavedLinks() { return links_.takeUnsaved(); }
 
   /// Throws std::invalid_argument naming `method` unless it is one a query can use ("" is the default
   /// method): a request can be refused before its images are described.

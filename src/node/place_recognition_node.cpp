@@ -162,6 +162,7 @@ MapInfo PlaceRecognitionNode::makeMapInfo() {
   info.max_frames = static_cast<std::uint32_t>(params_.recognizer.max_frames);
   info.frames_pending = static_cast<std::uint32_t>(state.pending);
   info.frames_persisted = std::min<std::uint64_t>(persisted, state.frames + state.pending);
+  info.frames_linked = static_cast<std::uint32_t>(state.linked_frames);
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
     info.frame_time_mean_ms =

@@ -84,6 +84,9 @@ std::string immutableUri(const std::string& path) {
   return uri + "?immutable=1";
 }
 
+constexpr const char* kCreatePlaceLinks =
+    "CREATE TABLE place_links (id INTEGER PRIMARY KEY, frame INTEGER NOT NULL, reference INTEGER NOT NULL);";
+
 }  // namespace
 
 MapDatabase::MapDatabase(const std::string& path, const DescriptorParams& params, MapAccess access)
@@ -207,7 +210,8 @@ void MapDatabase::createSchema(const DescriptorParams& params) {
       "BEGIN IMMEDIATE;"
       "CREATE TABLE metadata (key TEXT PRIMARY KEY, value TEXT NOT NULL);"
       "CREATE TABLE frames (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
-      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
+      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);" +
+      std::string(kCreatePlaceLinks) +
       "INSERT INTO metadata VALUES ('format_version', '" + std::to_string(kFormatVersion) + "')," +
       metadataRows(frontEndMetadata(params)) +
       " ('descriptor_bytes', '" + std::to_string(descriptor_bytes_) + "'),"
@@ -302,16 +306,20 @@ void MapDatabase::convertToCurrentFormat() {
                               &stampNanosecondsOf, nullptr, nullptr) != SQLITE_OK) {
     fail(lastProblem(db_));
   }
-  // A new table rather than a new column: the stamp column of format 1 is REAL, which would turn
-  // every integer written into it back into a double.
+  // Format 1's stamps: a new table rather than a new column, as the stamp column of format 1 is
+  // REAL, which would turn every integer written into it back into a double.
+  const std::string exact_stamps =
+      format_version_ > 1
+          ? ""
+          : "CREATE TABLE frames_v2 (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
+            " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
+            "INSERT INTO frames_v2 SELECT id, mrs_vpr_stamp_ns_of(id, stamp), frame_id, sequence, descriptor FROM "
+            "frames;"
+            "DROP TABLE frames;"
+            "ALTER TABLE frames_v2 RENAME TO frames;";
   const std::string convert =
       "PRAGMA cache_size = -" + std::to_string(kConversionCacheKiB) + ";"
-      "BEGIN IMMEDIATE;"
-      "CREATE TABLE frames_v2 (id INTEGER PRIMARY KEY, stamp_ns INTEGER NOT NULL, frame_id TEXT NOT NULL,"
-      " sequence INTEGER NOT NULL, descriptor BLOB NOT NULL);"
-      "INSERT INTO frames_v2 SELECT id, mrs_vpr_stamp_ns_of(id, stamp), frame_id, sequence, descriptor FROM frames;"
-      "DROP TABLE frames;"
-      "ALTER TABLE frames_v2 RENAME TO frames;"
+      "BEGIN IMMEDIATE;" + exact_stamps + kCreatePlaceLinks +
       "UPDATE metadata SET value = '" + std::to_string(kFormatVersion) + "' WHERE key = 'format_version';"
       "COMMIT";
   const int converted = sqlite3_exec(db_, convert.c_str(), nullptr, nullptr, nullptr);
@@ -345,20 +353,68 @@ void MapDatabase::insertFrames(const FrameSource& source) {
   });
 }
 
-void MapDatabase::append(const std::vector<StoredFrame>& frames) {
+void MapDatabase::insertLinks(const std::vector<PlaceLink>& links) {
+  if (links.empty()) return;
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "INSERT INTO place_links (frame, reference) VALUES (?, ?)", -1, &raw, nullptr) !=
+      SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement insert(raw, sqlite3_finalize);
+  for (const PlaceLink& link : links) {
+    sqlite3_bind_int(insert.get(), 1, link.frame);
+    sqlite3_bind_int(insert.get(), 2, link.reference);
+    if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
+    sqlite3_reset(insert.get());
+  }
+}
+
+void MapDatabase::append(const std::vector<StoredFrame>& frames, const std::vector<PlaceLink>& links) {
   // insertFrames checks each descriptor: a bad one rolls the batch back.
   inWriteTransaction([&] {
     insertFrames([&](const auto& insert) {
       for (const StoredFrame& frame : frames) insert(frame);
     });
-    forgetTraversal();
+    insertLinks(links);
+    if (!frames.empty()) forgetTraversal();  // Links change no frame.
   });
 }
 
-void MapDatabase::replace(const FrameSource& source, const std::optional<MapTraversal>& traversal) {
+std::vector<PlaceLink> MapDatabase::placeLinks() const {
+  if (format_version_ < 3) return {};  // Read as it is: no table of links yet.
+  const std::int64_t frames = size();
+  sqlite3_stmt* raw = nullptr;
+  if (sqlite3_prepare_v2(db_, "SELECT id, frame, reference FROM place_links ORDER BY id", -1, &raw, nullptr) !=
+      SQLITE_OK) {
+    fail(lastProblem(db_));
+  }
+  const Statement rows(raw, sqlite3_finalize);
+  std::vector<PlaceLink> links;
+  int step = SQLITE_ROW;
+  while ((step = sqlite3_step(rows.get())) == SQLITE_ROW) {
+    const auto frameAt = [&](int column) {
+      const sqlite3_int64 frame = sqlite3_column_int64(rows.get(), column);
+      if (sqlite3_column_type(rows.get(), column) != SQLITE_INTEGER || frame < 0 || frame >= frames) {
+        const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), column));
+        fail("place link " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " names frame '" +
+             (text != nullptr ? text : "NULL") + "', not one of its " + std::to_string(frames) +
+             " frames (counted from 0)");
+      }
+      return static_cast<int>(frame);
+    };
+    const int frame = frameAt(1);
+    links.push_back({frame, frameAt(2)});
+  }
+  if (step != SQLITE_DONE) fail(lastProblem(db_));
+  return links;
+}
+
+void MapDatabase::replace(const FrameSource& source, const std::optional<MapTraversal>& traversal,
+                          const std::vector<PlaceLink>& links) {
   inWriteTransaction([&] {
-    execute("DELETE FROM frames");
+    execute("DELETE FROM frames; DELETE FROM place_links");
     insertFrames(source);
+    insertLinks(links);
     forgetTraversal();
     if (traversal) recordTraversal(*traversal);
   });
@@ -493,7 +549,7 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
 
 void MapDatabase::clear() {
   inWriteTransaction([&] {
-    execute("DELETE FROM frames");
+    execute("DELETE FROM frames; DELETE FROM place_links");
     forgetTraversal();
   });
 }

@@ -16,8 +16,11 @@ Clock::duration toDuration(double seconds) {
 
 }  // namespace
 
-MapWriter::MapWriter(MapDatabase& database, const CommitPolicy& policy)
-    : database_(database), policy_(policy), persisted_(static_cast<std::uint64_t>(database.size())) {
+MapWriter::MapWriter(MapDatabase& database, const CommitPolicy& policy, LinkSource links)
+    : database_(database),
+      policy_(policy),
+      link_source_(std::move(links)),
+      persisted_(static_cast<std::uint64_t>(database.size())) {
   thread_ = std::thread(&MapWriter::run, this);
 }
 
@@ -87,6 +90,11 @@ std::string MapWriter::lastError() const {
 }
 
 void MapWriter::commitQueuedLocked() {
+  // The links before the frames: the frames each names were queued before it was made.
+  if (link_source_) {
+    std::vector<PlaceLink> made = link_source_();
+    links_.insert(links_.end(), made.begin(), made.end());
+  }
   std::vector<StoredFrame> batch;
   Clock::time_point batch_oldest;
   {
@@ -94,9 +102,10 @@ void MapWriter::commitQueuedLocked() {
     batch.swap(queue_);
     batch_oldest = oldest_;
   }
-  if (batch.empty()) return;
+  if (batch.empty() && links_.empty()) return;
   try {
-    database_.append(batch);  // One transaction: all of the batch is on disk, or none of it.
+    database_.append(batch, links_);  // One transaction: all of the batch is on disk, or none of it.
+    links_.clear();
   } catch (const std::exception& error) {
     // Back to the front of the queue, before anything added meanwhile, for the next try.
     std::lock_guard<std::mutex> lock(queue_mutex_);

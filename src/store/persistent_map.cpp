@@ -50,6 +50,25 @@ MapDatabaseError changedWhileLoaded(const std::string& path) {
   return MapDatabaseError("map database '" + path + "': it changed while it was loaded; load it again");
 }
 
+/// Gives `map`, whose frames were read from `database`, the place links the database keeps; returns them.
+std::vector<PlaceLink> linkPlaces(PlaceRecognizer::PreparedMap& map, const MapDatabase& database) {
+  std::vector<PlaceLink> links = database.placeLinks();  // Checked there: every link is two of its frames.
+  map.linkPlaces(links);
+  return links;
+}
+
+/// Holds a map's new place links back from its database while the map is replaced (see links_held_back_).
+class LinksHeldBack {
+ public:
+  explicit LinksHeldBack(std::atomic<bool>& held) : held_(held) { held_ = true; }
+  ~LinksHeldBack() { held_ = false; }
+  LinksHeldBack(const LinksHeldBack&) = delete;
+  LinksHeldBack& operator=(const LinksHeldBack&) = delete;
+
+ private:
+  std::atomic<bool>& held_;
+};
+
 }  // namespace
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(requireEmpty(recognizer)) {}
@@ -67,11 +86,17 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
     map.append(frame.descriptor, frame.stamp);
     labels_.append(frame.frame_id, frame.sequence);
   });
+  linkPlaces(map, *database_);
   recognizer_.install(std::move(map));
   label_bytes_ = labels_.memoryBytes();
   loaded_traversal_ = database_->traversal();  // Before the camera's first frame makes it forgotten.
   loaded_frames_ = static_cast<int>(frames);
-  writer_ = std::make_unique<MapWriter>(*database_, policy);
+  // The links of accepted answers go to the database with the frames, but none of a map on its way
+  // out: while reset() or load() replaces the map, they wait, and its install drops them.
+  recognizer_.keepUnsavedLinks();
+  writer_ = std::make_unique<MapWriter>(*database_, policy, [this] {
+    return links_held_back_ ? std::vector<PlaceLink>() : recognizer_.takeUnsavedLinks();
+  });
 }
 
 PersistentMap::~PersistentMap() {
@@ -152,6 +177,7 @@ int PersistentMap::reset() {
   // The empty map is made first, then the database emptied: if either fails, the map stays as it is
   // and still matches its database. Putting the empty map in place cannot fail.
   PlaceRecognizer::PreparedMap empty = recognizer_.prepareMap({}, {});
+  const LinksHeldBack held(links_held_back_);
   std::lock_guard<std::mutex> lock(add_mutex_);
   if (writer_) writer_->withDatabase([](MapDatabase& database) { database.clear(); });
   labels_.clear();
@@ -171,6 +197,7 @@ int PersistentMap::load(const std::string& path) {
   // frame by frame as the file is read (a million-frame map is not held twice, as rows and as a map) ...
   FrameLabels labels;
   std::optional<MapTraversal> traversal;
+  std::vector<PlaceLink> links;
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
     std::optional<PlaceRecognizer::PreparedMap> map;
@@ -185,11 +212,13 @@ int PersistentMap::load(const std::string& path) {
         map->append(frame.descriptor, frame.stamp);
         labels.append(frame.frame_id, frame.sequence);
       });
+      links = linkPlaces(*map, saved);
     });
     return std::move(*map);
   }();
   // ... the database rewritten from the file ...
-  if (writer_) replaceDatabase(path, prepared, labels, traversal);
+  const LinksHeldBack held(links_held_back_);
+  if (writer_) replaceDatabase(path, prepared, labels, traversal, links);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
   // the new one. The frames that came while the database was rewritten follow the new map's.
   const int loaded = prepared.size();
@@ -227,7 +256,8 @@ int PersistentMap::load(const std::string& path) {
 }
 
 void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
-                                    const FrameLabels& labels, const std::optional<MapTraversal>& traversal) {
+                                    const FrameLabels& labels, const std::optional<MapTraversal>& traversal,
+                                    const std::vector<PlaceLink>& links) {
   // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
   // frames go on joining the old map meanwhile, held back from the database so that it holds the old
   // map or the new one; load() puts them after the new map's frames ...
@@ -255,7 +285,7 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
         });
         if (index != prepared.size()) throw changedWhileLoaded(path);
       };
-      database.replace(frames, traversal);
+      database.replace(frames, traversal, links);
     });
   } catch (...) {
     // ... or, when the rewrite fails, the old map stays in both, and its new frames go to its database.
@@ -315,6 +345,7 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::o
     // The loaded map's record holds while the snapshot is that map.
     const std::optional<MapTraversal>& record = (traversal || frames != loaded_frames_) ? traversal : loaded_traversal_;
     if (record) copy.setTraversal(*record);
+    copy.append({}, recognizer_.placeLinks(frames));
     copy.backupTo(path);
   } catch (const MapDatabaseError& error) {
     removeScratch();

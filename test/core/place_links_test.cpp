@@ -74,5 +74,55 @@ TEST(PlaceLinks, RangesNearTheMapsStartAreClippedAndClearForgetsEveryLink) {
   EXPECT_THROW(links.link(-1, 3), std::invalid_argument);
 }
 
+// A map read back gets its places at once: the same as linking one by one, whatever the order.
+TEST(PlaceLinks, PlacesOfALinkListAreThoseOfItsLinksMadeOneByOne) {
+  const std::vector<PlaceLink> made = {{50, 10}, {80, 50}, {12, 3}, {90, 12}, {91, 80}, {91, 10}, {70, 71}};
+  PlaceLinks one_by_one;
+  int joined = 0;
+  for (const PlaceLink& link : made) joined += one_by_one.link(link.frame, link.reference) ? 1 : 0;
+  EXPECT_EQ(joined, 6);  // 91 and 10 were one place already
+  PlaceLinks adopted;
+  adopted.adopt(PlaceLinks::placesOf(made, 100));
+  EXPECT_EQ(adopted.linkedFrames(), one_by_one.linkedFrames());
+  for (const int frame : {10, 50, 80, 3, 12, 90, 70, 40}) {
+    EXPECT_EQ(pairsOf(adopted.samePlaceAs(frame, 2)), pairsOf(one_by_one.samePlaceAs(frame, 2))) << frame;
+  }
+  // The few links that make the same places again: each linked frame to its place's first frame.
+  PlaceLinks again;
+  again.adopt(PlaceLinks::placesOf(one_by_one.asLinks(100), 100));
+  EXPECT_EQ(again.asLinks(100).size(), static_cast<std::size_t>(one_by_one.linkedFrames()));
+  for (const int frame : {10, 50, 80, 3, 12, 90, 70}) {
+    EXPECT_EQ(pairsOf(again.samePlaceAs(frame, 2)), pairsOf(one_by_one.samePlaceAs(frame, 2))) << frame;
+  }
+  EXPECT_EQ(one_by_one.asLinks(13).size(), 1U);  // among frames [0, 13): 12 of 3
+}
+
+TEST(PlaceLinks, ALinkListNamingAFrameOutsideTheMapIsRefused) {
+  EXPECT_THROW(PlaceLinks::placesOf({{5, 1}, {20, 3}}, 20), std::invalid_argument);
+  EXPECT_THROW(PlaceLinks::placesOf({{-1, 3}}, 20), std::invalid_argument);
+  EXPECT_TRUE(PlaceLinks::placesOf({}, 0).empty());
+}
+
+// The links made since a database last took them, for its next commit: only those that joined two
+// places, and only once asked for.
+TEST(PlaceLinks, TheUnsavedLogHoldsTheLinksThatJoinedPlacesSinceItWasTaken) {
+  PlaceLinks links;
+  links.link(20, 5);
+  EXPECT_TRUE(links.takeUnsaved().empty());  // not kept before keepUnsaved()
+  links.keepUnsaved();
+  links.link(40, 20);
+  links.link(40, 5);  // one place already
+  links.link(41, 6);
+  const std::vector<PlaceLink> taken = links.takeUnsaved();
+  ASSERT_EQ(taken.size(), 2U);
+  EXPECT_EQ(taken[0].frame, 40);
+  EXPECT_EQ(taken[1].reference, 6);
+  EXPECT_TRUE(links.takeUnsaved().empty());
+  links.link(60, 7);
+  links.adopt({});  // a map put in place: its links are not the old map's
+  EXPECT_TRUE(links.takeUnsaved().empty());
+  EXPECT_EQ(links.linkedFrames(), 0);
+}
+
 }  // namespace
 }  // namespace mrs_vpr

@@ -201,6 +201,8 @@ TEST_F(CameraDriveTest, LoopClosuresOfAVehicleThatStopsAndChangesSpeedAreRightAn
   // Seen: 18 of 21 answers accepted and right. Half of them still leaves room for the timer's phase,
   // which decides which keyframes each answer sees.
   EXPECT_GE(right, revisit_answers / 2) << right << " right closures among " << revisit_answers << " answers";
+  // Each of them linked the keyframe it localised to the place it named (place_links.hpp).
+  EXPECT_GE(info.frames_linked, 1U) << "accepted closures linked no frame";
   // A stop at a known place is not silent: once its keyframe is localised, the closure is restated
   // for its stopped frames, and right as checked above.
   EXPECT_GE(restated_in_stops, 1) << "no closure restated for a stopped frame of the revisit";

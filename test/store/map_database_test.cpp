@@ -147,7 +147,7 @@ TEST_F(MapDatabaseTest, ANewMapTakesLittleMoreDiskThanItsDescriptors) {
 TEST_F(MapDatabaseTest, MetadataNamesTheFormatAndTheDescriptorParameters) {
   { MapDatabase database(path("map.db"), thumbnailParams()); }
   std::map<std::string, std::string> metadata = metadataOf(path("map.db"));
-  EXPECT_EQ(metadata["format_version"], "2");
+  EXPECT_EQ(metadata["format_version"], "3");
   EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["image_width"], "64");
   EXPECT_EQ(metadata["image_height"], "32");
@@ -755,7 +755,7 @@ TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
     EXPECT_EQ(database.size(), 1);
   }  // Closed: it holds the map exclusively while open.
   std::map<std::string, std::string> metadata = metadataOf(path("map.db"));
-  EXPECT_EQ(metadata["format_version"], "2");
+  EXPECT_EQ(metadata["format_version"], "3");
   EXPECT_EQ(metadata["descriptor_type"], "thumbnail");
   EXPECT_EQ(metadata["descriptor_bytes"], "2048");
   // And the map is still one of these descriptors: another front end's is refused.

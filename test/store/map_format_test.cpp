@@ -1,4 +1,4 @@
-// The map database's stamps: exact nanoseconds in format 2, up to the latest ROS time; maps of
+// The map database's stamps: exact nanoseconds since format 2, up to the latest ROS time; maps of
 // format 1 (REAL seconds, written by earlier releases) read and converted; a stamp that no ROS time
 // can hold is an error naming the frame, never a frame a node cannot publish.
 
@@ -96,7 +96,7 @@ TEST_F(MapFormatTest, AFormatOneMapOpenedForWritingIsConvertedInPlace) {
   EXPECT_EQ(read[1].stamp.nanoseconds(), 1700000000250000000);
   EXPECT_EQ(read[1].descriptor.at<std::uint8_t>(0, 7), 1);
   EXPECT_EQ(read[2].stamp, kLatest);
-  // The file is of format 2 now, as a new map is.
+  // The file is of format 3 now, as a new map is.
   sqlite3* db = nullptr;
   ASSERT_EQ(sqlite3_open_v2(path("old.db").c_str(), &db, SQLITE_OPEN_READONLY, nullptr), SQLITE_OK);
   sqlite3_stmt* statement = nullptr;
@@ -107,7 +107,7 @@ TEST_F(MapFormatTest, AFormatOneMapOpenedForWritingIsConvertedInPlace) {
                                -1, &statement, nullptr),
             SQLITE_OK);
   ASSERT_EQ(sqlite3_step(statement), SQLITE_ROW);
-  EXPECT_EQ(std::string(reinterpret_cast<const char*>(sqlite3_column_text(statement, 0))), "2");
+  EXPECT_EQ(std::string(reinterpret_cast<const char*>(sqlite3_column_text(statement, 0))), "3");
   EXPECT_EQ(std::string(reinterpret_cast<const char*>(sqlite3_column_text(statement, 1))), "integer");
   EXPECT_EQ(sqlite3_column_int64(statement, 2), 1700000000250000000);
   sqlite3_finalize(statement);
@@ -127,12 +127,12 @@ TEST_F(MapFormatTest, AStampNoRosTimeCanHoldIsAnErrorNamingTheFrame) {
     EXPECT_NE(message.find("outside 0 .. 4294967295.999999999 s"), std::string::npos) << message;
     // Opened for writing: the conversion fails and leaves the file as it was.
     message = errorOf([&] { MapDatabase database(file, thumbnailParams()); });
-    EXPECT_NE(message.find("cannot convert it from format 1 to 2 (it is left as it was)"), std::string::npos)
+    EXPECT_NE(message.find("cannot convert it from format 1 to 3 (it is left as it was)"), std::string::npos)
         << message;
     EXPECT_NE(message.find("frame 2 has an unusable stamp"), std::string::npos) << message;
     EXPECT_TRUE(fileContents(file) == before) << "the map was changed";
   }
-  // Format 2 changed by hand: beyond the range, and not an integer.
+  // A map of this format changed by hand: beyond the range, and not an integer.
   { MapDatabase database(path("map.db"), thumbnailParams()); }
   runSql(path("map.db"), "INSERT INTO frames VALUES (1, 4294967296000000000, '', -1, zeroblob(2048)),"
                          " (2, 'noon', '', -1, zeroblob(2048))");

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "mrs_vpr/parameters.hpp"
+#include "mrs_vpr/place_links.hpp"
 #include "mrs_vpr/stamp.hpp"
 #include "mrs_vpr/store/map_traversal.hpp"
 
@@ -43,7 +44,7 @@ struct StoredFrame {
 
 /**
  * The reference map on disk: an SQLite database (WAL journal) that survives crashes and sessions and
- * that users can inspect with `sqlite3` or Python. Schema (format 2):
+ * that users can inspect with `sqlite3` or Python. Schema (format 3):
  *
  *   metadata(key TEXT PRIMARY KEY, value TEXT)   format_version, descriptor_type (hog, thumbnail),
  *                                                that front end's parameters (hog_window_width,
@@ -54,10 +55,14 @@ struct StoredFrame {
  *                                                by appearance change, traversal_min_appearance_change
  *                                                (MapTraversal)
  *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
+ *   place_links(id INTEGER PRIMARY KEY, frame INTEGER, reference INTEGER)
  *
- * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. Format 1 (earlier releases) kept
- * `stamp REAL` seconds instead: such a map is read as it is, converted to the nearest nanosecond,
- * and converted to format 2 in place, in one transaction, when opened for writing. A stamp outside
+ * stamp_ns is the exact stamp in nanoseconds since the Unix epoch. A place link is an accepted loop
+ * closure of the map's own frames (place_links.hpp): `frame` and `reference` count frames in map
+ * order from 0, and the links are kept in the order they were made. Format 2 had no place_links (a
+ * map of no links); format 1 (earlier releases) also kept `stamp REAL` seconds instead of stamp_ns:
+ * such maps are read as they are (stamps converted to the nearest nanosecond), and converted to
+ * format 3 in place, in one transaction, when opened for writing. A stamp outside
  * Stamp's range (no ROS time) is an error naming the frame, never a stamp that a node cannot publish.
  * The write-ahead log is checkpointed every kWalCheckpointPages pages and cut back to
  * kWalSizeLimit bytes, so that it stays a few MiB whatever the map's size.
@@ -69,7 +74,7 @@ struct StoredFrame {
  */
 class MapDatabase {
  public:
-  static constexpr int kFormatVersion = 2;
+  static constexpr int kFormatVersion = 3;
   /// The oldest format still read (and converted when written).
   static constexpr int kOldestFormatVersion = 1;
   /// Page size of the maps this class creates [bytes]: SQLite's largest, as frames are rows of 0.75
@@ -104,8 +109,12 @@ class MapDatabase {
   MapDatabase(const MapDatabase&) = delete;
   MapDatabase& operator=(const MapDatabase&) = delete;
 
-  /// Appends frames in one transaction: all of them are on disk when it returns, or none.
-  void append(const std::vector<StoredFrame>& frames);
+  /// Appends frames, then place links (whose frames must be in the map by then), in one transaction:
+  /// all of them are on disk when it returns, or none.
+  void append(const std::vector<StoredFrame>& frames, const std::vector<PlaceLink>& links = {});
+  /// The place links, in the order they were made. Throws MapDatabaseError for a link that is not two
+  /// of the map's frames.
+  std::vector<PlaceLink> placeLinks() const;
   /// Frames stored.
   std::int64_t size() const;
   /// Calls `visit` for every frame in map order. Throws MapDatabaseError on a corrupt or foreign row.
@@ -113,14 +122,16 @@ class MapDatabase {
   /// Calls `read` inside one read transaction: all it reads of this database (its size, its frames) is
   /// the file at one moment, whatever another program writes meanwhile.
   void readAtOneMoment(const std::function<void()>& read) const;
-  /// Removes every frame (the metadata stays).
+  /// Removes every frame and place link (the metadata stays).
   void clear();
   /// Where replace() takes its frames from: it calls `insert` once for each frame, in map order.
   using FrameSource = std::function<void(const std::function<void(const StoredFrame& frame)>& insert)>;
   /// Replaces every frame by those `source` gives, in one transaction: on any failure (a throw from
   /// `source` too) the old frames stay. The new frames need not all be in memory at once. The old
-  /// frames' traversal is forgotten; `traversal`, the one the new frames were kept of, is recorded.
-  void replace(const FrameSource& source, const std::optional<MapTraversal>& traversal = std::nullopt);
+  /// frames' traversal and place links are forgotten; `traversal`, the one the new frames were kept
+  /// of, and `links`, their place links, are recorded.
+  void replace(const FrameSource& source, const std::optional<MapTraversal>& traversal = std::nullopt,
+               const std::vector<PlaceLink>& links = {});
   /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
   /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
@@ -197,8 +208,11 @@ class MapDatabase {
   /// compares to tell whether the frames changed since, also by another program or a refill after a
   /// reset (whose ids start again at 1, but not its camera's stamps).
   std::string lastFrame() const;
-  /// Rewrites a format-1 map's frames with exact stamps, in one transaction.
+  /// Converts an older map in one transaction: a format-1 map's frames are rewritten with exact
+  /// stamps, and the place_links table is added.
   void convertToCurrentFormat();
+  /// Inserts `links` inside a transaction the caller has begun.
+  void insertLinks(const std::vector<PlaceLink>& links);
   /// Inserts the frames of `source` inside a transaction the caller has begun; throws
   /// std::invalid_argument for a descriptor that is not of this map's size.
   void insertFrames(const FrameSource& source);

@@ -26,13 +26,22 @@ struct CommitPolicy {
  * queued frame arrived, or as soon as CommitPolicy::frames are queued. persisted() counts the frames
  * committed, which survive a crash (even SIGKILL) of the process.
  *
- * A commit that fails (disk full, say) keeps its frames queued, in order, and is tried again one
- * period later; lastError() tells why meanwhile. Every member is thread-safe.
+ * Each commit also stores the place links that the map's accepted answers made since the last one,
+ * taken from a LinkSource before the frames (a link names frames the map held when it was made, which
+ * were queued by then); links with no new frame wait for the next frames' commit or the last one.
+ *
+ * A commit that fails (disk full, say) keeps its frames queued, in order, and its links, and is tried
+ * again one period later; lastError() tells why meanwhile. Every member is thread-safe.
  */
 class MapWriter {
  public:
-  /// `database` must outlive the writer, and is used only through it from now on.
-  MapWriter(MapDatabase& database, const CommitPolicy& policy);
+  /// The place links made since it was last called (PlaceRecognizer::takeUnsavedLinks), on the
+  /// writer's thread.
+  using LinkSource = std::function<std::vector<PlaceLink>()>;
+
+  /// `database` must outlive the writer, and is used only through it from now on; `links`, when
+  /// given, must outlive it too.
+  MapWriter(MapDatabase& database, const CommitPolicy& policy, LinkSource links = {});
   /// stop().
   ~MapWriter();
 
@@ -75,6 +84,8 @@ class MapWriter {
 
   MapDatabase& database_;
   const CommitPolicy policy_;
+  const LinkSource link_source_;
+  std::vector<PlaceLink> links_;  // taken from link_source_, not yet committed; guarded by database_mutex_
   std::atomic<std::uint64_t> persisted_{0};
 
   // Lock order: database_mutex_, then queue_mutex_. The queue is taken while the database is held, so

@@ -20,7 +20,9 @@ namespace mrs_vpr {
 /**
  * A PlaceRecognizer's map mirrored in a map database, so that it survives crashes and restarts: the
  * database's frames, in the same order, are the map's (up to the frames still waiting for a commit,
- * see MapWriter). Without a database the map lives in memory only, and save() still writes one.
+ * see MapWriter), and its place links the map's (place_links.hpp): a place that accepted closures
+ * linked across visits stays one after a restart or a load. Without a database the map lives in
+ * memory only, and save() still writes one.
  *
  * reset(), load() and save() replace or copy the whole map consistently while add() goes on from
  * another thread, so that no frame reaches one of map and database without the other: add() waits
@@ -75,7 +77,7 @@ class PersistentMap {
    * Writes a consistent snapshot of the map, as it is when called, to the new file `path` (never
    * overwritten; written aside and renamed when complete). With a database it is SQLite's online
    * backup of it; in memory only, the map's frames as the database would hold them (descriptor,
-   * stamp, frame id and number). Returns the frames written.
+   * stamp, frame id and number) and its place links. Returns the frames written.
    *
    * `traversal`, for a map in memory whose frames were numbered among the frames offered (Python's),
    * is recorded as MapDatabase::setTraversal() records it; without it, a map saved before any frame
@@ -117,9 +119,10 @@ class PersistentMap {
   std::int64_t saveFromMemory(const std::string& path, const std::optional<MapTraversal>& traversal);
   /// load()'s rewrite of the database by the frames of the map saved at `path`, which must be those of
   /// `prepared`; added frames are held back meanwhile.
-  /// `traversal`, the new frames' record, is written with them.
+  /// `traversal`, the new frames' record, and `links`, their place links, are written with them.
   void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
-                       const FrameLabels& labels, const std::optional<MapTraversal>& traversal);
+                       const FrameLabels& labels, const std::optional<MapTraversal>& traversal,
+                       const std::vector<PlaceLink>& links);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
@@ -145,6 +148,10 @@ class PersistentMap {
   bool rewriting_ = false;
   std::vector<StoredFrame> held_back_;
   std::size_t rewrite_room_ = 0;  // Frames the new map has room for after its own.
+  // Set by reset() and load() while they replace the map: the writer then takes none of the place
+  // links that queries make meanwhile, which name the old map's frames (install drops them), so that
+  // none reaches the new map's database.
+  std::atomic<bool> links_held_back_{false};
 };
 
 }  // namespace mrs_vpr
