@@ -308,6 +308,12 @@ PlaceRecognizer::PreparedMap::PreparedMap(const Parameters& params, const Recogn
   map_.keepCoarseCells(params.mrs.levels, params.descriptor);
 }
 
+void PlaceRecognizer::linkPlaces(const std::vector<PlaceLink>& links) {
+  flush();  // The links name frames that may still be pending.
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  links_.adopt(PlaceLinks::placesOf(links, map_.size()));
+}
+
 int PlaceRecognizer::install(PreparedMap&& prepared) {
   if (!prepared.descriptor_.sameFrontEnd(params_.descriptor)) {
     throw std::invalid_argument("a map prepared for the " + prepared.descriptor_.describe() +

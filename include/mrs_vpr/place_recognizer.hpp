@@ -230,6 +230,10 @@ class PlaceRecognizer {
   };
   MapState state() const;
 
+  /// Replaces the map's place links by `links` (a map database's, read with its frames): for a map
+  /// filled frame by frame. Throws std::invalid_argument, leaving the links as they were, for a link
+  /// to a frame the map does not hold.
+  void linkPlaces(const std::vector<PlaceLink>& links);
   /// The place links among map frames [0, frames), as PlaceLinks::asLinks() gives them: for a copy of the map.
   std::vector<PlaceLink> placeLinks(int frames) const { return links_.asLinks(frames); }
   /// From now on, logs the links accepted answers make until takeUnsavedLinks() (for a map database).

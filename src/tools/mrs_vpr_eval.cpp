@@ -158,11 +158,13 @@ std::optional<Keyframes> storedFrameNumbers(const std::vector<std::int64_t>& num
 
 /// Offers a map database's keyframes to `add_to_map` and numbers `keyframes` by the frames of the
 /// traversal they were taken from, where the database stores increasing numbers (build_map's maps
-/// do); returns the traversal they stand for.
-Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const PlaceRecognizer& recognizer,
+/// do); gives the recognizer the map's place links, as a node started on it has them; returns the
+/// traversal they stand for.
+Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, PlaceRecognizer& recognizer,
                           Keyframes& keyframes, const std::function<void(const cv::Mat&, Stamp)>& add_to_map) {
   std::vector<std::int64_t> stored_numbers;
   std::optional<MapTraversal> recorded;
+  std::vector<PlaceLink> links;
   // The frames and their record as the file holds them at one moment, whatever a node writes meanwhile.
   map.readAtOneMoment([&] {
     recorded = map.readTraversal();
@@ -171,9 +173,16 @@ Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, const Pl
       add_to_map(frame.descriptor.clone(), frame.stamp);
       if (keyframes.frames.size() > kept) stored_numbers.push_back(frame.sequence);
     });
+    links = map.placeLinks();
   });
   if (recognizer.size() == 0) throw std::invalid_argument("the map database " + options.reference + " holds no frame");
+  // Every frame of a map database joins the map (an unbounded one), so its links name the map's frames.
+  recognizer.linkPlaces(links);
   std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
+  if (!links.empty()) {
+    std::cerr << " (" << recognizer.state().linked_frames << " of them linked by its loop closures to a place an "
+              << "earlier visit shows)";
+  }
   if (const std::optional<Keyframes> numbered = storedFrameNumbers(stored_numbers)) {
     keyframes = *numbered;
     // build_map records how many frames the traversal had: those after the last keyframe, which it

@@ -334,6 +334,21 @@ TEST(PlaceRecognizer, AStretchDrivenAgainAndAgainKeepsClosingItsLoops) {
   }
 }
 
+// A map filled frame by frame (mrs_vpr_eval's, of a map database) takes the links its database kept,
+// and refuses a link to a frame it does not hold, keeping those it has.
+TEST(PlaceRecognizer, AMapFilledFrameByFrameTakesItsLinksAndRefusesOnesOutsideIt) {
+  PlaceRecognizer recognizer(routeParameters());
+  for (int frame = 0; frame < 10; ++frame) {
+    recognizer.addFrame(route().reference[static_cast<std::size_t>(frame)], Stamp::fromNanoseconds(frame + 1));
+  }
+  recognizer.linkPlaces({{8, 2}, {9, 3}});  // pending frames among them
+  EXPECT_EQ(recognizer.state().linked_frames, 2);
+  EXPECT_THROW(recognizer.linkPlaces({{10, 2}}), std::invalid_argument);
+  EXPECT_EQ(recognizer.placeLinks(10).size(), 2U);
+  recognizer.reset();
+  EXPECT_EQ(recognizer.state().linked_frames, 0);
+}
+
 // The same judged by both methods over a sequence long enough for MRS's coarser level, whose
 // confidence is read on pooled ends: the place linked across visits is no rival of either.
 TEST(PlaceRecognizer, BothMethodsTakeAPlaceLinkedAcrossVisitsForNoRival) {

@@ -23,6 +23,7 @@
 #include "mrs_vpr/acceptance.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "route_tools_fixture.hpp"
+#include "support/format_one_map.hpp"
 
 namespace {
 
@@ -165,6 +166,41 @@ TEST_F(EvaluatorTest, AMapDatabaseIsKnownByItsContentsAndRefusedAsTheQuery) {
   EXPECT_EQ(folder.status, 0) << folder.err;
   expectError("--reference " + path("reference") + " --query " + path("nothing_here.db") + arguments,
               "image folder '" + path("nothing_here.db") + "' does not exist");
+}
+
+// A node's map holds a stretch once per visit, with the loop closures that linked the visits: the
+// evaluator judges its answers with the links, as the node does, and without them the twin visits are
+// each other's rivals.
+TEST_F(EvaluatorTest, AMapDatabaseIsJudgedWithItsPlaceLinks) {
+  const std::string once = path("route_once.db");
+  const std::string twice = path("route_twice.db");
+  ASSERT_EQ(run(buildMap() + " --images " + path("reference") + " --output " + once).status, 0);
+  ASSERT_EQ(run(buildMap() + " --images " + path("reference") + " --output " + twice).status, 0);
+  ASSERT_EQ(run(buildMap() + " --images " + path("reference") + " --output " + twice + " --append").status, 0);
+  const auto accepted = [&](const std::string& map, const std::string& output) {
+    const CommandResult result =
+        run(eval("--reference " + map + " --query " + path("query") + " --ground-truth " + path("truth.csv") +
+                 " --method seqslam --protocol per-frame --sequence-length 20 --tolerance 2 --accept-threshold 2.5" +
+                 " --output " + output));
+    EXPECT_EQ(result.status, 0) << result.err;
+    return std::make_pair(json::parse(fileContents(output)).at("summary").at("accepted").get<int>(), result.err);
+  };
+  const int of_one_visit = accepted(once, path("once.json")).first;
+  const int unlinked = accepted(twice, path("twice.json")).first;
+  EXPECT_GT(of_one_visit, 5);
+  EXPECT_LT(unlinked, of_one_visit / 2) << unlinked;
+  // Each frame of the second visit linked to the first's, as accepted closures would have linked them.
+  const int frames = static_cast<int>(std::distance(fs::directory_iterator(path("reference")), fs::directory_iterator()));
+  mrs_vpr::testing_support::runSql(twice, "WITH RECURSIVE i(n) AS (SELECT 0 UNION ALL SELECT n + 1 FROM i WHERE n < " +
+                                               std::to_string(frames - 1) +
+                                               ") INSERT INTO place_links (frame, reference) SELECT n + " +
+                                               std::to_string(frames) + ", n FROM i");
+  const auto [linked, progress] = accepted(twice, path("linked.json"));
+  // The twin is no rival, and the map's other places count twice among the rivals, which on a map of
+  // a few dozen places lowers the required confidence (requiredConfidence()): at least as many.
+  EXPECT_GE(linked, of_one_visit);
+  EXPECT_NE(progress.find(std::to_string(frames) + " of them linked by its loop closures"), std::string::npos)
+      << progress;
 }
 
 TEST_F(EvaluatorTest, AQueryOfTooFewKeyframesSaysSo) {
