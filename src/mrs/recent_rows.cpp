@@ -94,7 +94,11 @@ void RecentRows::forgetStaleLocked(SequenceView map, int first, int count) {
                                           rows_.rbegin()->second.final_end > finalEnd(map.count));
   if (shrank) rows_.clear();
   if (map.count < asked_map_size_) asked_newest_ = -1;
-  kept_rows_ = std::min(max_rows_, std::max(kept_rows_, count));
+  // The longest question keeps its rows until the map has grown by max_rows_ frames since it was asked.
+  if (count >= kept_rows_ || map.count - kept_since_ > max_rows_ || map.count < kept_since_) {
+    kept_rows_ = std::min(max_rows_, count);
+    kept_since_ = map.count;
+  }
   rows_.erase(rows_.begin(), rows_.lower_bound(std::min(first, map.count - kept_rows_)));
 }
 
@@ -211,6 +215,7 @@ void RecentRows::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   rows_.clear();
   kept_rows_ = 0;
+  kept_since_ = 0;
   asked_newest_ = -1;
   asked_map_size_ = 0;
   bytes_ = 0;

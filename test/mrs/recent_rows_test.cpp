@@ -81,6 +81,35 @@ TEST(RecentRows, KeptRowsGiveTheBruteForceCostsAsTheMapGrows) {
   EXPECT_GE(recent.memoryBytes(), 20 * map.size() * sizeof(float));
 }
 
+// One long question among short ones (a ~query of 100 keyframes while continuous mode asks about 20)
+// keeps its rows only until the map has grown by kMaxRecentRows frames since; long questions asked
+// again and again keep theirs.
+TEST(RecentRows, ALongQuestionsRowsGoOnceTheMapHasGrownPastIt) {
+  cv::RNG rng(5);
+  DescriptorSequence map = randomMap(300, rng);
+  RecentRows recent(kWindow, kMaxRecentRows);
+  const SequenceRows rows{0, 19, 10};
+  const SequenceRows long_rows{0, 99, 50};
+  AnchorCosts costs;
+  recent.costs(map.view(), map.size() - 100, 100, map.size() - 150, long_rows, kVelocities, costs);
+  EXPECT_EQ(recent.rowCount(), 100);
+  for (int step = 1; step <= kMaxRecentRows + 10; ++step) {
+    appendRandomFrames(map, 1, 64, rng);
+    recent.costs(map.view(), map.size() - 20, 20, map.size() - 70, rows, kVelocities, costs);
+    if (step == kMaxRecentRows) EXPECT_EQ(recent.rowCount(), 100) << "kept while the map grew by " << step;
+  }
+  EXPECT_EQ(recent.rowCount(), 20);
+  EXPECT_LT(recent.memoryBytes(), 25 * map.size() * sizeof(float));
+  // Asked again every few frames, the long question keeps its rows.
+  for (int step = 0; step < 2 * kMaxRecentRows; ++step) {
+    appendRandomFrames(map, 1, 64, rng);
+    const bool long_question = step % 50 == 0;
+    recent.costs(map.view(), map.size() - (long_question ? 100 : 20), long_question ? 100 : 20, map.size() - 150,
+                 long_question ? long_rows : rows, kVelocities, costs);
+  }
+  EXPECT_EQ(recent.rowCount(), 100);
+}
+
 // A map of at most half a contrast window has no final cell: the rows still cover every frame and give
 // the brute force's costs as the map grows past it (a null row was read there before).
 TEST(RecentRows, AMapSmallerThanHalfAContrastWindowGivesTheBruteForceCosts) {

@@ -29,8 +29,11 @@ constexpr int kMissingRowsShare = 4;
  *
  * A cell of a row is final once the map reaches half a contrast window beyond it; the few cells the
  * end of a query's reference clips are enhanced for that query alone. Rows are kept for the newest
- * frames, as many as the longest test sequence asked, at most `max_rows`. Thread-safe: queries that
- * use the rows take turns.
+ * frames, as many as the longest test sequence asked, at most `max_rows`, until the map has grown by
+ * `max_rows` frames since that question: then as many as the question being asked. So one long
+ * `~query` among continuous mode's short ones does not keep its rows (4 bytes a map frame each) for
+ * good, and long questions asked again and again keep theirs. Thread-safe: queries that use the rows
+ * take turns.
  */
 class RecentRows {
  public:
@@ -114,7 +117,8 @@ class RecentRows {
 
   mutable std::mutex mutex_;
   std::map<int, Row> rows_;  ///< By map frame.
-  int kept_rows_ = 0;        ///< The longest test sequence asked, at most max_rows_.
+  int kept_rows_ = 0;        ///< The longest test sequence asked lately, at most max_rows_.
+  int kept_since_ = 0;       ///< The map's size when it was asked.
   int asked_newest_ = -1;    ///< The newest test frame of the last question noteAsked recorded.
   int asked_map_size_ = 0;   ///< The map's size then: a smaller map is another map.
   std::atomic<std::size_t> bytes_{0};
