@@ -40,8 +40,15 @@ void PlaceRecognitionNode::openMap() {
   // starting empty over a map it could not read.
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
   startSession(recognizer_.size());
-  ROS_INFO("mrs_vpr: map database '%s': %d frames loaded; keyframes are committed every %g s or %d frames",
-           absolutePath(params_.database).c_str(), recognizer_.size(), params_.commit.period, params_.commit.frames);
+  ROS_INFO("mrs_vpr: map database '%s': %d frames loaded (%d linked to a place an earlier visit shows); keyframes "
+           "are committed every %g s or %d frames",
+           absolutePath(params_.database).c_str(), recognizer_.size(), recognizer_.state().linked_frames,
+           params_.commit.period, params_.commit.frames);
+  if (const int format = map_->convertedFromFormat()) {
+    ROS_INFO("mrs_vpr: map database '%s': converted from format %d to %d (it now keeps the place links): releases "
+             "before format %d cannot open it any more",
+             absolutePath(params_.database).c_str(), format, MapDatabase::kFormatVersion, MapDatabase::kFormatVersion);
+  }
   const std::string mismatch = keyframingMismatchOfMap();
   if (!mismatch.empty()) {
     ROS_WARN("mrs_vpr: map database '%s': %s", absolutePath(params_.database).c_str(), mismatch.c_str());

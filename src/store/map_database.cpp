@@ -331,6 +331,7 @@ void MapDatabase::convertToCurrentFormat() {
     fail("cannot convert it from format " + std::to_string(format_version_) + " to " + std::to_string(kFormatVersion) +
          " (it is left as it was): " + problem);
   }
+  converted_from_ = format_version_;
   format_version_ = kFormatVersion;
 }
 
@@ -396,9 +397,11 @@ std::vector<PlaceLink> MapDatabase::placeLinks() const {
       const sqlite3_int64 frame = sqlite3_column_int64(rows.get(), column);
       if (sqlite3_column_type(rows.get(), column) != SQLITE_INTEGER || frame < 0 || frame >= frames) {
         const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(rows.get(), column));
-        fail("place link " + std::to_string(sqlite3_column_int64(rows.get(), 0)) + " names frame '" +
-             (text != nullptr ? text : "NULL") + "', not one of its " + std::to_string(frames) +
-             " frames (counted from 0)");
+        const std::string id = std::to_string(sqlite3_column_int64(rows.get(), 0));
+        fail("place link " + id + ": its " + sqlite3_column_name(rows.get(), column) + " '" +
+             (text != nullptr ? text : "NULL") + "' is not one of its " + std::to_string(frames) +
+             " frames (counted from 0); with no node holding the map, sqlite3 '" + path_ +
+             "' \"DELETE FROM place_links WHERE id = " + id + "\" removes the link (the frames stay)");
       }
       return static_cast<int>(frame);
     };

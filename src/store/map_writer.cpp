@@ -120,23 +120,38 @@ void MapWriter::commitQueuedLocked() {
   last_error_.clear();
 }
 
+bool MapWriter::tryCommit() {
+  std::lock_guard<std::mutex> database_lock(database_mutex_);
+  try {
+    commitQueuedLocked();
+  } catch (const std::exception&) {
+    return false;  // lastError() has it; the frames and links wait for the next try.
+  }
+  return true;
+}
+
 void MapWriter::run() {
   std::unique_lock<std::mutex> lock(queue_mutex_);
+  const auto frames_or_stop = [&] { return stopping_ || !queue_.empty(); };
   for (;;) {
-    wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
-    if (queue_.empty()) return;  // Stopping, and everything is committed.
+    // Links also come with no frame after them (a robot standing, a full map, a service's question):
+    // asked for every period, so that none waits longer than a frame would.
+    if (link_source_) {
+      wake_.wait_for(lock, toDuration(policy_.period), frames_or_stop);
+    } else {
+      wake_.wait(lock, frames_or_stop);
+    }
+    if (queue_.empty()) {
+      if (stopping_) return;  // Everything is committed (stop() commits the links left).
+      lock.unlock();
+      tryCommit();  // The links alone, if any: nothing is written otherwise.
+      lock.lock();
+      continue;
+    }
     wake_.wait_until(lock, oldest_ + toDuration(policy_.period),
                      [&] { return stopping_ || static_cast<int>(queue_.size()) >= policy_.frames; });
     lock.unlock();
-    bool failed = false;
-    {
-      std::lock_guard<std::mutex> database_lock(database_mutex_);
-      try {
-        commitQueuedLocked();
-      } catch (const std::exception&) {
-        failed = true;  // lastError() has it; the frames wait for the next try.
-      }
-    }
+    const bool failed = !tryCommit();
     lock.lock();
     if (failed) {
       if (stopping_) return;  // The last try failed too: the map keeps these frames, the file does not.

@@ -1,3 +1,4 @@
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <string>
@@ -57,6 +58,31 @@ TEST_F(MapWriterTest, AddOnlyQueuesAndTheCommitFollowsWithinThePeriod) {
   std::int64_t stored = 0;
   writer.withDatabase([&](MapDatabase& db) { stored = db.size(); });
   EXPECT_EQ(stored, 5);
+}
+
+// A place link made with no frame after it (a robot standing, a full map) is committed within a
+// period too, not with the next frame or at the stop: a kill -9 would lose it.
+TEST_F(MapWriterTest, LinksWithNoFrameAfterThemAreCommittedWithinThePeriod) {
+  MapDatabase database(path(), thumbnailParams());
+  database.append({frame(0), frame(1), frame(2)});
+  std::atomic<bool> made{false};
+  std::atomic<bool> taken{false};
+  MapWriter writer(database, CommitPolicy{0.05, 1000}, [&] {
+    if (!made || taken.exchange(true)) return std::vector<PlaceLink>();
+    return std::vector<PlaceLink>{{2, 0}};
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  made = true;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!taken && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(taken) << "the writer did not ask for the link";
+  std::vector<PlaceLink> stored;
+  writer.withDatabase([&](MapDatabase& db) { stored = db.placeLinks(); });
+  ASSERT_EQ(stored.size(), 1U);
+  EXPECT_EQ(stored[0].frame, 2);
+  EXPECT_EQ(writer.persisted(), 3U);
 }
 
 TEST_F(MapWriterTest, AFullBatchIsCommittedWithoutWaitingForThePeriod) {

@@ -124,8 +124,10 @@ TEST_F(StoredPlaceLinksTest, AFormatTwoMapHasNoLinksAndGainsTheirTableWhenWritte
   EXPECT_EQ(metadataValue(path("old.db"), "format_version"), "2");  // Only read: left as it was.
   {
     MapDatabase database(path("old.db"), thumbnailParams());
+    EXPECT_EQ(database.convertedFromFormat(), 2);  // for the node to say so
     database.append({}, {{3, 0}});
   }
+  EXPECT_EQ(MapDatabase(path("old.db"), thumbnailParams()).convertedFromFormat(), 0);
   EXPECT_EQ(metadataValue(path("old.db"), "format_version"), "3");
   EXPECT_EQ(pairsOf(MapDatabase(path("old.db"), thumbnailParams(), MapAccess::kReadOnly).placeLinks()),
             (std::vector<std::pair<int, int>>{{3, 0}}));
@@ -138,12 +140,20 @@ TEST_F(StoredPlaceLinksTest, ALinkThatIsNotTwoOfTheMapsFramesIsAnErrorNamingIt) 
     MapDatabase(path("map.db"), thumbnailParams(), MapAccess::kReadOnly).placeLinks();
     FAIL() << "no error";
   } catch (const MapDatabaseError& error) {
-    EXPECT_NE(std::string(error.what()).find("place link 2 names frame '9', not one of its 4 frames"),
+    EXPECT_NE(std::string(error.what()).find("place link 2: its frame '9' is not one of its 4 frames (counted from 0); "
+                                             "with no node holding the map, sqlite3 '" + path("map.db") +
+                                             "' \"DELETE FROM place_links WHERE id = 2\" removes the link"),
               std::string::npos)
         << error.what();
   }
-  runSql(path("map.db"), "UPDATE place_links SET frame = 'x' WHERE id = 2");
-  EXPECT_THROW(MapDatabase(path("map.db"), thumbnailParams(), MapAccess::kReadOnly).placeLinks(), MapDatabaseError);
+  runSql(path("map.db"), "UPDATE place_links SET frame = 1, reference = 'x' WHERE id = 2");
+  try {
+    MapDatabase(path("map.db"), thumbnailParams(), MapAccess::kReadOnly).placeLinks();
+    FAIL() << "no error";
+  } catch (const MapDatabaseError& error) {
+    EXPECT_NE(std::string(error.what()).find("place link 2: its reference 'x' is not one of"), std::string::npos)
+        << error.what();
+  }
   // A node does not start on it (the map is never replaced by an empty one).
   PlaceRecognizer recognizer(testing_support::routeParameters());
   EXPECT_THROW(PersistentMap(recognizer, path("map.db"), CommitPolicy{}), MapDatabaseError);

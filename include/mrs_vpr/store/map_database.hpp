@@ -181,6 +181,8 @@ class MapDatabase {
   std::optional<MapTraversal> readTraversal() const;
 
   const std::string& path() const { return path_; }
+  /// The format of an older map converted to the current one when it was opened; 0 when none was.
+  int convertedFromFormat() const { return converted_from_; }
   /// The front end of the map's descriptors (DescriptorParams::type and that type's fields).
   const DescriptorParams& descriptorParams() const { return params_; }
 
@@ -221,6 +223,7 @@ class MapDatabase {
   DescriptorParams params_;
   int descriptor_bytes_ = 0;
   int format_version_ = kFormatVersion;
+  int converted_from_ = 0;
   std::optional<MapTraversal> traversal_;
   sqlite3* db_ = nullptr;
 };

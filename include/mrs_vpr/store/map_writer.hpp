@@ -28,7 +28,8 @@ struct CommitPolicy {
  *
  * Each commit also stores the place links that the map's accepted answers made since the last one,
  * taken from a LinkSource before the frames (a link names frames the map held when it was made, which
- * were queued by then); links with no new frame wait for the next frames' commit or the last one.
+ * were queued by then); with no frame queued, the LinkSource is asked every CommitPolicy::period, so
+ * that a link waits for its commit no longer than a frame does.
  *
  * A commit that fails (disk full, say) keeps its frames queued, in order, and its links, and is tried
  * again one period later; lastError() tells why meanwhile. Every member is thread-safe.
@@ -79,6 +80,8 @@ class MapWriter {
 
  private:
   void run();
+  /// Commits the queue, holding database_mutex_; false when that failed.
+  bool tryCommit();
   /// Commits the queue; the caller holds database_mutex_. Throws MapDatabaseError.
   void commitQueuedLocked();
 

@@ -100,6 +100,8 @@ class PersistentMap {
   std::size_t labelBytes() const;
 
   bool persistent() const { return database_ != nullptr; }
+  /// The format the database was converted from when it was opened (MapDatabase::convertedFromFormat).
+  int convertedFromFormat() const { return database_ ? database_->convertedFromFormat() : 0; }
   /// The database's path; empty in memory only.
   std::string databasePath() const { return database_ ? database_->path() : ""; }
   /// Frames committed to the database, which survive a crash; 0 in memory only.
