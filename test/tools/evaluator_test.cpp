@@ -190,11 +190,12 @@ TEST_F(EvaluatorTest, AMapDatabaseIsJudgedWithItsPlaceLinks) {
   EXPECT_GT(of_one_visit, 5);
   EXPECT_LT(unlinked, of_one_visit / 2) << unlinked;
   // Each frame of the second visit linked to the first's, as accepted closures would have linked them.
-  const int frames = static_cast<int>(std::distance(fs::directory_iterator(path("reference")), fs::directory_iterator()));
+  const int frames =
+      static_cast<int>(std::distance(fs::directory_iterator(path("reference")), fs::directory_iterator()));
   mrs_vpr::testing_support::runSql(twice, "WITH RECURSIVE i(n) AS (SELECT 0 UNION ALL SELECT n + 1 FROM i WHERE n < " +
-                                               std::to_string(frames - 1) +
-                                               ") INSERT INTO place_links (frame, reference) SELECT n + " +
-                                               std::to_string(frames) + ", n FROM i");
+                                              std::to_string(frames - 1) +
+                                              ") INSERT INTO place_links (frame, reference) SELECT n + " +
+                                              std::to_string(frames) + ", n FROM i");
   const auto [linked, progress] = accepted(twice, path("linked.json"));
   // The twin is no rival, and the map's other places count twice among the rivals, which on a map of
   // a few dozen places lowers the required confidence (requiredConfidence()): at least as many.
