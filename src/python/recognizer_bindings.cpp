@@ -328,6 +328,10 @@ void bindRecognizer(py::module_& m) {
           "Frames offered since the map was last emptied or loaded that it did not keep (too similar to the "
           "last keyframe, or the map full): while there are any, map frame i is not the i-th frame offered.")
       .def_property_readonly(
+          "linked_frames", [](Recognizer& self) { return self.core().state().linked_frames; },
+          "Map frames that match_recent's accepted answers linked to a place an earlier visit shows, so that "
+          "the place's visits are no rivals of each other; saved and loaded with the map.")
+      .def_property_readonly(
           "pending_frames", [](Recognizer& self) { return self.core().pending(); },
           "Frames added while a query held the map, waiting to enter it.")
       .def_property_readonly(

@@ -56,6 +56,22 @@ def test_match_recent_finds_the_newest_frames_among_the_older_ones(route):
     assert answer.newest_stamp == 1249.0
 
 
+def test_the_places_match_recent_links_are_saved_and_loaded_with_the_map(route, tmp_path):
+    recognizer = mrs_vpr.PlaceRecognizer(recent_exclusion=50, **ROUTE_PARAMETERS)
+    recognizer.add_frames(route["reference"])
+    assert recognizer.linked_frames == 0
+    accepted = 0
+    for i in range(100, 250):  # the second traversal, asked about after each frame as continuous mode asks
+        recognizer.add_frame(route["query"][i], stamp=1000.0 + i)
+        accepted += recognizer.match_recent(20).accepted
+    assert accepted >= 10
+    assert recognizer.linked_frames == accepted  # each accepted answer linked a new keyframe
+    recognizer.save(str(tmp_path / "linked.db"))
+    loaded = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
+    loaded.load(str(tmp_path / "linked.db"))
+    assert loaded.linked_frames == accepted
+
+
 def test_match_recent_ending_at_an_older_frame_and_a_centred_answer_name_the_frame_localised(route):
     parameters = dict(ROUTE_PARAMETERS, alignment="centred")
     recognizer = mrs_vpr.PlaceRecognizer(recent_exclusion=50, **parameters)
