@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/imgproc.hpp>
 #include <ros/ros.h>
 #include <rosbag/bag.h>
 #include <std_srvs/Trigger.h>
@@ -486,6 +487,66 @@ TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
   ASSERT_TRUE(after_restart.waitConnected());
   expectSequencesOfCameraKeyframesOnly(after_restart, 240, 280, restarted, std::chrono::milliseconds(20));
   EXPECT_EQ(node->stop(), 0);
+}
+
+// A node that maps as it drives closes the loops of a revisit, which link the visits' frames, so that a
+// place it holds twice is no rival of itself: the links survive a restart and a saved and loaded map.
+TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAndALoad) {
+  const std::string database = path("map.db");
+  std::uint32_t linked = 0;
+  {
+    auto node = startNode("linker", database, {"auto_query_period:=0.2", "descriptor/type:=thumbnail"});
+    MapInfoWatch info(nh_, "/" + node->name());
+    TopicInbox<mrs_vpr::LoopClosure> closures(nh_, "/" + node->name() + "/loop_closure");
+    ASSERT_TRUE(closures.waitConnected());
+    publishReference(0, 300);
+    waitPersisted(info, 300);
+    // Ground the route does not hold, then the route's frames 100..299 again, later and in another
+    // numbering (the same images: a day like the first), asked about as continuous mode asks.
+    const cv::Mat& like = defaultRouteImages().reference[0];
+    cv::RNG rng(11);
+    for (int i = 0; i < 260; ++i) {
+      cv::Mat view = defaultRouteImages().reference[static_cast<std::size_t>(std::max(i - 60, 0) + 100)];
+      if (i < 60) {
+        view = cv::Mat(like.size(), like.type());
+        rng.fill(view, cv::RNG::UNIFORM, 0, 256);
+        cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
+      }
+      image_pub_.publish(*mrs_vpr::bag::toImageMessage(view, "bgr8", ros::Time(9000.0 + i * kFramePeriod), "camera",
+                                                       static_cast<std::uint32_t>(100000 + i)));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    waitPersisted(info, 560);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // the last questions
+    int accepted = 0;
+    for (const mrs_vpr::LoopClosure& closure : closures.received()) accepted += closure.accepted ? 1 : 0;
+    ASSERT_TRUE(info.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames_linked == static_cast<std::uint32_t>(accepted); }, 10.0))
+        << info.latest().frames_linked << " frames linked, " << accepted << " closures accepted";
+    EXPECT_GE(accepted, 10) << closures.received().size() << " closures";
+    std::printf("[ figures  ] revisit: %zu closures, %d accepted, %u frames linked\n", closures.received().size(),
+                accepted, info.latest().frames_linked);
+    linked = info.latest().frames_linked;
+    EXPECT_EQ(node->stop(), 0);
+  }
+  auto node = startNode("linker", database, {"descriptor/type:=thumbnail"});
+  MapInfoWatch info(nh_, "/" + node->name());
+  ASSERT_TRUE(info.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == 560; }, 30.0));
+  EXPECT_EQ(info.latest().frames_linked, linked) << "after the restart";
+  mrs_vpr::SaveMap save;
+  save.request.path = path("linked_copy.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("save_map"), save));
+  ASSERT_TRUE(save.response.success) << save.response.message;
+  EXPECT_EQ(node->stop(), 0);
+
+  auto loader = startNode("loader", "", {"descriptor/type:=thumbnail"});
+  MapInfoWatch loaded(nh_, "/" + loader->name());
+  mrs_vpr::LoadMap load;
+  load.request.path = path("linked_copy.db");
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(loader->service("load_map"), load));
+  ASSERT_TRUE(load.response.success) << load.response.message;
+  ASSERT_TRUE(loaded.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == 560; }, 30.0));
+  EXPECT_EQ(loaded.latest().frames_linked, linked) << "after ~load_map";
+  EXPECT_EQ(loader->stop(), 0);
 }
 
 TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {
