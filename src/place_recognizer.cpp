@@ -47,6 +47,7 @@ PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParam
     : params_(params),
       recognizer_(recognizer),
       extractor_(params.descriptor),
+      trail_(extractor_.size()),
       keyframes_(params.descriptor, recognizer.min_appearance_change),
       map_(extractor_.size()) {
   params_.validate();
@@ -88,6 +89,39 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
     keyframes_.skip(descriptor);
   }
   return admission;
+}
+
+FrameAdmission PlaceRecognizer::offerToTrail(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptorBytes(descriptor, extractor_.size());
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  if (!keyframes_.wants(descriptor)) {
+    keyframes_.skip(descriptor);
+    return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
+  }
+  {
+    std::lock_guard<std::mutex> trail_lock(trail_mutex_);
+    trail_.append(descriptor, stamp);
+  }
+  keepKeyframeLocked(descriptor);
+  newest_keyframe_in_map_ = true;  // a keyframe a question can localise, as a map keyframe
+  return FrameAdmission::kAdmitted;
+}
+
+FrameAdmission PlaceRecognizer::addToTrail(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptorBytes(descriptor, extractor_.size());
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  {
+    std::lock_guard<std::mutex> trail_lock(trail_mutex_);
+    trail_.append(descriptor, stamp);
+  }
+  keepKeyframeLocked(descriptor);
+  newest_keyframe_in_map_ = true;
+  return FrameAdmission::kAdmitted;
+}
+
+std::int64_t PlaceRecognizer::trailSize() const {
+  std::lock_guard<std::mutex> lock(trail_mutex_);
+  return trail_.size();
 }
 
 void PlaceRecognizer::keepKeyframeLocked(const cv::Mat& descriptor) {
@@ -493,6 +527,62 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
   }
   flush();
   return matches;
+}
+
+PlaceAnswer PlaceRecognizer::matchTrail(long long frames, const std::string& method, MatchExplanation* explanation,
+                                        long long end) {
+  matcherFor(method);
+  if (frames < kMinSequenceFrames) {
+    throw std::invalid_argument("recent_frames must be at least " + std::to_string(kMinSequenceFrames) + ", got " +
+                                std::to_string(frames));
+  }
+  if (end < -1) {
+    throw std::invalid_argument("a test sequence cannot end at keyframe " + std::to_string(end) +
+                                " (-1: after the newest keyframe)");
+  }
+  // A copy of the test keyframes and of those before them that the turn-back rule reads: the camera
+  // goes on adding keyframes while the question runs.
+  DescriptorSequence keyframes(extractor_.size());
+  int before = 0;
+  {
+    std::lock_guard<std::mutex> lock(trail_mutex_);
+    const std::int64_t stop = end < 0 ? trail_.size() : end;
+    if (stop > trail_.size()) {
+      throw std::invalid_argument("a test sequence cannot end at keyframe " + std::to_string(end) + ": the camera " +
+                                  "has given " + std::to_string(trail_.size()) + " keyframes");
+    }
+    if (frames > stop - trail_.oldest()) {
+      throw std::invalid_argument("recent_frames " + std::to_string(frames) + " is more than the " +
+                                  std::to_string(stop - trail_.oldest()) + " keyframes the camera has given" +
+                                  (trail_.oldest() > 0 ? " that are still held" : "") +
+                                  (end >= 0 ? " before keyframe " + std::to_string(end) : ""));
+    }
+    const std::int64_t reach = kReachInSequenceLengths * (frames + AppearanceKeyframes::kRecentKeyframes);
+    before = static_cast<int>(std::min<std::int64_t>(stop - frames - trail_.oldest(), reach));
+    keyframes = trail_.copy(stop - frames - before, stop);
+  }
+  const int count = static_cast<int>(frames);
+  const SequenceView test = keyframes.view(before, before + count);
+  flush();
+  PlaceAnswer result;
+  {
+    std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+    const RepeatedViews repeated_views = repeatedViews();
+    const int in_map = framesToSearchLocked();
+    if (count > in_map) {
+      throw std::invalid_argument("recent_frames " + std::to_string(count) + " is more than the " +
+                                  std::to_string(in_map) + " frames in the reference map");
+    }
+    result = answer(map_.view(), test, method, explanation);
+    refuseRepeatedViews(result.match, test, repeated_views);
+    // None of the trail is in the map: every keyframe before the sequence is left out of the search.
+    refuseTurnsBack(result.match, keyframes, {before, before + count}, result.localised_row, before, repeated_views);
+    result.verdict = acceptanceVerdict(result.match, params_.sequence);
+    result.newest_stamp = keyframes.stamp(before + count - 1);
+    result.localised_stamp = keyframes.stamp(before + result.localised_row);
+  }
+  flush();
+  return result;
 }
 
 PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method,

@@ -23,6 +23,7 @@
 #include "mrs_vpr/repeated_views.hpp"
 #include "mrs_vpr/sequence_matcher.hpp"
 #include "mrs_vpr/stamp.hpp"
+#include "mrs_vpr/trail.hpp"
 
 namespace mrs_vpr {
 
@@ -145,6 +146,27 @@ class PlaceRecognizer {
    */
   PlaceAnswer matchRecent(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
                           int end = -1);
+  /**
+   * For a map that stays as it is (a map built earlier, localisation only): offers a camera frame's
+   * descriptor as offerDescriptor() does, but a keyframe joins the trail of the camera's newest
+   * keyframes (trail.hpp) instead of the map. kAdmitted, kTooSimilar or kSeenRecently.
+   */
+  FrameAdmission offerToTrail(const cv::Mat& descriptor, Stamp stamp = Stamp());
+  /// The same for a descriptor that is a keyframe already (one chosen by travel): always kAdmitted.
+  FrameAdmission addToTrail(const cv::Mat& descriptor, Stamp stamp = Stamp());
+  /// Keyframes that joined the trail since the recognizer was made: where its newest ends.
+  std::int64_t trailSize() const;
+  /**
+   * matchRecent() for the trail: where the trail's `frames` newest keyframes (those before trail
+   * keyframe `end`, counted as trailSize() counts, when `end` >= 0) lie in the whole map. The rules of
+   * the camera's own keyframes judge it as they judge matchRecent's answers, but for the recording's
+   * (its keyframes are not in the map), and it links no place. Throws std::invalid_argument when the
+   * trail does not hold those keyframes (it holds the newest kTrailKeyframes at least) or the map
+   * holds fewer than `frames` frames. PlaceAnswer::localised_frame is -1.
+   */
+  PlaceAnswer matchTrail(long long frames, const std::string& method = "", MatchExplanation* explanation = nullptr,
+                         long long end = -1);
+
   /// The fewest map frames with which matchRecent can ask about `frames` of them: the searched
   /// older frames (all but those and recent_exclusion) must be at least as many. Wide, so that no
   /// count of frames overflows it.
@@ -293,6 +315,8 @@ class PlaceRecognizer {
   DescriptorExtractor extractor_;
   QueryStop stop_;  // before the matchers, which point to it
   PlaceLinks links_;  // the same; its own lock (continuous mode links while queries read)
+  mutable std::mutex trail_mutex_;  // held only to append to the trail or copy from it
+  Trail trail_;
   std::map<std::string, std::unique_ptr<SequenceMatcher>> matchers_;
 
   // Held while a frame is offered, so that frames are decided and added one at a time, in order.

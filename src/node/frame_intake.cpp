@@ -150,10 +150,16 @@ bool PlaceRecognitionNode::wantedByPolicies(const std_msgs::Header& header, doub
 bool PlaceRecognitionNode::admit(const cv::Mat& descriptor, Stamp stamp, const std_msgs::Header& header,
                                  double seconds) {
   // Keyframes by travel are chosen before; otherwise the recognizer keeps a frame whose view has changed.
+  // A fixed map stays as it is: the keyframes join the recognizer's trail, which questions ask about.
   FrameAdmission admission = FrameAdmission::kAdmitted;
   try {
-    admission = travel_policy_.enabled() ? map_->add(descriptor, stamp, header.frame_id, header.seq)
-                                         : map_->offer(descriptor, stamp, header.frame_id, header.seq);
+    if (params_.fixedMap()) {
+      admission = travel_policy_.enabled() ? recognizer_.addToTrail(descriptor, stamp)
+                                           : recognizer_.offerToTrail(descriptor, stamp);
+    } else {
+      admission = travel_policy_.enabled() ? map_->add(descriptor, stamp, header.frame_id, header.seq)
+                                           : map_->offer(descriptor, stamp, header.frame_id, header.seq);
+    }
   } catch (const std::exception& error) {  // std::bad_alloc: no memory left for the map
     ++frames_dropped_;
     ROS_ERROR_THROTTLE(kWarningPeriod, "mrs_vpr: could not add a keyframe to the map (%s); dropping frames",

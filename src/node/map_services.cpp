@@ -34,6 +34,10 @@ std::string relativePathNote(const std::string& path) {
 void PlaceRecognitionNode::openMap() {
   if (params_.database.empty()) {
     map_ = std::make_unique<PersistentMap>(recognizer_);
+    if (params_.fixedMap()) {
+      ROS_WARN("mrs_vpr: ~map_mode is fixed and the map is empty: nothing is localised until a map is loaded "
+               "(~load_map; or start with ~database)");
+    }
     return;
   }
   // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
@@ -48,6 +52,9 @@ void PlaceRecognitionNode::openMap() {
     ROS_INFO("mrs_vpr: map database '%s': converted from format %d to %d (it now keeps the place links): releases "
              "before format %d cannot open it any more",
              absolutePath(params_.database).c_str(), format, MapDatabase::kFormatVersion, MapDatabase::kFormatVersion);
+  }
+  if (params_.fixedMap()) {
+    ROS_INFO("mrs_vpr: ~map_mode fixed: the map stays as loaded; the camera's keyframes only localise in it");
   }
   const std::string mismatch = keyframingMismatchOfMap();
   if (!mismatch.empty()) {

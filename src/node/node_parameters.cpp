@@ -52,8 +52,14 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
         "sets every nodelet's OpenCV threads."},
        &P::threads},
       {{"database", Range{}, {}, "a file path; empty = memory only",
-        "Map database (SQLite) loaded at start-up and extended with every keyframe; created when missing."},
+        "Map database (SQLite) loaded at start-up and extended with every keyframe (~map_mode extend); created "
+        "when missing."},
        &P::database},
+      {{"map_mode", Range{}, {"extend", "fixed"}, "",
+        "extend: every keyframe joins the map (and ~database), so that a drive closes loops with itself; fixed: "
+        "the map stays as loaded (a map built earlier), and the camera's keyframes only localise in it "
+        "(continuous mode and ~query {recent_frames} ask about them)."},
+       &P::map_mode},
   };
   return table;
 }

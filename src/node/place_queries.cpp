@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -96,7 +97,9 @@ PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Respo
   // Images at the camera's rate are spaced as the map is: keyframed by appearance as its frames were
   // (with keyframes by travel, the images are taken as keyframes already).
   PlaceAnswer answered =
-      !input.images               ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
+      !input.images && params_.fixedMap()
+          ? recognizer_.matchTrail(input.recent_frames, input.method, explain, input.end)
+      : !input.images             ? recognizer_.matchRecent(input.recent_frames, input.method, explain, input.end)
       : travel_policy_.enabled()  ? recognizer_.match(*input.images, input.method, explain)
                                   : recognizer_.matchKeyframesOf(*input.images, input.method, explain);
   if (input.images) {
@@ -191,10 +194,16 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   }
   const int recent = params_.autoQueryFrames();
   // A test sequence holds the camera's keyframes of this run only: one reaching back into a loaded
-  // map would join two drives, and its centre could be a keyframe of the file.
-  const long long first_size =
+  // map would join two drives, and its centre could be a keyframe of the file. A fixed map's are
+  // the trail's, all of this run, and the whole map is searched.
+  long long first_size =
       std::max(recognizer_.fewestFramesForRecent(recent), static_cast<long long>(session_start_size_) + recent);
-  const int size = recognizer_.size();
+  int size = recognizer_.size();
+  if (params_.fixedMap()) {
+    if (recognizer_.size() < recent) return;  // nothing to localise in (yet: a map may be loaded)
+    first_size = recent;
+    size = static_cast<int>(std::min<std::int64_t>(recognizer_.trailSize(), std::numeric_limits<int>::max()));
+  }
   if (size < first_size) {
     return;  // too early: not enough older frames to search yet
   }

@@ -334,6 +334,59 @@ TEST(PlaceRecognizer, AStretchDrivenAgainAndAgainKeepsClosingItsLoops) {
   }
 }
 
+// A map that stays as it is (built on an earlier drive): the camera's keyframes join the trail, not the
+// map, and questions about the newest of them find the places of a stretch the map holds, and none on
+// ground it does not hold.
+TEST(PlaceRecognizer, AFixedMapLocalisesTheCamerasKeyframesWithoutGrowing) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(routeParameters(), limits);
+  for (int frame = 0; frame < 600; ++frame) {
+    recognizer.addFrame(route().reference[static_cast<std::size_t>(frame)], Stamp::fromNanoseconds(frame + 1));
+  }
+  const int mapped = recognizer.size();
+  std::vector<int> frame_of_keyframe;  // the route frame each trail keyframe shows; -1 elsewhere
+  std::int64_t stamp_ns = 1'000'000'000'000;
+  const auto offer = [&](const cv::Mat& image, int frame) {
+    stamp_ns += 100'000'000;
+    if (recognizer.offerToTrail(recognizer.describe(image), Stamp::fromNanoseconds(stamp_ns)) !=
+        FrameAdmission::kAdmitted) {
+      return false;
+    }
+    frame_of_keyframe.push_back(frame);
+    return true;
+  };
+  int right = 0;
+  int wrong = 0;
+  int elsewhere_accepted = 0;
+  cv::RNG rng(3);
+  for (int i = 0; i < 60; ++i) {  // ground the map does not hold
+    cv::Mat view(route().reference[0].size(), route().reference[0].type());
+    rng.fill(view, cv::RNG::UNIFORM, 0, 256);
+    cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
+    if (offer(view, -1) && recognizer.trailSize() >= 20) elsewhere_accepted += recognizer.matchTrail(20).match.accepted;
+  }
+  for (int frame = 100; frame < 300; ++frame) {
+    if (!offer(route().reference[static_cast<std::size_t>(frame)], frame)) continue;
+    const PlaceAnswer answer = recognizer.matchTrail(20);
+    EXPECT_EQ(answer.localised_frame, -1);
+    if (!answer.match.accepted) continue;
+    const int localised = static_cast<int>(recognizer.trailSize()) - 20 + answer.localised_row;
+    const int truth = frame_of_keyframe[static_cast<std::size_t>(localised)];
+    ++(truth >= 0 && within(answer.match.reference_index, truth, 5) ? right : wrong);
+  }
+  EXPECT_EQ(elsewhere_accepted, 0);
+  EXPECT_GT(right, 100);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_EQ(recognizer.size(), mapped);  // the map stayed as it was
+  // A question names keyframes the trail holds, and a map large enough.
+  EXPECT_NE(errorOf([&] { recognizer.matchTrail(20, "", nullptr, 10000); }).find("the camera has given"),
+            std::string::npos);
+  PlaceRecognizer empty(routeParameters());
+  EXPECT_NE(errorOf([&] { empty.matchTrail(20); }).find("recent_frames 20 is more than the 0 keyframes"),
+            std::string::npos);
+}
+
 // A map filled frame by frame (mrs_vpr_eval's, of a map database) takes the links its database kept,
 // and refuses a link to a frame it does not hold, keeping those it has.
 TEST(PlaceRecognizer, AMapFilledFrameByFrameTakesItsLinksAndRefusesOnesOutsideIt) {

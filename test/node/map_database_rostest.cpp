@@ -166,6 +166,31 @@ class MapDatabaseNodeTest : public ::testing::Test {
     }
   }
 
+  /// Publishes kRevisitFrames frames, later and in another numbering: kElsewhereFrames of ground the
+  /// route does not hold, then the route's frames 100.. again (the same images: a day like the first).
+  void publishRevisit() {
+    const cv::Mat& like = defaultRouteImages().reference[0];
+    cv::RNG rng(11);
+    for (int i = 0; i < kRevisitFrames; ++i) {
+      cv::Mat view = like;
+      if (i < kElsewhereFrames) {
+        view = cv::Mat(like.size(), like.type());
+        rng.fill(view, cv::RNG::UNIFORM, 0, 256);
+        cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
+      } else {
+        view = defaultRouteImages().reference[static_cast<std::size_t>(revisitRouteFrame(i))];
+      }
+      image_pub_.publish(*mrs_vpr::bag::toImageMessage(view, "bgr8", ros::Time(kRevisitStart + i * kFramePeriod),
+                                                       "camera", static_cast<std::uint32_t>(100000 + i)));
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+  static constexpr int kElsewhereFrames = 60;
+  static constexpr int kRevisitFrames = 260;
+  static constexpr double kRevisitStart = 9000.0;  // stamp of the revisit's first frame [s]
+  /// The route frame that revisit frame i shows; -1 for ground the route does not hold.
+  static int revisitRouteFrame(int i) { return i < kElsewhereFrames ? -1 : 100 + i - kElsewhereFrames; }
+
   /// Publishes reference frames [begin, end) after a map of `begin` frames was loaded, and expects
   /// every closure continuous mode publishes to localise the newest keyframe (causal alignment) of a
   /// sequence that holds published frames only.
@@ -501,21 +526,7 @@ TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAnd
     ASSERT_TRUE(closures.waitConnected());
     publishReference(0, 300);
     waitPersisted(info, 300);
-    // Ground the route does not hold, then the route's frames 100..299 again, later and in another
-    // numbering (the same images: a day like the first), asked about as continuous mode asks.
-    const cv::Mat& like = defaultRouteImages().reference[0];
-    cv::RNG rng(11);
-    for (int i = 0; i < 260; ++i) {
-      cv::Mat view = defaultRouteImages().reference[static_cast<std::size_t>(std::max(i - 60, 0) + 100)];
-      if (i < 60) {
-        view = cv::Mat(like.size(), like.type());
-        rng.fill(view, cv::RNG::UNIFORM, 0, 256);
-        cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
-      }
-      image_pub_.publish(*mrs_vpr::bag::toImageMessage(view, "bgr8", ros::Time(9000.0 + i * kFramePeriod), "camera",
-                                                       static_cast<std::uint32_t>(100000 + i)));
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
+    publishRevisit();
     waitPersisted(info, 560);
     std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // the last questions
     int accepted = 0;
@@ -551,6 +562,50 @@ TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAnd
   ASSERT_TRUE(loaded.waitFor([&](const mrs_vpr::MapInfo& m) { return m.frames == 560; }, 30.0));
   EXPECT_EQ(loaded.latest().frames_linked, linked) << "after ~load_map";
   EXPECT_EQ(loader->stop(), 0);
+}
+
+// A map built on an earlier drive, served with ~map_mode fixed: continuous mode localises the camera's
+// keyframes in it, right, and the map and its database stay as they were.
+TEST_F(MapDatabaseNodeTest, AFixedMapLocalisesTheCameraAndStaysAsItWas) {
+  const std::string database = path("map.db");
+  {
+    auto mapper = startNode("mapper", database, {"descriptor/type:=thumbnail"});
+    MapInfoWatch info(nh_, "/" + mapper->name());
+    publishReference(0, 300);
+    waitPersisted(info, 300);
+    EXPECT_EQ(mapper->stop(), 0);
+  }
+  auto node = startNode("localiser", database,
+                        {"descriptor/type:=thumbnail", "map_mode:=fixed", "auto_query_period:=0.2"});
+  MapInfoWatch info(nh_, "/" + node->name());
+  TopicInbox<mrs_vpr::LoopClosure> closures(nh_, "/" + node->name() + "/loop_closure");
+  ASSERT_TRUE(closures.waitConnected());
+  publishRevisit();
+  ASSERT_TRUE(info.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames_received == kRevisitFrames; }, 30.0));
+  std::this_thread::sleep_for(std::chrono::milliseconds(1000));  // the last questions
+  int right = 0;
+  for (const mrs_vpr::LoopClosure& closure : closures.received()) {
+    if (!closure.accepted) continue;
+    const int i =
+        static_cast<int>(std::lround((closure.localised_keyframe_stamp.toSec() - kRevisitStart) / kFramePeriod));
+    const int truth = revisitRouteFrame(i);
+    EXPECT_GE(truth, 0) << "accepted on ground the map does not hold (revisit frame " << i << ")";
+    EXPECT_NEAR(closure.reference_index, truth, kTolerance) << "revisit frame " << i;
+    right += truth >= 0 && std::abs(closure.reference_index - truth) <= kTolerance ? 1 : 0;
+  }
+  EXPECT_GE(right, 100) << closures.received().size() << " closures";
+  // ~query {recent_frames} asks about the camera's newest keyframes, as continuous mode does.
+  mrs_vpr::QuerySequence recent;
+  recent.request.recent_frames = 20;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  ASSERT_TRUE(recent.response.success) << recent.response.message;
+  EXPECT_TRUE(recent.response.accepted) << recent.response.message;
+  EXPECT_NEAR(recent.response.reference_index, 299, kTolerance);
+  EXPECT_EQ(info.latest().frames, 300U);
+  EXPECT_EQ(info.latest().frames_persisted, 300U);
+  EXPECT_EQ(node->stop(), 0);
+  EXPECT_EQ(mrs_vpr::MapDatabase(database, mrs_vpr::MapAccess::kReadOnly).size(), 300);
+  std::printf("[ figures  ] fixed map: %zu closures, %d accepted and right\n", closures.received().size(), right);
 }
 
 TEST_F(MapDatabaseNodeTest, KillNineAt30HzLosesNoFrameReportedPersisted) {

@@ -109,7 +109,8 @@ TEST(NodeParameters, DescriptionsCoverEveryParameterOnce) {
   EXPECT_EQ(names.count("descriptor/hog/cell_size"), 1U);
   EXPECT_EQ(names.count("min_appearance_change"), 1U);
   EXPECT_EQ(names.count("threads"), 1U);
-  EXPECT_EQ(descriptions.size(), 47U);
+  EXPECT_EQ(names.count("map_mode"), 1U);
+  EXPECT_EQ(descriptions.size(), 48U);
 }
 
 /// Sets each int or double field of one table just outside its range, at each bounded end, and

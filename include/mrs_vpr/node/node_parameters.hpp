@@ -34,6 +34,7 @@ struct NodeParameters {
   double map_info_rate = 1.0;       ///< Highest rate of ~map_info updates [Hz, wall-clock].
   int threads = 0;                  ///< Threads of a query's search (OpenCV's); 0 = one a core.
   std::string database;             ///< Map database path; empty = the map lives in memory only.
+  std::string map_mode = "extend";  ///< "extend": keyframes join the map; "fixed": they only localise.
   CommitPolicy commit;              ///< ~commit_period, ~commit_frames: batching of the database's commits.
 
   /// Throws std::invalid_argument naming the first parameter out of range (as ~group/name) and the
@@ -41,6 +42,8 @@ struct NodeParameters {
   void validate() const;
   /// auto_query_frames, or sequence/sequence_length when it is 0.
   int autoQueryFrames() const;
+  /// ~map_mode fixed: the map stays as it is, and the camera's keyframes join the recognizer's trail.
+  bool fixedMap() const { return map_mode == "fixed"; }
 };
 
 /// The node's own parameters (the core's are in descriptorParameters(), sequenceParameters() and
