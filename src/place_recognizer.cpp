@@ -74,10 +74,7 @@ FrameAdmission PlaceRecognizer::addFrame(const cv::Mat& image, Stamp stamp, Chan
 FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp stamp) {
   requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
-  if (!keyframes_.wants(descriptor)) {
-    keyframes_.skip(descriptor);
-    return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
-  }
+  if (const auto refused = notAKeyframeLocked(descriptor)) return *refused;
   const FrameAdmission admission = append(descriptor, stamp);
   // A full map still follows the camera as if it had room, so that only the frames that would have
   // been keyframes are dropped (a robot standing at a new place drops one); a frame that only waited
@@ -94,10 +91,7 @@ FrameAdmission PlaceRecognizer::offerDescriptor(const cv::Mat& descriptor, Stamp
 FrameAdmission PlaceRecognizer::offerToTrail(const cv::Mat& descriptor, Stamp stamp) {
   requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
-  if (!keyframes_.wants(descriptor)) {
-    keyframes_.skip(descriptor);
-    return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
-  }
+  if (const auto refused = notAKeyframeLocked(descriptor)) return *refused;
   {
     std::lock_guard<std::mutex> trail_lock(trail_mutex_);
     trail_.append(descriptor, stamp);
@@ -122,6 +116,12 @@ FrameAdmission PlaceRecognizer::addToTrail(const cv::Mat& descriptor, Stamp stam
 std::int64_t PlaceRecognizer::trailSize() const {
   std::lock_guard<std::mutex> lock(trail_mutex_);
   return trail_.size();
+}
+
+std::optional<FrameAdmission> PlaceRecognizer::notAKeyframeLocked(const cv::Mat& descriptor) {
+  if (keyframes_.wants(descriptor)) return std::nullopt;
+  keyframes_.skip(descriptor);
+  return keyframes_.lastSeenBefore() ? FrameAdmission::kSeenRecently : FrameAdmission::kTooSimilar;
 }
 
 void PlaceRecognizer::keepKeyframeLocked(const cv::Mat& descriptor) {

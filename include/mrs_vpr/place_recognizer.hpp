@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <shared_mutex>
 #include <string>
 #include <vector>
@@ -298,6 +299,9 @@ class PlaceRecognizer {
   /// Moves pending frames into the map; the caller holds map_mutex_ exclusively. When an append
   /// throws, the frames not yet in the map stay pending.
   void flushLocked();
+  /// kTooSimilar or kSeenRecently, the frame skipped by the keyframe rule, when `descriptor` is no
+  /// keyframe; nullopt for a keyframe. The caller holds keyframes_mutex_.
+  std::optional<FrameAdmission> notAKeyframeLocked(const cv::Mat& descriptor);
   /// keyframes_.keep() of an admitted frame, or of one a full map dropped; the caller holds
   /// keyframes_mutex_.
   void keepKeyframeLocked(const cv::Mat& descriptor);
