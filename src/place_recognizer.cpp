@@ -380,6 +380,8 @@ PlaceRecognizer::MapState PlaceRecognizer::state() const {
     state.memory_bytes = map_.memoryBytes() + recent_rows_->memoryBytes() + links_.memoryBytes();
     state.descriptor_size = map_.descriptorSize();
     state.linked_frames = links_.linkedFrames();
+    std::lock_guard<std::mutex> trail_lock(trail_mutex_);
+    state.memory_bytes += trail_.memoryBytes();
     if (!map_.empty()) {
       state.first_stamp = map_.stamp(0);
       state.last_stamp = map_.stamp(map_.size() - 1);
@@ -568,6 +570,10 @@ PlaceAnswer PlaceRecognizer::matchTrail(long long frames, const std::string& met
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     const RepeatedViews repeated_views = repeatedViews();
+    if (map_.empty()) {
+      throw std::invalid_argument("the reference map is empty: the camera's keyframes are localised in a map "
+                                  "loaded first, and do not join it");
+    }
     const int in_map = framesToSearchLocked();
     if (count > in_map) {
       throw std::invalid_argument("recent_frames " + std::to_string(count) + " is more than the " +

@@ -35,9 +35,4 @@ DescriptorSequence Trail::copy(std::int64_t begin, std::int64_t end) const {
   return copied;
 }
 
-void Trail::clear() {
-  held_ = DescriptorSequence(held_.descriptorSize());
-  dropped_ = 0;
-}
-
 }  // namespace mrs_vpr

@@ -16,7 +16,7 @@ constexpr int kTrailKeyframes = 4096;
 /**
  * The camera's newest keyframes while the map stays as it is (a fixed map, localisation only): what
  * the questions about the newest keyframes ask about instead of the map's own frames. Keyframes are
- * counted from the first appended since the last clear(), so that a question can name where its
+ * counted from the first appended, so that a question can name where its
  * sequence ends whatever was dropped; the oldest are dropped in one piece once twice `keep` are
  * held. Not thread-safe: PlaceRecognizer locks it.
  */
@@ -26,15 +26,13 @@ class Trail {
 
   /// Appends a keyframe (its bytes are copied). Throws std::invalid_argument for another size.
   void append(const cv::Mat& descriptor, Stamp stamp);
-  /// Keyframes appended since the last clear(): the end of the newest.
+  /// Keyframes appended: the end of the newest.
   std::int64_t size() const { return dropped_ + held_.size(); }
   /// The oldest keyframe held, counted as size() counts.
   std::int64_t oldest() const { return dropped_; }
   /// A copy of keyframes [begin, end), counted as size() counts. Throws std::invalid_argument unless
   /// they are held.
   DescriptorSequence copy(std::int64_t begin, std::int64_t end) const;
-  /// Forgets every keyframe; the count starts again at 0.
-  void clear();
   /// Bytes held (capacity).
   std::size_t memoryBytes() const { return held_.memoryBytes(); }
 

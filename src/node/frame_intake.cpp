@@ -81,7 +81,7 @@ void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Conver
     ++frames_timed_;
     frame_time_max_ms_ = std::max(frame_time_max_ms_, elapsed_ms);
   }
-  if (stepped_back_from) {
+  if (stepped_back_from && !params_.fixedMap()) {
     // Not refused: the frames are real, and a clock may be reset. But a bag played twice maps its route
     // twice, and the second pass then finds the first as loop closures.
     ROS_WARN_THROTTLE(kWarningPeriod,

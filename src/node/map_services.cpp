@@ -42,6 +42,22 @@ void PlaceRecognitionNode::openMap() {
   }
   // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
   // starting empty over a map it could not read.
+  if (params_.fixedMap()) {
+    // Read only, and not held: the map must exist (a mistyped path is an error, not a new empty map),
+    // may be a file nobody may write, and other nodes may serve it too. ~reset and ~load_map change
+    // the map in memory only.
+    map_ = std::make_unique<PersistentMap>(recognizer_);
+    map_->load(params_.database);
+    ROS_INFO("mrs_vpr: map database '%s': %d frames loaded, read only (~map_mode fixed: the map stays as loaded, "
+             "and the camera's keyframes only localise in it)",
+             absolutePath(params_.database).c_str(), recognizer_.size());
+    if (recognizer_.size() == 0) {
+      ROS_WARN("mrs_vpr: the fixed map '%s' holds no frame: nothing is localised until a map is loaded (~load_map)",
+               absolutePath(params_.database).c_str());
+    }
+    warnOfKeyframingMismatch();
+    return;
+  }
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
   startSession(recognizer_.size());
   ROS_INFO("mrs_vpr: map database '%s': %d frames loaded (%d linked to a place an earlier visit shows); keyframes "
@@ -53,9 +69,10 @@ void PlaceRecognitionNode::openMap() {
              "before format %d cannot open it any more",
              absolutePath(params_.database).c_str(), format, MapDatabase::kFormatVersion, MapDatabase::kFormatVersion);
   }
-  if (params_.fixedMap()) {
-    ROS_INFO("mrs_vpr: ~map_mode fixed: the map stays as loaded; the camera's keyframes only localise in it");
-  }
+  warnOfKeyframingMismatch();
+}
+
+void PlaceRecognitionNode::warnOfKeyframingMismatch() const {
   const std::string mismatch = keyframingMismatchOfMap();
   if (!mismatch.empty()) {
     ROS_WARN("mrs_vpr: map database '%s': %s", absolutePath(params_.database).c_str(), mismatch.c_str());
@@ -74,10 +91,10 @@ bool PlaceRecognitionNode::resetCallback(std_srvs::Trigger::Request&, std_srvs::
     const int cleared = map_->reset();
     startOverOnNewMap(0);
     response.success = true;
-    response.message = map_->persistent() ? "cleared " + std::to_string(cleared) +
-                                                " frames from the map and from the database '" +
-                                                map_->databasePath() + "'"
-                                          : "cleared " + std::to_string(cleared) + " frames (no ~database)";
+    const std::string where = map_->persistent() ? " from the map and from the database '" + map_->databasePath() + "'"
+                              : params_.fixedMap() ? " from the map (~map_mode fixed: the map file is left as it is)"
+                                                   : " (no ~database)";
+    response.message = "cleared " + std::to_string(cleared) + " frames" + where;
     ROS_INFO("mrs_vpr: reference map reset (%s)", response.message.c_str());
   } catch (const std::exception& error) {
     response.success = false;
@@ -99,7 +116,12 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
   last_closure_.reset();
   // Continuous mode's test sequences hold keyframes the camera added after the new map's frames only,
   // none of a loaded map's own. The services and continuous mode run on the query thread. The new version
-  // makes its next period look, also at the frames a load held back, when no keyframe follows them.
+  // makes its next period look, also at the frames a load held back, when no keyframe follows them. A
+  // fixed map's questions are about the trail, which goes on: they go on where they were.
+  if (params_.fixedMap()) {
+    ++map_version_;
+    return;
+  }
   auto_query_size_ = map_frames;
   startSession(map_frames);
   ++map_version_;

@@ -52,8 +52,8 @@ const std::vector<ParameterSpec<NodeParameters>>& nodeParameters() {
         "sets every nodelet's OpenCV threads."},
        &P::threads},
       {{"database", Range{}, {}, "a file path; empty = memory only",
-        "Map database (SQLite) loaded at start-up and extended with every keyframe (~map_mode extend); created "
-        "when missing."},
+        "Map database (SQLite) loaded at start-up and extended with every keyframe, created when missing; with "
+        "~map_mode fixed, only read at start-up (it must exist)."},
        &P::database},
       {{"map_mode", Range{}, {"extend", "fixed"}, "",
         "extend: every keyframe joins the map (and ~database), so that a drive closes loops with itself; fixed: "

@@ -203,6 +203,8 @@ void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
     if (recognizer_.size() < recent) return;  // nothing to localise in (yet: a map may be loaded)
     first_size = recent;
     size = static_cast<int>(std::min<std::int64_t>(recognizer_.trailSize(), std::numeric_limits<int>::max()));
+    // Keyframes of a long pause (no map to localise in) that the trail no longer holds are not asked about.
+    if (auto_query_size_ < size - kTrailKeyframes + recent) auto_query_size_ = 0;
   }
   if (size < first_size) {
     return;  // too early: not enough older frames to search yet

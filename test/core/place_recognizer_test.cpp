@@ -385,6 +385,12 @@ TEST(PlaceRecognizer, AFixedMapLocalisesTheCamerasKeyframesWithoutGrowing) {
   PlaceRecognizer empty(routeParameters());
   EXPECT_NE(errorOf([&] { empty.matchTrail(20); }).find("recent_frames 20 is more than the 0 keyframes"),
             std::string::npos);
+  for (int frame = 0; frame < 30; ++frame) {
+    empty.addToTrail(empty.describe(route().reference[static_cast<std::size_t>(frame)]), Stamp());
+  }
+  EXPECT_NE(errorOf([&] { empty.matchTrail(20); }).find("the reference map is empty: the camera's keyframes are "
+                                                         "localised in a map loaded first"),
+            std::string::npos);
 }
 
 // A map filled frame by frame (mrs_vpr_eval's, of a map database) takes the links its database kept,

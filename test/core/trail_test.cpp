@@ -36,15 +36,5 @@ TEST(Trail, HoldsTheNewestKeyframesAndCountsEveryOne) {
   EXPECT_THROW(trail.append(cv::Mat(1, 9, CV_8UC1), Stamp()), std::invalid_argument);
 }
 
-TEST(Trail, ClearStartsTheCountAgain) {
-  Trail trail(8, 4);
-  for (int i = 0; i < 20; ++i) trail.append(descriptorOf(i), Stamp());
-  trail.clear();
-  EXPECT_EQ(trail.size(), 0);
-  EXPECT_EQ(trail.oldest(), 0);
-  trail.append(descriptorOf(1), Stamp());
-  EXPECT_EQ(trail.copy(0, 1).descriptor(0)[0], 1);
-}
-
 }  // namespace
 }  // namespace mrs_vpr

@@ -114,6 +114,8 @@ class PlaceRecognitionNode {
   void openMap();
   /// keyframingMismatch() of the map opened or loaded against the node's keyframing; empty if none.
   std::string keyframingMismatchOfMap() const;
+  /// Warns of keyframingMismatchOfMap(), naming ~database.
+  void warnOfKeyframingMismatch() const;
   bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
   bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);
