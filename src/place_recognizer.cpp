@@ -41,6 +41,14 @@ std::string printable(const std::string& text) {
   return result;
 }
 
+/// Throws std::invalid_argument unless a question about the newest keyframes names enough of them.
+void requireRecentFrames(long long frames) {
+  if (frames < kMinSequenceFrames) {
+    throw std::invalid_argument("recent_frames must be at least " + std::to_string(kMinSequenceFrames) + ", got " +
+                                std::to_string(frames));
+  }
+}
+
 }  // namespace
 
 PlaceRecognizer::PlaceRecognizer(const Parameters& params, const RecognizerParams& recognizer)
@@ -92,24 +100,22 @@ FrameAdmission PlaceRecognizer::offerToTrail(const cv::Mat& descriptor, Stamp st
   requireDescriptorBytes(descriptor, extractor_.size());
   std::lock_guard<std::mutex> lock(keyframes_mutex_);
   if (const auto refused = notAKeyframeLocked(descriptor)) return *refused;
+  return appendToTrailLocked(descriptor, stamp);
+}
+
+FrameAdmission PlaceRecognizer::addToTrail(const cv::Mat& descriptor, Stamp stamp) {
+  requireDescriptorBytes(descriptor, extractor_.size());
+  std::lock_guard<std::mutex> lock(keyframes_mutex_);
+  return appendToTrailLocked(descriptor, stamp);
+}
+
+FrameAdmission PlaceRecognizer::appendToTrailLocked(const cv::Mat& descriptor, Stamp stamp) {
   {
     std::lock_guard<std::mutex> trail_lock(trail_mutex_);
     trail_.append(descriptor, stamp);
   }
   keepKeyframeLocked(descriptor);
   newest_keyframe_in_map_ = true;  // a keyframe a question can localise, as a map keyframe
-  return FrameAdmission::kAdmitted;
-}
-
-FrameAdmission PlaceRecognizer::addToTrail(const cv::Mat& descriptor, Stamp stamp) {
-  requireDescriptorBytes(descriptor, extractor_.size());
-  std::lock_guard<std::mutex> lock(keyframes_mutex_);
-  {
-    std::lock_guard<std::mutex> trail_lock(trail_mutex_);
-    trail_.append(descriptor, stamp);
-  }
-  keepKeyframeLocked(descriptor);
-  newest_keyframe_in_map_ = true;
   return FrameAdmission::kAdmitted;
 }
 
@@ -534,10 +540,7 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
 PlaceAnswer PlaceRecognizer::matchTrail(long long frames, const std::string& method, MatchExplanation* explanation,
                                         long long end) {
   matcherFor(method);
-  if (frames < kMinSequenceFrames) {
-    throw std::invalid_argument("recent_frames must be at least " + std::to_string(kMinSequenceFrames) + ", got " +
-                                std::to_string(frames));
-  }
+  requireRecentFrames(frames);
   if (end < -1) {
     throw std::invalid_argument("a test sequence cannot end at keyframe " + std::to_string(end) +
                                 " (-1: after the newest keyframe)");
@@ -565,7 +568,6 @@ PlaceAnswer PlaceRecognizer::matchTrail(long long frames, const std::string& met
   }
   const int count = static_cast<int>(frames);
   const SequenceView test = keyframes.view(before, before + count);
-  flush();
   PlaceAnswer result;
   {
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
@@ -594,10 +596,7 @@ PlaceAnswer PlaceRecognizer::matchTrail(long long frames, const std::string& met
 PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& method,
                                          MatchExplanation* explanation, int end) {
   matcherFor(method);
-  if (frames < kMinSequenceFrames) {
-    throw std::invalid_argument("recent_frames must be at least " + std::to_string(kMinSequenceFrames) + ", got " +
-                                std::to_string(frames));
-  }
+  requireRecentFrames(frames);
   flush();  // The newest frames must be in the map before they can be the test sequence.
   PlaceAnswer result;
   {

@@ -302,6 +302,8 @@ class PlaceRecognizer {
   /// kTooSimilar or kSeenRecently, the frame skipped by the keyframe rule, when `descriptor` is no
   /// keyframe; nullopt for a keyframe. The caller holds keyframes_mutex_.
   std::optional<FrameAdmission> notAKeyframeLocked(const cv::Mat& descriptor);
+  /// A keyframe joins the trail and the keyframe rule; the caller holds keyframes_mutex_.
+  FrameAdmission appendToTrailLocked(const cv::Mat& descriptor, Stamp stamp);
   /// keyframes_.keep() of an admitted frame, or of one a full map dropped; the caller holds
   /// keyframes_mutex_.
   void keepKeyframeLocked(const cv::Mat& descriptor);

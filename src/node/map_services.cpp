@@ -32,30 +32,28 @@ std::string relativePathNote(const std::string& path) {
 }  // namespace
 
 void PlaceRecognitionNode::openMap() {
-  if (params_.database.empty()) {
-    map_ = std::make_unique<PersistentMap>(recognizer_);
-    if (params_.fixedMap()) {
-      ROS_WARN("mrs_vpr: ~map_mode is fixed and the map is empty: nothing is localised until a map is loaded "
-               "(~load_map; or start with ~database)");
-    }
-    return;
-  }
-  // Throws MapDatabaseError naming the file and the problem: the node then exits rather than
-  // starting empty over a map it could not read.
+  // A database that cannot be read throws MapDatabaseError naming the file and the problem: the node
+  // then exits rather than starting empty over a map it could not read.
   if (params_.fixedMap()) {
     // Read only, and not held: the map must exist (a mistyped path is an error, not a new empty map),
     // may be a file nobody may write, and other nodes may serve it too. ~reset and ~load_map change
     // the map in memory only.
     map_ = std::make_unique<PersistentMap>(recognizer_);
-    map_->load(params_.database);
-    ROS_INFO("mrs_vpr: map database '%s': %d frames loaded, read only (~map_mode fixed: the map stays as loaded, "
-             "and the camera's keyframes only localise in it)",
-             absolutePath(params_.database).c_str(), recognizer_.size());
-    if (recognizer_.size() == 0) {
-      ROS_WARN("mrs_vpr: the fixed map '%s' holds no frame: nothing is localised until a map is loaded (~load_map)",
-               absolutePath(params_.database).c_str());
+    if (!params_.database.empty()) {
+      map_->load(params_.database);
+      ROS_INFO("mrs_vpr: map database '%s': %d frames loaded, read only (~map_mode fixed: the map stays as "
+               "loaded, and the camera's keyframes only localise in it)",
+               absolutePath(params_.database).c_str(), recognizer_.size());
+      warnOfKeyframingMismatch();
     }
-    warnOfKeyframingMismatch();
+    if (recognizer_.size() == 0) {
+      ROS_WARN("mrs_vpr: ~map_mode is fixed and the map is empty: nothing is localised until a map is loaded "
+               "(~load_map; or start with ~database)");
+    }
+    return;
+  }
+  if (params_.database.empty()) {
+    map_ = std::make_unique<PersistentMap>(recognizer_);
     return;
   }
   map_ = std::make_unique<PersistentMap>(recognizer_, params_.database, params_.commit);
