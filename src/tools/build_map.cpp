@@ -25,6 +25,7 @@
 #include "keyframing_options.hpp"
 #include "output_in_progress.hpp"
 #include "tool_main.hpp"
+#include "traversal_closures.hpp"
 #include "traversal_reader.hpp"
 
 namespace po = boost::program_options;
@@ -33,7 +34,7 @@ namespace {
 
 constexpr const char* kUsage =
     "Usage: build_map (--images DIR | --bag BAG --topic T [--min-travel M [--odom-frame F] [--base-frame B]])\n"
-    "                 --output MAP.db [--min-appearance-change C] [--append] [--force]\n"
+    "                 --output MAP.db [--min-appearance-change C] [--append] [--force] [--no-place-links]\n"
     "                 [--descriptor hog|thumbnail] [front-end options]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
@@ -46,7 +47,10 @@ constexpr const char* kUsage =
     "With --min-travel, a frame of BAG is kept only once the robot is M metres from where the last kept\n"
     "one was taken, by the bag's own /tf (B in F at the frame's stamp), as the node's ~min_travel does.\n"
     "Otherwise a frame is kept once its view has changed by C of the difference between unrelated\n"
-    "views, as the node's ~min_appearance_change keeps it (0: every frame).\n";
+    "views, as the node's ~min_appearance_change keeps it (0: every frame).\n"
+    "Loops are closed over the new frames as the node's continuous mode closes them at its defaults, and\n"
+    "each accepted closure links its keyframe to the place it shows, so that a stretch the map now holds\n"
+    "twice is no rival of itself (--no-place-links: none, faster, and the map is not held in memory).\n";
 
 /// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
 constexpr std::size_t kBatch = 1000;
@@ -59,6 +63,7 @@ struct BuildOptions {
   std::string output;
   bool append = false;
   bool force = false;
+  bool no_place_links = false;
   mrs_vpr::bag::TravelSettings travel;
   mrs_vpr::DescriptorParams params;
   double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
@@ -78,7 +83,9 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
       ("topic", po::value(&options.topic), "image topic in the bag")
       ("output", po::value(&options.output)->required(), "map database to write (*.db)")
       ("append", po::bool_switch(&options.append), "add to an existing map")
-      ("force", po::bool_switch(&options.force), "replace an existing map");
+      ("force", po::bool_switch(&options.force), "replace an existing map")
+      ("no-place-links", po::bool_switch(&options.no_place_links),
+       "close no loops over the new frames, so link none of them to the places the map holds");
   // clang-format on
   mrs_vpr::tools::addKeyframingOptions(
       description, options.travel, options.min_appearance_change,
@@ -120,16 +127,22 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   // the traversal's frame numbers; an appended traversal is numbered on after the map's frames and
   // the traversal it records (those after its last keyframe too), as Python numbers them.
   mrs_vpr::FrameNumbering numbering;
+  std::optional<mrs_vpr::tools::TraversalClosures> closures;
+  if (!options.no_place_links) {
+    closures.emplace(options.params, options.min_appearance_change, static_cast<int>(before));
+  }
   map.forEachFrame([&](const mrs_vpr::StoredFrame& frame) {
     if (appearance.enabled()) appearance.keep(frame.descriptor);
     numbering.see(frame.sequence);
+    if (closures) closures->addMapFrame(frame.descriptor, frame.stamp);
   });
+  if (closures) closures->startTraversal(map.placeLinks());
   std::int64_t next_index = numbering.next(extended);
   int stored = 0;
   int too_similar = 0;
   std::vector<mrs_vpr::StoredFrame> batch;
   const auto flush = [&] {
-    map.append(batch);
+    map.append(batch, closures ? closures->takeLinks() : std::vector<mrs_vpr::PlaceLink>{});
     stored += static_cast<int>(batch.size());
     batch.clear();
   };
@@ -149,6 +162,7 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
         const mrs_vpr::Stamp kept_stamp =
             numbered_stamp ? mrs_vpr::Stamp::fromSecondsAndNanoseconds(static_cast<std::uint32_t>(index), 0) : stamp;
         batch.push_back({descriptor.clone(), kept_stamp, "", index});
+        if (closures) closures->addKeyframe(descriptor, kept_stamp);
         if (batch.size() >= kBatch) flush();
       },
       from_folder ? mrs_vpr::tools::SourceKind::kFolder : mrs_vpr::tools::SourceKind::kBag);
@@ -182,6 +196,11 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   if (appearance.enabled()) {
     std::cerr << "build_map: " << too_similar << " frames too similar to a recent keyframe to be kept "
               << "(--min-appearance-change " << options.min_appearance_change << ")\n";
+  }
+  if (closures) {
+    std::cerr << "build_map: " << closures->closures() << " loop closures accepted of " << closures->questions()
+              << " questions about the new frames, each a place link of the map (it holds "
+              << map.placeLinks().size() << ")\n";
   }
   if (keyframes) {
     std::cerr << "build_map: " << keyframes->summary() << "\n";

@@ -1,0 +1,132 @@
+// build_map closes loops over the frames it adds, as a node mapping them in continuous mode would,
+// and keeps the place links: a stretch that a map built offline holds twice is no rival of itself,
+// and a third visit appended to it closes its loops as the second did.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "mrs_vpr/store/map_database.hpp"
+#include "route_folders.hpp"
+#include "route_tools_fixture.hpp"
+#include "support/command_run.hpp"
+#include "support/route_fixture.hpp"
+
+namespace {
+
+using mrs_vpr::MapAccess;
+using mrs_vpr::MapDatabase;
+using mrs_vpr::PlaceLink;
+using mrs_vpr::testing_support::CommandResult;
+using mrs_vpr::testing_support::standardRouteImages;
+
+constexpr int kRouteFrames = 600;
+constexpr int kElsewhereFrames = 60;
+constexpr int kRevisitBegin = 100;
+constexpr int kRevisitEnd = 300;
+/// Places of the ground the route does not hold: the same views on every revisit, far from the route's.
+constexpr int kElsewhere = 10000;
+
+class BuildMapLinksTest : public mrs_vpr::testing_support::RouteToolsTest {
+ protected:
+  /// The route once ("route"), and a drive over ground the route does not hold followed by a stretch
+  /// of the route again ("revisit"); every frame is a keyframe (buildMap()).
+  static void SetUpTestSuite() {
+    RouteToolsTest::SetUpTestSuite();
+    const std::vector<cv::Mat>& route = standardRouteImages().reference;
+    mrs_vpr::testing_support::writeImageFolder(path("route"), {route.begin(), route.begin() + kRouteFrames});
+    std::vector<cv::Mat> revisit;
+    cv::RNG rng(7);
+    for (int i = 0; i < kElsewhereFrames; ++i) {
+      cv::Mat view(route.front().size(), route.front().type());
+      rng.fill(view, cv::RNG::UNIFORM, 0, 256);
+      cv::GaussianBlur(view, view, cv::Size(0, 0), 2.0);
+      revisit.push_back(view);
+    }
+    revisit.insert(revisit.end(), route.begin() + kRevisitBegin, route.begin() + kRevisitEnd);
+    mrs_vpr::testing_support::writeImageFolder(path("revisit"), revisit);
+  }
+
+  /// The place at each frame of a map of the route and then `revisits` revisits.
+  static std::vector<int> placesOfMapFrames(int revisits) {
+    std::vector<int> places;
+    for (int frame = 0; frame < kRouteFrames; ++frame) places.push_back(frame);
+    for (int visit = 0; visit < revisits; ++visit) {
+      for (int frame = 0; frame < kElsewhereFrames; ++frame) places.push_back(kElsewhere + frame);
+      for (int frame = kRevisitBegin; frame < kRevisitEnd; ++frame) places.push_back(frame);
+    }
+    return places;
+  }
+
+  static CommandResult add(const std::string& folder, const std::string& map, const std::string& options) {
+    return run(buildMap() + " --images " + path(folder) + " --output " + map + options);
+  }
+
+  static std::vector<PlaceLink> linksOf(const std::string& map) {
+    return MapDatabase(map, MapAccess::kReadOnly).placeLinks();
+  }
+
+  /// Links among `links` whose two frames show one place (within 5 frames).
+  static int rightLinks(const std::vector<PlaceLink>& links, const std::vector<int>& places) {
+    int right = 0;
+    for (const PlaceLink& link : links) {
+      const int frame = places.at(static_cast<std::size_t>(link.frame));
+      const int reference = places.at(static_cast<std::size_t>(link.reference));
+      if (mrs_vpr::testing_support::within(frame, reference, 5)) ++right;
+    }
+    return right;
+  }
+
+  /// Links among `links` made for the route's stretch of the last visit of `places`.
+  static int linksOfTheLastStretch(const std::vector<PlaceLink>& links, const std::vector<int>& places) {
+    const int stretch_begin = static_cast<int>(places.size()) - (kRevisitEnd - kRevisitBegin);
+    int count = 0;
+    for (const PlaceLink& link : links) count += link.frame >= stretch_begin ? 1 : 0;
+    return count;
+  }
+};
+
+TEST_F(BuildMapLinksTest, AStretchAppendedTwiceIsLinkedAndAThirdVisitClosesItsLoops) {
+  const std::string map = path("linked.db");
+  const CommandResult first = add("route", map, "");
+  ASSERT_EQ(first.status, 0) << first.err;
+  EXPECT_TRUE(linksOf(map).empty()) << "the route passes no place twice";
+
+  const CommandResult second = add("revisit", map, " --append");
+  ASSERT_EQ(second.status, 0) << second.err;
+  const std::vector<PlaceLink> second_links = linksOf(map);
+  const int second_stretch = linksOfTheLastStretch(second_links, placesOfMapFrames(1));
+  EXPECT_GT(second_stretch, 80) << second.err;
+  EXPECT_EQ(second_stretch, static_cast<int>(second_links.size())) << "new ground links nothing";
+  EXPECT_EQ(rightLinks(second_links, placesOfMapFrames(1)), static_cast<int>(second_links.size()));
+  EXPECT_NE(second.err.find(std::to_string(second_links.size()) + " loop closures accepted of"), std::string::npos)
+      << second.err;
+
+  // The third visit's stretch is held twice; linked, neither visit is the other's rival. (Its ground
+  // off the route was seen once, on the second visit, and links to it.)
+  const CommandResult third = add("revisit", map, " --append");
+  ASSERT_EQ(third.status, 0) << third.err;
+  const std::vector<PlaceLink> third_links = linksOf(map);
+  const int third_stretch = linksOfTheLastStretch(third_links, placesOfMapFrames(2));
+  EXPECT_GE(third_stretch, second_stretch - 5);
+  EXPECT_EQ(rightLinks(third_links, placesOfMapFrames(2)), static_cast<int>(third_links.size()));
+
+  // The same visits appended without links, as before build_map closed loops: the third is refused.
+  const std::string unlinked = path("unlinked.db");
+  ASSERT_EQ(add("route", unlinked, "").status, 0);
+  ASSERT_EQ(add("revisit", unlinked, " --append --no-place-links").status, 0);
+  EXPECT_TRUE(linksOf(unlinked).empty());
+  ASSERT_EQ(add("revisit", unlinked, " --append").status, 0);
+  const int unlinked_stretch = linksOfTheLastStretch(linksOf(unlinked), placesOfMapFrames(2));
+  EXPECT_LT(unlinked_stretch, third_stretch / 2);
+  std::cout << "stretch links: second visit " << second_stretch << ", third " << third_stretch
+            << ", third after an unlinked second " << unlinked_stretch << "\n";
+}
+
+}  // namespace
