@@ -20,8 +20,8 @@ bool PlaceLinks::link(int frame, int reference) {
   }
   std::lock_guard<std::mutex> lock(mutex_);
   const auto size = static_cast<std::size_t>(std::max(frame, reference)) + 1;
+  const auto old_size = static_cast<int>(place_.size());
   if (place_.size() < size) {
-    const auto old_size = static_cast<int>(place_.size());
     place_.resize(size);
     std::iota(place_.begin() + old_size, place_.end(), old_size);
   }
@@ -32,8 +32,13 @@ bool PlaceLinks::link(int frame, int reference) {
   // The older place names both: every frame of the newer one joins it.
   const int kept = std::min(a, b);
   const int joined = std::max(a, b);
-  for (std::size_t i = 0; i < place_.size(); ++i) {
-    if (place_[i] == joined) place_[i] = kept;
+  if (joined >= old_size) {
+    // A frame linked for the first time (continuous mode's newest keyframes): no other shows its place.
+    place_[static_cast<std::size_t>(joined)] = kept;
+  } else {
+    for (std::size_t i = 0; i < place_.size(); ++i) {
+      if (place_[i] == joined) place_[i] = kept;
+    }
   }
   ++linked_;  // the newer place's first frame; its other frames were linked to it already
   return true;

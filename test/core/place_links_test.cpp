@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace mrs_vpr {
@@ -11,6 +13,12 @@ namespace {
 std::vector<std::pair<int, int>> pairsOf(const std::vector<FrameRange>& ranges) {
   std::vector<std::pair<int, int>> pairs;
   for (const FrameRange& range : ranges) pairs.emplace_back(range.begin, range.end);
+  return pairs;
+}
+
+std::vector<std::pair<int, int>> pairsOf(const std::vector<PlaceLink>& links) {
+  std::vector<std::pair<int, int>> pairs;
+  for (const PlaceLink& link : links) pairs.emplace_back(link.frame, link.reference);
   return pairs;
 }
 
@@ -95,6 +103,25 @@ TEST(PlaceLinks, PlacesOfALinkListAreThoseOfItsLinksMadeOneByOne) {
     EXPECT_EQ(pairsOf(again.samePlaceAs(frame, 2)), pairsOf(one_by_one.samePlaceAs(frame, 2))) << frame;
   }
   EXPECT_EQ(one_by_one.asLinks(13).size(), 1U);  // among frames [0, 13): 12 of 3
+}
+
+// Continuous mode links each new keyframe, for the first time, to an old place; merging two places
+// that hold frames already relabels one of them. Both, mixed, make the places of the list.
+TEST(PlaceLinks, ManyLinksMadeOneByOneMakeThePlacesOfTheirList) {
+  std::mt19937 random(3);
+  std::vector<PlaceLink> made;
+  for (int frame = 200; frame < 1000; ++frame) {
+    made.push_back({frame, static_cast<int>(random() % 200)});  // a newest keyframe closes a loop
+    if (frame % 7 == 0) {  // two places, each holding frames, found to be one
+      made.push_back({static_cast<int>(random() % frame), static_cast<int>(random() % frame)});
+    }
+  }
+  PlaceLinks one_by_one;
+  for (const PlaceLink& link : made) one_by_one.link(link.frame, link.reference);
+  PlaceLinks adopted;
+  adopted.adopt(PlaceLinks::placesOf(made, 1000));
+  EXPECT_EQ(pairsOf(one_by_one.asLinks(1000)), pairsOf(adopted.asLinks(1000)));
+  EXPECT_EQ(one_by_one.linkedFrames(), adopted.linkedFrames());
 }
 
 TEST(PlaceLinks, ALinkListNamingAFrameOutsideTheMapIsRefused) {
