@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,21 @@ cv::Mat read(const std::string& path, int flags);
 
 /// cv::imdecode of an encoded stream (a 1 x n CV_8UC1 matrix or a vector of bytes).
 cv::Mat decode(const cv::Mat& buffer, int flags);
+
+/// A JPEG stream whose data libjpeg finds corrupt; what() is libjpeg's message.
+class CorruptJpeg : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/**
+ * decode(buffer, cv::IMREAD_UNCHANGED) of a camera frame or image file, except that a JPEG stream
+ * whose data is corrupt throws CorruptJpeg: libjpeg decodes such a stream (a flipped bit, bytes lost
+ * in transit) with a warning on stderr only, making up what it cannot read, and OpenCV gives that
+ * image as if it were whole. JPEG of one or three components is decoded by libjpeg directly, into the
+ * pixels OpenCV gives; other streams by OpenCV.
+ */
+cv::Mat decodeStrictly(const std::uint8_t* data, std::size_t size);
 
 /// cv::imwrite: false when OpenCV cannot write the file; cv::Exception as OpenCV throws it.
 bool write(const std::string& path, const cv::Mat& image, const std::vector<int>& params = {});

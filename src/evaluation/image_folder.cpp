@@ -203,17 +203,28 @@ std::string leftOutNote(const std::string& folder, const std::vector<std::string
 }
 
 cv::Mat loadImage(const std::string& path) {
-  cv::Mat image = image_codecs::read(path, cv::IMREAD_UNCHANGED);
-  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
-  // libjpeg reads a JPEG file cut short with a warning only, grey where it is cut.
-  if (extensionOf(path) == ".jpg" || extensionOf(path) == ".jpeg") {
-    std::ifstream file(path, std::ios::binary);
-    const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-    if (!image_codecs::jpegReachesEndOfImage(bytes.data(), bytes.size())) {
-      throw std::runtime_error("image '" + path + "' is a truncated JPEG file (" + std::to_string(bytes.size()) +
-                               " bytes, no end-of-image marker)");
-    }
+  if (extensionOf(path) != ".jpg" && extensionOf(path) != ".jpeg") {
+    cv::Mat image = image_codecs::read(path, cv::IMREAD_UNCHANGED);
+    if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
+    return image;
   }
+  // libjpeg reads a JPEG file cut short or corrupt with a warning only, making up the pixels it cannot read.
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
+  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  if (bytes.empty()) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
+  if (!image_codecs::jpegReachesEndOfImage(bytes.data(), bytes.size())) {
+    throw std::runtime_error("image '" + path + "' is a truncated JPEG file (" + std::to_string(bytes.size()) +
+                             " bytes, no end-of-image marker)");
+  }
+  cv::Mat image;
+  try {
+    image = image_codecs::decodeStrictly(bytes.data(), bytes.size());
+  } catch (const image_codecs::CorruptJpeg& error) {
+    throw std::runtime_error("image '" + path + "' is a corrupt JPEG file, which libjpeg cannot decode without " +
+                             "making up pixels: " + error.what());
+  }
+  if (image.empty()) throw std::runtime_error("cannot read image '" + path + "': " + whyUnreadable(path));
   return image;
 }
 

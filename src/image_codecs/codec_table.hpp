@@ -6,17 +6,20 @@
 
 #include <opencv2/core.hpp>
 
+#include "strict_jpeg_decoder.hpp"
+
 namespace mrs_vpr {
 namespace image_codecs {
 
 /// What the codec plugin hands to the loader: OpenCV's own functions, so that their behaviour
-/// (formats, flags, exceptions) is exactly OpenCV's.
+/// (formats, flags, exceptions) is exactly OpenCV's, and libjpeg's strict decoding of JPEG.
 struct CodecTable {
   cv::Mat (*read)(const cv::String& path, int flags);
   cv::Mat (*decode)(cv::InputArray buffer, int flags);
   bool (*write)(const cv::String& path, cv::InputArray image, const std::vector<int>& params);
   bool (*encode)(const cv::String& extension, cv::InputArray image, std::vector<std::uint8_t>& buffer,
                  const std::vector<int>& params);
+  JpegDecoding (*decode_jpeg)(const std::uint8_t* data, std::size_t size, cv::Mat* image, std::string* problem);
 };
 
 /// The plugin's one exported symbol (unmangled, for dlsym).

@@ -141,10 +141,12 @@ ImageFrame decodeCompressedImage(const sensor_msgs::CompressedImage& message) {
   }
   cv::Mat image;
   try {
-    // Wraps the message's bytes (imdecode only reads them); IMREAD_UNCHANGED keeps grey, depth and alpha.
-    const cv::Mat buffer(1, static_cast<int>(message.data.size()), CV_8UC1,
-                         const_cast<std::uint8_t*>(message.data.data()));
-    image = image_codecs::decode(buffer, cv::IMREAD_UNCHANGED);
+    // IMREAD_UNCHANGED keeps grey, depth and alpha.
+    image = image_codecs::decodeStrictly(message.data.data(), message.data.size());
+  } catch (const image_codecs::CorruptJpeg& error) {
+    throw std::invalid_argument(std::string("corrupt data: libjpeg cannot decode the JPEG stream without making up "
+                                            "pixels: ") +
+                                error.what());
   } catch (const cv::Exception& error) {
     throw std::invalid_argument(std::string("corrupt data: OpenCV cannot decode the ") + codecName(codec) +
                                 " image: " + error.what());

@@ -86,9 +86,11 @@ sensor_msgs::ImagePtr decode(const sensor_msgs::CompressedImageConstPtr& compres
   }
   cv::Mat image;
   try {
-    const cv::Mat buffer(1, static_cast<int>(compressed->data.size()), CV_8UC1,
-                         const_cast<std::uint8_t*>(compressed->data.data()));
-    image = image_codecs::decode(buffer, cv::IMREAD_UNCHANGED);
+    image = image_codecs::decodeStrictly(data.data(), data.size());
+  } catch (const image_codecs::CorruptJpeg& error) {
+    throw std::runtime_error(std::string("the compressed image is corrupt JPEG data, which libjpeg cannot decode "
+                                         "without making up pixels: ") +
+                             error.what());
   } catch (const cv::Exception& error) {
     throw std::runtime_error("cannot decode the compressed image (format '" + compressed->format + "'): " +
                              error.err);

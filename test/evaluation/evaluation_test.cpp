@@ -535,6 +535,16 @@ TEST(ImageFolder, ATruncatedJpegFileIsRefusedNotReadHalfGrey) {
   EXPECT_EQ(errorOf([&] { loadImageFolder(folder.path()); }),
             "image '" + folder.path("1.JPEG") + "' is a truncated JPEG file (" + std::to_string(jpeg.size() / 2) +
                 " bytes, no end-of-image marker)");
+  // Cut as well, but ending with its end-of-image marker (bytes lost from the middle).
+  std::vector<std::uint8_t> holed(jpeg.begin(), jpeg.begin() + static_cast<long>(jpeg.size() / 2));
+  holed.insert(holed.end(), {0xFF, 0xD9});
+  std::ofstream(folder.path("1.JPEG"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(holed.data()), static_cast<std::streamsize>(holed.size()));
+  const std::string corrupt = errorOf([&] { loadImageFolder(folder.path()); });
+  EXPECT_EQ(corrupt.find("image '" + folder.path("1.JPEG") + "' is a corrupt JPEG file, which libjpeg cannot " +
+                         "decode without making up pixels: Corrupt JPEG data"),
+            0U)
+      << corrupt;
 }
 
 // ------------------------------------------------------------------------------------------------

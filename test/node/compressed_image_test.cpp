@@ -221,6 +221,19 @@ TEST(CompressedImage, RefusesATruncatedJpegThatLibjpegWouldFillWithGrey) {
   }
 }
 
+TEST(CompressedImage, RefusesACorruptJpegThatStillEndsWithItsMarker) {
+  // Bytes lost in transit from the middle of the scan: libjpeg would make up the rest of the image.
+  const sensor_msgs::CompressedImage whole = compress(texturedBgr(320, 240), "jpeg");
+  sensor_msgs::CompressedImage holed = whole;
+  holed.data.resize(whole.data.size() / 2);
+  holed.data.insert(holed.data.end(), {0xFF, 0xD9});
+  EXPECT_NE(errorOf(holed).find("corrupt data: libjpeg cannot decode the JPEG stream without making up pixels: "
+                                "Corrupt JPEG data"),
+            std::string::npos)
+      << errorOf(holed);
+  EXPECT_EQ(errorOf(whole), "");
+}
+
 /// Writes `width` x `height` into the header of an encoded image, as a malicious or broken camera could.
 void forgeSize(sensor_msgs::CompressedImage& message, CompressedCodec codec, std::uint32_t width,
                std::uint32_t height) {

@@ -1,0 +1,93 @@
+// decodeStrictly: the pixels OpenCV decodes from a whole JPEG stream, and an error, naming libjpeg's
+// warning, for a stream whose data is corrupt though it ends with its end-of-image marker.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "mrs_vpr/image_codecs.hpp"
+
+namespace mrs_vpr {
+namespace {
+
+cv::Mat texture(int type) {
+  cv::Mat image(96, 128, type);
+  cv::RNG random(5);
+  random.fill(image, cv::RNG::UNIFORM, 0, 256);
+  return image;
+}
+
+std::vector<std::uint8_t> encoded(const cv::Mat& image, const std::vector<int>& options = {}) {
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", image, bytes, options);
+  return bytes;
+}
+
+cv::Mat decodedStrictly(const std::vector<std::uint8_t>& bytes) {
+  return image_codecs::decodeStrictly(bytes.data(), bytes.size());
+}
+
+std::string problemOf(const std::vector<std::uint8_t>& bytes) {
+  try {
+    decodedStrictly(bytes);
+  } catch (const image_codecs::CorruptJpeg& error) {
+    return error.what();
+  }
+  return "";
+}
+
+/// Where the entropy-coded data of the stream's first scan begins.
+std::size_t scanData(const std::vector<std::uint8_t>& bytes) {
+  for (std::size_t at = 2; at + 3 < bytes.size(); ++at) {
+    if (bytes[at] == 0xFF && bytes[at + 1] == 0xDA) return at + 2 + (bytes[at + 2] << 8 | bytes[at + 3]);
+  }
+  ADD_FAILURE() << "no start of scan";
+  return bytes.size();
+}
+
+TEST(StrictJpegDecoding, AWholeStreamGivesThePixelsOpenCvGives) {
+  const std::vector<std::vector<int>> options = {{},
+                                                 {cv::IMWRITE_JPEG_QUALITY, 60},
+                                                 {cv::IMWRITE_JPEG_PROGRESSIVE, 1},
+                                                 {cv::IMWRITE_JPEG_RST_INTERVAL, 3},
+                                                 {cv::IMWRITE_JPEG_OPTIMIZE, 1}};
+  for (const int type : {CV_8UC1, CV_8UC3}) {
+    for (const std::vector<int>& option : options) {
+      SCOPED_TRACE(std::to_string(type) + (option.empty() ? "" : ", option " + std::to_string(option[0])));
+      const std::vector<std::uint8_t> bytes = encoded(texture(type), option);
+      const cv::Mat opencv = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+      const cv::Mat strict = decodedStrictly(bytes);
+      ASSERT_EQ(strict.type(), opencv.type());
+      ASSERT_EQ(strict.size(), opencv.size());
+      EXPECT_EQ(cv::norm(strict, opencv, cv::NORM_INF), 0.0);
+    }
+  }
+  // Not JPEG: decoded by OpenCV as it is.
+  std::vector<std::uint8_t> png;
+  cv::imencode(".png", texture(CV_8UC3), png);
+  EXPECT_EQ(cv::norm(decodedStrictly(png), texture(CV_8UC3), cv::NORM_INF), 0.0);
+}
+
+TEST(StrictJpegDecoding, CorruptDataThatEndsWithItsMarkerIsRefusedNamingLibjpegsWarning) {
+  const std::vector<std::uint8_t> whole = encoded(texture(CV_8UC3));
+  // Bytes lost in transit from the middle of the scan, the end-of-image marker still there.
+  std::vector<std::uint8_t> holed(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
+  holed.insert(holed.end(), {0xFF, 0xD9});
+  EXPECT_NE(problemOf(holed).find("Corrupt JPEG data"), std::string::npos) << problemOf(holed);
+  EXPECT_FALSE(cv::imdecode(holed, cv::IMREAD_UNCHANGED).empty()) << "what OpenCV would have given";
+  // Bytes that belong to no scan before the end-of-image marker.
+  std::vector<std::uint8_t> padded = whole;
+  padded.insert(padded.end() - 2, {0x12, 0x34, 0x56});
+  EXPECT_NE(problemOf(padded).find("extraneous bytes"), std::string::npos) << problemOf(padded);
+  // No image at all after the signature.
+  const std::vector<std::uint8_t> signature_only = {0xFF, 0xD8, 0x00, 0x00};
+  EXPECT_NE(problemOf(signature_only), "");
+}
+
+}  // namespace
+}  // namespace mrs_vpr
