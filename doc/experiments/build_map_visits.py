@@ -48,9 +48,14 @@ def links_and_frames(database):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("data", help="the shared data folder (holding nordland/summer and nordland/winter)")
-    parser.add_argument("--visits", type=int, default=4, help="visits in all, the summer map's included")
+    parser.add_argument("--visits", type=int, default=4,
+                        help="visits of the stretch, the summer map's included (the visit to new ground follows them)")
     parser.add_argument("--unlinked", type=int, default=0, help="append this visit with --no-place-links")
     args = parser.parse_args()
+    if args.visits < 2:
+        parser.error("--visits: at least 2 (the summer map and the winter visit)")
+    if args.unlinked and not 2 <= args.unlinked <= args.visits + 1:
+        parser.error("--unlinked: a visit appended to the map, 2 to %d" % (args.visits + 1))
     summer = sorted(glob.glob(os.path.join(args.data, "nordland", "summer", "*.png")))
     winter = sorted(glob.glob(os.path.join(args.data, "nordland", "winter", "*.png")))
     place = route_places(summer, winter, len(summer))
