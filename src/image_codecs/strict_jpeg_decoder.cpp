@@ -1,6 +1,7 @@
 // libjpeg's decoding of a JPEG stream, stopped at its first warning: part of the codec plugin.
 
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>  // jpeglib.h needs FILE
 
 #include <jpeglib.h>
@@ -46,7 +47,9 @@ JpegDecoding decodeJpegStrictly(const std::uint8_t* data, std::size_t size, cv::
   jpeg_create_decompress(&info);
   jpeg_mem_src(&info, data, static_cast<unsigned long>(size));
   jpeg_read_header(&info, TRUE);
-  if (info.num_components != 1 && info.num_components != 3) {
+  // OpenCV refuses an image of more than 2^30 pixels (CV_IO_MAX_IMAGE_PIXELS) before it allocates it.
+  const bool huge = static_cast<std::uint64_t>(info.image_width) * info.image_height > (std::uint64_t{1} << 30);
+  if ((info.num_components != 1 && info.num_components != 3) || huge) {
     jpeg_destroy_decompress(&info);
     return JpegDecoding::kNotHandled;
   }

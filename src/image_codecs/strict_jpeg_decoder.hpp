@@ -13,7 +13,7 @@ namespace image_codecs {
 enum class JpegDecoding {
   kDecoded,     ///< The image, as OpenCV decodes it.
   kCorrupt,     ///< libjpeg found an error or warned (its message is the problem).
-  kNotHandled,  ///< Not one or three components (CMYK, say): for OpenCV to decode.
+  kNotHandled,  ///< Not one or three components (CMYK, say), or too large: for OpenCV to decode or refuse.
 };
 
 /**
