@@ -7,7 +7,7 @@ The visits are those of repeated_traversals.py, each written as an image folder 
 by `build_map --append` at its defaults: Nordland summer 0..799 (the map), winter 300..699, then winter
 300..699 again with another camera's noise on each later visit (a simulation of another winter day, which
 the shared data does not hold), and last winter 1000..1299, which the map does not hold. After each
-visit it prints the closures build_map accepted (each a place link of the map) and how many are right:
+visit it prints the place links build_map made (its accepted closures) and how many are right:
 the linked keyframe's place within 5 places of the place it is linked to, where route frames at which
 the recording train stood count as one place. On the last visit every link is wrong. With
 --unlinked V, visit V is appended with --no-place-links, as maps were built before build_map closed

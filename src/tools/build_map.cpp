@@ -199,8 +199,8 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   }
   if (closures) {
     std::cerr << "build_map: " << closures->closures() << " loop closures accepted of " << closures->questions()
-              << " questions about the new frames, each a place link of the map (it holds "
-              << map.placeLinks().size() << ")\n";
+              << " questions about the new frames, which link them to the places they show (place links of "
+              << "the map: " << map.placeLinks().size() << ")\n";
   }
   if (keyframes) {
     std::cerr << "build_map: " << keyframes->summary() << "\n";
