@@ -23,7 +23,9 @@ struct CodecTable {
 };
 
 /// The plugin's one exported symbol (unmangled, for dlsym).
-constexpr const char* kCodecTableSymbol = "mrs_vpr_opencv_codec_table";
+/// It names the table's layout: a plugin of another release, with another table, is not found (an
+/// error naming the plugin) rather than read past its end.
+constexpr const char* kCodecTableSymbol = "mrs_vpr_opencv_codec_table_v2";
 /// The plugin's file name; it is installed beside the library that loads it.
 constexpr const char* kCodecPluginFile = "libmrs_vpr_opencv_codecs.so";
 

@@ -3,7 +3,7 @@
 
 #include "codec_table.hpp"
 
-extern "C" const mrs_vpr::image_codecs::CodecTable* mrs_vpr_opencv_codec_table() {
+extern "C" const mrs_vpr::image_codecs::CodecTable* mrs_vpr_opencv_codec_table_v2() {
   // imdecode is overloaded (with and without an output matrix): the cast picks the one in the table.
   static const mrs_vpr::image_codecs::CodecTable table{
       &cv::imread, static_cast<cv::Mat (*)(cv::InputArray, int)>(&cv::imdecode), &cv::imwrite, &cv::imencode,

@@ -1,10 +1,11 @@
-// libjpeg's decoding of a JPEG stream, stopped at its first warning: part of the codec plugin.
+// libjpeg's decoding of a JPEG stream, stopped where it would make up pixels: part of the codec plugin.
 
 #include <csetjmp>
 #include <cstdint>
 #include <cstdio>  // jpeglib.h needs FILE
 
 #include <jpeglib.h>
+#include <jerror.h>  // the message codes of its warnings (after jpeglib.h, which it needs)
 
 #include "strict_jpeg_decoder.hpp"
 
@@ -20,14 +21,34 @@ struct JumpingErrors {
   char message[JMSG_LENGTH_MAX];
 };
 
-[[noreturn]] void jumpBack(j_common_ptr info) {
+/// What a jump back says.
+enum Jump : int { kUndecodable = 1, kMadeUp = 2 };
+
+[[noreturn]] void jumpBack(j_common_ptr info, Jump why) {
   auto* errors = reinterpret_cast<JumpingErrors*>(info->err);
   (*info->err->format_message)(info, errors->message);
-  std::longjmp(errors->back, 1);
+  std::longjmp(errors->back, why);
 }
 
-void jumpBackOnWarning(j_common_ptr info, int level) {
-  if (level < 0) jumpBack(info);  // a warning: the data is corrupt; traces (level >= 0) are ignored
+[[noreturn]] void jumpBackOnError(j_common_ptr info) { jumpBack(info, kUndecodable); }
+
+/// The warnings after which libjpeg fills what it could not read with made-up coefficients: data
+/// missing (a segment or the file ending early, a restart marker lost) or undecodable (a Huffman code;
+/// arithmetic coding, which cameras do not use, is left to its own warnings).
+bool pixelsMadeUp(int message_code) {
+  switch (message_code) {
+    case JWRN_HIT_MARKER:
+    case JWRN_JPEG_EOF:
+    case JWRN_MUST_RESYNC:
+    case JWRN_HUFF_BAD_CODE:
+      return true;
+    default:  // An unknown JFIF revision, stray bytes between segments, unusual scan parameters: whole pixels.
+      return false;
+  }
+}
+
+void jumpBackOnMadeUpPixels(j_common_ptr info, int level) {
+  if (level < 0 && pixelsMadeUp(info->err->msg_code)) jumpBack(info, kMadeUp);  // traces (level >= 0) ignored
 }
 
 }  // namespace
@@ -37,10 +58,12 @@ JpegDecoding decodeJpegStrictly(const std::uint8_t* data, std::size_t size, cv::
   jpeg_decompress_struct info{};
   JumpingErrors errors{};
   info.err = jpeg_std_error(&errors.manager);
-  errors.manager.error_exit = jumpBack;
-  errors.manager.emit_message = jumpBackOnWarning;
-  if (setjmp(errors.back) != 0) {
+  errors.manager.error_exit = jumpBackOnError;
+  errors.manager.emit_message = jumpBackOnMadeUpPixels;
+  const int jumped = setjmp(errors.back);
+  if (jumped != 0) {
     jpeg_destroy_decompress(&info);
+    if (jumped == kUndecodable) return JpegDecoding::kNotHandled;  // OpenCV says why, as it always did
     *problem = errors.message;
     return JpegDecoding::kCorrupt;
   }
@@ -57,7 +80,13 @@ JpegDecoding decodeJpegStrictly(const std::uint8_t* data, std::size_t size, cv::
   const bool colour = info.num_components == 3;
   info.out_color_space = colour ? JCS_EXT_BGR : JCS_GRAYSCALE;
   jpeg_start_decompress(&info);
-  image->create(static_cast<int>(info.output_height), static_cast<int>(info.output_width), colour ? CV_8UC3 : CV_8UC1);
+  try {
+    image->create(static_cast<int>(info.output_height), static_cast<int>(info.output_width),
+                  colour ? CV_8UC3 : CV_8UC1);
+  } catch (...) {
+    jpeg_destroy_decompress(&info);  // libjpeg's pools, which no jump frees now
+    throw;
+  }
   while (info.output_scanline < info.output_height) {
     JSAMPROW row = image->ptr<JSAMPLE>(static_cast<int>(info.output_scanline));
     jpeg_read_scanlines(&info, &row, 1);

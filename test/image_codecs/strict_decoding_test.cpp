@@ -78,15 +78,36 @@ TEST(StrictJpegDecoding, CorruptDataThatEndsWithItsMarkerIsRefusedNamingLibjpegs
   // Bytes lost in transit from the middle of the scan, the end-of-image marker still there.
   std::vector<std::uint8_t> holed(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
   holed.insert(holed.end(), {0xFF, 0xD9});
-  EXPECT_NE(problemOf(holed).find("Corrupt JPEG data"), std::string::npos) << problemOf(holed);
+  EXPECT_NE(problemOf(holed).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
+      << problemOf(holed);
   EXPECT_FALSE(cv::imdecode(holed, cv::IMREAD_UNCHANGED).empty()) << "what OpenCV would have given";
-  // Bytes that belong to no scan before the end-of-image marker.
+  // Nothing after the signature: the data ends before the image begins.
+  EXPECT_EQ(problemOf({0xFF, 0xD8, 0x00, 0x00}), "Premature end of JPEG file");
+  // A stream libjpeg cannot decode at all (no frame header before the scan): left to OpenCV, which
+  // gives no image, as it always did.
+  std::vector<std::uint8_t> frameless = whole;
+  for (std::size_t at = 2; at + 1 < frameless.size(); ++at) {
+    if (frameless[at] == 0xFF && frameless[at + 1] == 0xC0) frameless[at + 1] = 0xC3;  // lossless: unsupported
+  }
+  EXPECT_EQ(problemOf(frameless), "");
+  EXPECT_TRUE(decodedStrictly(frameless).empty());
+}
+
+// Many cameras' streams carry warnings that leave every pixel whole: they are decoded as OpenCV does.
+TEST(StrictJpegDecoding, WarningsThatLeaveThePixelsWholeAreNoCorruption) {
+  const std::vector<std::uint8_t> whole = encoded(texture(CV_8UC3));
+  const cv::Mat pixels = cv::imdecode(whole, cv::IMREAD_UNCHANGED);
+  // Stray bytes before the end-of-image marker (libjpeg: "3 extraneous bytes before marker 0xd9").
   std::vector<std::uint8_t> padded = whole;
   padded.insert(padded.end() - 2, {0x12, 0x34, 0x56});
-  EXPECT_NE(problemOf(padded).find("extraneous bytes"), std::string::npos) << problemOf(padded);
-  // No image at all after the signature.
-  const std::vector<std::uint8_t> signature_only = {0xFF, 0xD8, 0x00, 0x00};
-  EXPECT_NE(problemOf(signature_only), "");
+  // A JFIF revision libjpeg does not know ("unknown JFIF revision number 2.01").
+  std::vector<std::uint8_t> revised = whole;
+  ASSERT_EQ(std::string(revised.begin() + 6, revised.begin() + 10), "JFIF");
+  revised[11] = 2;
+  for (const std::vector<std::uint8_t>* stream : {&padded, &revised}) {
+    EXPECT_EQ(problemOf(*stream), "");
+    EXPECT_EQ(cv::norm(decodedStrictly(*stream), pixels, cv::NORM_INF), 0.0);
+  }
 }
 
 }  // namespace
