@@ -224,6 +224,31 @@ void bindRecognizer(py::module_& m) {
           "Where the map's newest `frames` frames (or those before map frame `end`) lie among its older "
           "ones, recent_exclusion frames back and more: a loop closure.")
       .def(
+          "add_to_trail",
+          [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {
+            const ChannelOrder order = channelOrder(channel_order);
+            const Image view = imageFrom(image);
+            const Stamp exact = coreStamp(stamp);
+            py::gil_scoped_release released;
+            return self.core().offerToTrail(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+          },
+          py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
+          "For a map that stays as it is (the node's map_mode fixed): offers a camera frame as add_frame does, "
+          "but a keyframe joins the trail of the camera's newest keyframes instead of the map; True when it "
+          "became one.")
+      .def(
+          "match_trail",
+          [](Recognizer& self, long long frames, const std::string& method, long long end) {
+            py::gil_scoped_release released;
+            return self.core().matchTrail(frames, method, nullptr, end);
+          },
+          py::arg("frames"), py::arg("method") = "", py::arg("end") = -1,
+          "Where the trail's `frames` newest keyframes (or those before trail keyframe `end`) lie in the whole "
+          "map, judged as match_recent's answers are; it links no place.")
+      .def_property_readonly(
+          "trail_size", [](Recognizer& self) { return self.core().trailSize(); },
+          "Keyframes that joined the trail since the recognizer was made (add_to_trail).")
+      .def(
           "match_every_frame",
           [](Recognizer& self, const py::handle& images, const std::string& method, const std::string& channel_order) {
             const ChannelOrder order = channelOrder(channel_order);

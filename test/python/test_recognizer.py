@@ -72,6 +72,23 @@ def test_the_places_match_recent_links_are_saved_and_loaded_with_the_map(route, 
     assert loaded.linked_frames == accepted
 
 
+def test_a_fixed_map_localises_the_trail_of_the_camera_and_stays_as_it_was(route, mapped):
+    accepted = right = 0
+    for i in range(100, 250):  # the second traversal, asked about after each keyframe as continuous mode asks
+        if not mapped.add_to_trail(route["query"][i], stamp=1000.0 + i) or mapped.trail_size < 20:
+            continue
+        answer = mapped.match_trail(20)
+        accepted += answer.accepted
+        right += answer.accepted and abs(answer.reference_index - truth_of(route, i - 19, 20)) <= 3
+    assert mapped.trail_size == 150  # every frame of the route's second traversal is a keyframe
+    assert accepted >= 8  # 11: the route's 20-frame sequences stand out little (17 for match_recent)
+    assert right == accepted
+    assert len(mapped) == 600  # the map holds the first traversal only
+    assert mapped.linked_frames == 0  # and links nothing
+    with pytest.raises(ValueError, match="is more than the 150 keyframes the camera has given"):
+        mapped.match_trail(200)
+
+
 def test_match_recent_ending_at_an_older_frame_and_a_centred_answer_name_the_frame_localised(route):
     parameters = dict(ROUTE_PARAMETERS, alignment="centred")
     recognizer = mrs_vpr.PlaceRecognizer(recent_exclusion=50, **parameters)
