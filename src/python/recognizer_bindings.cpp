@@ -126,6 +126,18 @@ class Recognizer {
   std::optional<double> keyframing_ = recognizer_.recognizerParameters().min_appearance_change;
 };
 
+/// A camera frame offered from Python: its image, channel order and stamp converted (and checked) while
+/// the GIL is held, its descriptor computed after it is released.
+struct OfferedFrame {
+  OfferedFrame(const py::handle& image, double stamp_s, const std::string& channel_order)
+      : order(channelOrder(channel_order)), view(imageFrom(image)), stamp(coreStamp(stamp_s)) {}
+  cv::Mat descriptor(const PlaceRecognizer& core) const { return core.describe(view.mat, order); }
+
+  ChannelOrder order;
+  Image view;
+  Stamp stamp;
+};
+
 /// A query traversal's keyframes, described once and chosen as the map's frames are (keyframesOf), as
 /// mrs_vpr_eval keyframes its query before either protocol; for evaluate().
 struct KeyframedTraversal {
@@ -147,14 +159,12 @@ void bindRecognizer(py::module_& m) {
       .def(
           "add_frame",
           [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {
-            const ChannelOrder order = channelOrder(channel_order);
-            const Image view = imageFrom(image);
-            const Stamp exact = coreStamp(stamp);
+            const OfferedFrame frame(image, stamp, channel_order);
             py::gil_scoped_release released;
             // The node's path: the map keeps the frame only if it is a keyframe.
             DescriptorSequence descriptor(self.core().extractor().size());
-            descriptor.append(self.core().describe(view.mat, order), exact);
-            return self.offer(descriptor, {exact}) == 1;
+            descriptor.append(frame.descriptor(self.core()), frame.stamp);
+            return self.offer(descriptor, {frame.stamp}) == 1;
           },
           py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
           "Offers a camera frame to the map; True when it became a keyframe. A frame too similar to the last "
@@ -226,11 +236,9 @@ void bindRecognizer(py::module_& m) {
       .def(
           "add_to_trail",
           [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {
-            const ChannelOrder order = channelOrder(channel_order);
-            const Image view = imageFrom(image);
-            const Stamp exact = coreStamp(stamp);
+            const OfferedFrame frame(image, stamp, channel_order);
             py::gil_scoped_release released;
-            return self.core().offerToTrail(self.core().describe(view.mat, order), exact) == FrameAdmission::kAdmitted;
+            return self.core().offerToTrail(frame.descriptor(self.core()), frame.stamp) == FrameAdmission::kAdmitted;
           },
           py::arg("image"), py::arg("stamp") = 0.0, py::arg("channel_order") = "bgr",
           "For a map that stays as it is (the node's map_mode fixed): offers a camera frame as add_frame does, "
