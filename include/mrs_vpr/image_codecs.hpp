@@ -27,7 +27,7 @@ cv::Mat read(const std::string& path, int flags);
 /// cv::imdecode of an encoded stream (a 1 x n CV_8UC1 matrix or a vector of bytes).
 cv::Mat decode(const cv::Mat& buffer, int flags);
 
-/// A JPEG stream whose data libjpeg finds corrupt; what() is libjpeg's message.
+/// A JPEG stream whose data libjpeg finds missing or undecodable; what() is libjpeg's warning.
 class CorruptJpeg : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -35,10 +35,12 @@ class CorruptJpeg : public std::runtime_error {
 
 /**
  * decode(buffer, cv::IMREAD_UNCHANGED) of a camera frame or image file, except that a JPEG stream
- * whose data is corrupt throws CorruptJpeg: libjpeg decodes such a stream (a flipped bit, bytes lost
- * in transit) with a warning on stderr only, making up what it cannot read, and OpenCV gives that
- * image as if it were whole. JPEG of one or three components is decoded by libjpeg directly, into the
- * pixels OpenCV gives; other streams by OpenCV.
+ * whose data libjpeg finds missing or undecodable (bytes lost in transit, a bad Huffman code) throws
+ * CorruptJpeg: libjpeg decodes such a stream with a warning on stderr only, making up what it cannot
+ * read, and OpenCV gives that image as if it were whole. Only what libjpeg notices is caught (few
+ * flipped bits are), and warnings that leave the pixels whole are ignored (strict_jpeg_decoder.hpp).
+ * JPEG of one or three components is decoded by libjpeg directly, into the pixels OpenCV gives; other
+ * streams, and those libjpeg cannot decode at all, by OpenCV.
  */
 cv::Mat decodeStrictly(const std::uint8_t* data, std::size_t size);
 

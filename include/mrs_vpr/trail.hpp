@@ -16,9 +16,9 @@ constexpr int kTrailKeyframes = 4096;
 /**
  * The camera's newest keyframes while the map stays as it is (a fixed map, localisation only): what
  * the questions about the newest keyframes ask about instead of the map's own frames. Keyframes are
- * counted from the first appended, so that a question can name where its
- * sequence ends whatever was dropped; the oldest are dropped in one piece once twice `keep` are
- * held. Not thread-safe: PlaceRecognizer locks it.
+ * counted from the first appended, so that a question can name where its sequence ends whatever was
+ * dropped; the oldest are dropped in one piece once twice `keep` are held. Not thread-safe:
+ * PlaceRecognizer locks it.
  */
 class Trail {
  public:
