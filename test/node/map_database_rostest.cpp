@@ -514,6 +514,45 @@ TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
   EXPECT_EQ(node->stop(), 0);
 }
 
+// ~query {recent_frames: K} asks about the loaded map's newest frames, or about the camera's, but never
+// about a sequence that joins the two: the junction of two drives is no place, and an accepted answer
+// there would link it to one.
+TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyframes) {
+  {
+    auto mapper = startNode("mapper", path("map.db"));
+    MapInfoWatch info(nh_, "/" + mapper->name());
+    publishReference(0, 200);
+    waitPersisted(info, 200);
+    EXPECT_EQ(mapper->stop(), 0);
+  }
+  auto node = startNode("asker", path("map.db"));
+  MapInfoWatch info(nh_, "/" + node->name());
+  mrs_vpr::QuerySequence recent;
+  recent.request.recent_frames = 10;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  EXPECT_TRUE(recent.response.success) << recent.response.message;  // the map's own last drive
+
+  publishReference(0, 6);
+  waitPersisted(info, 206);
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  EXPECT_FALSE(recent.response.success);
+  EXPECT_EQ(recent.response.reference_index, -1);
+  EXPECT_EQ(recent.response.message,
+            "recent_frames 10 would join the loaded map's last 4 frames to the 6 keyframes the camera added since: "
+            "two drives, whose junction is no place; ask again once the camera has added 10, or about at most 6 now");
+  recent.request.recent_frames = 6;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  EXPECT_TRUE(recent.response.success) << recent.response.message;
+
+  publishReference(6, 10);
+  waitPersisted(info, 210);
+  recent.request.recent_frames = 10;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  EXPECT_TRUE(recent.response.success) << recent.response.message;
+  EXPECT_NEAR(recent.response.reference_index, 9, 3) << "the camera's first keyframes revisit the map's first";
+  EXPECT_EQ(node->stop(), 0);
+}
+
 // A node that maps as it drives closes the loops of a revisit, which link the visits' frames, so that a
 // place it holds twice is no rival of itself: the links survive a restart and a saved and loaded map.
 TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAndALoad) {
