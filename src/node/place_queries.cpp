@@ -16,6 +16,7 @@
 #include <opencv2/core/utility.hpp>
 
 #include "mrs_vpr/LoopClosure.h"
+#include "mrs_vpr/loaded_map_junction.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/loop_closure_stamps.hpp"
@@ -64,7 +65,11 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
           "newest map frames");
     } else {
-      refuseSequenceAcrossSessionStart(request.recent_frames);
+      if (!params_.fixedMap()) {  // A fixed map's recent frames are the trail's, all of this run.
+        recognizer_.flush();      // The camera's newest keyframes count too.
+        refuseSequenceAcrossLoadedMap(recognizer_.size() - static_cast<long long>(request.recent_frames),
+                                      recognizer_.size(), session_start_size_);
+      }
       input.recent_frames = request.recent_frames;
     }
     answered = answer(input, response);
@@ -88,22 +93,6 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
     ROS_WARN("mrs_vpr: query failed: %s", response.message.c_str());
   }
   return true;  // failures are reported in the response, never as "service call failed"
-}
-
-void PlaceRecognitionNode::refuseSequenceAcrossSessionStart(long long recent_frames) {
-  if (params_.fixedMap()) return;  // The trail's keyframes are all of this run.
-  recognizer_.flush();             // The camera's newest keyframes count too.
-  const long long camera_keyframes = static_cast<long long>(recognizer_.size()) - session_start_size_;
-  if (session_start_size_ == 0 || camera_keyframes <= 0 || camera_keyframes >= recent_frames) return;
-  const std::string fewer = camera_keyframes >= kMinSequenceFrames
-                                ? ", or about at most " + std::to_string(camera_keyframes) + " now"
-                                : "";
-  throw std::invalid_argument("recent_frames " + std::to_string(recent_frames) + " would join the loaded map's last " +
-                              std::to_string(recent_frames - camera_keyframes) + " frames to the " +
-                              std::to_string(camera_keyframes) +
-                              " keyframes the camera added since: two drives, whose junction is no place; ask "
-                              "again once the camera has added " +
-                              std::to_string(recent_frames) + fewer);
 }
 
 PlaceAnswer PlaceRecognitionNode::answer(QueryInput& input, QuerySequence::Response& response) {

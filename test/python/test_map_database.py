@@ -39,6 +39,23 @@ def test_a_map_of_another_front_end_is_refused_and_the_map_kept(route, mapped, t
     assert len(hog) == 5  # The frames it had, not an emptied map.
 
 
+def test_match_recent_never_joins_a_loaded_map_to_the_frames_added_since(route, mapped, tmp_path):
+    path = tmp_path / "map.db"
+    mapped.save(path)
+    loaded = mrs_vpr.PlaceRecognizer.from_map(path)
+    assert loaded.match_recent(10).reference_index >= 0  # the map's own last drive
+    assert loaded.add_frames(route["reference"][:6]) == 6
+    with pytest.raises(ValueError) as refused:
+        loaded.match_recent(10)
+    assert str(refused.value) == (
+        "a test sequence of 10 frames would join the loaded map's last 4 frames to the 6 added since: two "
+        "drives, whose junction is no place; ask again once 10 frames have been added, or about at most 6 now")
+    assert loaded.match_recent(10, end=600).reference_index >= 0  # before the junction
+    assert loaded.match_recent(6).reference_index >= 0
+    loaded.add_frames(route["reference"][6:10])
+    assert 0 <= loaded.match_recent(10).reference_index < 10  # the map's first frames, seen again
+
+
 def test_a_map_is_never_overwritten(mapped, tmp_path):
     path = tmp_path / "map.db"
     path.write_text("a user's file")

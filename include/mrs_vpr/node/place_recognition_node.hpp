@@ -139,10 +139,6 @@ class PlaceRecognitionNode {
   /// while a query holds the map (the frames then wait for the next flush).
   bool flushWaitingKeyframes(bool wait = true);
 
-  /// Throws std::invalid_argument when the newest `recent_frames` keyframes would join a loaded map's
-  /// last frames to the first keyframes the camera added since: two drives, whose junction can look
-  /// like a place the map holds twice. Every frame of either side alone may be asked about.
-  void refuseSequenceAcrossSessionStart(long long recent_frames);
   /// Answers a query; throws std::invalid_argument with a user-facing message on bad input.
   PlaceAnswer answer(QueryInput& input, QuerySequence::Response& response);
   /// Publishes the answer on ~loop_closure, for the frame of `header` (the keyframe localised, or a
