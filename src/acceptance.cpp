@@ -73,6 +73,10 @@ std::string acceptanceVerdict(const Match& match, const SequenceParams& params) 
            "views (one recording added to the map twice, as a bag played again without emptying the map), and a "
            "frame that finds itself is no loop closure";
   }
+  if (match.across_drives) {
+    return "not accepted: the answer's trajectory runs across the junction of two drives (a map loaded and the "
+           "frames added after it, or two visits appended one after the other), which is no place";
+  }
   if (match.turned_back) {
     return "not accepted: the test sequence returns to a place it passed (the robot turned back or backed up), "
            "and the search's trajectories, which run forwards, do not fit the keyframe placed";

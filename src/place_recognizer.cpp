@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mrs_vpr/acceptance.hpp"
+#include "mrs_vpr/drive_starts.hpp"
 #include "mrs_vpr/mrs_matcher.hpp"
 #include "mrs_vpr/number_text.hpp"
 #include "mrs_vpr/same_recording.hpp"
@@ -372,10 +373,24 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   pending_.clear();
   recent_rows_->clear();
   links_.adopt(std::move(prepared.places_));  // Those its database kept; none for a map of frames alone.
+  drive_starts_.clear();
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = prepared.reserved_frames_;
   return cleared;
+}
+
+void PlaceRecognizer::markDriveStart(int frame) {
+  if (frame < 0) throw std::invalid_argument("a drive cannot start at map frame " + std::to_string(frame));
+  if (frame == 0) return;
+  std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
+  const auto at = std::lower_bound(drive_starts_.begin(), drive_starts_.end(), frame);
+  if (at == drive_starts_.end() || *at != frame) drive_starts_.insert(at, frame);
+}
+
+std::vector<int> PlaceRecognizer::driveStarts() const {
+  std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+  return drive_starts_;
 }
 
 PlaceRecognizer::MapState PlaceRecognizer::state() const {
@@ -431,6 +446,7 @@ PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, 
     answer.match = mrs != nullptr ? mrs->match(reference, query, trace) : matcher.match(reference, query);
   }
   if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
+  refuseAcrossDrives(answer.match, wholeSequenceRows(query.count, params_.sequence.alignment), drive_starts_);
   answer.verdict = acceptanceVerdict(answer.match, params_.sequence);
   if (explanation != nullptr) {
     *explanation = explainMatch(reference, query, answer.match, params_.sequence, params_.descriptor);
@@ -628,6 +644,7 @@ PlaceAnswer PlaceRecognizer::matchRecent(long long frames, const std::string& me
                                   " - recent_exclusion " + std::to_string(recognizer_.recent_exclusion) +
                                   "); the search needs at least " + std::to_string(recent));
     }
+    refuseTestSequenceAcrossDrives({size - recent, size}, drive_starts_);
     // The test frames are the map's own: MRS keeps their rows of the difference matrix between queries.
     const MapFrames map_frames{map_.view(0, frames_in_map), size - recent};
     result = answer(map_.view(0, searchable), map_.view(size - recent, size), method, explanation, &map_frames);

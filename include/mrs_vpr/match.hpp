@@ -44,6 +44,10 @@ struct Match {
   /// up, which trajectories running forwards place where the way out leads. Set, as repeated_view, on an
   /// answer that is then not accepted.
   bool turned_back = false;
+  /// The answer's trajectory runs across the junction of two drives (drive_starts.hpp): a map loaded
+  /// and the camera's frames after it, or two visits appended one after the other. Set, as
+  /// repeated_view, on an answer that is then not accepted.
+  bool across_drives = false;
   /// Mean difference along the best trajectory at the level that chose the answer (contrast-enhanced
   /// and shifted for seqslam and MRS's comparing level, raw at MRS's deeper levels); lower is more
   /// similar. Compare it between answers of one method and sequence length only.

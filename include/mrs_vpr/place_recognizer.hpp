@@ -241,6 +241,17 @@ class PlaceRecognizer {
   /// frames of known number copies the map at most once.
   void reserve(int frames);
 
+  /**
+   * Marks map frame `frame` as the first of a drive that does not continue the frame before it
+   * (drive_starts.hpp): the camera's first keyframe after a map loaded, or the first frame of a visit
+   * appended to one. Then no test sequence of matchRecent, and no accepted answer's trajectory, holds
+   * frames on both sides. Frame 0 marks nothing. Marks last until the map is emptied or replaced (reset(),
+   * replace(), install()). Throws std::invalid_argument for a negative frame.
+   */
+  void markDriveStart(int frame);
+  /// The drive starts marked, sorted.
+  std::vector<int> driveStarts() const;
+
   /// A consistent look at the map.
   struct MapState {
     int frames = 0;
@@ -336,6 +347,7 @@ class PlaceRecognizer {
   DescriptorSequence map_;
   std::atomic<int> map_frames_{0};  // map_.size(), readable without the map lock
   int reserved_frames_ = 0;         // under map_mutex_
+  std::vector<int> drive_starts_;   // under map_mutex_; sorted (drive_starts.hpp)
   // MRS's rows of the difference matrix for the newest frames, for matchRecent; emptied with the map.
   // Made once the parameters are validated.
   std::unique_ptr<RecentRows> recent_rows_;

@@ -127,6 +127,7 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
 
 void PlaceRecognitionNode::startSession(int map_frames) {
   session_start_size_ = map_frames;
+  recognizer_.markDriveStart(map_frames);  // The camera's keyframes are another drive than the map's.
   const int max_frames = params_.recognizer.max_frames;
   const int length = params_.autoQueryFrames();
   if (params_.auto_query_period <= 0.0 || max_frames <= 0 || max_frames - map_frames >= length) return;

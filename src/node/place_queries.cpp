@@ -16,7 +16,6 @@
 #include <opencv2/core/utility.hpp>
 
 #include "mrs_vpr/LoopClosure.h"
-#include "mrs_vpr/loaded_map_junction.hpp"
 #include "mrs_vpr/node/continuous_queries.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
 #include "mrs_vpr/node/loop_closure_stamps.hpp"
@@ -65,11 +64,6 @@ bool PlaceRecognitionNode::queryCallback(QuerySequence::Request& request, QueryS
           "empty request: give the test sequence as images, or set recent_frames >= 2 to use the "
           "newest map frames");
     } else {
-      if (!params_.fixedMap()) {  // A fixed map's recent frames are the trail's, all of this run.
-        recognizer_.flush();      // The camera's newest keyframes count too.
-        refuseSequenceAcrossLoadedMap(recognizer_.size() - static_cast<long long>(request.recent_frames),
-                                      recognizer_.size(), session_start_size_);
-      }
       input.recent_frames = request.recent_frames;
     }
     answered = answer(input, response);

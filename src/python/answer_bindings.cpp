@@ -48,6 +48,9 @@ void bindAnswers(py::module_& m) {
       .def_readonly("turned_back", &Match::turned_back,
                     "The test sequence returns to a place it passed, as a robot that turned back or backed up "
                     "(match_recent only; never accepted).")
+      .def_readonly("across_drives", &Match::across_drives,
+                    "The answer's trajectory runs across the junction of two drives, as a map loaded and the frames "
+                    "offered after it (never accepted).")
       .def_readonly("sequence_difference", &Match::sequence_difference,
                     "Mean difference along the best trajectory; compare within one method and length only.")
       .def_readonly("comparisons", &Match::comparisons, "Image comparisons the search made.")

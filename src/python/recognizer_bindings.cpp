@@ -18,7 +18,6 @@
 
 #include "binding_parts.hpp"
 #include "image_conversion.hpp"
-#include "mrs_vpr/loaded_map_junction.hpp"
 #include "mrs_vpr/parameters.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/store/map_traversal.hpp"
@@ -45,8 +44,6 @@ class Recognizer {
   /// Frames offered since the map was last emptied or loaded that it did not keep: while there are
   /// any, map frame i is not the i-th frame offered (which evaluate() without ground truth assumes).
   long long framesLeftOut() const { return frames_left_out_.load(); }
-  /// Frames of the map last loaded, the first of the map (0 once emptied, or before any load).
-  int loadedFrames() const { return loaded_frames_.load(); }
 
   /**
    * Offers camera frames (oldest first) to the map; returns how many became keyframes. Each is
@@ -108,7 +105,7 @@ class Recognizer {
   void startOver() {
     frames_left_out_ = 0;
     const int frames = recognizer_.size();
-    loaded_frames_ = frames;
+    recognizer_.markDriveStart(frames);  // The frames offered next are another drive's.
     // The map's keyframes were kept at this recognizer's appearance change when it is empty or records
     // that one; else it is not known (another, or none recorded), and a saved map records none.
     const double own = recognizer_.recognizerParameters().min_appearance_change;
@@ -125,7 +122,6 @@ class Recognizer {
   std::mutex map_swap_mutex_;  ///< Taken before numbering_mutex_ by load() and reset(), and by save().
   std::mutex numbering_mutex_;
   std::atomic<long long> frames_left_out_{0};
-  std::atomic<int> loaded_frames_{0};
   std::int64_t next_number_ = 0;  ///< Guarded by numbering_mutex_.
   /// The appearance change the map's keyframes were kept at, when known; guarded by numbering_mutex_.
   std::optional<double> keyframing_ = recognizer_.recognizerParameters().min_appearance_change;
@@ -233,14 +229,12 @@ void bindRecognizer(py::module_& m) {
           "match_recent",
           [](Recognizer& self, long long frames, const std::string& method, int end) {
             py::gil_scoped_release released;
-            const long long sequence_end = end < 0 ? self.core().size() : end;
-            refuseSequenceAcrossLoadedMap(sequence_end - frames, sequence_end, self.loadedFrames());
             return self.core().matchRecent(frames, method, nullptr, end);
           },
           py::arg("frames"), py::arg("method") = "", py::arg("end") = -1,
           "Where the map's newest `frames` frames (or those before map frame `end`) lie among its older "
           "ones, recent_exclusion frames back and more: a loop closure. A sequence that would join a loaded "
-          "map's last frames to frames added since (two drives) is refused.")
+          "map's last frames to frames offered since (two drives) is refused.")
       .def(
           "add_to_trail",
           [](Recognizer& self, const py::handle& image, double stamp, const std::string& channel_order) {

@@ -42,6 +42,7 @@ void TraversalClosures::startTraversal(const std::vector<PlaceLink>& map_links) 
   recognizer_.install(std::move(*map_));
   map_.reset();
   recognizer_.keepUnsavedLinks();
+  recognizer_.markDriveStart(recognizer_.size());  // The traversal's keyframes are another drive's.
   // As the node's continuous mode asks: once the map holds enough frames to search, and the test
   // sequence holds keyframes of this traversal only.
   const int length = recognizer_.parameters().sequence.sequence_length;

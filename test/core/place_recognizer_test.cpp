@@ -116,6 +116,46 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
 // the second pass finds its own first pass, which is no loop closure. The same frames on a clock of
 // their own (a clock reset), and another traversal on the same clock that is elsewhere at those times
 // (simulated time starts at 0 every run), are loop closures.
+// The route's one traversal, declared two drives at map frame 300 (drive_starts.hpp): an answer whose
+// trajectory runs across the junction is not accepted, whichever method, and a test sequence of the
+// map's own frames across it is refused; answers on either side stand.
+TEST(PlaceRecognizer, NoAnswerAndNoTestSequenceRunsAcrossTheJunctionOfTwoDrives) {
+  RecognizerParams limits;
+  limits.recent_exclusion = 50;
+  PlaceRecognizer recognizer(globalSearchParams(), limits);
+  mapReference(recognizer);
+  recognizer.markDriveStart(300);
+  const int count = 150;
+  for (const std::string method : {"mrs", "seqslam"}) {
+    int across = 0;
+    int beside = 0;
+    for (int first = 0; first + count <= 400; first += 50) {
+      const PlaceAnswer answer = recognizer.match(queryImages(first, count), method);
+      const int truth = route().query_to_reference[first + count - 1];
+      const bool crosses = route().query_to_reference[first] < 300 && truth >= 300;
+      ASSERT_TRUE(within(answer.match.reference_index, truth, 3)) << method << " " << first;
+      EXPECT_EQ(answer.match.across_drives, crosses) << method << " " << first;
+      EXPECT_EQ(answer.match.accepted, !crosses) << method << " " << first << ": " << answer.verdict;
+      if (crosses) {
+        EXPECT_EQ(answer.verdict.rfind("not accepted: the answer's trajectory runs across the junction of two", 0), 0U);
+      }
+      (crosses ? across : beside) += 1;
+    }
+    EXPECT_GE(across, 2) << method;
+    EXPECT_GE(beside, 2) << method;
+  }
+  mapRevisit(recognizer);  // map frames 600..749: the second traversal's 100..249
+  recognizer.markDriveStart(610);
+  EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{300, 610}));
+  EXPECT_EQ(errorOf([&] { recognizer.matchRecent(150); }),
+            "a test sequence of 150 frames would join the last 10 frames of one drive to the first 140 of the next (a "
+            "map was loaded, or a visit appended, between them): their junction is no place; ask about at most 140, "
+            "or about 150 once the next drive holds that many");
+  EXPECT_TRUE(within(recognizer.matchRecent(140).match.reference_index, route().query_to_reference[249], 3));
+  recognizer.reset();
+  EXPECT_TRUE(recognizer.driveStarts().empty());
+}
+
 TEST(PlaceRecognizer, AFrameThatFindsItselfIsNoLoopClosure) {
   RecognizerParams limits;
   limits.recent_exclusion = 50;

@@ -538,8 +538,9 @@ TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyf
   EXPECT_FALSE(recent.response.success);
   EXPECT_EQ(recent.response.reference_index, -1);
   EXPECT_EQ(recent.response.message,
-            "a test sequence of 10 frames would join the loaded map's last 4 frames to the 6 added since: two "
-            "drives, whose junction is no place; ask again once 10 frames have been added, or about at most 6 now");
+            "a test sequence of 10 frames would join the last 4 frames of one drive to the first 6 of the next (a map "
+            "was loaded, or a visit appended, between them): their junction is no place; ask about at most 6, or "
+            "about 10 once the next drive holds that many");
   recent.request.recent_frames = 6;
   ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
   EXPECT_TRUE(recent.response.success) << recent.response.message;

@@ -48,8 +48,9 @@ def test_match_recent_never_joins_a_loaded_map_to_the_frames_added_since(route, 
     with pytest.raises(ValueError) as refused:
         loaded.match_recent(10)
     assert str(refused.value) == (
-        "a test sequence of 10 frames would join the loaded map's last 4 frames to the 6 added since: two "
-        "drives, whose junction is no place; ask again once 10 frames have been added, or about at most 6 now")
+        "a test sequence of 10 frames would join the last 4 frames of one drive to the first 6 of the next (a map "
+        "was loaded, or a visit appended, between them): their junction is no place; ask about at most 6, or about "
+        "10 once the next drive holds that many")
     assert loaded.match_recent(10, end=600).reference_index >= 0  # before the junction
     assert loaded.match_recent(6).reference_index >= 0
     loaded.add_frames(route["reference"][6:10])
