@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -18,6 +19,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -413,15 +415,58 @@ std::vector<PlaceLink> MapDatabase::placeLinks() const {
 }
 
 void MapDatabase::replace(const FrameSource& source, const std::optional<MapTraversal>& traversal,
-                          const std::vector<PlaceLink>& links) {
+                          const std::vector<PlaceLink>& links, const std::vector<int>& drive_starts) {
   inWriteTransaction([&] {
     execute("DELETE FROM frames; DELETE FROM place_links");
     insertFrames(source);
     insertLinks(links);
+    recordDriveStarts(drive_starts);
     forgetTraversal();
     if (traversal) recordTraversal(*traversal);
   });
   traversal_ = traversal;
+}
+
+std::vector<int> MapDatabase::driveStarts() const {
+  const std::map<std::string, std::string> stored = readMetadata();
+  const auto record = stored.find("drive_starts");
+  if (record == stored.end()) return {};
+  std::vector<int> starts;
+  const char* next = record->second.c_str();
+  const char* const end = next + record->second.size();
+  while (next != end) {
+    int frame = 0;
+    const auto [after, error] = std::from_chars(next, end, frame);
+    const bool follows = error == std::errc() && frame > 0 && (starts.empty() || frame > starts.back());
+    if (!follows || (after != end && *after != ' ')) {
+      fail("its drive_starts '" + record->second + "' is not a list of ascending frame numbers; with no node "
+           "holding the map, sqlite3 '" + path_ + "' \"DELETE FROM metadata WHERE key = 'drive_starts'\" removes it "
+           "(a drive's junction is then judged as a place)");
+    }
+    starts.push_back(frame);
+    next = after == end ? end : after + 1;
+  }
+  return starts;
+}
+
+void MapDatabase::addDriveStart(int frame) {
+  if (frame < 0) fail("a drive cannot start at frame " + std::to_string(frame));
+  if (frame == 0) return;
+  inWriteTransaction([&] {
+    std::vector<int> starts = driveStarts();
+    const auto at = std::lower_bound(starts.begin(), starts.end(), frame);
+    if (at != starts.end() && *at == frame) return;
+    starts.insert(at, frame);
+    recordDriveStarts(starts);
+  });
+}
+
+void MapDatabase::recordDriveStarts(const std::vector<int>& starts) {
+  execute("DELETE FROM metadata WHERE key = 'drive_starts'");
+  if (starts.empty()) return;
+  std::string list;
+  for (const int frame : starts) list += (list.empty() ? "" : " ") + std::to_string(frame);
+  execute("INSERT INTO metadata VALUES ('drive_starts', '" + list + "')");
 }
 
 void MapDatabase::inWriteTransaction(const std::function<void()>& work) {
@@ -553,6 +598,7 @@ void MapDatabase::forEachFrame(const std::function<void(const StoredFrame& frame
 void MapDatabase::clear() {
   inWriteTransaction([&] {
     execute("DELETE FROM frames; DELETE FROM place_links");
+    recordDriveStarts({});
     forgetTraversal();
   });
 }

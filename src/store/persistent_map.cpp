@@ -69,6 +69,14 @@ class LinksHeldBack {
   std::atomic<bool>& held_;
 };
 
+/// Marks a database's drive starts in the recognizer that now holds its frames; a start beyond them
+/// (a file edited by hand) marks nothing.
+void markDriveStarts(PlaceRecognizer& recognizer, const std::vector<int>& starts) {
+  for (const int start : starts) {
+    if (start <= recognizer.size()) recognizer.markDriveStart(start);
+  }
+}
+
 }  // namespace
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(requireEmpty(recognizer)) {}
@@ -87,7 +95,9 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
     labels_.append(frame.frame_id, frame.sequence);
   });
   linkPlaces(map, *database_);
+  const std::vector<int> drive_starts = database_->driveStarts();
   recognizer_.install(std::move(map));
+  markDriveStarts(recognizer_, drive_starts);
   label_bytes_ = labels_.memoryBytes();
   loaded_traversal_ = database_->traversal();  // Before the camera's first frame makes it forgotten.
   loaded_frames_ = static_cast<int>(frames);
@@ -172,6 +182,12 @@ void PersistentMap::commit() {
   if (writer_) writer_->commit();
 }
 
+void PersistentMap::startDrive(int frame) {
+  std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  recognizer_.markDriveStart(frame);
+  if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.addDriveStart(frame); });
+}
+
 int PersistentMap::reset() {
   std::lock_guard<std::mutex> whole(whole_map_mutex_);
   // The empty map is made first, then the database emptied: if either fails, the map stays as it is
@@ -198,6 +214,7 @@ int PersistentMap::load(const std::string& path) {
   FrameLabels labels;
   std::optional<MapTraversal> traversal;
   std::vector<PlaceLink> links;
+  std::vector<int> drive_starts;
   PlaceRecognizer::PreparedMap prepared = [&] {
     const MapDatabase saved(path, recognizer_.parameters().descriptor, MapAccess::kReadOnly);
     std::optional<PlaceRecognizer::PreparedMap> map;
@@ -213,12 +230,13 @@ int PersistentMap::load(const std::string& path) {
         labels.append(frame.frame_id, frame.sequence);
       });
       links = linkPlaces(*map, saved);
+      drive_starts = saved.driveStarts();
     });
     return std::move(*map);
   }();
   // ... the database rewritten from the file ...
   const LinksHeldBack held(links_held_back_);
-  if (writer_) replaceDatabase(path, prepared, labels, traversal, links);
+  if (writer_) replaceDatabase(path, prepared, labels, traversal, links, drive_starts);
   // ... then the recognizer, by a move that cannot fail: a query meanwhile answers from the old map or
   // the new one. The frames that came while the database was rewritten follow the new map's.
   const int loaded = prepared.size();
@@ -227,6 +245,7 @@ int PersistentMap::load(const std::string& path) {
   arrived.swap(held_back_);
   rewriting_ = false;
   recognizer_.install(std::move(prepared));
+  markDriveStarts(recognizer_, drive_starts);
   labels_ = std::move(labels);
   loaded_traversal_ = traversal;
   loaded_frames_ = loaded;
@@ -257,7 +276,7 @@ int PersistentMap::load(const std::string& path) {
 
 void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
                                     const FrameLabels& labels, const std::optional<MapTraversal>& traversal,
-                                    const std::vector<PlaceLink>& links) {
+                                    const std::vector<PlaceLink>& links, const std::vector<int>& drive_starts) {
   // The database is rewritten in one transaction, which takes seconds for a large map. The camera's
   // frames go on joining the old map meanwhile, held back from the database so that it holds the old
   // map or the new one; load() puts them after the new map's frames ...
@@ -285,7 +304,7 @@ void PersistentMap::replaceDatabase(const std::string& path, const PlaceRecogniz
         });
         if (index != prepared.size()) throw changedWhileLoaded(path);
       };
-      database.replace(frames, traversal, links);
+      database.replace(frames, traversal, links, drive_starts);
     });
   } catch (...) {
     // ... or, when the rewrite fails, the old map stays in both, and its new frames go to its database.
@@ -346,6 +365,9 @@ std::int64_t PersistentMap::saveFromMemory(const std::string& path, const std::o
     const std::optional<MapTraversal>& record = (traversal || frames != loaded_frames_) ? traversal : loaded_traversal_;
     if (record) copy.setTraversal(*record);
     copy.append({}, recognizer_.placeLinks(frames));
+    for (const int start : recognizer_.driveStarts()) {
+      if (start <= frames) copy.addDriveStart(start);  // A start at `frames`: the next frame's drive.
+    }
     copy.backupTo(path);
   } catch (const MapDatabaseError& error) {
     removeScratch();

@@ -745,6 +745,42 @@ TEST_F(MapDatabaseTest, RowsAndMetadataOfTheWrongKindAreRefusedNamingThem) {
       << openingError(path("blur.db"), hog);
 }
 
+TEST_F(MapDatabaseTest, DriveStartsAreRecordedInOrderOnceEachAndADamagedRecordIsNamed) {
+  const std::string file = path("drives.db");
+  {
+    MapDatabase map(file, thumbnailParams());
+    EXPECT_TRUE(map.driveStarts().empty());
+    map.addDriveStart(0);  // the map's beginning: no junction
+    map.addDriveStart(120);
+    map.addDriveStart(40);
+    map.addDriveStart(120);
+    EXPECT_EQ(map.driveStarts(), (std::vector<int>{40, 120}));
+  }
+  EXPECT_EQ(MapDatabase(file, MapAccess::kReadOnly).driveStarts(), (std::vector<int>{40, 120}));
+  for (const std::string damaged : {"40 x", "120 40", "0", "-3", "40  120", "99999999999"}) {
+    editByHand(file, "UPDATE metadata SET value = '" + damaged + "' WHERE key = 'drive_starts'");
+    std::string message = "(read)";
+    try {
+      MapDatabase(file, MapAccess::kReadOnly).driveStarts();
+    } catch (const MapDatabaseError& error) {
+      message = error.what();
+    }
+    EXPECT_NE(message.find("its drive_starts '" + damaged + "' is not a list of ascending frame numbers; with no "
+                           "node holding the map, sqlite3 '" + file +
+                           "' \"DELETE FROM metadata WHERE key = 'drive_starts'\" removes it"),
+              std::string::npos)
+        << message;
+  }
+  {
+    MapDatabase map(file, thumbnailParams());
+    map.clear();
+    EXPECT_TRUE(map.driveStarts().empty());
+    map.addDriveStart(7);
+    map.replace([](const auto&) {}, std::nullopt, {}, {3, 5});
+    EXPECT_EQ(map.driveStarts(), (std::vector<int>{3, 5}));
+  }
+}
+
 TEST_F(MapDatabaseTest, ClearEmptiesTheFramesAndKeepsTheMetadata) {
   {
     MapDatabase database(path("map.db"), thumbnailParams());

@@ -231,6 +231,47 @@ TEST_F(PersistentMapTest, FramesAddedAfterARestartFollowTheLoadedOnes) {
   expectSameFrames(framesOf(path("map.db")), expectedFrames(0, 150));
 }
 
+// The junction of two drives (drive_starts.hpp) is one after a restart, a save and a load, in the
+// recognizer and in the database: the next day's run must not take yesterday's junction for a place.
+TEST_F(PersistentMapTest, DriveStartsLastThroughARestartASaveAndALoadAndGoWithAReset) {
+  writeMap(path("map.db"), 0, 100);
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    map.startDrive(100);  // a camera's run after the loaded map
+    addReference(map, 100, 150);
+  }
+  {
+    PlaceRecognizer recognizer;
+    PersistentMap map(recognizer, path("map.db"), CommitPolicy{});
+    EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{100}));
+    map.startDrive(150);  // the next run, with no frame yet
+    EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{100, 150}));
+    map.save(path("snapshot.db"));
+  }
+  EXPECT_EQ(MapDatabase(path("map.db"), MapAccess::kReadOnly).driveStarts(), (std::vector<int>{100, 150}));
+  EXPECT_EQ(MapDatabase(path("snapshot.db"), MapAccess::kReadOnly).driveStarts(), (std::vector<int>{100, 150}));
+
+  PlaceRecognizer memory_only;
+  PersistentMap in_memory(memory_only);
+  EXPECT_EQ(in_memory.load(path("snapshot.db")), 150);
+  EXPECT_EQ(memory_only.driveStarts(), (std::vector<int>{100, 150}));
+  in_memory.startDrive(150);  // marked once
+  addReference(in_memory, 150, 160);
+  in_memory.save(path("from_memory.db"));
+  EXPECT_EQ(MapDatabase(path("from_memory.db"), MapAccess::kReadOnly).driveStarts(), (std::vector<int>{100, 150}));
+
+  PlaceRecognizer recognizer;
+  PersistentMap other(recognizer, path("other.db"), CommitPolicy{});
+  EXPECT_EQ(other.load(path("from_memory.db")), 160);
+  EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{100, 150}));
+  other.reset();
+  EXPECT_TRUE(recognizer.driveStarts().empty());
+  other.commit();
+  other.save(path("after_reset.db"));
+  EXPECT_TRUE(MapDatabase(path("after_reset.db"), MapAccess::kReadOnly).driveStarts().empty());
+}
+
 TEST_F(PersistentMapTest, QueuedCountsTheFramesNotYetCommitted) {
   PlaceRecognizer recognizer;
   PersistentMap map(recognizer, path("map.db"), CommitPolicy{60.0, 1000});

@@ -53,7 +53,9 @@ struct StoredFrame {
  *                                                descriptor_bytes, created, package_version;
  *                                                traversal_frames, traversal_last_frame and, for keyframes
  *                                                by appearance change, traversal_min_appearance_change
- *                                                (MapTraversal)
+ *                                                (MapTraversal); drive_starts, the frames that begin
+ *                                                a drive not continuing the frame before them
+ *                                                (drive_starts.hpp), as numbers in ascending order
  *   frames(id INTEGER PRIMARY KEY, stamp_ns INTEGER, frame_id TEXT, sequence INTEGER, descriptor BLOB)
  *   place_links(id INTEGER PRIMARY KEY, frame INTEGER, reference INTEGER)
  *
@@ -122,16 +124,23 @@ class MapDatabase {
   /// Calls `read` inside one read transaction: all it reads of this database (its size, its frames) is
   /// the file at one moment, whatever another program writes meanwhile.
   void readAtOneMoment(const std::function<void()>& read) const;
-  /// Removes every frame and place link (the metadata stays).
+  /// Removes every frame, place link and drive start (the rest of the metadata stays).
   void clear();
   /// Where replace() takes its frames from: it calls `insert` once for each frame, in map order.
   using FrameSource = std::function<void(const std::function<void(const StoredFrame& frame)>& insert)>;
   /// Replaces every frame by those `source` gives, in one transaction: on any failure (a throw from
   /// `source` too) the old frames stay. The new frames need not all be in memory at once. The old
-  /// frames' traversal and place links are forgotten; `traversal`, the one the new frames were kept
-  /// of, and `links`, their place links, are recorded.
+  /// frames' traversal, place links and drive starts are forgotten; `traversal`, the one the new
+  /// frames were kept of, `links`, their place links, and `drive_starts`, theirs, are recorded.
   void replace(const FrameSource& source, const std::optional<MapTraversal>& traversal = std::nullopt,
-               const std::vector<PlaceLink>& links = {});
+               const std::vector<PlaceLink>& links = {}, const std::vector<int>& drive_starts = {});
+  /// The drive starts the map records (drive_starts.hpp), in ascending order; none for a map that
+  /// records none (one drive, or written by an earlier release). Throws MapDatabaseError, naming the
+  /// sqlite3 command that removes it, for a record that is not such a list of frames.
+  std::vector<int> driveStarts() const;
+  /// Records that a drive begins at map frame `frame`: the map's size when the frames about to be
+  /// appended come from another drive than its last frame. Frame 0 begins the map and records nothing.
+  void addDriveStart(int frame);
   /// Throws MapDatabaseError naming the problem unless SQLite's quick_check finds the file sound; the
   /// message counts the problems and quotes the first, however damaged the file.
   void checkIntegrity() const;
@@ -213,6 +222,8 @@ class MapDatabase {
   /// Converts an older map in one transaction: a format-1 map's frames are rewritten with exact
   /// stamps, and the place_links table is added.
   void convertToCurrentFormat();
+  /// Records `starts` (ascending) as the drive starts, replacing any, inside the caller's transaction.
+  void recordDriveStarts(const std::vector<int>& starts);
   /// Inserts `links` inside a transaction the caller has begun.
   void insertLinks(const std::vector<PlaceLink>& links);
   /// Inserts the frames of `source` inside a transaction the caller has begun; throws

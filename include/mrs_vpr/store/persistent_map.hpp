@@ -88,6 +88,14 @@ class PersistentMap {
   std::int64_t save(const std::string& path, const std::optional<MapTraversal>& traversal = std::nullopt);
   /// Commits the queued frames now.
   void commit();
+  /**
+   * Marks map frame `frame` as the first of a drive that does not continue the frame before it
+   * (PlaceRecognizer::markDriveStart): the map's size when the camera's frames after a loaded map
+   * are about to follow. The database records it too, so that the junction stays one after a restart
+   * or a save and load. Throws MapDatabaseError when the record cannot be written (the recognizer
+   * keeps the mark).
+   */
+  void startDrive(int frame);
 
   /// Map frame `index`'s frame id and number (StoredFrame), as added or loaded; "" and -1 for an
   /// index the map does not hold.
@@ -124,7 +132,7 @@ class PersistentMap {
   /// `traversal`, the new frames' record, and `links`, their place links, are written with them.
   void replaceDatabase(const std::string& path, const PlaceRecognizer::PreparedMap& prepared,
                        const FrameLabels& labels, const std::optional<MapTraversal>& traversal,
-                       const std::vector<PlaceLink>& links);
+                       const std::vector<PlaceLink>& links, const std::vector<int>& drive_starts);
 
   PlaceRecognizer& recognizer_;
   std::unique_ptr<MapDatabase> database_;
