@@ -548,6 +548,9 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     framesToSearchLocked();
     matches = matcher.matchEveryFrame(map_.view(), traversal);
+    for (std::size_t frame = 0; frame < matches.size(); ++frame) {
+      refuseAcrossDrives(matches[frame], sequenceRowsFor(static_cast<int>(frame), params_.sequence), drive_starts_);
+    }
   }
   flush();
   return matches;

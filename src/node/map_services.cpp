@@ -127,7 +127,12 @@ void PlaceRecognitionNode::startOverOnNewMap(int map_frames) {
 
 void PlaceRecognitionNode::startSession(int map_frames) {
   session_start_size_ = map_frames;
-  recognizer_.markDriveStart(map_frames);  // The camera's keyframes are another drive than the map's.
+  try {
+    map_->startDrive(map_frames);  // The camera's keyframes are another drive than the map's.
+  } catch (const std::exception& error) {  // The mark holds in memory; only the database lacks it.
+    ROS_ERROR("mrs_vpr: could not record in the map database that the camera's keyframes begin another drive "
+              "after the map's %d frames: %s", map_frames, error.what());
+  }
   const int max_frames = params_.recognizer.max_frames;
   const int length = params_.autoQueryFrames();
   if (params_.auto_query_period <= 0.0 || max_frames <= 0 || max_frames - map_frames >= length) return;

@@ -105,7 +105,7 @@ class Recognizer {
   void startOver() {
     frames_left_out_ = 0;
     const int frames = recognizer_.size();
-    recognizer_.markDriveStart(frames);  // The frames offered next are another drive's.
+    map_.startDrive(frames);  // The frames offered next are another drive's.
     // The map's keyframes were kept at this recognizer's appearance change when it is empty or records
     // that one; else it is not known (another, or none recorded), and a saved map records none.
     const double own = recognizer_.recognizerParameters().min_appearance_change;

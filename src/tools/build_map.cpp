@@ -136,7 +136,9 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
     numbering.see(frame.sequence);
     if (closures) closures->addMapFrame(frame.descriptor, frame.stamp);
   });
-  if (closures) closures->startTraversal(map.placeLinks());
+  if (closures) closures->startTraversal(map.placeLinks(), map.driveStarts());
+  // The traversal is another drive than the map's last: their junction is no place (drive_starts.hpp).
+  if (before > 0) map.addDriveStart(static_cast<int>(before));
   std::int64_t next_index = numbering.next(extended);
   int stored = 0;
   int too_similar = 0;

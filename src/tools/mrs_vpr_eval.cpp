@@ -158,13 +158,14 @@ std::optional<Keyframes> storedFrameNumbers(const std::vector<std::int64_t>& num
 
 /// Offers a map database's keyframes to `add_to_map` and numbers `keyframes` by the frames of the
 /// traversal they were taken from, where the database stores increasing numbers (build_map's maps
-/// do); gives the recognizer the map's place links, as a node started on it has them; returns the
+/// do); gives the recognizer the map's place links and drive starts, as a node started on it has them; returns the
 /// traversal they stand for.
 Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, PlaceRecognizer& recognizer,
                           Keyframes& keyframes, const std::function<void(const cv::Mat&, Stamp)>& add_to_map) {
   std::vector<std::int64_t> stored_numbers;
   std::optional<MapTraversal> recorded;
   std::vector<PlaceLink> links;
+  std::vector<int> drive_starts;
   // The frames and their record as the file holds them at one moment, whatever a node writes meanwhile.
   map.readAtOneMoment([&] {
     recorded = map.readTraversal();
@@ -174,10 +175,14 @@ Traversal readMapDatabase(MapDatabase& map, const EvalOptions& options, PlaceRec
       if (keyframes.frames.size() > kept) stored_numbers.push_back(frame.sequence);
     });
     links = map.placeLinks();
+    drive_starts = map.driveStarts();
   });
   if (recognizer.size() == 0) throw std::invalid_argument("the map database " + options.reference + " holds no frame");
   // Every frame of a map database joins the map (an unbounded one), so its links name the map's frames.
   recognizer.linkPlaces(links);
+  for (const int start : drive_starts) {
+    if (start <= recognizer.size()) recognizer.markDriveStart(start);  // as a node started on it has them
+  }
   std::cerr << "  reference: " << recognizer.size() << " keyframes from the map database " << options.reference;
   if (!links.empty()) {
     std::cerr << " (" << recognizer.state().linked_frames << " of them linked by its loop closures to a place an "

@@ -35,8 +35,9 @@ class TraversalClosures {
 
   /// A frame the map held before the traversal, in map order.
   void addMapFrame(const cv::Mat& descriptor, Stamp stamp);
-  /// The map's own place links, once its frames are added; the traversal's keyframes follow.
-  void startTraversal(const std::vector<PlaceLink>& map_links);
+  /// The map's own place links and drive starts (drive_starts.hpp), once its frames are added; the
+  /// traversal's keyframes follow, as another drive.
+  void startTraversal(const std::vector<PlaceLink>& map_links, const std::vector<int>& drive_starts);
   /// A keyframe of the traversal (in map order after the map's frames): asks where its newest
   /// keyframes are, once the map holds enough older frames to search.
   void addKeyframe(const cv::Mat& descriptor, Stamp stamp);

@@ -11,6 +11,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "mrs_vpr/drive_starts.hpp"
 #include "mrs_vpr/place_recognizer.hpp"
 #include "mrs_vpr/synthetic_route.hpp"
 #include "support/route_fixture.hpp"
@@ -144,6 +145,28 @@ TEST(PlaceRecognizer, NoAnswerAndNoTestSequenceRunsAcrossTheJunctionOfTwoDrives)
     EXPECT_GE(across, 2) << method;
     EXPECT_GE(beside, 2) << method;
   }
+  // The per-frame protocol judges each frame's answer so too (the map's own frames 250..349 as the
+  // traversal, in sequences long enough to be accepted on the generated route).
+  Parameters longer = globalSearchParams();
+  longer.sequence.sequence_length = 30;
+  PlaceRecognizer per_frame(longer);
+  mapReference(per_frame);
+  per_frame.markDriveStart(300);
+  DescriptorSequence traversal(per_frame.extractor().size());
+  for (int frame = 250; frame < 350; ++frame) traversal.append(per_frame.describe(route().reference[frame]));
+  const std::vector<Match> every_frame = per_frame.matchEveryFrame(traversal.view(), "seqslam");
+  int refused = 0;
+  int accepted = 0;
+  for (std::size_t frame = 0; frame < every_frame.size(); ++frame) {
+    const Match& match = every_frame[frame];
+    const FrameRange path =
+        trajectoryFrames(match, sequenceRowsFor(static_cast<int>(frame), per_frame.parameters().sequence));
+    if (match.accepted) EXPECT_TRUE(path.end <= 300 || path.begin >= 300) << frame;
+    refused += match.across_drives ? 1 : 0;
+    accepted += match.accepted ? 1 : 0;
+  }
+  EXPECT_GE(refused, 20);
+  EXPECT_GE(accepted, 30);
   mapRevisit(recognizer);  // map frames 600..749: the second traversal's 100..249
   recognizer.markDriveStart(610);
   EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{300, 610}));

@@ -552,6 +552,18 @@ TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyf
   EXPECT_TRUE(recent.response.success) << recent.response.message;
   EXPECT_NEAR(recent.response.reference_index, 9, 3) << "the camera's first keyframes revisit the map's first";
   EXPECT_EQ(node->stop(), 0);
+
+  // The database recorded the junction: after a restart it is still no place.
+  node = startNode("asker", path("map.db"));
+  recent.request.recent_frames = 15;
+  ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
+  EXPECT_FALSE(recent.response.success);
+  EXPECT_EQ(recent.response.message.rfind("a test sequence of 15 frames would join the last 5 frames of one drive to "
+                                          "the first 10 of the next",
+                                          0),
+            0U)
+      << recent.response.message;
+  EXPECT_EQ(node->stop(), 0);
 }
 
 // A node that maps as it drives closes the loops of a revisit, which link the visits' frames, so that a

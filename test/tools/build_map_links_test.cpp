@@ -116,6 +116,11 @@ TEST_F(BuildMapLinksTest, AStretchAppendedTwiceIsLinkedAndAThirdVisitClosesItsLo
   const int third_stretch = linksOfTheLastStretch(third_links, placesOfMapFrames(2));
   EXPECT_GE(third_stretch, second_stretch - 5);
   EXPECT_EQ(rightLinks(third_links, placesOfMapFrames(2)), static_cast<int>(third_links.size()));
+  // Each appended visit begins a drive (drive_starts.hpp): the map records where, with or without links.
+  const int route_frames = static_cast<int>(placesOfMapFrames(0).size());
+  const int visit_frames = static_cast<int>(placesOfMapFrames(1).size()) - route_frames;
+  EXPECT_EQ(MapDatabase(map, MapAccess::kReadOnly).driveStarts(),
+            (std::vector<int>{route_frames, route_frames + visit_frames}));
 
   // The same visits appended without links, as before build_map closed loops: the third is refused.
   const std::string unlinked = path("unlinked.db");
@@ -125,6 +130,8 @@ TEST_F(BuildMapLinksTest, AStretchAppendedTwiceIsLinkedAndAThirdVisitClosesItsLo
   ASSERT_EQ(add("revisit", unlinked, " --append").status, 0);
   const int unlinked_stretch = linksOfTheLastStretch(linksOf(unlinked), placesOfMapFrames(2));
   EXPECT_LT(unlinked_stretch, third_stretch / 2);
+  EXPECT_EQ(MapDatabase(unlinked, MapAccess::kReadOnly).driveStarts(),
+            (std::vector<int>{route_frames, route_frames + visit_frames}));
   std::cout << "stretch links: second visit " << second_stretch << ", third " << third_stretch
             << ", third after an unlinked second " << unlinked_stretch << "\n";
 }
