@@ -18,7 +18,9 @@ accepted that named the right place, and their median confidence. A last visit d
 1000..1299, which the map does not hold: every answer accepted about a keyframe there is wrong (at the
 centred alignment the first answers of that visit localise the last keyframes of the one before, and are
 judged as that visit's). With --restart, the map is saved after each visit and loaded into a new
-recognizer, as a node restarted on its ~database reads it (frames and place links, in one file).
+recognizer, as a node restarted on its ~database reads it (frames, place links and drive starts, in one
+file), and, as such a node asks, the visit's keyframes are asked about once the visit holds a whole
+test sequence of them.
 Needs python3-numpy and python3-opencv.
 """
 
@@ -87,6 +89,7 @@ def main():
         frames = range(1000, 1300) if new_ground else range(args.first, args.last + 1)
         answers = accepted = right = 0
         refused_right = []  # confidences of answers not accepted that named the right place
+        added = 0  # the visit's keyframes
         for step, frame in enumerate(frames):
             image = cv2.imread(winter[frame], cv2.IMREAD_GRAYSCALE)
             if visit > 2:
@@ -94,6 +97,9 @@ def main():
             if not recognizer.add_frame(image, 100000.0 * visit + 0.1 * step):
                 continue
             places.append(frame)
+            added += 1
+            if args.restart and added < LENGTH:
+                continue  # as a node asks after a load: about its own run's keyframes only
             answer = recognizer.match_recent(LENGTH)
             if answer.match.reference_index < 0:
                 continue
