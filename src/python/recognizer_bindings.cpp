@@ -367,6 +367,10 @@ void bindRecognizer(py::module_& m) {
           "Map frames that match_recent's accepted answers linked to a place an earlier visit shows, so that "
           "the place's visits are no rivals of each other; saved and loaded with the map.")
       .def_property_readonly(
+          "drive_starts", [](Recognizer& self) { return self.core().driveStarts(); },
+          "Map frames that begin a drive not continuing the frame before them (the first frame offered after "
+          "a load, or a map's recorded ones): no answer runs across them; saved and loaded with the map.")
+      .def_property_readonly(
           "pending_frames", [](Recognizer& self) { return self.core().pending(); },
           "Frames added while a query held the map, waiting to enter it.")
       .def_property_readonly(

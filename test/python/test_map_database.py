@@ -43,6 +43,7 @@ def test_match_recent_never_joins_a_loaded_map_to_the_frames_added_since(route, 
     path = tmp_path / "map.db"
     mapped.save(path)
     loaded = mrs_vpr.PlaceRecognizer.from_map(path)
+    assert loaded.drive_starts == [600]  # the frames offered next are another drive's
     assert loaded.match_recent(10).reference_index >= 0  # the map's own last drive
     assert loaded.add_frames(route["reference"][:6]) == 6
     with pytest.raises(ValueError) as refused:
@@ -55,6 +56,10 @@ def test_match_recent_never_joins_a_loaded_map_to_the_frames_added_since(route, 
     assert loaded.match_recent(6).reference_index >= 0
     loaded.add_frames(route["reference"][6:10])
     assert 0 <= loaded.match_recent(10).reference_index < 10  # the map's first frames, seen again
+    loaded.save(tmp_path / "two_drives.db")
+    assert mrs_vpr.PlaceRecognizer.from_map(tmp_path / "two_drives.db").drive_starts == [600, 610]
+    loaded.reset()
+    assert loaded.drive_starts == []
 
 
 def test_a_map_is_never_overwritten(mapped, tmp_path):
