@@ -334,6 +334,15 @@ void PlaceRecognizer::PreparedMap::linkPlaces(const std::vector<PlaceLink>& link
   places_ = PlaceLinks::placesOf(links, map_.size());
 }
 
+void PlaceRecognizer::PreparedMap::markDriveStarts(const std::vector<int>& starts) {
+  drive_starts_.clear();
+  for (const int start : starts) {
+    if (start > 0 && start <= map_.size()) drive_starts_.push_back(start);
+  }
+  std::sort(drive_starts_.begin(), drive_starts_.end());
+  drive_starts_.erase(std::unique(drive_starts_.begin(), drive_starts_.end()), drive_starts_.end());
+}
+
 bool PlaceRecognizer::PreparedMap::holds(int index, const cv::Mat& descriptor, Stamp stamp) const {
   if (index < 0 || index >= map_.size() || !(map_.stamp(index) == stamp)) return false;
   const auto bytes = static_cast<std::size_t>(map_.descriptorSize());
@@ -373,7 +382,7 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   pending_.clear();
   recent_rows_->clear();
   links_.adopt(std::move(prepared.places_));  // Those its database kept; none for a map of frames alone.
-  drive_starts_.clear();
+  drive_starts_ = std::move(prepared.drive_starts_);  // Its database's; none for a map of frames alone.
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();
   reserved_frames_ = prepared.reserved_frames_;
@@ -446,7 +455,8 @@ PlaceAnswer PlaceRecognizer::answer(SequenceView reference, SequenceView query, 
     answer.match = mrs != nullptr ? mrs->match(reference, query, trace) : matcher.match(reference, query);
   }
   if (answer.match.reference_index >= 0) answer.reference_stamp = map_.stamp(answer.match.reference_index);
-  refuseAcrossDrives(answer.match, wholeSequenceRows(query.count, params_.sequence.alignment), drive_starts_);
+  refuseAcrossDrives(answer.match, wholeSequenceRows(query.count, params_.sequence.alignment), drive_starts_,
+                     velocities(params_.sequence));
   answer.verdict = acceptanceVerdict(answer.match, params_.sequence);
   if (explanation != nullptr) {
     *explanation = explainMatch(reference, query, answer.match, params_.sequence, params_.descriptor);
@@ -548,8 +558,10 @@ std::vector<Match> PlaceRecognizer::matchEveryFrame(SequenceView traversal, cons
     std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
     framesToSearchLocked();
     matches = matcher.matchEveryFrame(map_.view(), traversal);
+    const std::vector<double> searched = velocities(params_.sequence);
     for (std::size_t frame = 0; frame < matches.size(); ++frame) {
-      refuseAcrossDrives(matches[frame], sequenceRowsFor(static_cast<int>(frame), params_.sequence), drive_starts_);
+      refuseAcrossDrives(matches[frame], sequenceRowsFor(static_cast<int>(frame), params_.sequence), drive_starts_,
+                         searched);
     }
   }
   flush();

@@ -25,11 +25,14 @@ namespace mrs_vpr {
 void refuseTestSequenceAcrossDrives(FrameRange test, const std::vector<int>& starts);
 
 /// Map frames [begin, end) of an answer's trajectory: those its straight path through the placed frame
-/// (Match::reference_index, at row `rows.anchor`) visits at its velocity, from row `rows.first` to `rows.last`.
-FrameRange trajectoryFrames(const Match& match, const SequenceRows& rows);
+/// (Match::reference_index, at row `rows.anchor`) visits at its velocity, from row `rows.first` to
+/// `rows.last`; at the searched velocity (`velocities`, when given) nearest the answer's. A path
+/// realigned within sequence/alignment_slack may stray that far from it.
+FrameRange trajectoryFrames(const Match& match, const SequenceRows& rows, const std::vector<double>& velocities = {});
 
 /// Takes back the acceptance of `match` when its trajectory (trajectoryFrames) holds map frames on both
 /// sides of one of `starts`, and says so (Match::across_drives). Judges only accepted answers.
-void refuseAcrossDrives(Match& match, const SequenceRows& rows, const std::vector<int>& starts);
+void refuseAcrossDrives(Match& match, const SequenceRows& rows, const std::vector<int>& starts,
+                        const std::vector<double>& velocities = {});
 
 }  // namespace mrs_vpr

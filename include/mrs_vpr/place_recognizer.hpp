@@ -204,6 +204,9 @@ class PlaceRecognizer {
     /// The place links the map keeps (a map database's), once its frames are appended. Throws
     /// std::invalid_argument for a link to a frame it does not hold.
     void linkPlaces(const std::vector<PlaceLink>& links);
+    /// The drive starts the map keeps (a map database's, drive_starts.hpp), once its frames are
+    /// appended, sorted; a start beyond its frames (a file edited by hand) is left out.
+    void markDriveStarts(const std::vector<int>& starts);
 
    private:
     friend class PlaceRecognizer;
@@ -212,6 +215,7 @@ class PlaceRecognizer {
     DescriptorSequence map_;
     AppearanceKeyframes keyframes_;
     std::vector<int> places_;  // PlaceLinks::placesOf() its links
+    std::vector<int> drive_starts_;
     int expected_frames_ = 0;  // frames it was prepared for
     int reserved_frames_ = 0;  // frames map_ holds storage for
   };
@@ -246,7 +250,8 @@ class PlaceRecognizer {
    * (drive_starts.hpp): the camera's first keyframe after a map loaded, or the first frame of a visit
    * appended to one. Then no test sequence of matchRecent, and no accepted answer's trajectory, holds
    * frames on both sides. Frame 0 marks nothing. Marks last until the map is emptied or replaced (reset(),
-   * replace(), install()). Throws std::invalid_argument for a negative frame.
+   * replace(), install(), which puts a prepared map's own in place). Throws std::invalid_argument for a
+   * negative frame.
    */
   void markDriveStart(int frame);
   /// The drive starts marked, sorted.

@@ -431,22 +431,24 @@ std::vector<int> MapDatabase::driveStarts() const {
   const std::map<std::string, std::string> stored = readMetadata();
   const auto record = stored.find("drive_starts");
   if (record == stored.end()) return {};
+  const auto damaged = [&] {
+    fail("its drive_starts '" + record->second + "' is not a list of ascending frame numbers; with no node "
+         "holding the map, sqlite3 '" + path_ + "' \"DELETE FROM metadata WHERE key = 'drive_starts'\" removes it "
+         "(a drive's junction is then judged as a place)");
+  };
+  // Numbers separated by single spaces, as recordDriveStarts() writes them.
   std::vector<int> starts;
   const char* next = record->second.c_str();
   const char* const end = next + record->second.size();
-  while (next != end) {
+  while (true) {
     int frame = 0;
     const auto [after, error] = std::from_chars(next, end, frame);
-    const bool follows = error == std::errc() && frame > 0 && (starts.empty() || frame > starts.back());
-    if (!follows || (after != end && *after != ' ')) {
-      fail("its drive_starts '" + record->second + "' is not a list of ascending frame numbers; with no node "
-           "holding the map, sqlite3 '" + path_ + "' \"DELETE FROM metadata WHERE key = 'drive_starts'\" removes it "
-           "(a drive's junction is then judged as a place)");
-    }
+    if (error != std::errc() || frame <= 0 || (!starts.empty() && frame <= starts.back())) damaged();
     starts.push_back(frame);
-    next = after == end ? end : after + 1;
+    if (after == end) return starts;
+    if (*after != ' ' || after + 1 == end) damaged();
+    next = after + 1;
   }
-  return starts;
 }
 
 void MapDatabase::addDriveStart(int frame) {

@@ -69,14 +69,6 @@ class LinksHeldBack {
   std::atomic<bool>& held_;
 };
 
-/// Marks a database's drive starts in the recognizer that now holds its frames; a start beyond them
-/// (a file edited by hand) marks nothing.
-void markDriveStarts(PlaceRecognizer& recognizer, const std::vector<int>& starts) {
-  for (const int start : starts) {
-    if (start <= recognizer.size()) recognizer.markDriveStart(start);
-  }
-}
-
 }  // namespace
 
 PersistentMap::PersistentMap(PlaceRecognizer& recognizer) : recognizer_(requireEmpty(recognizer)) {}
@@ -95,9 +87,8 @@ PersistentMap::PersistentMap(PlaceRecognizer& recognizer, const std::string& pat
     labels_.append(frame.frame_id, frame.sequence);
   });
   linkPlaces(map, *database_);
-  const std::vector<int> drive_starts = database_->driveStarts();
+  map.markDriveStarts(database_->driveStarts());
   recognizer_.install(std::move(map));
-  markDriveStarts(recognizer_, drive_starts);
   label_bytes_ = labels_.memoryBytes();
   loaded_traversal_ = database_->traversal();  // Before the camera's first frame makes it forgotten.
   loaded_frames_ = static_cast<int>(frames);
@@ -231,6 +222,7 @@ int PersistentMap::load(const std::string& path) {
       });
       links = linkPlaces(*map, saved);
       drive_starts = saved.driveStarts();
+      map->markDriveStarts(drive_starts);
     });
     return std::move(*map);
   }();
@@ -245,7 +237,6 @@ int PersistentMap::load(const std::string& path) {
   arrived.swap(held_back_);
   rewriting_ = false;
   recognizer_.install(std::move(prepared));
-  markDriveStarts(recognizer_, drive_starts);
   labels_ = std::move(labels);
   loaded_traversal_ = traversal;
   loaded_frames_ = loaded;

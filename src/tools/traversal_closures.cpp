@@ -39,12 +39,10 @@ void TraversalClosures::addMapFrame(const cv::Mat& descriptor, Stamp stamp) {
 void TraversalClosures::startTraversal(const std::vector<PlaceLink>& map_links, const std::vector<int>& drive_starts) {
   if (!map_) throw std::logic_error("TraversalClosures: the traversal has started already");
   map_->linkPlaces(map_links);
+  map_->markDriveStarts(drive_starts);
   recognizer_.install(std::move(*map_));
   map_.reset();
   recognizer_.keepUnsavedLinks();
-  for (const int start : drive_starts) {
-    if (start <= recognizer_.size()) recognizer_.markDriveStart(start);
-  }
   recognizer_.markDriveStart(recognizer_.size());  // The traversal's keyframes are another drive's.
   // As the node's continuous mode asks: once the map holds enough frames to search, and the test
   // sequence holds keyframes of this traversal only.

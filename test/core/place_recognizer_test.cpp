@@ -113,10 +113,6 @@ TEST(PlaceRecognizer, MatchRecentEndingAtAnOlderFrameSearchesOnlyFramesOlderStil
             "a test sequence cannot end at frame -5 (-1: after the newest frame)");
 }
 
-// A bag played twice without a reset maps its route twice, at the same times with the same views: each frame of
-// the second pass finds its own first pass, which is no loop closure. The same frames on a clock of
-// their own (a clock reset), and another traversal on the same clock that is elsewhere at those times
-// (simulated time starts at 0 every run), are loop closures.
 // The route's one traversal, declared two drives at map frame 300 (drive_starts.hpp): an answer whose
 // trajectory runs across the junction is not accepted, whichever method, and a test sequence of the
 // map's own frames across it is refused; answers on either side stand.
@@ -171,14 +167,19 @@ TEST(PlaceRecognizer, NoAnswerAndNoTestSequenceRunsAcrossTheJunctionOfTwoDrives)
   recognizer.markDriveStart(610);
   EXPECT_EQ(recognizer.driveStarts(), (std::vector<int>{300, 610}));
   EXPECT_EQ(errorOf([&] { recognizer.matchRecent(150); }),
-            "a test sequence of 150 frames would join the last 10 frames of one drive to the first 140 of the next (a "
-            "map was loaded, or a visit appended, between them): their junction is no place; ask about at most 140, "
-            "or about 150 once the next drive holds that many");
+            "a test sequence of map frames [600, 750) runs across the start of a drive at frame 610 (a map was "
+            "loaded, as by a node started on its database or ~load_map, or a visit appended, before it): the "
+            "junction of two drives is no place; ask about at most 140 frames, or about 150 once the drive holds "
+            "that many");
   EXPECT_TRUE(within(recognizer.matchRecent(140).match.reference_index, route().query_to_reference[249], 3));
   recognizer.reset();
   EXPECT_TRUE(recognizer.driveStarts().empty());
 }
 
+// A bag played twice without a reset maps its route twice, at the same times with the same views: each frame of
+// the second pass finds its own first pass, which is no loop closure. The same frames on a clock of
+// their own (a clock reset), and another traversal on the same clock that is elsewhere at those times
+// (simulated time starts at 0 every run), are loop closures.
 TEST(PlaceRecognizer, AFrameThatFindsItselfIsNoLoopClosure) {
   RecognizerParams limits;
   limits.recent_exclusion = 50;

@@ -538,9 +538,10 @@ TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyf
   EXPECT_FALSE(recent.response.success);
   EXPECT_EQ(recent.response.reference_index, -1);
   EXPECT_EQ(recent.response.message,
-            "a test sequence of 10 frames would join the last 4 frames of one drive to the first 6 of the next (a map "
-            "was loaded, or a visit appended, between them): their junction is no place; ask about at most 6, or "
-            "about 10 once the next drive holds that many");
+            "a test sequence of map frames [196, 206) runs across the start of a drive at frame 200 (a map was "
+            "loaded, as by a node started on its database or ~load_map, or a visit appended, before it): the "
+            "junction of two drives is no place; ask about at most 6 frames, or about 10 once the drive holds that "
+            "many");
   recent.request.recent_frames = 6;
   ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
   EXPECT_TRUE(recent.response.success) << recent.response.message;
@@ -558,8 +559,8 @@ TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyf
   recent.request.recent_frames = 15;
   ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("query"), recent));
   EXPECT_FALSE(recent.response.success);
-  EXPECT_EQ(recent.response.message.rfind("a test sequence of 15 frames would join the last 5 frames of one drive to "
-                                          "the first 10 of the next",
+  EXPECT_EQ(recent.response.message.rfind("a test sequence of map frames [195, 210) runs across the start of a drive "
+                                          "at frame 200",
                                           0),
             0U)
       << recent.response.message;

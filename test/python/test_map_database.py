@@ -49,9 +49,9 @@ def test_match_recent_never_joins_a_loaded_map_to_the_frames_added_since(route, 
     with pytest.raises(ValueError) as refused:
         loaded.match_recent(10)
     assert str(refused.value) == (
-        "a test sequence of 10 frames would join the last 4 frames of one drive to the first 6 of the next (a map "
-        "was loaded, or a visit appended, between them): their junction is no place; ask about at most 6, or about "
-        "10 once the next drive holds that many")
+        "a test sequence of map frames [596, 606) runs across the start of a drive at frame 600 (a map was loaded, "
+        "as by a node started on its database or ~load_map, or a visit appended, before it): the junction of two "
+        "drives is no place; ask about at most 6 frames, or about 10 once the drive holds that many")
     assert loaded.match_recent(10, end=600).reference_index >= 0  # before the junction
     assert loaded.match_recent(6).reference_index >= 0
     loaded.add_frames(route["reference"][6:10])

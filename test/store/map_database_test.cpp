@@ -757,7 +757,7 @@ TEST_F(MapDatabaseTest, DriveStartsAreRecordedInOrderOnceEachAndADamagedRecordIs
     EXPECT_EQ(map.driveStarts(), (std::vector<int>{40, 120}));
   }
   EXPECT_EQ(MapDatabase(file, MapAccess::kReadOnly).driveStarts(), (std::vector<int>{40, 120}));
-  for (const std::string damaged : {"40 x", "120 40", "0", "-3", "40  120", "99999999999"}) {
+  for (const std::string damaged : {"40 x", "120 40", "0", "-3", "40  120", "99999999999", "", "40 ", " 40"}) {
     editByHand(file, "UPDATE metadata SET value = '" + damaged + "' WHERE key = 'drive_starts'");
     std::string message = "(read)";
     try {
