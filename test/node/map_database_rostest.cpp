@@ -219,6 +219,16 @@ class MapDatabaseNodeTest : public ::testing::Test {
         << " persisted; expected " << frames;
   }
 
+  /// Writes the map database `database` of reference frames [0, frames) through a node of its own, which
+  /// then stops (`extra`: its parameters beyond startNode's).
+  void mapReference(const std::string& database, int frames, const std::vector<std::string>& extra = {}) {
+    auto mapper = startNode("mapper", database, extra);
+    MapInfoWatch info(nh_, "/" + mapper->name());
+    publishReference(0, frames);
+    waitPersisted(info, static_cast<std::uint32_t>(frames));
+    EXPECT_EQ(mapper->stop(), 0);
+  }
+
   /// The node's answer to query frames [first, first + count) of the second traversal.
   static mrs_vpr::QuerySequence::Response query(const NodeProcess& node, int first, int count) {
     mrs_vpr::QuerySequence srv;
@@ -471,13 +481,7 @@ TEST_F(MapDatabaseNodeTest, AMapInMemoryKeepsItsFramesIdsAndNumbersThroughSaveAn
 }
 
 TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
-  {
-    auto mapper = startNode("mapper", path("map.db"));
-    MapInfoWatch info(nh_, "/" + mapper->name());
-    publishReference(0, 200);
-    waitPersisted(info, 200);
-    EXPECT_EQ(mapper->stop(), 0);
-  }
+  mapReference(path("map.db"), 200);
   // A node in continuous mode that has mapped 100 frames of its own, and asked about them.
   auto node = startNode("watcher", path("watcher.db"), {"auto_query_period:=0.2"});
   MapInfoWatch info(nh_, "/" + node->name());
@@ -518,13 +522,7 @@ TEST_F(MapDatabaseNodeTest, AfterALoadContinuousModeAsksAboutNewKeyframesOnly) {
 // about a sequence that joins the two: the junction of two drives is no place, and an accepted answer
 // there would link it to one.
 TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyframes) {
-  {
-    auto mapper = startNode("mapper", path("map.db"));
-    MapInfoWatch info(nh_, "/" + mapper->name());
-    publishReference(0, 200);
-    waitPersisted(info, 200);
-    EXPECT_EQ(mapper->stop(), 0);
-  }
+  mapReference(path("map.db"), 200);
   auto node = startNode("asker", path("map.db"));
   MapInfoWatch info(nh_, "/" + node->name());
   mrs_vpr::QuerySequence recent;
@@ -622,11 +620,7 @@ TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAnd
 TEST_F(MapDatabaseNodeTest, AFixedMapLocalisesTheCameraAndStaysAsItWas) {
   const std::string database = path("map.db");
   for (const auto& [file, frames] : {std::make_pair(database, 300), std::make_pair(path("small.db"), 40)}) {
-    auto mapper = startNode("mapper", file, {"descriptor/type:=thumbnail"});
-    MapInfoWatch info(nh_, "/" + mapper->name());
-    publishReference(0, frames);
-    waitPersisted(info, static_cast<std::uint32_t>(frames));
-    EXPECT_EQ(mapper->stop(), 0);
+    mapReference(file, frames, {"descriptor/type:=thumbnail"});
   }
   auto node = startNode("localiser", database,
                         {"descriptor/type:=thumbnail", "map_mode:=fixed", "auto_query_period:=0.2"});
