@@ -248,6 +248,9 @@ int run(int argc, char** argv) {
   // front end must be the same).
   if (exists && options.append) {
     const mrs_vpr::MapDatabase extended(output, mrs_vpr::MapAccess::kReadOnly);
+    // Read here, where a damaged record is named by the map's own path rather than by its copy's.
+    extended.placeLinks();
+    extended.driveStarts();
     if (!options.descriptor_given) options.params = extended.descriptorParams();
     const std::optional<mrs_vpr::MapTraversal>& traversal = extended.traversal();
     if (!options.min_appearance_change_given && traversal && traversal->min_appearance_change) {

@@ -135,6 +135,26 @@ TEST_F(BuildMapTest, AFailedExtensionLeavesAMapOfAnEarlierFormatAsItWas) {
   EXPECT_EQ(framesIn(map), 153);
 }
 
+// A damaged record of the map is named by the map's own path, and the map is left as it was.
+TEST_F(BuildMapTest, AnExtensionOfAMapWithADamagedRecordNamesTheMap) {
+  const std::string map = path("damaged.db");
+  {
+    MapDatabase database(map, thumbnail());
+    database.append(frames(3));
+    database.addDriveStart(2);
+  }
+  mrs_vpr::testing_support::runSql(map, "UPDATE metadata SET value = '2 1' WHERE key = 'drive_starts'");
+  const std::string before = fileContents(map);
+  const CommandResult failed = run(build(map, " --append"));
+  EXPECT_EQ(failed.status, 1);
+  EXPECT_NE(failed.err.find("map database '" + map + "': its drive_starts '2 1' is not a list of ascending frame "
+                            "numbers; with no node holding the map, sqlite3 '" + map + "'"),
+            std::string::npos)
+      << failed.err;
+  EXPECT_EQ(fileContents(map), before);
+  EXPECT_FALSE(fs::exists(map + ".part"));
+}
+
 TEST_F(BuildMapTest, AStoppedBuildLeavesNoUnfinishedMap) {
   const std::string map = path("stopped.db");
   const CommandResult stopped = run(mrs_vpr::testing_support::stoppedOnceExists(
