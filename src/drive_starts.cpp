@@ -29,6 +29,14 @@ double searchedVelocity(float velocity, const std::vector<double>& velocities) {
 
 }  // namespace
 
+bool insertDriveStart(std::vector<int>& starts, int frame) {
+  if (frame < 0) throw std::invalid_argument("a drive cannot start at map frame " + std::to_string(frame));
+  const auto at = std::lower_bound(starts.begin(), starts.end(), frame);
+  if (frame == 0 || (at != starts.end() && *at == frame)) return false;
+  starts.insert(at, frame);
+  return true;
+}
+
 void refuseTestSequenceAcrossDrives(FrameRange test, const std::vector<int>& starts) {
   const int start = lastJunctionWithin(test, starts);
   if (start < 0) return;

@@ -337,10 +337,8 @@ void PlaceRecognizer::PreparedMap::linkPlaces(const std::vector<PlaceLink>& link
 void PlaceRecognizer::PreparedMap::markDriveStarts(const std::vector<int>& starts) {
   drive_starts_.clear();
   for (const int start : starts) {
-    if (start > 0 && start <= map_.size()) drive_starts_.push_back(start);
+    if (start > 0 && start <= map_.size()) insertDriveStart(drive_starts_, start);
   }
-  std::sort(drive_starts_.begin(), drive_starts_.end());
-  drive_starts_.erase(std::unique(drive_starts_.begin(), drive_starts_.end()), drive_starts_.end());
 }
 
 bool PlaceRecognizer::PreparedMap::holds(int index, const cv::Mat& descriptor, Stamp stamp) const {
@@ -390,11 +388,9 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
 }
 
 void PlaceRecognizer::markDriveStart(int frame) {
-  if (frame < 0) throw std::invalid_argument("a drive cannot start at map frame " + std::to_string(frame));
-  if (frame == 0) return;
+  if (frame == 0) return;  // No junction: no need to wait for running queries.
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-  const auto at = std::lower_bound(drive_starts_.begin(), drive_starts_.end(), frame);
-  if (at == drive_starts_.end() || *at != frame) drive_starts_.insert(at, frame);
+  insertDriveStart(drive_starts_, frame);
 }
 
 std::vector<int> PlaceRecognizer::driveStarts() const {

@@ -20,6 +20,11 @@ namespace mrs_vpr {
  * `starts` are sorted map frames; frame 0 begins the map and is no junction.
  */
 
+/// Adds `frame` to the sorted `starts` unless they hold it already or it is frame 0 (the map's
+/// beginning, no junction); returns whether it was added. Throws std::invalid_argument for a
+/// negative frame.
+bool insertDriveStart(std::vector<int>& starts, int frame);
+
 /// Throws std::invalid_argument when test frames [test.begin, test.end), the map's own, hold frames
 /// on both sides of one of `starts`: two drives, asked about as if they were one.
 void refuseTestSequenceAcrossDrives(FrameRange test, const std::vector<int>& starts);

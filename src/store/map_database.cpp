@@ -4,7 +4,6 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -24,6 +23,7 @@
 #include <vector>
 
 #include "mrs_vpr/descriptor_sequence.hpp"
+#include "mrs_vpr/drive_starts.hpp"
 #include "mrs_vpr/store/map_hold.hpp"
 #include "front_end_metadata.hpp"
 #include "map_path.hpp"
@@ -456,10 +456,7 @@ void MapDatabase::addDriveStart(int frame) {
   if (frame == 0) return;
   inWriteTransaction([&] {
     std::vector<int> starts = driveStarts();
-    const auto at = std::lower_bound(starts.begin(), starts.end(), frame);
-    if (at != starts.end() && *at == frame) return;
-    starts.insert(at, frame);
-    recordDriveStarts(starts);
+    if (insertDriveStart(starts, frame)) recordDriveStarts(starts);
   });
 }
 

@@ -18,6 +18,17 @@ std::string refusal(FrameRange test, const std::vector<int>& starts) {
   return "";
 }
 
+TEST(DriveStarts, AStartIsInsertedInOrderOnceAndFrameZeroIsNone) {
+  std::vector<int> starts;
+  EXPECT_TRUE(insertDriveStart(starts, 120));
+  EXPECT_TRUE(insertDriveStart(starts, 40));
+  EXPECT_FALSE(insertDriveStart(starts, 120));
+  EXPECT_FALSE(insertDriveStart(starts, 0));
+  EXPECT_EQ(starts, (std::vector<int>{40, 120}));
+  EXPECT_THROW(insertDriveStart(starts, -1), std::invalid_argument);
+  EXPECT_EQ(starts, (std::vector<int>{40, 120}));
+}
+
 TEST(DriveStarts, OnlyATestSequenceWithFramesOfTwoDrivesIsRefused) {
   EXPECT_EQ(refusal({190, 200}, {200}), "");      // the loaded map's last frames
   EXPECT_EQ(refusal({200, 210}, {200}), "");      // the frames added since
