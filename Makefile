@@ -12,7 +12,7 @@ DEB_PACKAGES := build-essential cmake catkin ros-base-dev ros-message-generation
   libroscpp-dev libcv-bridge-dev libimage-transport-dev librosbag-dev librostest-dev libnodeletlib-dev pluginlib-dev \
   libstd-msgs-dev libstd-srvs-dev libsensor-msgs-dev libtf2-ros-dev libtf2-dev libtf2-msgs-dev libgeometry-msgs-dev ros-std-msgs ros-std-srvs ros-sensor-msgs libopencv-dev libeigen3-dev libgtest-dev googletest \
   nlohmann-json3-dev libsqlite3-dev libjpeg-dev libboost-program-options-dev python3-rostest python3-rosbag python3-rosservice python3-rostopic python3-roslaunch \
-  python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash catkin-lint python3-matplotlib \
+  python3-sensor-msgs python3-std-msgs python3-std-srvs rosbash topic-tools catkin-lint python3-matplotlib \
   python3-dev python3-pybind11 python3-numpy python3-pytest python3-setuptools python3-opencv
 
 # The real frames of the benchmark: read at run time, never copied into the repository.

@@ -1,7 +1,7 @@
 // Drives the nodes of camera_input.test: one route published raw, as JPEG and as PNG (the
 // `compressed` transport) and as a Bayer camera's raw mosaics, the answers compared, and bad
 // compressed frames counted; bursts of large frames into a one-frame queue, every frame counted; a
-// node whose topic nobody publishes, warning of it, and of a camera that stopped; failed queries,
+// camera throttled by topic_tools, none of its thinning counted as lost; a node whose topic nobody publishes, warning of it, and of a camera that stopped; failed queries,
 // each logged.
 
 #include <gtest/gtest.h>
@@ -303,12 +303,18 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
     rng.fill(image, cv::RNG::UNIFORM, 0, 256);
     frames.push_back(imageMessage(image, 0.0));
   }
-  // A first frame, received before the burst: the node counts lost frames from gaps in header.seq,
-  // so a frame lost before the first one it receives is no gap it could see.
-  int published = 1;
-  frames[1].header.stamp = ros::Time(99.0);
-  publisher.publish(frames[1]);
-  ASSERT_TRUE(watch.waitFor([](const mrs_vpr::MapInfo& m) { return m.frames_received == 1U; }, 30.0));
+  // Three frames, received one by one before the burst: the node counts lost frames from gaps in
+  // header.seq, so a frame lost before the first one it receives is no gap it could see, and the
+  // first steps of a numbering only teach its usual step (a throttled stream's is more than one).
+  int published = 0;
+  for (int i = 0; i < 3; ++i) {
+    frames[1].header.stamp = ros::Time(97.0 + i);
+    publisher.publish(frames[1]);
+    ++published;
+    ASSERT_TRUE(watch.waitFor(
+        [&](const mrs_vpr::MapInfo& m) { return m.frames_received == static_cast<std::uint64_t>(published); },
+        30.0));
+  }
   for (int i = 0; i < 12; ++i) {  // 6 large frames, and 6 small ones between them
     sensor_msgs::Image& frame = frames[static_cast<std::size_t>(i % 2)];
     frame.header.stamp = ros::Time(100.0 + i);
@@ -339,6 +345,46 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   EXPECT_EQ(info.frames_dropped, 0U);
   EXPECT_GE(info.frames, 2U);
   EXPECT_GT(info.frames_failed, 0U) << "the burst lost no frame: the count of lost frames went untested";
+}
+
+TEST(LostFrames, ACameraThrottledOnPurposeLosesNoFrame) {
+  // topic_tools throttle passes the camera's header.seq on, so a 30 Hz camera thinned to 10 Hz
+  // arrives 3 or 4 seqs a message. Each of those steps counted 2 or 3 lost frames, with a warning
+  // that blamed the node's queue.
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_throttled/query", ros::Duration(30.0)));
+  ros::Publisher camera = nh.advertise<sensor_msgs::Image>("/camera/fast", 100);
+  ASSERT_TRUE(waitForSubscribers(camera, 1, 30.0)) << "the throttle does not subscribe /camera/fast";
+  mrs_vpr::testing_support::TopicInbox<sensor_msgs::Image> throttled(nh, "/camera/throttled");
+  MapInfoWatch watch(nh, "/mrs_vpr_throttled");
+  cv::RNG rng(5);
+  ros::Rate rate(30.0);
+  const int published = 120;
+  for (int i = 0; i < published; ++i) {
+    cv::Mat image(48, 64, CV_8UC3);
+    rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+    camera.publish(imageMessage(image, 100.0 + i / 30.0));
+    rate.sleep();
+  }
+  ros::WallDuration(1.0).sleep();
+  // The throttle advertises its output with the first frame it forwards, so its first frames may
+  // reach neither this test nor the node: the node's counts are checked against themselves.
+  const std::vector<sensor_msgs::Image> forwarded = throttled.messages();
+  ASSERT_GE(forwarded.size(), 20U) << "the throttle forwarded too few frames to judge";
+  ASSERT_LE(forwarded.size(), 60U) << "the throttle did not thin the stream";
+  ASSERT_GE(forwarded.back().header.seq - forwarded.front().header.seq, 2 * (forwarded.size() - 1))
+      << "the throttle renumbered the frames: nothing to test";
+  mrs_vpr::MapInfo info;
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        info = m;
+        return m.frames_received >= forwarded.size() && m.frames + m.frames_failed == m.frames_received;
+      },
+      30.0))
+      << "received " << info.frames_received << ", mapped " << info.frames << ", failed " << info.frames_failed
+      << "; the test received " << forwarded.size();
+  EXPECT_EQ(info.frames_failed, 0U) << "a throttled stream's skipped seqs were counted as lost frames";
+  EXPECT_LE(info.frames_received, forwarded.size() + 2U);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@ namespace {
 
 TEST(SequenceGaps, CountsTheMessagesMissingFromAStream) {
   SequenceGaps gaps;
-  EXPECT_EQ(gaps.record(41), 0U);  // the first message seen: nothing known before it
+  EXPECT_EQ(gaps.record(40), 0U);  // the first message seen: nothing known before it
+  EXPECT_EQ(gaps.record(41), 0U);  // the first steps teach the stream's stride, 1
   EXPECT_EQ(gaps.record(42), 0U);
   EXPECT_EQ(gaps.record(45), 2U);  // 43 and 44 never arrived
   EXPECT_EQ(gaps.record(46), 0U);
@@ -29,13 +30,16 @@ TEST(SequenceGaps, AJumpBackThatWrapsIsARestartedSender) {
   EXPECT_EQ(gaps.record(4001), 0U);
   EXPECT_EQ(gaps.record(4294967295U), 0U);  // 4002 back, below 0: not 4294963293 lost frames
   EXPECT_EQ(gaps.record(0), 0U);            // the counter wrapping around
-  EXPECT_EQ(gaps.record(3), 2U);            // and counting gaps again after it
-  EXPECT_EQ(gaps.record(2147483651U), 0U);  // half the counter ahead is as far back
-  EXPECT_EQ(gaps.record(2147483652U), 0U);
+  EXPECT_EQ(gaps.record(1), 0U);
+  EXPECT_EQ(gaps.record(4), 2U);            // and counting gaps again after it
+  EXPECT_EQ(gaps.record(2147483652U), 0U);  // half the counter ahead is as far back
+  EXPECT_EQ(gaps.record(2147483653U), 0U);
 }
 
 TEST(SequenceGaps, AGapAcrossTheWrapIsCounted) {
   SequenceGaps gaps;
+  gaps.record(4294967288U);
+  gaps.record(4294967289U);
   gaps.record(4294967290U);
   EXPECT_EQ(gaps.record(4U), 9U);  // 4294967291 .. 4294967295 and 0 .. 3
 }
@@ -44,8 +48,9 @@ TEST(SequenceGaps, TwoPublishersAtOnceLoseNothingBetweenThem) {
   // A bag numbered from 300 played while the camera, numbered from 5, runs: they alternate.
   SequenceGaps gaps;
   EXPECT_EQ(gaps.record(5), 0U);
-  // The first jump ahead looks like a gap: nothing yet tells a second publisher. Only that one counts.
-  EXPECT_EQ(gaps.record(300), 294U);
+  // The first jump ahead is the first step of the camera's numbering as far as anything yet tells,
+  // and a numbering's first steps count nothing (before a stream's stride was learnt, it counted 294).
+  EXPECT_EQ(gaps.record(300), 0U);
   EXPECT_EQ(gaps.record(6), 0U);
   for (std::uint32_t i = 1; i < 100; ++i) {
     EXPECT_EQ(gaps.record(300 + i), 0U) << i;  // before, each of these counted 294 lost frames
@@ -63,13 +68,17 @@ TEST(SequenceGaps, AJumpTheStampsDoNotBearOutIsAnotherRecording) {
   // ... then another, numbered from 5000 and recorded a day later: not 3986 lost frames.
   const double winter = summer + 86400.0;
   EXPECT_EQ(gaps.record(5000, winter), 0U);
-  EXPECT_EQ(gaps.record(5001, winter + 0.1), 0U);
-  EXPECT_EQ(gaps.record(5003, winter + 0.3), 1U);  // its own losses count again
+  EXPECT_EQ(gaps.record(5001, winter + 0.1), 0U);  // its first steps teach its stride
+  EXPECT_EQ(gaps.record(5002, winter + 0.2), 0U);
+  EXPECT_EQ(gaps.record(5004, winter + 0.4), 1U);  // its own losses count again
   // A jump back in time, or a gap far shorter than the frames it skips, is no loss either.
-  EXPECT_EQ(gaps.record(5004, winter + 0.4), 0U);
-  EXPECT_EQ(gaps.record(5100, winter + 0.5), 0U);
-  // Without stamps only the seq is known, and a jump counts.
-  EXPECT_EQ(gaps.record(6000), 899U);
+  EXPECT_EQ(gaps.record(5005, winter + 0.5), 0U);
+  EXPECT_EQ(gaps.record(5100, winter + 0.6), 0U);
+  // Without stamps only the seq is known, and a jump counts (once the steps after the last jump,
+  // which started the numbering afresh, taught its stride).
+  EXPECT_EQ(gaps.record(5101), 0U);
+  EXPECT_EQ(gaps.record(5102), 0U);
+  EXPECT_EQ(gaps.record(6002), 899U);
 }
 
 TEST(SequenceGaps, ALossLongerThanTheInterleavedStepIsStillCountedOnTheNewestStream) {
@@ -83,7 +92,58 @@ TEST(SequenceGaps, ALossLongerThanTheInterleavedStepIsStillCountedOnTheNewestStr
   SequenceGaps unstamped;
   EXPECT_EQ(unstamped.record(5), 0U);
   EXPECT_EQ(unstamped.record(6), 0U);
-  EXPECT_EQ(unstamped.record(2007), 2000U);
+  EXPECT_EQ(unstamped.record(7), 0U);
+  EXPECT_EQ(unstamped.record(2008), 2000U);
+}
+
+TEST(SequenceGaps, AStreamThinnedOnPurposeLosesNothingAndItsOwnGapsStillCount) {
+  // A 30 Hz camera through `topic_tools throttle messages /camera 10`, as recorded here: the throttle
+  // passes the camera's seq on, 71, 74, 78, 81, 84, 88, ...
+  SequenceGaps throttled;
+  const double start = 1600000000.0;
+  std::uint32_t seq = 71;
+  EXPECT_EQ(throttled.record(seq, start + seq / 30.0), 0U);
+  for (int i = 1; i <= 60; ++i) {
+    seq += i % 3 == 0 ? 4 : 3;  // a throttle's jitter: 3 or 4 camera frames a message
+    EXPECT_EQ(throttled.record(seq, start + seq / 30.0), 0U) << i;
+  }
+  // A message of the throttled stream lost on the way: 3 or 4 more seqs on top of the step.
+  seq += 7;
+  EXPECT_EQ(throttled.record(seq, start + seq / 30.0), 1U);
+  seq += 3;
+  EXPECT_EQ(throttled.record(seq, start + seq / 30.0), 0U);
+  // A jump the stamps do not bear out is still another recording, thinned or not.
+  EXPECT_EQ(throttled.record(seq + 3000, start + 86400.0), 0U);
+
+  // `topic_tools drop /camera 1 3` keeps two messages of three: steps of 1 and 2 by turns.
+  SequenceGaps dropped;
+  seq = 0;
+  for (int i = 0; i < 40; ++i) {
+    seq += i % 2 == 0 ? 1 : 2;
+    EXPECT_EQ(dropped.record(seq), 0U) << i;
+  }
+  seq += 6;  // two messages of the kept ones lost: 6 seqs ahead at a stride of 2
+  EXPECT_EQ(dropped.record(seq), 2U);
+}
+
+TEST(SequenceGaps, AStreamThinnedFromSomePointOnIsLearntWithinAQuarterOfTheRecentSteps) {
+  SequenceGaps gaps;
+  std::uint32_t seq = 0;
+  for (int i = 0; i < 30; ++i) EXPECT_EQ(gaps.record(++seq), 0U);
+  // Every third message from now on: counted as loss until steps of 3 are a quarter of the recent ones.
+  std::uint64_t counted = 0;
+  int steps_counted = 0;
+  for (int i = 0; i < 30; ++i) {
+    seq += 3;
+    const std::uint64_t missing = gaps.record(seq);
+    counted += missing;
+    if (missing > 0) ++steps_counted;
+  }
+  EXPECT_EQ(steps_counted, SequenceGaps::kStrideSteps / 4);
+  EXPECT_EQ(counted, 2U * (SequenceGaps::kStrideSteps / 4));
+  // And a stream of every message again counts nothing, and its gaps again once it is learnt.
+  for (int i = 0; i < 30; ++i) EXPECT_EQ(gaps.record(++seq), 0U) << i;
+  EXPECT_EQ(gaps.record(seq + 3), 2U);
 }
 
 }  // namespace

@@ -27,6 +27,12 @@ class TopicInbox {
     return sub_.getNumPublishers() > 0;
   }
 
+  /// The messages that arrived so far.
+  std::vector<Message> messages() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return messages_;
+  }
+
   /// Waits until `count` messages arrived; returns them (fewer on timeout).
   std::vector<Message> waitForCount(std::size_t count, double timeout = 10.0) {
     const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout);
@@ -80,7 +86,7 @@ class TopicInbox {
   }
 
   ros::Subscriber sub_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::vector<Message> messages_;
 };
 

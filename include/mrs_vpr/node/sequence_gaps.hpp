@@ -1,6 +1,8 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace mrs_vpr {
@@ -26,8 +28,21 @@ namespace node {
  * A jump forward that the stamps do not bear out is a numbering of its own too: one recording played
  * after another (seq 1599, then 5000, stamps a day apart), or a camera driver restarted. Lost frames
  * leave a stamp gap of about as many frame periods as the seq gap; the period is learnt from the
- * numbering's own steps of one, and a gap outside kStampSlack times the expected one is no loss. A
- * stream without stamps (0) or without a learnt period is judged by seq alone. No ROS inside.
+ * numbering's own steps, and a gap outside kStampSlack times the expected one is no loss. A stream
+ * without stamps (0) or without a learnt period is judged by seq alone.
+ *
+ * A stream thinned on purpose is no loss either. topic_tools throttle and drop, and a driver's
+ * frame-rate divider, pass their source's seq on, so every message arrives a steady step ahead (3 or
+ * 4 for a 30 Hz camera throttled to 10 Hz; 1 and 2 by turns for `drop 1 3`). So each numbering learns
+ * its stride, the step it usually takes: the step that three quarters of its last kStrideSteps steps
+ * do not exceed. Its first kTeachingSteps steps teach it and count nothing; after them a step counts
+ * as loss only beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own
+ * cadence. A stream of every message has a stride of 1 and counts every gap, as long as fewer than a
+ * quarter of its steps skip. A stream thinned from some point on is learnt within a quarter of the
+ * ring's steps, each counted as loss until then. A node that stays slower than its camera with
+ * ~image_queue_size 1 loses messages at a steady step too, which is then taken for thinning: the
+ * mean frame time in ~map_info shows it.
+ * No ROS inside.
  */
 class SequenceGaps {
  public:
@@ -37,6 +52,12 @@ class SequenceGaps {
   static constexpr std::uint32_t kInterleavedStep = 1000;
   /// How far a stamp gap may lie from the seq gap times the frame period, either way, and still be loss.
   static constexpr double kStampSlack = 2.0;
+  /// Recent steps of a numbering that its stride is learnt from.
+  static constexpr int kStrideSteps = 16;
+  /// First steps of a numbering that only teach its stride.
+  static constexpr int kTeachingSteps = 2;
+  /// A step of up to this many strides is the stream's own cadence (a throttle's jitter), not loss.
+  static constexpr double kLossStrides = 1.5;
 
   /// Records the seq of a message that arrived, stamped `stamp` seconds (0: unknown); returns how many
   /// are missing just before it.
@@ -55,27 +76,19 @@ class SequenceGaps {
       }
     }
     std::uint64_t missing = 0;
-    double period = 0.0;
     if (chosen >= 0) {
       Stream& stream = streams_[chosen];
-      period = stream.period;
-      const double stamp_gap = stamp - stream.last_stamp;
-      const bool stamped = stamp > 0.0 && stream.last_stamp > 0.0;
-      if (shortest == 1 && stamped && stamp_gap > 0.0) {
-        period = period > 0.0 ? (1.0 - kPeriodWeight) * period + kPeriodWeight * stamp_gap : stamp_gap;
-      }
-      missing = shortest == 0 ? 0 : shortest - 1;
-      if (missing > 0 && stamped && period > 0.0) {
-        const double expected = static_cast<double>(shortest) * period;
-        if (!(stamp_gap >= expected / kStampSlack && stamp_gap <= expected * kStampSlack)) {
-          missing = 0;  // another recording's numbering
-          period = 0.0;
-        }
-      }
+      missing = stream.missingBefore(shortest, stamp);
+      stream.last_seq = seq;
+      stream.seen = clock_;
+      stream.last_stamp = stamp;
     } else {
       chosen = count_ < kStreams ? count_++ : leastRecent();
+      streams_[chosen] = Stream{};
+      streams_[chosen].last_seq = seq;
+      streams_[chosen].seen = clock_;
+      streams_[chosen].last_stamp = stamp;
     }
-    streams_[chosen] = {seq, clock_, stamp, period};
     newest_ = chosen;
     return missing;
   }
@@ -88,7 +101,51 @@ class SequenceGaps {
     std::uint32_t last_seq = 0;
     std::uint64_t seen = 0;   ///< clock_ when its last seq came
     double last_stamp = 0.0;  ///< [s], 0 when unknown
-    double period = 0.0;      ///< between messages one seq apart [s], 0 until learnt
+    double period = 0.0;      ///< stamp gap a seq step [s], 0 until learnt
+    std::array<std::uint32_t, kStrideSteps> steps{};  ///< the latest steps forward, a ring
+    int step_count = 0;
+
+    /// The usual step: the one that three quarters of the recent steps do not exceed (so a stream
+    /// that alternates steps of 1 and 2 has a stride of 2); 0 while its first steps teach it.
+    std::uint32_t stride() const {
+      if (step_count < kTeachingSteps) return 0;
+      const int known = std::min(step_count, kStrideSteps);
+      std::array<std::uint32_t, kStrideSteps> sorted = steps;
+      const int quantile = (3 * known) / 4;
+      std::nth_element(sorted.begin(), sorted.begin() + quantile, sorted.begin() + known);
+      return sorted[static_cast<std::size_t>(quantile)];
+    }
+
+    /// Messages missing before a step of `step` seqs forward to a message stamped `stamp`; learns
+    /// the step and, from a step of the stream's cadence, the period.
+    std::uint64_t missingBefore(std::uint32_t step, double stamp) {
+      if (step == 0) return 0;  // a seq that never changes: nothing to learn from it
+      const std::uint32_t usual = stride();
+      const double stamp_gap = stamp - last_stamp;
+      const bool stamped = stamp > 0.0 && last_stamp > 0.0;
+      const bool cadence = usual == 0 || step <= kLossStrides * usual;
+      std::uint64_t missing = 0;
+      if (!cadence) {
+        missing = static_cast<std::uint64_t>(std::llround(static_cast<double>(step) / usual)) - 1;
+        if (stamped && period > 0.0) {
+          const double expected = static_cast<double>(step) * period;
+          if (!(stamp_gap >= expected / kStampSlack && stamp_gap <= expected * kStampSlack)) {
+            missing = 0;  // another recording's numbering: start learning it afresh
+            period = 0.0;
+            step_count = 0;
+            return missing;
+          }
+        }
+      } else if (stamped && stamp_gap > 0.0) {
+        const double per_seq = stamp_gap / step;
+        period = period > 0.0 ? (1.0 - kPeriodWeight) * period + kPeriodWeight * per_seq : per_seq;
+      }
+      // Losses count among the steps too, so that a stream that is thinned from now on (a throttle
+      // started mid-run) is learnt within half the ring; sporadic losses leave the median as it is.
+      steps[static_cast<std::size_t>(step_count % kStrideSteps)] = step;
+      ++step_count;
+      return missing;
+    }
   };
 
   int leastRecent() const {
