@@ -367,8 +367,8 @@ TEST(LostFrames, ACameraThrottledOnPurposeLosesNoFrame) {
     rate.sleep();
   }
   ros::WallDuration(1.0).sleep();
-  // The throttle advertises its output with the first frame it forwards, so its first frames may
-  // reach neither this test nor the node: the node's counts are checked against themselves.
+  // The throttle advertises its output with the first frame it forwards, so its first frame or two
+  // may reach this test and not the node, or the node and not this test.
   const std::vector<sensor_msgs::Image> forwarded = throttled.messages();
   ASSERT_GE(forwarded.size(), 20U) << "the throttle forwarded too few frames to judge";
   ASSERT_LE(forwarded.size(), 60U) << "the throttle did not thin the stream";
@@ -378,7 +378,7 @@ TEST(LostFrames, ACameraThrottledOnPurposeLosesNoFrame) {
   ASSERT_TRUE(watch.waitFor(
       [&](const mrs_vpr::MapInfo& m) {
         info = m;
-        return m.frames_received >= forwarded.size() && m.frames + m.frames_failed == m.frames_received;
+        return m.frames_received + 2U >= forwarded.size() && m.frames + m.frames_failed == m.frames_received;
       },
       30.0))
       << "received " << info.frames_received << ", mapped " << info.frames << ", failed " << info.frames_failed

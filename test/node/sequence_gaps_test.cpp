@@ -13,6 +13,12 @@ TEST(SequenceGaps, CountsTheMessagesMissingFromAStream) {
   EXPECT_EQ(gaps.record(42), 0U);
   EXPECT_EQ(gaps.record(45), 2U);  // 43 and 44 never arrived
   EXPECT_EQ(gaps.record(46), 0U);
+  // A burst of losses right after the first steps, as a node that starts slowly meets: each gap
+  // counts, none is taken for the stream's cadence.
+  EXPECT_EQ(gaps.record(51), 4U);
+  EXPECT_EQ(gaps.record(56), 4U);
+  EXPECT_EQ(gaps.record(61), 4U);
+  EXPECT_EQ(gaps.record(62), 0U);
 }
 
 TEST(SequenceGaps, ANewOrReplayedStreamIsNoGap) {

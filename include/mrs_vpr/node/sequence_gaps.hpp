@@ -35,9 +35,9 @@ namespace node {
  * frame-rate divider, pass their source's seq on, so every message arrives a steady step ahead (3 or
  * 4 for a 30 Hz camera throttled to 10 Hz; 1 and 2 by turns for `drop 1 3`). So each numbering learns
  * its stride, the step it usually takes: the step that three quarters of its last kStrideSteps steps
- * do not exceed. Its first kTeachingSteps steps teach it and count nothing; after them a step counts
- * as loss only beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own
- * cadence. A stream of every message has a stride of 1 and counts every gap, as long as fewer than a
+ * do not exceed. Its first kTeachingSteps steps teach it, count nothing and stand for the steps not
+ * yet seen (so a burst of losses soon after them is counted); after them a step counts as loss only
+ * beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own cadence. A stream of every message has a stride of 1 and counts every gap, as long as fewer than a
  * quarter of its steps skip. A stream thinned from some point on is learnt within a quarter of the
  * ring's steps, each counted as loss until then. A node that stays slower than its camera with
  * ~image_queue_size 1 loses messages at a steady step too, which is then taken for thinning: the
@@ -109,11 +109,10 @@ class SequenceGaps {
     /// that alternates steps of 1 and 2 has a stride of 2); 0 while its first steps teach it.
     std::uint32_t stride() const {
       if (step_count < kTeachingSteps) return 0;
-      const int known = std::min(step_count, kStrideSteps);
       std::array<std::uint32_t, kStrideSteps> sorted = steps;
-      const int quantile = (3 * known) / 4;
-      std::nth_element(sorted.begin(), sorted.begin() + quantile, sorted.begin() + known);
-      return sorted[static_cast<std::size_t>(quantile)];
+      constexpr int kQuantile = (3 * kStrideSteps) / 4;
+      std::nth_element(sorted.begin(), sorted.begin() + kQuantile, sorted.end());
+      return sorted[static_cast<std::size_t>(kQuantile)];
     }
 
     /// Messages missing before a step of `step` seqs forward to a message stamped `stamp`; learns
@@ -144,6 +143,13 @@ class SequenceGaps {
       // started mid-run) is learnt within half the ring; sporadic losses leave the median as it is.
       steps[static_cast<std::size_t>(step_count % kStrideSteps)] = step;
       ++step_count;
+      if (step_count == kTeachingSteps) {
+        // The teaching steps stand for the whole ring until later steps replace them, so that a
+        // loss soon after them is judged against them, not against the loss itself.
+        for (int i = kTeachingSteps; i < kStrideSteps; ++i) {
+          steps[static_cast<std::size_t>(i)] = steps[static_cast<std::size_t>(i % kTeachingSteps)];
+        }
+      }
       return missing;
     }
   };
