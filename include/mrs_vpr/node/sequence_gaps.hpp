@@ -37,12 +37,12 @@ namespace node {
  * its stride, the step it usually takes: the step that three quarters of its last kStrideSteps steps
  * do not exceed. Its first kTeachingSteps steps teach it, count nothing and stand for the steps not
  * yet seen (so a burst of losses soon after them is counted); after them a step counts as loss only
- * beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own cadence. A stream of every message has a stride of 1 and counts every gap, as long as fewer than a
- * quarter of its steps skip. A stream thinned from some point on is learnt within a quarter of the
- * ring's steps, each counted as loss until then. A node that stays slower than its camera with
+ * beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own cadence. A
+ * stream of every message has a stride of 1 and counts every gap, as long as fewer than a quarter of
+ * its steps skip. A stream thinned from some point on is learnt within a quarter of the ring's
+ * steps, each counted as loss until then. A node that stays slower than its camera with
  * ~image_queue_size 1 loses messages at a steady step too, which is then taken for thinning: the
- * mean frame time in ~map_info shows it.
- * No ROS inside.
+ * mean frame time in ~map_info shows it. No ROS inside.
  */
 class SequenceGaps {
  public:
@@ -77,18 +77,15 @@ class SequenceGaps {
     }
     std::uint64_t missing = 0;
     if (chosen >= 0) {
-      Stream& stream = streams_[chosen];
-      missing = stream.missingBefore(shortest, stamp);
-      stream.last_seq = seq;
-      stream.seen = clock_;
-      stream.last_stamp = stamp;
+      missing = streams_[chosen].missingBefore(shortest, stamp);
     } else {
       chosen = count_ < kStreams ? count_++ : leastRecent();
       streams_[chosen] = Stream{};
-      streams_[chosen].last_seq = seq;
-      streams_[chosen].seen = clock_;
-      streams_[chosen].last_stamp = stamp;
     }
+    Stream& stream = streams_[chosen];
+    stream.last_seq = seq;
+    stream.seen = clock_;
+    stream.last_stamp = stamp;
     newest_ = chosen;
     return missing;
   }
@@ -139,8 +136,8 @@ class SequenceGaps {
         const double per_seq = stamp_gap / step;
         period = period > 0.0 ? (1.0 - kPeriodWeight) * period + kPeriodWeight * per_seq : per_seq;
       }
-      // Losses count among the steps too, so that a stream that is thinned from now on (a throttle
-      // started mid-run) is learnt within half the ring; sporadic losses leave the median as it is.
+      // Losses count among the steps too, so that a stream thinned from now on (a throttle started
+      // mid-run) is learnt within a quarter of the ring; sporadic losses leave the stride as it is.
       steps[static_cast<std::size_t>(step_count % kStrideSteps)] = step;
       ++step_count;
       if (step_count == kTeachingSteps) {
