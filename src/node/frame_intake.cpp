@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "mrs_vpr/node/compressed_image.hpp"
 #include "mrs_vpr/node/image_conversion.hpp"
@@ -19,6 +20,26 @@
 
 namespace mrs_vpr {
 namespace node {
+namespace {
+
+/// Shortest pause [s] between one image callback's end and the next one's start that is taken for
+/// an idle node, however short the callbacks: roscpp dispatches a queued message within microseconds.
+constexpr double kQueueDispatch = 0.001;
+
+/// Runs `action` when the scope it guards ends, by any return or exception.
+template <typename Action>
+class ScopeExit {
+ public:
+  explicit ScopeExit(Action action) : action_(std::move(action)) {}
+  ~ScopeExit() { action_(); }
+  ScopeExit(const ScopeExit&) = delete;
+  ScopeExit& operator=(const ScopeExit&) = delete;
+
+ private:
+  Action action_;
+};
+
+}  // namespace
 
 void PlaceRecognitionNode::imageCallback(const sensor_msgs::ImageConstPtr& message) {
   addFrame(message->header, [&] { return fromImageMessage(*message, message); },
@@ -37,8 +58,15 @@ void PlaceRecognitionNode::compressedImageCallback(const sensor_msgs::Compressed
 template <typename Convert, typename Summary>
 void PlaceRecognitionNode::addFrame(const std_msgs::Header& header, const Convert& convert, const Summary& summary) {
   ++frames_received_;
-  camera_silence_.imageArrived(steadySeconds());
-  countMissingFrames(header.seq, header.stamp.toSec());
+  const double callback_start = steadySeconds();
+  camera_silence_.imageArrived(callback_start);
+  countMissingFrames(header.seq, header.stamp.toSec(), callback_start);
+  // Whatever path this frame takes, the next callback must know when this one began and ended.
+  const ScopeExit ended([this, callback_start] {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    image_callback_start_ = callback_start;
+    image_callback_end_ = steadySeconds();
+  });
   const std::optional<Stamp> stamp = frameStamp(header);
   if (!stamp) return;
   // The keyframe policies compare intervals, for which seconds in a double are precise enough.
@@ -232,11 +260,17 @@ std::optional<Eigen::Vector3d> PlaceRecognitionNode::robotPosition(const ros::Ti
   return position;
 }
 
-void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq, double stamp) {
+void PlaceRecognitionNode::countMissingFrames(std::uint32_t seq, double stamp, double callback_start) {
   std::uint64_t missing = 0;
   {
     std::lock_guard<std::mutex> lock(state_mutex_);
-    missing = sequence_gaps_.record(seq, stamp);
+    // roscpp hands a queued message to the callback at once. A node that keeps up waits for each
+    // message longer than it works on one; a node that falls behind finds the next one waiting,
+    // after no more than freeing the last (which for a large image takes a millisecond or two).
+    const double pause = callback_start - image_callback_end_;
+    const double work = image_callback_end_ - image_callback_start_;
+    const bool waited = image_callback_end_ > 0.0 && pause < std::max(kQueueDispatch, work);
+    missing = sequence_gaps_.record(seq, stamp, waited);
   }
   if (missing == 0) {
     return;

@@ -347,6 +347,61 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   EXPECT_GT(info.frames_failed, 0U) << "the burst lost no frame: the count of lost frames went untested";
 }
 
+TEST(LostFrames, ANodeSlowerThanItsCameraCountsEveryFrameItsQueueDrops) {
+  // A camera far faster than the node describes its frames: its one-frame queue keeps the newest,
+  // so the node sees the camera's seq advance by a steady step, as behind a throttle. Each frame
+  // skipped there was lost all the same, and must be counted.
+  ros::NodeHandle nh;
+  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_overloaded/query", ros::Duration(30.0)));
+  ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/overload", 100);
+  ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << "/camera/overload has no subscriber";
+  MapInfoWatch watch(nh, "/mrs_vpr_overloaded");
+  mrs_vpr::MapInfo before;
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        before = m;
+        return m.frames + m.frames_failed == m.frames_received;
+      },
+      30.0));
+  cv::RNG rng(7);
+  cv::Mat small(480, 640, CV_8UC3);
+  cv::Mat large(3000, 4000, CV_8UC1);
+  rng.fill(small, cv::RNG::UNIFORM, 0, 256);
+  rng.fill(large, cv::RNG::UNIFORM, 0, 256);
+  // Stamped as a 200 Hz camera throughout, so that the stamps bear every seq gap out.
+  constexpr double kPeriod = 0.005;
+  int published = 0;
+  const auto publish = [&](const cv::Mat& image) {
+    publisher.publish(imageMessage(image, 1000.0 + kPeriod * published, image.channels() == 1 ? "mono8" : "bgr8"));
+    ++published;
+  };
+  for (int i = 0; i < 3; ++i) {  // one by one: the node keeps up
+    publish(small);
+    ASSERT_TRUE(watch.waitFor(
+        [&](const mrs_vpr::MapInfo& m) { return m.frames_received == before.frames_received + published; }, 30.0));
+  }
+  ros::Rate camera(1.0 / kPeriod);
+  for (int i = 0; i < 40; ++i) {  // each takes the node several periods to describe
+    publish(large);
+    camera.sleep();
+  }
+  ros::WallDuration(1.0).sleep();
+  publish(small);  // shows the gap before it
+  mrs_vpr::MapInfo after;
+  ASSERT_TRUE(watch.waitFor(
+      [&](const mrs_vpr::MapInfo& m) {
+        after = m;
+        return m.frames_received == before.frames_received + published &&
+               m.frames + m.frames_failed == m.frames_received;
+      },
+      60.0))
+      << "received " << after.frames_received - before.frames_received << " of " << published << ", mapped "
+      << after.frames - before.frames << ", failed " << after.frames_failed - before.frames_failed;
+  EXPECT_GE(after.frames_failed - before.frames_failed, 3U)
+      << "the node kept up: the test tested nothing (received " << after.frames_received - before.frames_received
+      << " of " << published << ", failed " << after.frames_failed - before.frames_failed << ")";
+}
+
 TEST(LostFrames, ACameraThrottledOnPurposeLosesNoFrame) {
   // topic_tools throttle passes the camera's header.seq on, so a 30 Hz camera thinned to 10 Hz
   // arrives 3 or 4 seqs a message. Each of those steps counted 2 or 3 lost frames, with a warning

@@ -152,6 +152,27 @@ TEST(SequenceGaps, AStreamThinnedFromSomePointOnIsLearntWithinAQuarterOfTheRecen
   EXPECT_EQ(gaps.record(seq + 3), 2U);
 }
 
+TEST(SequenceGaps, BehindABusyNodeEveryStepBeyondTheUpstreamCadenceIsLoss) {
+  // A node slower than its camera from the first frame: its full queue passes every other message.
+  // Those messages waited in the queue, so their steady step of 2 is loss, not the stream's cadence.
+  SequenceGaps saturated;
+  std::uint32_t seq = 0;
+  saturated.record(seq);
+  std::uint64_t lost = 0;
+  for (int i = 0; i < 40; ++i) lost += saturated.record(seq += 2, 0.0, true);
+  EXPECT_EQ(lost, 40U);
+
+  // A throttled stream (every third seq) that the node kept up with, then fell behind.
+  SequenceGaps throttled;
+  seq = 0;
+  throttled.record(seq);
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(throttled.record(seq += 3), 0U) << i;
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(throttled.record(seq += 6, 0.0, true), 1U) << i;
+  EXPECT_EQ(throttled.record(seq += 3, 0.0, true), 0U);
+  // And a step of the node's queue teaches nothing: idle again, a step of 6 is still loss.
+  EXPECT_EQ(throttled.record(seq += 6), 1U);
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

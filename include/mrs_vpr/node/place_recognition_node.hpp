@@ -104,8 +104,9 @@ class PlaceRecognitionNode {
   std::optional<Eigen::Vector3d> robotPosition(const ros::Time& stamp, std::string& error) const;
   /// ~odom_frame or ~base_frame when no transform received has named it yet, else "".
   std::string unknownTfFrame() const;
-  /// Counts (received and failed) and reports the frames missing before the one numbered `seq`.
-  void countMissingFrames(std::uint32_t seq, double stamp);
+  /// Counts (received and failed) and reports the frames missing before the one numbered `seq`,
+  /// whose callback began at steady time `callback_start`.
+  void countMissingFrames(std::uint32_t seq, double stamp, double callback_start);
   /// The topic the camera frames come from, for messages.
   std::string imageTopic() const;
   bool queryCallback(QuerySequence::Request& request, QuerySequence::Response& response);
@@ -166,6 +167,8 @@ class PlaceRecognitionNode {
   KeyframePolicy keyframe_policy_;
   TravelPolicy travel_policy_;
   SequenceGaps sequence_gaps_;  // frames lost before the image callback
+  double image_callback_start_ = 0.0;  // steady seconds when the last image callback began,
+  double image_callback_end_ = 0.0;    // and returned; 0 before the first
   CameraSilence camera_silence_;  // thread-safe: outside state_mutex_
   KindThrottle query_failure_warning_{1.0};  // thread-safe; each kind of failed ~query once a second
   KindThrottle frame_failure_warning_;  // thread-safe; each kind of dropped frame once a kWarningPeriod

@@ -40,9 +40,13 @@ namespace node {
  * beyond kLossStrides strides: round(step / stride) - 1 messages of the stream's own cadence. A
  * stream of every message has a stride of 1 and counts every gap, as long as fewer than a quarter of
  * its steps skip. A stream thinned from some point on is learnt within a quarter of the ring's
- * steps, each counted as loss until then. A node that stays slower than its camera with
- * ~image_queue_size 1 loses messages at a steady step too, which is then taken for thinning: the
- * mean frame time in ~map_info shows it. No ROS inside.
+ * steps, each counted as loss until then.
+ *
+ * A node that stays slower than its camera loses messages at a steady step too: its full queue drops
+ * every other one, say. So only a message that did not wait in the node's queue (the node was idle
+ * when it could have come: record's `waited` false) teaches the stride: a gap before it lies
+ * upstream, where a throttle thins. A message that waited is judged against the stride learnt so
+ * far, or 1 before any. No ROS inside.
  */
 class SequenceGaps {
  public:
@@ -59,9 +63,10 @@ class SequenceGaps {
   /// A step of up to this many strides is the stream's own cadence (a throttle's jitter), not loss.
   static constexpr double kLossStrides = 1.5;
 
-  /// Records the seq of a message that arrived, stamped `stamp` seconds (0: unknown); returns how many
-  /// are missing just before it.
-  std::uint64_t record(std::uint32_t seq, double stamp = 0.0) {
+  /// Records the seq of a message that arrived, stamped `stamp` seconds (0: unknown); `waited` when
+  /// it may have waited in the node's queue behind the message before it (the node was busy). Returns
+  /// how many are missing just before it.
+  std::uint64_t record(std::uint32_t seq, double stamp = 0.0, bool waited = false) {
     ++clock_;
     int chosen = -1;
     std::uint32_t shortest = 0;
@@ -77,7 +82,7 @@ class SequenceGaps {
     }
     std::uint64_t missing = 0;
     if (chosen >= 0) {
-      missing = streams_[chosen].missingBefore(shortest, stamp);
+      missing = streams_[chosen].missingBefore(shortest, stamp, waited);
     } else {
       chosen = count_ < kStreams ? count_++ : leastRecent();
       streams_[chosen] = Stream{};
@@ -113,10 +118,14 @@ class SequenceGaps {
     }
 
     /// Messages missing before a step of `step` seqs forward to a message stamped `stamp`; learns
-    /// the step and, from a step of the stream's cadence, the period.
-    std::uint64_t missingBefore(std::uint32_t step, double stamp) {
+    /// the step when the message did not wait in the node's queue and, from a step of the stream's
+    /// cadence, the period.
+    std::uint64_t missingBefore(std::uint32_t step, double stamp, bool waited) {
       if (step == 0) return 0;  // a seq that never changes: nothing to learn from it
-      const std::uint32_t usual = stride();
+      const std::uint32_t learnt = stride();
+      // Behind a busy node a step is judged against the upstream cadence learnt so far; before any
+      // is learnt, every skipped seq is loss.
+      const std::uint32_t usual = waited ? std::max<std::uint32_t>(learnt, 1) : learnt;
       const double stamp_gap = stamp - last_stamp;
       const bool stamped = stamp > 0.0 && last_stamp > 0.0;
       const bool cadence = usual == 0 || step <= kLossStrides * usual;
@@ -136,6 +145,7 @@ class SequenceGaps {
         const double per_seq = stamp_gap / step;
         period = period > 0.0 ? (1.0 - kPeriodWeight) * period + kPeriodWeight * per_seq : per_seq;
       }
+      if (waited) return missing;  // its step shows the node's queue, not the stream's cadence
       // Losses count among the steps too, so that a stream thinned from now on (a throttle started
       // mid-run) is learnt within a quarter of the ring; sporadic losses leave the stride as it is.
       steps[static_cast<std::size_t>(step_count % kStrideSteps)] = step;
