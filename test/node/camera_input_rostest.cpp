@@ -58,6 +58,15 @@ bool logged(mrs_vpr::testing_support::TopicInbox<rosgraph_msgs::Log>& log, const
       found, timeout);
 }
 
+/// A camera publishing on `topic` into the node `node` ("/mrs_vpr_small_queue"), once the node runs
+/// and subscribes to it.
+ros::Publisher cameraInto(ros::NodeHandle& nh, const std::string& node, const std::string& topic) {
+  EXPECT_TRUE(ros::service::waitForService(node + "/query", ros::Duration(30.0))) << node << " does not run";
+  ros::Publisher publisher = nh.advertise<sensor_msgs::Image>(topic, 100);
+  EXPECT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << topic << " has no subscriber";
+  return publisher;
+}
+
 TEST(CameraSilence, ANodeWarnsOfATopicNobodyPublishesOfAPublisherThatSendsNothingAndOfOneThatWent) {
   // The two nodes start 3 s after the test (camera_input.test), and this test runs first, so that their
   // first warnings, 5 s later, come after this subscription to /rosout is connected.
@@ -292,9 +301,8 @@ TEST(LostFrames, EveryFrameOfABurstIsCountedEvenWhenTheQueueDropsIt) {
   // one-frame subscriber queue, most are dropped by roscpp before the callback. Each must still be
   // counted: received, and either mapped or failed.
   ros::NodeHandle nh;
-  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_small_queue/query", ros::Duration(30.0)));
-  ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/burst", 100);
-  ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << "/camera/burst has no subscriber";
+  ros::Publisher publisher = cameraInto(nh, "/mrs_vpr_small_queue", "/camera/burst");
+  ASSERT_FALSE(::testing::Test::HasFailure());
   MapInfoWatch watch(nh, "/mrs_vpr_small_queue");
   cv::RNG rng(3);
   std::vector<sensor_msgs::Image> frames;
@@ -352,9 +360,8 @@ TEST(LostFrames, ANodeSlowerThanItsCameraCountsEveryFrameItsQueueDrops) {
   // so the node sees the camera's seq advance by a steady step, as behind a throttle. Each frame
   // skipped there was lost all the same, and must be counted.
   ros::NodeHandle nh;
-  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_overloaded/query", ros::Duration(30.0)));
-  ros::Publisher publisher = nh.advertise<sensor_msgs::Image>("/camera/overload", 100);
-  ASSERT_TRUE(waitForSubscribers(publisher, 1, 30.0)) << "/camera/overload has no subscriber";
+  ros::Publisher publisher = cameraInto(nh, "/mrs_vpr_overloaded", "/camera/overload");
+  ASSERT_FALSE(::testing::Test::HasFailure());
   MapInfoWatch watch(nh, "/mrs_vpr_overloaded");
   mrs_vpr::MapInfo before;
   ASSERT_TRUE(watch.waitFor(
@@ -407,9 +414,8 @@ TEST(LostFrames, ACameraThrottledOnPurposeLosesNoFrame) {
   // arrives 3 or 4 seqs a message. Each of those steps counted 2 or 3 lost frames, with a warning
   // that blamed the node's queue.
   ros::NodeHandle nh;
-  ASSERT_TRUE(ros::service::waitForService("/mrs_vpr_throttled/query", ros::Duration(30.0)));
-  ros::Publisher camera = nh.advertise<sensor_msgs::Image>("/camera/fast", 100);
-  ASSERT_TRUE(waitForSubscribers(camera, 1, 30.0)) << "the throttle does not subscribe /camera/fast";
+  ros::Publisher camera = cameraInto(nh, "/mrs_vpr_throttled", "/camera/fast");  // through the throttle
+  ASSERT_FALSE(::testing::Test::HasFailure());
   mrs_vpr::testing_support::TopicInbox<sensor_msgs::Image> throttled(nh, "/camera/throttled");
   MapInfoWatch watch(nh, "/mrs_vpr_throttled");
   cv::RNG rng(5);
