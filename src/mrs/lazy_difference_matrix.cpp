@@ -1,6 +1,7 @@
 #include "mrs_vpr/mrs/lazy_difference_matrix.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include <opencv2/core/utility.hpp>
 
@@ -13,13 +14,34 @@ namespace {
 // Room kept on either side of a row's interval, in cells: a hypothesis moves a few cells per step,
 // so its later requests extend the interval in place.
 constexpr int kRoom = 32;
+// Rows kept for the thread's next matrix hold at most this much: a very long query's rows are freed.
+constexpr std::size_t kKeptRowBytes = 8UL * 1024 * 1024;
 
 }  // namespace
 
 LazyDifferenceMatrix::LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride,
                                            const CompactCells& compact, int contrast_window)
-    : query_(query), reference_(reference, stride, compact), contrast_window_(contrast_window),
-      rows_(static_cast<std::size_t>(query.count)) {}
+    : query_(query), reference_(reference, stride, compact), contrast_window_(contrast_window) {
+  rows_.swap(rowStorage());
+  if (rows_.size() < static_cast<std::size_t>(query.count)) rows_.resize(static_cast<std::size_t>(query.count));
+  for (int row = 0; row < query.count; ++row) {
+    RowInterval& interval = rows_[static_cast<std::size_t>(row)];
+    interval.values.clear();  // Nothing known; the capacity stays.
+    interval.first_difference.reset();
+  }
+}
+
+LazyDifferenceMatrix::~LazyDifferenceMatrix() {
+  std::size_t bytes = 0;
+  for (const RowInterval& interval : rows_) bytes += interval.values.capacity() * sizeof(float);
+  std::vector<RowInterval>& kept = rowStorage();
+  if (bytes <= kKeptRowBytes && kept.size() < rows_.size()) kept.swap(rows_);
+}
+
+std::vector<LazyDifferenceMatrix::RowInterval>& LazyDifferenceMatrix::rowStorage() {
+  thread_local std::vector<RowInterval> storage;
+  return storage;
+}
 
 void LazyDifferenceMatrix::compare(int row, int begin, int end, float* out) {
   const std::uint8_t* test_frame = query_.frame(row);
@@ -43,12 +65,18 @@ const float* LazyDifferenceMatrix::rawRow(int row, int begin, int end) {
   const int new_end = std::max(end, interval.end);
   const int capacity_end = interval.origin + static_cast<int>(interval.values.size());
   if (new_begin < interval.origin || new_end > capacity_end) {
-    // Out of room: move the known values into a larger buffer, with room again on both sides.
+    // Out of room: move the known values to where they belong with room again on both sides, in
+    // the row's own storage (which an earlier matrix of this thread may have sized already).
     const int origin = std::max(0, new_begin - kRoom);
-    std::vector<float> values(static_cast<std::size_t>(std::min(columns(), new_end + kRoom) - origin));
-    std::copy(interval.values.begin() + (interval.begin - interval.origin),
-              interval.values.begin() + (interval.end - interval.origin), values.begin() + (interval.begin - origin));
-    interval.values = std::move(values);
+    const auto size = static_cast<std::size_t>(std::min(columns(), new_end + kRoom) - origin);
+    std::vector<float>& values = interval.values;
+    if (values.size() < size) values.resize(size);
+    const auto known = static_cast<std::size_t>(interval.end - interval.begin);
+    if (known > 0) {
+      std::memmove(values.data() + (interval.begin - origin), values.data() + (interval.begin - interval.origin),
+                   known * sizeof(float));
+    }
+    values.resize(size);
     interval.origin = origin;
   }
   float* values = interval.values.data();  // values[c - origin] for column c.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -127,6 +128,34 @@ TEST(LazyDifferenceMatrix, EnhancedRowsEqualTheDenseEnhancedMatrix) {
   }
   // Every raw cell was computed exactly once.
   EXPECT_EQ(lazy.comparisons(), 6 * 90);
+}
+
+TEST(LazyDifferenceMatrix, AMatrixAfterAnotherOnTheSameThreadReusesItsRowsAndComputesEveryCellAnew) {
+  // The first matrix leaves its rows' storage, wide and full of its own differences, to the next
+  // one on this thread, which has more rows, fewer columns, and intervals that grow to either side;
+  // the last request reads every cell again, after the moves.
+  const std::vector<std::pair<int, int>> growing{{200, 204}, {150, 156}, {260, 270}, {100, 103}, {100, 270}};
+  const int window = 6;
+  const PatchFrequencies frequencies(smallGeometry());
+  for (const auto& [frames, rows, seed] : {std::tuple{300, 5, 20}, std::tuple{280, 9, 22}, std::tuple{300, 3, 24}}) {
+    const DescriptorSequence reference = randomSequence(frames, 32, seed);
+    const DescriptorSequence query = randomSequence(rows, 32, seed + 1);
+    const cv::Mat dense = enhanceContrast(computeDifferenceMatrix(query.view(), reference.view()), window);
+    LazyDifferenceMatrix lazy(query.view(), reference.view(), 1, frequencies, window);
+    for (int row = 0; row < rows; ++row) {
+      for (const auto& [begin, end] : growing) {
+        std::vector<float> out(static_cast<std::size_t>(end - begin));
+        lazy.enhancedRow(row, begin, end, out.data());
+        for (int c = begin; c < end; ++c) {
+          EXPECT_EQ(out[static_cast<std::size_t>(c - begin)], dense.at<float>(row, c))
+              << frames << " frames, row " << row << ", column " << c;
+        }
+      }
+    }
+    // Columns 97 .. 272 (the requests and half a window beyond) once each, and column 0, the
+    // enhancement's origin.
+    EXPECT_EQ(lazy.comparisons(), rows * 177LL);
+  }
 }
 
 TEST(LazyDifferenceMatrix, PooledColumnsAndRawRowsWithoutEnhancement) {

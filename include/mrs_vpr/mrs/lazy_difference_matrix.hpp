@@ -23,6 +23,10 @@ class LazyDifferenceMatrix {
   /// `compact` must outlive the matrix.
   LazyDifferenceMatrix(SequenceView query, SequenceView reference, int stride, const CompactCells& compact,
                        int contrast_window);
+  /// Hands the rows' storage to the thread's next matrix (rowStorage).
+  ~LazyDifferenceMatrix();
+  LazyDifferenceMatrix(const LazyDifferenceMatrix&) = delete;
+  LazyDifferenceMatrix& operator=(const LazyDifferenceMatrix&) = delete;
 
   int rows() const { return query_.count; }
   int columns() const { return reference_.size(); }
@@ -54,6 +58,11 @@ class LazyDifferenceMatrix {
     std::vector<float> values;
     std::optional<float> first_difference;  ///< At column 0, for enhanceRowSpan; computed on first use.
   };
+
+  /// The storage of the rows of this thread's last matrix. A search builds a matrix for each
+  /// hypothesis at each level, with a row for each test cell, and allocating and freeing every row
+  /// afresh took about 8% of an MRS query at N = 300; its thread's next matrix reuses them.
+  static std::vector<RowInterval>& rowStorage();
 
   /// Raw differences of `row` over [begin, end), computed where missing; valid until the next call.
   const float* rawRow(int row, int begin, int end);
