@@ -371,9 +371,8 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames, const std::vect
   });
 }
 
-std::vector<PlaceLink> MapDatabase::placeLinks() const {
+std::vector<PlaceLink> MapDatabase::placeLinks(std::int64_t frames) const {
   if (format_version_ < 3) return {};  // Read as it is: no table of links yet.
-  const std::int64_t frames = size();
   sqlite3_stmt* raw = nullptr;
   if (sqlite3_prepare_v2(db_, "SELECT id, frame, reference FROM place_links ORDER BY id", -1, &raw, nullptr) !=
       SQLITE_OK) {

@@ -52,7 +52,8 @@ MapDatabaseError changedWhileLoaded(const std::string& path) {
 
 /// Gives `map`, whose frames were read from `database`, the place links the database keeps; returns them.
 std::vector<PlaceLink> linkPlaces(PlaceRecognizer::PreparedMap& map, const MapDatabase& database) {
-  std::vector<PlaceLink> links = database.placeLinks();  // Checked there: every link is two of its frames.
+  // Checked there: every link is two of the frames read.
+  std::vector<PlaceLink> links = database.placeLinks(map.size());
   map.linkPlaces(links);
   return links;
 }
