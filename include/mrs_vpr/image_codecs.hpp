@@ -39,8 +39,8 @@ class CorruptJpeg : public std::runtime_error {
  * CorruptJpeg: libjpeg decodes such a stream with a warning on stderr only, making up what it cannot
  * read, and OpenCV gives that image as if it were whole. Only what libjpeg notices is caught (few
  * flipped bits are), and warnings that leave the pixels whole are ignored (strict_jpeg_decoder.hpp).
- * JPEG of one or three components is decoded by libjpeg directly, into the pixels OpenCV gives; other
- * streams, and those libjpeg cannot decode at all, by OpenCV.
+ * JPEG of one, three or four components (grey, colour, CMYK or YCCK) is decoded by libjpeg directly,
+ * into the pixels OpenCV gives; other streams, and those libjpeg cannot decode at all, by OpenCV.
  */
 cv::Mat decodeStrictly(const std::uint8_t* data, std::size_t size);
 

@@ -51,6 +51,18 @@ void jumpBackOnMadeUpPixels(j_common_ptr info, int level) {
   if (level < 0 && pixelsMadeUp(info->err->msg_code)) jumpBack(info, kMadeUp);  // traces (level >= 0) ignored
 }
 
+/// One row of libjpeg's CMYK (as Adobe writes it, inverted) to BGR, with OpenCV's arithmetic
+/// (icvCvt_CMYK2BGR_8u_C4C3R), so that the pixels are those cv::imdecode gives.
+void cmykToBgr(const JSAMPLE* cmyk, JDIMENSION width, JSAMPLE* bgr) {
+  for (JDIMENSION x = 0; x < width; ++x, cmyk += 4, bgr += 3) {
+    const int k = cmyk[3];
+    const auto ink = [k](int value) { return static_cast<JSAMPLE>(k - ((255 - value) * k >> 8)); };
+    bgr[0] = ink(cmyk[2]);
+    bgr[1] = ink(cmyk[1]);
+    bgr[2] = ink(cmyk[0]);
+  }
+}
+
 }  // namespace
 
 // No object with a destructor lives in this function's frame across setjmp(): longjmp() skips none.
@@ -72,14 +84,19 @@ JpegDecoding decodeJpegStrictly(const std::uint8_t* data, std::size_t size, cv::
   jpeg_read_header(&info, TRUE);
   // OpenCV refuses an image of more than 2^30 pixels (CV_IO_MAX_IMAGE_PIXELS) before it allocates it.
   const bool huge = static_cast<std::uint64_t>(info.image_width) * info.image_height > (std::uint64_t{1} << 30);
-  if ((info.num_components != 1 && info.num_components != 3) || huge) {
+  if ((info.num_components != 1 && info.num_components != 3 && info.num_components != 4) || huge) {
     jpeg_destroy_decompress(&info);
     return JpegDecoding::kNotHandled;
   }
-  // As OpenCV's JPEG decoder gives IMREAD_UNCHANGED: grey stays grey, colour becomes BGR.
-  const bool colour = info.num_components == 3;
-  info.out_color_space = colour ? JCS_EXT_BGR : JCS_GRAYSCALE;
+  // As OpenCV's JPEG decoder gives IMREAD_UNCHANGED: grey stays grey, colour and CMYK become BGR.
+  const bool colour = info.num_components != 1;
+  const bool cmyk = info.num_components == 4;  // CMYK or YCCK, which libjpeg gives as CMYK
+  info.out_color_space = cmyk ? JCS_CMYK : colour ? JCS_EXT_BGR : JCS_GRAYSCALE;
   jpeg_start_decompress(&info);
+  // A CMYK row is read here first (from libjpeg's pools, which a jump frees too).
+  JSAMPARRAY cmyk_row = cmyk ? (*info.mem->alloc_sarray)(reinterpret_cast<j_common_ptr>(&info), JPOOL_IMAGE,
+                                                         info.output_width * 4, 1)
+                             : nullptr;
   try {
     image->create(static_cast<int>(info.output_height), static_cast<int>(info.output_width),
                   colour ? CV_8UC3 : CV_8UC1);
@@ -89,7 +106,12 @@ JpegDecoding decodeJpegStrictly(const std::uint8_t* data, std::size_t size, cv::
   }
   while (info.output_scanline < info.output_height) {
     JSAMPROW row = image->ptr<JSAMPLE>(static_cast<int>(info.output_scanline));
-    jpeg_read_scanlines(&info, &row, 1);
+    if (cmyk) {
+      jpeg_read_scanlines(&info, cmyk_row, 1);
+      cmykToBgr(cmyk_row[0], info.output_width, row);
+    } else {
+      jpeg_read_scanlines(&info, &row, 1);
+    }
   }
   jpeg_finish_decompress(&info);
   jpeg_destroy_decompress(&info);

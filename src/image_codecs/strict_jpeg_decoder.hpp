@@ -13,14 +13,14 @@ namespace image_codecs {
 enum class JpegDecoding {
   kDecoded,     ///< The image, as OpenCV decodes it.
   kCorrupt,     ///< libjpeg warned that it made up pixels it could not read (its message is the problem).
-  /// Not one or three components (CMYK, say), too large, or not decodable by libjpeg at all: for OpenCV
-  /// to decode or refuse, as it did before.
+  /// Not one, three or four components (grey, colour, CMYK or YCCK), too large, or not decodable by
+  /// libjpeg at all: for OpenCV to decode or refuse, as it did before.
   kNotHandled,
 };
 
 /**
  * libjpeg's decoding of a JPEG stream into the image cv::imdecode(IMREAD_UNCHANGED) gives (grey stays
- * grey, colour becomes BGR), stopped at the first warning that it made up pixels. libjpeg decodes a
+ * grey, colour and CMYK become BGR), stopped at the first warning that it made up pixels. libjpeg decodes a
  * stream whose entropy-coded data is missing or undecodable with a warning only (on stderr), making
  * up what it cannot read; OpenCV gives that image as if nothing were wrong. Warnings that leave the
  * pixels whole (stray bytes between segments, an unknown JFIF revision) are ignored, as many cameras'

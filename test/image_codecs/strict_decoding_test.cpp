@@ -4,8 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <cstdio>  // jpeglib.h needs FILE
+#include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <jpeglib.h>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -25,6 +29,34 @@ cv::Mat texture(int type) {
 std::vector<std::uint8_t> encoded(const cv::Mat& image, const std::vector<int>& options = {}) {
   std::vector<std::uint8_t> bytes;
   cv::imencode(".jpg", image, bytes, options);
+  return bytes;
+}
+
+/// `image` (4 channels) as the JPEG stream of a print workflow's CMYK, or YCCK: OpenCV writes neither,
+/// so libjpeg's own encoder makes them.
+std::vector<std::uint8_t> encodedCmyk(const cv::Mat& image, J_COLOR_SPACE stored) {
+  jpeg_compress_struct info{};
+  jpeg_error_mgr errors{};
+  info.err = jpeg_std_error(&errors);  // exit() on an error: none is expected here
+  jpeg_create_compress(&info);
+  unsigned char* buffer = nullptr;
+  unsigned long size = 0;
+  jpeg_mem_dest(&info, &buffer, &size);
+  info.image_width = static_cast<JDIMENSION>(image.cols);
+  info.image_height = static_cast<JDIMENSION>(image.rows);
+  info.input_components = 4;
+  info.in_color_space = JCS_CMYK;
+  jpeg_set_defaults(&info);
+  jpeg_set_colorspace(&info, stored);  // with the Adobe marker that tells CMYK from YCCK
+  jpeg_start_compress(&info, TRUE);
+  while (info.next_scanline < info.image_height) {
+    JSAMPROW row = const_cast<JSAMPROW>(image.ptr<JSAMPLE>(static_cast<int>(info.next_scanline)));
+    jpeg_write_scanlines(&info, &row, 1);
+  }
+  jpeg_finish_compress(&info);
+  jpeg_destroy_compress(&info);
+  std::vector<std::uint8_t> bytes(buffer, buffer + size);
+  std::free(buffer);
   return bytes;
 }
 
@@ -71,6 +103,24 @@ TEST(StrictJpegDecoding, AWholeStreamGivesThePixelsOpenCvGives) {
   std::vector<std::uint8_t> png;
   cv::imencode(".png", texture(CV_8UC3), png);
   EXPECT_EQ(cv::norm(decodedStrictly(png), texture(CV_8UC3), cv::NORM_INF), 0.0);
+}
+
+TEST(StrictJpegDecoding, CmykAndYcckStreamsGiveThePixelsOpenCvGivesOrTheirCorruption) {
+  for (const J_COLOR_SPACE stored : {JCS_CMYK, JCS_YCCK}) {
+    SCOPED_TRACE(stored == JCS_CMYK ? "CMYK" : "YCCK");
+    const std::vector<std::uint8_t> whole = encodedCmyk(texture(CV_8UC4), stored);
+    const cv::Mat opencv = cv::imdecode(whole, cv::IMREAD_UNCHANGED);
+    const cv::Mat strict = decodedStrictly(whole);
+    ASSERT_EQ(strict.type(), opencv.type());
+    ASSERT_EQ(strict.size(), opencv.size());
+    EXPECT_EQ(cv::norm(strict, opencv, cv::NORM_INF), 0.0);
+    // Bytes lost from the middle of the scan: OpenCV would give an image with made-up pixels.
+    std::vector<std::uint8_t> holed(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
+    holed.insert(holed.end(), {0xFF, 0xD9});
+    EXPECT_FALSE(cv::imdecode(holed, cv::IMREAD_UNCHANGED).empty());
+    EXPECT_NE(problemOf(holed).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
+        << problemOf(holed);
+  }
 }
 
 TEST(StrictJpegDecoding, CorruptDataThatEndsWithItsMarkerIsRefusedNamingLibjpegsWarning) {
