@@ -82,6 +82,22 @@ std::size_t scanData(const std::vector<std::uint8_t>& bytes) {
   return bytes.size();
 }
 
+/// The pixels decodeStrictly gives `bytes` are those OpenCV gives.
+void expectOpenCvPixels(const std::vector<std::uint8_t>& bytes) {
+  const cv::Mat opencv = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  const cv::Mat strict = decodedStrictly(bytes);
+  ASSERT_EQ(strict.type(), opencv.type());
+  ASSERT_EQ(strict.size(), opencv.size());
+  EXPECT_EQ(cv::norm(strict, opencv, cv::NORM_INF), 0.0);
+}
+
+/// `whole` with bytes lost in transit from the middle of its scan, the end-of-image marker still there.
+std::vector<std::uint8_t> holed(const std::vector<std::uint8_t>& whole) {
+  std::vector<std::uint8_t> bytes(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
+  bytes.insert(bytes.end(), {0xFF, 0xD9});
+  return bytes;
+}
+
 TEST(StrictJpegDecoding, AWholeStreamGivesThePixelsOpenCvGives) {
   const std::vector<std::vector<int>> options = {{},
                                                  {cv::IMWRITE_JPEG_QUALITY, 60},
@@ -91,12 +107,7 @@ TEST(StrictJpegDecoding, AWholeStreamGivesThePixelsOpenCvGives) {
   for (const int type : {CV_8UC1, CV_8UC3}) {
     for (const std::vector<int>& option : options) {
       SCOPED_TRACE(std::to_string(type) + (option.empty() ? "" : ", option " + std::to_string(option[0])));
-      const std::vector<std::uint8_t> bytes = encoded(texture(type), option);
-      const cv::Mat opencv = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-      const cv::Mat strict = decodedStrictly(bytes);
-      ASSERT_EQ(strict.type(), opencv.type());
-      ASSERT_EQ(strict.size(), opencv.size());
-      EXPECT_EQ(cv::norm(strict, opencv, cv::NORM_INF), 0.0);
+      expectOpenCvPixels(encoded(texture(type), option));
     }
   }
   // Not JPEG: decoded by OpenCV as it is.
@@ -109,28 +120,21 @@ TEST(StrictJpegDecoding, CmykAndYcckStreamsGiveThePixelsOpenCvGivesOrTheirCorrup
   for (const J_COLOR_SPACE stored : {JCS_CMYK, JCS_YCCK}) {
     SCOPED_TRACE(stored == JCS_CMYK ? "CMYK" : "YCCK");
     const std::vector<std::uint8_t> whole = encodedCmyk(texture(CV_8UC4), stored);
-    const cv::Mat opencv = cv::imdecode(whole, cv::IMREAD_UNCHANGED);
-    const cv::Mat strict = decodedStrictly(whole);
-    ASSERT_EQ(strict.type(), opencv.type());
-    ASSERT_EQ(strict.size(), opencv.size());
-    EXPECT_EQ(cv::norm(strict, opencv, cv::NORM_INF), 0.0);
-    // Bytes lost from the middle of the scan: OpenCV would give an image with made-up pixels.
-    std::vector<std::uint8_t> holed(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
-    holed.insert(holed.end(), {0xFF, 0xD9});
-    EXPECT_FALSE(cv::imdecode(holed, cv::IMREAD_UNCHANGED).empty());
-    EXPECT_NE(problemOf(holed).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
-        << problemOf(holed);
+    expectOpenCvPixels(whole);
+    // OpenCV would give an image with made-up pixels.
+    const std::vector<std::uint8_t> corrupt = holed(whole);
+    EXPECT_FALSE(cv::imdecode(corrupt, cv::IMREAD_UNCHANGED).empty());
+    EXPECT_NE(problemOf(corrupt).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
+        << problemOf(corrupt);
   }
 }
 
 TEST(StrictJpegDecoding, CorruptDataThatEndsWithItsMarkerIsRefusedNamingLibjpegsWarning) {
   const std::vector<std::uint8_t> whole = encoded(texture(CV_8UC3));
-  // Bytes lost in transit from the middle of the scan, the end-of-image marker still there.
-  std::vector<std::uint8_t> holed(whole.begin(), whole.begin() + static_cast<long>(scanData(whole) + 200));
-  holed.insert(holed.end(), {0xFF, 0xD9});
-  EXPECT_NE(problemOf(holed).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
-      << problemOf(holed);
-  EXPECT_FALSE(cv::imdecode(holed, cv::IMREAD_UNCHANGED).empty()) << "what OpenCV would have given";
+  const std::vector<std::uint8_t> corrupt = holed(whole);
+  EXPECT_NE(problemOf(corrupt).find("Corrupt JPEG data: premature end of data segment"), std::string::npos)
+      << problemOf(corrupt);
+  EXPECT_FALSE(cv::imdecode(corrupt, cv::IMREAD_UNCHANGED).empty()) << "what OpenCV would have given";
   // Nothing after the signature: the data ends before the image begins.
   EXPECT_EQ(problemOf({0xFF, 0xD8, 0x00, 0x00}), "Premature end of JPEG file");
   // A stream libjpeg cannot decode at all (no frame header before the scan): left to OpenCV, which
