@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """A map built offline, visit by visit, with build_map: the place links it makes, and whether they are right.
 
-  doc/experiments/build_map_visits.py DATA [--visits N] [--unlinked V]
+  doc/experiments/build_map_visits.py DATA [--visits N] [--unlinked V [--link-places]]
 
 The visits are those of repeated_traversals.py, each written as an image folder and appended to one map
 by `build_map --append` at its defaults: Nordland summer 0..799 (the map), winter 300..699, then winter
@@ -11,7 +11,7 @@ visit it prints the place links build_map made (its accepted closures) and how m
 the linked keyframe's place within 5 places of the place it is linked to, where route frames at which
 the recording train stood count as one place. On the last visit every link is wrong. With
 --unlinked V, visit V is appended with --no-place-links, as maps were built before build_map closed
-loops. Needs python3-numpy, python3-opencv and build_map on the ROS package path.
+loops; with --link-places as well, `build_map --link-places` then links the map's drives afterwards. Needs python3-numpy, python3-opencv and build_map on the ROS package path.
 """
 
 import argparse
@@ -51,11 +51,15 @@ def main():
     parser.add_argument("--visits", type=int, default=4,
                         help="visits of the stretch, the summer map's included (the visit to new ground follows them)")
     parser.add_argument("--unlinked", type=int, default=0, help="append this visit with --no-place-links")
+    parser.add_argument("--link-places", action="store_true",
+                        help="after the unlinked visit, link the map's drives with build_map --link-places")
     args = parser.parse_args()
     if args.visits < 2:
         parser.error("--visits: at least 2 (the summer map and the winter visit)")
     if args.unlinked and not 2 <= args.unlinked <= args.visits + 1:
         parser.error("--unlinked: a visit appended to the map, 2 to %d" % (args.visits + 1))
+    if args.link_places and not args.unlinked:
+        parser.error("--link-places: links the visit of --unlinked afterwards")
     summer = sorted(glob.glob(os.path.join(args.data, "nordland", "summer", "*.png")))
     winter = sorted(glob.glob(os.path.join(args.data, "nordland", "winter", "*.png")))
     place = route_places(summer, winter, len(summer))
@@ -80,13 +84,20 @@ def main():
             command.append("--no-place-links")
         subprocess.run(command, check=True, stderr=subprocess.DEVNULL)
         route_frame.extend(frames)
-        links, sequence = links_and_frames(database)
-        new = links[links_before:]
-        links_before = len(links)
-        right = sum(abs(place[route_frame[sequence[f]]] - place[route_frame[sequence[r]]]) <= TOLERANCE
-                    for f, r in new) if number < len(visits) else 0
-        print("visit %d (%s): %d keyframes in the map, %d closures linked (%d right, %d wrong)"
-              % (number, name, len(sequence), len(new), right, len(new) - right))
+        steps = [(name, number < len(visits))]
+        if number == args.unlinked and args.link_places:
+            steps.append(("build_map --link-places", True))
+        for step, judged in steps:
+            if step == "build_map --link-places":
+                subprocess.run(["rosrun", "mrs_vpr", "build_map", "--link-places", "--output", database], check=True,
+                               stderr=subprocess.DEVNULL)
+            links, sequence = links_and_frames(database)
+            new = links[links_before:]
+            links_before = len(links)
+            right = sum(abs(place[route_frame[sequence[f]]] - place[route_frame[sequence[r]]]) <= TOLERANCE
+                        for f, r in new) if judged else 0
+            print("visit %d (%s): %d keyframes in the map, %d closures linked (%d right, %d wrong)"
+                  % (number, step, len(sequence), len(new), right, len(new) - right))
 
 
 if __name__ == "__main__":

@@ -22,6 +22,7 @@
 #include "mrs_vpr/store/map_traversal.hpp"
 #include "apart_from_inputs.hpp"
 #include "descriptor_options.hpp"
+#include "drive_links.hpp"
 #include "keyframing_options.hpp"
 #include "output_in_progress.hpp"
 #include "tool_main.hpp"
@@ -36,6 +37,7 @@ constexpr const char* kUsage =
     "Usage: build_map (--images DIR | --bag BAG --topic T [--min-travel M [--odom-frame F] [--base-frame B]])\n"
     "                 --output MAP.db [--min-appearance-change C] [--append] [--force] [--no-place-links]\n"
     "                 [--descriptor hog|thumbnail] [front-end options]\n"
+    "       build_map --link-places --output MAP.db [--min-appearance-change C]\n"
     "\n"
     "Describes every image of DIR (file-name order) or of topic T in BAG and stores the descriptors,\n"
     "with their stamps (a bag's; frame i of DIR at i s) and their frame's index in DIR or on T (the frame\n"
@@ -50,7 +52,10 @@ constexpr const char* kUsage =
     "views, as the node's ~min_appearance_change keeps it (0: every frame).\n"
     "Loops are closed over the new frames as the node's continuous mode closes them at its defaults, and\n"
     "each accepted closure links its keyframe to the place it shows, so that a stretch the map now holds\n"
-    "twice is no rival of itself (--no-place-links: none, faster, and the map is not held in memory).\n";
+    "twice is no rival of itself (--no-place-links: none, faster, and the map is not held in memory).\n"
+    "--link-places adds no frame: it closes the loops of a map built without them (--no-place-links, or by\n"
+    "a release before place links), drive by drive, as if each drive had been added with them, and stores\n"
+    "the links the map does not hold yet.\n";
 
 /// Frames are committed in batches: one transaction per frame would be slow, one for all a long wait.
 constexpr std::size_t kBatch = 1000;
@@ -64,6 +69,7 @@ struct BuildOptions {
   bool append = false;
   bool force = false;
   bool no_place_links = false;
+  bool link_places = false;  // No new frames: the map's own drives linked.
   mrs_vpr::bag::TravelSettings travel;
   mrs_vpr::DescriptorParams params;
   double min_appearance_change = mrs_vpr::RecognizerParams{}.min_appearance_change;
@@ -85,7 +91,10 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
       ("append", po::bool_switch(&options.append), "add to an existing map")
       ("force", po::bool_switch(&options.force), "replace an existing map")
       ("no-place-links", po::bool_switch(&options.no_place_links),
-       "close no loops over the new frames, so link none of them to the places the map holds");
+       "close no loops over the new frames, so link none of them to the places the map holds")
+      ("link-places", po::bool_switch(&options.link_places),
+       "add no frames: close the loops of the map's own drives, each against the frames before it, and "
+       "store the links it does not hold yet");
   // clang-format on
   mrs_vpr::tools::addKeyframingOptions(
       description, options.travel, options.min_appearance_change,
@@ -97,6 +106,18 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
   if (!mrs_vpr::tools::parseCommandLine(argc, argv, kUsage, description, variables)) return std::nullopt;
   mrs_vpr::tools::refuseOtherFrontEndsOptions(variables, options.params);
   mrs_vpr::tools::refuseEmptyPaths(variables, {"images", "bag", "output"});
+  options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
+  options.min_appearance_change_given = mrs_vpr::tools::givenOnCommandLine(variables, "min-appearance-change");
+  if (options.link_places) {
+    if (!options.images.empty() || !options.bag_path.empty() || !options.topic.empty()) {
+      throw std::invalid_argument("--link-places adds no frames: leave --images, --bag and --topic out");
+    }
+    if (options.append || options.force || options.no_place_links || options.travel.min_travel != 0.0) {
+      throw std::invalid_argument("--link-places links the map as it is: leave --append, --force, --no-place-links "
+                                  "and --min-travel out");
+    }
+    return options;
+  }
   if (options.images.empty() == options.bag_path.empty()) throw std::invalid_argument("give either --images or --bag");
   if (!options.bag_path.empty() && options.topic.empty()) throw std::invalid_argument("reading a bag needs --topic");
   if (!options.images.empty() && !options.topic.empty()) {
@@ -109,8 +130,6 @@ std::optional<BuildOptions> parseOptions(int argc, char** argv) {
   if (options.travel.min_travel != 0.0 && options.bag_path.empty()) {
     throw std::invalid_argument("--min-travel needs --bag: the robot's poses come from the bag's /tf");
   }
-  options.descriptor_given = mrs_vpr::tools::descriptorOptionsGiven(variables);
-  options.min_appearance_change_given = mrs_vpr::tools::givenOnCommandLine(variables, "min-appearance-change");
   return options;
 }
 
@@ -213,6 +232,16 @@ int addTraversal(mrs_vpr::MapDatabase& map, const BuildOptions& options,
   return stored;
 }
 
+/// Links the map's own drives (--link-places) and reports on stderr what was linked.
+void linkMapDrives(mrs_vpr::MapDatabase& map, const BuildOptions& options) {
+  const mrs_vpr::tools::DriveLinking linked = mrs_vpr::tools::linkDrives(map, options.min_appearance_change);
+  mrs_vpr::tools::stopIfInterrupted();
+  map.makeSelfContained();
+  std::cerr << "build_map: " << linked.closures << " loop closures accepted of " << linked.questions
+            << " questions over the map's " << linked.drives << " drives: " << linked.new_links
+            << " place links added (place links of the map: " << map.placeLinks().size() << ")\n";
+}
+
 int run(int argc, char** argv) {
   std::optional<BuildOptions> parsed = parseOptions(argc, argv);
   if (!parsed) return 0;
@@ -231,8 +260,11 @@ int run(int argc, char** argv) {
   }
   mrs_vpr::tools::requireNoSpecialFile("--output", output);
   const bool exists = std::filesystem::exists(output);
-  if (exists && !options.append && !options.force) {
+  if (exists && !options.append && !options.force && !options.link_places) {
     throw std::invalid_argument("'" + output + "' exists; use --append to extend it or --force to replace it");
+  }
+  if (!exists && options.link_places) {
+    throw std::invalid_argument("--link-places: there is no map '" + output + "' to link");
   }
   // A mistyped map name would otherwise become a second map, and the map meant would stay as it was.
   if (!exists && options.append) {
@@ -246,7 +278,8 @@ int run(int argc, char** argv) {
   if (exists) hold.emplace(output);
   // A map is extended with its own front end and keyframing, unless the command line names them (a
   // front end must be the same).
-  if (exists && options.append) {
+  const bool extends = exists && (options.append || options.link_places);
+  if (extends) {
     const mrs_vpr::MapDatabase extended(output, mrs_vpr::MapAccess::kReadOnly);
     // Read here, where a damaged record is named by the map's own path rather than by its copy's.
     extended.placeLinks();
@@ -279,7 +312,7 @@ int run(int argc, char** argv) {
   mrs_vpr::tools::catchInterruptions();
   bool own_part = false;  // Until then, a failure may be another run's: its files are left alone.
   try {
-    if (exists && options.append) {
+    if (extends) {
       mrs_vpr::MapDatabase(output, options.params, mrs_vpr::MapAccess::kReadOnly).backupTo(target);
       own_part = true;
     }
@@ -287,7 +320,11 @@ int run(int argc, char** argv) {
     own_part = own_part || !std::filesystem::exists(target);
     mrs_vpr::MapDatabase map(target, options.params);
     own_part = true;
-    addTraversal(map, options, keyframes);
+    if (options.link_places) {
+      linkMapDrives(map, options);
+    } else {
+      addTraversal(map, options, keyframes);
+    }
   } catch (...) {
     if (own_part) removePart();
     throw;

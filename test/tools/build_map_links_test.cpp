@@ -136,4 +136,48 @@ TEST_F(BuildMapLinksTest, AStretchAppendedTwiceIsLinkedAndAThirdVisitClosesItsLo
             << ", third after an unlinked second " << unlinked_stretch << "\n";
 }
 
+// A map whose visits were appended without links gets, drive by drive, the links a build with them made.
+TEST_F(BuildMapLinksTest, AMapBuiltWithoutLinksIsLinkedAfterwardsAsIfBuiltWithThem) {
+  const std::string linked = path("linked-as-built.db");
+  const std::string unlinked = path("linked-afterwards.db");
+  for (const std::string& map : {linked, unlinked}) {
+    const std::string links = map == linked ? "" : " --no-place-links";
+    ASSERT_EQ(add("route", map, links).status, 0);
+    ASSERT_EQ(add("revisit", map, " --append" + links).status, 0);
+    ASSERT_EQ(add("revisit", map, " --append" + links).status, 0);
+  }
+  ASSERT_TRUE(linksOf(unlinked).empty());
+  const std::vector<PlaceLink> as_built = linksOf(linked);
+  ASSERT_GT(linksOfTheLastStretch(as_built, placesOfMapFrames(2)), 80);
+
+  const CommandResult linking = run(buildMap() + " --link-places --output " + unlinked);
+  ASSERT_EQ(linking.status, 0) << linking.err;
+  const std::vector<PlaceLink> afterwards = linksOf(unlinked);
+  ASSERT_EQ(afterwards.size(), as_built.size()) << linking.err;
+  for (std::size_t i = 0; i < as_built.size(); ++i) {
+    EXPECT_EQ(afterwards[i].frame, as_built[i].frame) << "link " << i;
+    EXPECT_EQ(afterwards[i].reference, as_built[i].reference) << "link " << i;
+  }
+  EXPECT_NE(linking.err.find("over the map's 3 drives: " + std::to_string(as_built.size()) + " place links added"),
+            std::string::npos)
+      << linking.err;
+  // Linked again, or a map built with its links: nothing new, and no link twice.
+  for (const std::string& map : {unlinked, linked}) {
+    const CommandResult again = run(buildMap() + " --link-places --output " + map);
+    ASSERT_EQ(again.status, 0) << again.err;
+    EXPECT_NE(again.err.find(": 0 place links added"), std::string::npos) << again.err;
+    EXPECT_EQ(linksOf(map).size(), as_built.size());
+  }
+  // The frames are the map's own, and so is the front end (buildMap() names the route's).
+  EXPECT_NE(run(buildMap() + " --link-places --images " + path("route") + " --output " + unlinked).err.find(
+                "--link-places adds no frames"),
+            std::string::npos);
+  const CommandResult other_front_end = run(std::string(BUILD_MAP_PATH) + " --link-places --descriptor hog --output " +
+                                            unlinked);
+  EXPECT_NE(other_front_end.status, 0);
+  EXPECT_NE(other_front_end.err.find("holds descriptors of the thumbnail"), std::string::npos) << other_front_end.err;
+  EXPECT_NE(run(buildMap() + " --link-places --output " + path("no-such-map.db")).err.find("there is no map"),
+            std::string::npos);
+}
+
 }  // namespace
