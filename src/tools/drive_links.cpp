@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <iterator>
 #include <set>
 #include <utility>
@@ -29,43 +30,41 @@ std::vector<int> driveBegins(const MapDatabase& map, int frames) {
 }  // namespace
 
 DriveLinking linkDrives(MapDatabase& map, double min_appearance_change) {
-  std::vector<StoredFrame> frames;
-  map.forEachFrame([&](const StoredFrame& frame) { frames.push_back({frame.descriptor.clone(), frame.stamp, "", -1}); });
-  const int count = static_cast<int>(frames.size());
-  // Drive d holds frames [bounds[d], bounds[d + 1]).
-  std::vector<int> bounds = driveBegins(map, count);
-  bounds.push_back(count);
+  const std::int64_t count = map.size();
+  const std::vector<int> begins = driveBegins(map, static_cast<int>(count));
   std::vector<PlaceLink> links = map.placeLinks(count);
   std::set<std::pair<int, int>> held;
   for (const PlaceLink& link : links) held.insert({link.frame, link.reference});
   std::vector<PlaceLink> added;
-  DriveLinking result;
-  for (std::size_t drive = 0; drive + 1 < bounds.size(); ++drive) {
-    const int begin = bounds[drive];
-    // The map as build_map held it when it added this drive: the earlier drives, their starts and links.
-    TraversalClosures closures(map.descriptorParams(), min_appearance_change, begin);
-    for (int i = 0; i < begin; ++i) closures.addMapFrame(frames[i].descriptor, frames[i].stamp);
-    std::vector<PlaceLink> earlier;
-    std::copy_if(links.begin(), links.end(), std::back_inserter(earlier),
-                 [&](const PlaceLink& link) { return link.frame < begin && link.reference < begin; });
-    const auto starts_end = bounds.begin() + std::max<std::ptrdiff_t>(1, static_cast<std::ptrdiff_t>(drive));
-    closures.startTraversal(earlier, std::vector<int>(bounds.begin() + 1, starts_end));
-    for (int i = begin; i < bounds[drive + 1]; ++i) {
-      stopIfInterrupted();  // A large map takes a while: Ctrl-C leaves it as it was.
-      closures.addKeyframe(frames[i].descriptor, frames[i].stamp);
-    }
+  TraversalClosures closures(map.descriptorParams(), min_appearance_change, 0);
+  const auto keepNewLinks = [&] {
     for (const PlaceLink& link : closures.takeLinks()) {
       if (!held.insert({link.frame, link.reference}).second) continue;  // The map holds it already.
       links.push_back(link);
       added.push_back(link);
     }
-    ++result.drives;
-    result.questions += closures.questions();
-    result.closures += closures.closures();
-  }
+  };
+  // One pass over the frames: each drive is asked about as build_map asked when it added that drive,
+  // knowing the earlier drives' links.
+  closures.startTraversal({}, {});
+  std::size_t next_drive = 1;
+  int frame = 0;
+  map.forEachFrame([&](const StoredFrame& stored) {
+    if (next_drive < begins.size() && frame == begins[next_drive]) {
+      keepNewLinks();
+      std::vector<PlaceLink> earlier;
+      std::copy_if(links.begin(), links.end(), std::back_inserter(earlier),
+                   [&](const PlaceLink& link) { return link.frame < frame && link.reference < frame; });
+      closures.startDrive(earlier);
+      ++next_drive;
+    }
+    stopIfInterrupted();  // A large map takes a while: Ctrl-C leaves it as it was.
+    closures.addKeyframe(stored.descriptor, stored.stamp);
+    ++frame;
+  });
+  keepNewLinks();
   map.append({}, added);
-  result.new_links = static_cast<int>(added.size());
-  return result;
+  return {static_cast<int>(begins.size()), closures.questions(), closures.closures(), static_cast<int>(added.size())};
 }
 
 }  // namespace tools

@@ -43,13 +43,23 @@ void TraversalClosures::startTraversal(const std::vector<PlaceLink>& map_links, 
   recognizer_.install(std::move(*map_));
   map_.reset();
   recognizer_.keepUnsavedLinks();
-  recognizer_.markDriveStart(recognizer_.size());  // The traversal's keyframes are another drive's.
+  beginDrive();  // The traversal's keyframes are another drive's.
+}
+
+void TraversalClosures::startDrive(const std::vector<PlaceLink>& links) {
+  if (map_) throw std::logic_error("TraversalClosures: startTraversal() comes before the traversal's drives");
+  recognizer_.linkPlaces(links);
+  beginDrive();
+}
+
+void TraversalClosures::beginDrive() {
+  recognizer_.markDriveStart(recognizer_.size());
   // As the node's continuous mode asks: once the map holds enough frames to search, and the test
-  // sequence holds keyframes of this traversal only.
+  // sequence holds keyframes of this drive only.
   const int length = recognizer_.parameters().sequence.sequence_length;
-  const long long after_traversal_start = static_cast<long long>(recognizer_.size()) + length;
+  const long long after_drive_start = static_cast<long long>(recognizer_.size()) + length;
   first_question_size_ =
-      static_cast<int>(std::max<long long>(recognizer_.fewestFramesForRecent(length), after_traversal_start));
+      static_cast<int>(std::max<long long>(recognizer_.fewestFramesForRecent(length), after_drive_start));
 }
 
 void TraversalClosures::addKeyframe(const cv::Mat& descriptor, Stamp stamp) {

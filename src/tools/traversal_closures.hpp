@@ -41,6 +41,10 @@ class TraversalClosures {
   /// A keyframe of the traversal (in map order after the map's frames): asks where its newest
   /// keyframes are, once the map holds enough older frames to search.
   void addKeyframe(const cv::Mat& descriptor, Stamp stamp);
+  /// Another drive begins with the next keyframe (a map's drives linked in one pass): its questions,
+  /// like the traversal's first, wait for a whole test sequence of its own keyframes, and the place
+  /// links known by then are `links`.
+  void startDrive(const std::vector<PlaceLink>& links);
 
   /// The links accepted answers made since the last call, to store with the frames they name.
   std::vector<PlaceLink> takeLinks() { return recognizer_.takeUnsavedLinks(); }
@@ -49,6 +53,9 @@ class TraversalClosures {
   int closures() const { return closures_; }
 
  private:
+  /// The next keyframe begins a drive: no question before a test sequence holds its keyframes only.
+  void beginDrive();
+
   PlaceRecognizer recognizer_;
   std::optional<PlaceRecognizer::PreparedMap> map_;  // the map's frames, until startTraversal()
   int first_question_size_ = 0;  // the map's size at the traversal's first question
