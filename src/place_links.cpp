@@ -2,12 +2,23 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
 namespace mrs_vpr {
+namespace {
+
+/// Frames whose place is an older frame's, of `place` as placesOf() gives it.
+int framesLinked(const std::vector<int>& place) {
+  int linked = 0;
+  for (std::size_t i = 0; i < place.size(); ++i) linked += place[i] != static_cast<int>(i) ? 1 : 0;
+  return linked;
+}
+
+}  // namespace
 
 int PlaceLinks::placeOfLocked(int frame) const {
   return frame < static_cast<int>(place_.size()) ? place_[static_cast<std::size_t>(frame)] : frame;
@@ -28,7 +39,10 @@ bool PlaceLinks::link(int frame, int reference) {
   const int a = placeOfLocked(frame);
   const int b = placeOfLocked(reference);
   if (a == b) return false;
-  if (keep_unsaved_) unsaved_.push_back({frame, reference});  // Before the change: a failure changes nothing.
+  // Before the change, so that a failure for want of memory changes nothing.
+  made_.reserve(made_.size() + 1);
+  if (keep_unsaved_) unsaved_.push_back({frame, reference});
+  made_.push_back({frame, reference});
   // The older place names both: every frame of the newer one joins it.
   const int kept = std::min(a, b);
   const int joined = std::max(a, b);
@@ -97,12 +111,13 @@ int PlaceLinks::linkedFrames() const {
 
 std::size_t PlaceLinks::memoryBytes() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return place_.capacity() * sizeof(int);
+  return place_.capacity() * sizeof(int) + made_.capacity() * sizeof(PlaceLink);
 }
 
 void PlaceLinks::clear() {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<int>().swap(place_);  // its memory too
+  std::vector<PlaceLink>().swap(made_);
   linked_ = 0;
   std::vector<PlaceLink>().swap(unsaved_);
 }
@@ -138,12 +153,41 @@ std::vector<int> PlaceLinks::placesOf(const std::vector<PlaceLink>& links, int f
   return place;
 }
 
-void PlaceLinks::adopt(std::vector<int>&& places) noexcept {
+void PlaceLinks::adopt(std::vector<int>&& places, std::vector<PlaceLink>&& links) noexcept {
   std::lock_guard<std::mutex> lock(mutex_);
   place_ = std::move(places);
-  linked_ = 0;
-  for (std::size_t i = 0; i < place_.size(); ++i) linked_ += place_[i] != static_cast<int>(i) ? 1 : 0;
+  made_ = std::move(links);
+  linked_ = framesLinked(place_);
   unsaved_.clear();
+}
+
+std::vector<PlaceLink> PlaceLinks::linksOfClosure(int frame, int reference) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int place = placeOfLocked(reference);
+  std::vector<PlaceLink> links;
+  for (const PlaceLink& link : made_) {
+    if (link.frame == frame && placeOfLocked(link.reference) == place) links.push_back(link);
+  }
+  return links;
+}
+
+void PlaceLinks::forget(const std::vector<PlaceLink>& forgotten) {
+  const auto isForgotten = [&forgotten](const PlaceLink& link) {
+    return std::any_of(forgotten.begin(), forgotten.end(), [&link](const PlaceLink& other) {
+      return other.frame == link.frame && other.reference == link.reference;
+    });
+  };
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PlaceLink> kept;
+  kept.reserve(made_.size());
+  std::copy_if(made_.begin(), made_.end(), std::back_inserter(kept),
+               [&](const PlaceLink& link) { return !isForgotten(link); });
+  // Links join places, so one cannot be taken out of place_ alone: the places are made again.
+  std::vector<int> places = placesOf(kept, static_cast<int>(place_.size()));
+  unsaved_.erase(std::remove_if(unsaved_.begin(), unsaved_.end(), isForgotten), unsaved_.end());
+  place_ = std::move(places);
+  made_ = std::move(kept);
+  linked_ = framesLinked(place_);
 }
 
 std::vector<PlaceLink> PlaceLinks::asLinks(int frames) const {

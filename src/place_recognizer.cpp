@@ -332,6 +332,7 @@ void PlaceRecognizer::PreparedMap::append(const cv::Mat& descriptor, Stamp stamp
 
 void PlaceRecognizer::PreparedMap::linkPlaces(const std::vector<PlaceLink>& links) {
   places_ = PlaceLinks::placesOf(links, map_.size());
+  links_ = links;
 }
 
 void PlaceRecognizer::PreparedMap::markDriveStarts(const std::vector<int>& starts) {
@@ -359,7 +360,16 @@ PlaceRecognizer::PreparedMap::PreparedMap(const Parameters& params, const Recogn
 void PlaceRecognizer::linkPlaces(const std::vector<PlaceLink>& links) {
   flush();  // The links name frames that may still be pending.
   std::unique_lock<std::shared_mutex> map_lock(map_mutex_);
-  links_.adopt(PlaceLinks::placesOf(links, map_.size()));
+  std::vector<PlaceLink> kept = links;
+  links_.adopt(PlaceLinks::placesOf(links, map_.size()), std::move(kept));
+}
+
+int PlaceRecognizer::newestFrameStamped(Stamp stamp) const {
+  std::shared_lock<std::shared_mutex> map_lock(map_mutex_);
+  for (int i = map_.size() - 1; i >= 0; --i) {
+    if (map_.stamp(i) == stamp) return i;
+  }
+  return -1;
 }
 
 int PlaceRecognizer::install(PreparedMap&& prepared) {
@@ -379,7 +389,8 @@ int PlaceRecognizer::install(PreparedMap&& prepared) {
   map_ = std::move(prepared.map_);
   pending_.clear();
   recent_rows_->clear();
-  links_.adopt(std::move(prepared.places_));  // Those its database kept; none for a map of frames alone.
+  // Those its database kept; none for a map of frames alone.
+  links_.adopt(std::move(prepared.places_), std::move(prepared.links_));
   drive_starts_ = std::move(prepared.drive_starts_);  // Its database's; none for a map of frames alone.
   map_frames_ = map_.size();
   frames_admitted_ = map_.size();

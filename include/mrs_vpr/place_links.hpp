@@ -28,7 +28,9 @@ struct PlaceLink {
  * first visit). Only frames linked so far are held (4 bytes a frame up to the newest linked one).
  * A map database keeps the links with the frames (persistent_map.hpp): the links made since it last
  * took them wait in a log (takeUnsaved()), and a map read back gets them all at once (placesOf(),
- * adopt()). Thread-safe: queries read while continuous mode links.
+ * adopt()). The links that joined places are kept as made (8 bytes each), so that one found wrong
+ * afterwards can be forgotten (linksOfClosure(), forget()). Thread-safe: queries read while
+ * continuous mode links.
  */
 class PlaceLinks {
  public:
@@ -44,7 +46,7 @@ class PlaceLinks {
   std::vector<FrameRange> samePlaceAs(int frame, int half) const;
   /// Frames linked to an older frame's place.
   int linkedFrames() const;
-  /// Bytes held: 4 a frame up to the newest linked one.
+  /// Bytes held: 4 a frame up to the newest linked one, and 8 a link kept.
   std::size_t memoryBytes() const;
   /// Forgets every link (the map was reset or replaced), and the log of those not yet stored.
   void clear();
@@ -53,9 +55,18 @@ class PlaceLinks {
   /// time linear in both (a million linked frames replayed one by one would take hours). Frames
   /// beyond the newest linked one are left out. Throws std::invalid_argument for a link outside them.
   static std::vector<int> placesOf(const std::vector<PlaceLink>& links, int frames);
-  /// Forgets every link (clear()) and takes `places`, of placesOf(), instead: a map read back. Moves
-  /// them in, so that it cannot fail for want of memory.
-  void adopt(std::vector<int>&& places) noexcept;
+  /// Forgets every link (clear()) and takes `places`, of placesOf(`links`), and `links` instead: a map
+  /// read back. Moves them in, so that it cannot fail for want of memory.
+  void adopt(std::vector<int>&& places, std::vector<PlaceLink>&& links) noexcept;
+
+  /// The kept links by which an accepted loop closure put map frame `frame` in the place of map frame
+  /// `reference`: those from `frame` to a frame of that place (the closure's own link, or, in a map
+  /// saved without its links as made, the link to the place's first frame). Empty when there is none:
+  /// the closure linked nothing (the frames were one place already) or its link was forgotten.
+  std::vector<PlaceLink> linksOfClosure(int frame, int reference) const;
+  /// Forgets `forgotten` (of linksOfClosure(): a closure that the robot's back end refused): the
+  /// places become those the other links make, and the log of links not yet stored loses them too.
+  void forget(const std::vector<PlaceLink>& forgotten);
   /// The links among frames [0, frames) as few links that make the same places again (each linked
   /// frame to its place's first frame), for a copy of the map.
   std::vector<PlaceLink> asLinks(int frames) const;
@@ -71,6 +82,7 @@ class PlaceLinks {
 
   mutable std::mutex mutex_;
   std::vector<int> place_;  ///< The first-visit frame each frame shows (itself when not linked).
+  std::vector<PlaceLink> made_;  ///< The links that joined two places, in order: place_ is placesOf() them.
   int linked_ = 0;
   bool keep_unsaved_ = false;
   std::vector<PlaceLink> unsaved_;

@@ -215,6 +215,7 @@ class PlaceRecognizer {
     DescriptorSequence map_;
     AppearanceKeyframes keyframes_;
     std::vector<int> places_;  // PlaceLinks::placesOf() its links
+    std::vector<PlaceLink> links_;
     std::vector<int> drive_starts_;
     int expected_frames_ = 0;  // frames it was prepared for
     int reserved_frames_ = 0;  // frames map_ holds storage for
@@ -275,6 +276,15 @@ class PlaceRecognizer {
   void linkPlaces(const std::vector<PlaceLink>& links);
   /// The place links among map frames [0, frames), as PlaceLinks::asLinks() gives them: for a copy of the map.
   std::vector<PlaceLink> placeLinks(int frames) const { return links_.asLinks(frames); }
+  /// The links by which an accepted answer put map frame `frame` in the place of map frame `reference`
+  /// (PlaceLinks::linksOfClosure()), for forgetPlaceLinks() when the robot's back end refused it.
+  std::vector<PlaceLink> linksOfClosure(int frame, int reference) const {
+    return links_.linksOfClosure(frame, reference);
+  }
+  /// Forgets `links` (PlaceLinks::forget()): later answers no longer take their frames for one place.
+  void forgetPlaceLinks(const std::vector<PlaceLink>& links) { links_.forget(links); }
+  /// The newest map frame stamped `stamp` (a published closure's localised keyframe), or -1.
+  int newestFrameStamped(Stamp stamp) const;
   /// From now on, logs the links accepted answers make until takeUnsavedLinks() (for a map database).
   void keepUnsavedLinks() { links_.keepUnsaved(); }
   /// The links accepted answers made since the last call (PlaceLinks::takeUnsaved()); a map put in

@@ -1,4 +1,5 @@
-// The node's map and its database: opening ~database at start-up, ~reset, ~save_map, ~load_map.
+// The node's map and its database: opening ~database at start-up, ~reset, ~save_map, ~load_map,
+// ~reject_closure.
 
 #include <algorithm>
 #include <exception>
@@ -6,6 +7,7 @@
 #include <string>
 
 #include "mrs_vpr/node/place_recognition_node.hpp"
+#include "mrs_vpr/node/ros_stamp.hpp"
 #include "mrs_vpr/store/map_traversal.hpp"
 #include "../store/map_path.hpp"
 
@@ -178,6 +180,35 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
     response.message = error.what() + relativePathNote(request.path) + "; the current map is kept";
     ROS_WARN("mrs_vpr: load_map failed: %s", response.message.c_str());
   }
+  publishMapInfoIfChanged();
+  return true;
+}
+
+bool PlaceRecognitionNode::rejectClosureCallback(RejectClosure::Request& request, RejectClosure::Response& response) {
+  try {
+    const Stamp stamp = stampOf(request.localised_keyframe_stamp);
+    if (stamp.isZero()) {
+      throw std::invalid_argument("localised_keyframe_stamp is 0: copy it from the closure's mrs_vpr/LoopClosure");
+    }
+    const int frame = recognizer_.newestFrameStamped(stamp);
+    if (frame < 0) {
+      throw std::invalid_argument("no map keyframe has the stamp " + stamp.toString() +
+                                  " (a closure of ~map_mode fixed localises a keyframe that is not in the map, and "
+                                  "links nothing)");
+    }
+    const std::vector<PlaceLink> forgotten = map_->forgetClosure(frame, request.reference_index);
+    response.success = true;
+    response.links_forgotten = static_cast<std::uint32_t>(forgotten.size());
+    response.message = "forgot the link of map frame " + std::to_string(frame) + " (stamp " + stamp.toString() +
+                       ") to the place of map frame " + std::to_string(request.reference_index) +
+                       (map_->persistent() ? ", in the map and its database" : "");
+    ROS_INFO("mrs_vpr: %s", response.message.c_str());
+  } catch (const std::exception& error) {
+    response.success = false;
+    response.message = std::string("reject_closure: ") + error.what() + "; the map's links are kept";
+    ROS_WARN("mrs_vpr: %s", response.message.c_str());
+  }
+  response.frames_linked = static_cast<std::uint32_t>(recognizer_.state().linked_frames);
   publishMapInfoIfChanged();
   return true;
 }

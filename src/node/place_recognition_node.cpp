@@ -55,6 +55,8 @@ PlaceRecognitionNode::PlaceRecognitionNode(const ros::NodeHandle& nh, const ros:
   reset_srv_ = query_nh_.advertiseService("reset", &PlaceRecognitionNode::resetCallback, this);
   save_map_srv_ = query_nh_.advertiseService("save_map", &PlaceRecognitionNode::saveMapCallback, this);
   load_map_srv_ = query_nh_.advertiseService("load_map", &PlaceRecognitionNode::loadMapCallback, this);
+  reject_closure_srv_ =
+      query_nh_.advertiseService("reject_closure", &PlaceRecognitionNode::rejectClosureCallback, this);
   // Wall-clock timers: they pace the node's own work, which goes on under use_sim_time whether or not
   // a /clock runs (before one starts, and after a replayed bag's clock stops, ROS time stands still).
   map_info_timer_ = info_nh_.createWallTimer(ros::WallDuration(1.0 / params_.map_info_rate),

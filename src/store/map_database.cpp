@@ -371,6 +371,24 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames, const std::vect
   });
 }
 
+void MapDatabase::forgetLinks(const std::vector<PlaceLink>& links) {
+  if (links.empty()) return;
+  inWriteTransaction([&] {
+    sqlite3_stmt* raw = nullptr;
+    if (sqlite3_prepare_v2(db_, "DELETE FROM place_links WHERE frame = ? AND reference = ?", -1, &raw, nullptr) !=
+        SQLITE_OK) {
+      fail(lastProblem(db_));
+    }
+    const Statement remove(raw, sqlite3_finalize);
+    for (const PlaceLink& link : links) {
+      sqlite3_bind_int(remove.get(), 1, link.frame);
+      sqlite3_bind_int(remove.get(), 2, link.reference);
+      if (sqlite3_step(remove.get()) != SQLITE_DONE) fail(lastProblem(db_));
+      sqlite3_reset(remove.get());
+    }
+  });
+}
+
 std::vector<PlaceLink> MapDatabase::placeLinks(std::int64_t frames) const {
   if (format_version_ < 3) return {};  // Read as it is: no table of links yet.
   sqlite3_stmt* raw = nullptr;

@@ -180,6 +180,40 @@ void PersistentMap::startDrive(int frame) {
   if (writer_) writer_->withDatabase([&](MapDatabase& database) { database.addDriveStart(frame); });
 }
 
+std::vector<PlaceLink> PersistentMap::forgetClosure(int frame, int reference) {
+  std::lock_guard<std::mutex> whole(whole_map_mutex_);
+  const int frames = recognizer_.size();
+  for (const int index : {frame, reference}) {
+    if (index < 0 || index >= frames) {
+      throw std::invalid_argument("frame " + std::to_string(index) + " is not one of the map's " +
+                                  std::to_string(frames) + " frames");
+    }
+  }
+  std::vector<PlaceLink> links;
+  const auto forget = [&] {
+    links = recognizer_.linksOfClosure(frame, reference);
+    if (links.empty()) {
+      throw std::invalid_argument("map frame " + std::to_string(frame) + " is not linked to the place of map frame " +
+                                  std::to_string(reference) +
+                                  ": no accepted closure linked them (it was not accepted, or the two frames were "
+                                  "one place already), or their link was forgotten already");
+    }
+  };
+  if (writer_) {
+    // After the commit of the links made so far, the database holds every link the recognizer keeps:
+    // it loses them first, so that a failure leaves both as they were.
+    writer_->withDatabase([&](MapDatabase& database) {
+      forget();
+      database.forgetLinks(links);
+      recognizer_.forgetPlaceLinks(links);
+    });
+  } else {
+    forget();
+    recognizer_.forgetPlaceLinks(links);
+  }
+  return links;
+}
+
 int PersistentMap::reset() {
   std::lock_guard<std::mutex> whole(whole_map_mutex_);
   // The empty map is made first, then the database emptied: if either fails, the map stays as it is

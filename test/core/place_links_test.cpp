@@ -90,14 +90,14 @@ TEST(PlaceLinks, PlacesOfALinkListAreThoseOfItsLinksMadeOneByOne) {
   for (const PlaceLink& link : made) joined += one_by_one.link(link.frame, link.reference) ? 1 : 0;
   EXPECT_EQ(joined, 6);  // 91 and 10 were one place already
   PlaceLinks adopted;
-  adopted.adopt(PlaceLinks::placesOf(made, 100));
+  adopted.adopt(PlaceLinks::placesOf(made, 100), std::vector<PlaceLink>(made));
   EXPECT_EQ(adopted.linkedFrames(), one_by_one.linkedFrames());
   for (const int frame : {10, 50, 80, 3, 12, 90, 70, 40}) {
     EXPECT_EQ(pairsOf(adopted.samePlaceAs(frame, 2)), pairsOf(one_by_one.samePlaceAs(frame, 2))) << frame;
   }
   // The few links that make the same places again: each linked frame to its place's first frame.
   PlaceLinks again;
-  again.adopt(PlaceLinks::placesOf(one_by_one.asLinks(100), 100));
+  again.adopt(PlaceLinks::placesOf(one_by_one.asLinks(100), 100), one_by_one.asLinks(100));
   EXPECT_EQ(again.asLinks(100).size(), static_cast<std::size_t>(one_by_one.linkedFrames()));
   for (const int frame : {10, 50, 80, 3, 12, 90, 70}) {
     EXPECT_EQ(pairsOf(again.samePlaceAs(frame, 2)), pairsOf(one_by_one.samePlaceAs(frame, 2))) << frame;
@@ -119,7 +119,7 @@ TEST(PlaceLinks, ManyLinksMadeOneByOneMakeThePlacesOfTheirList) {
   PlaceLinks one_by_one;
   for (const PlaceLink& link : made) one_by_one.link(link.frame, link.reference);
   PlaceLinks adopted;
-  adopted.adopt(PlaceLinks::placesOf(made, 1000));
+  adopted.adopt(PlaceLinks::placesOf(made, 1000), std::vector<PlaceLink>(made));
   EXPECT_EQ(pairsOf(one_by_one.asLinks(1000)), pairsOf(adopted.asLinks(1000)));
   EXPECT_EQ(one_by_one.linkedFrames(), adopted.linkedFrames());
 }
@@ -146,9 +146,52 @@ TEST(PlaceLinks, TheUnsavedLogHoldsTheLinksThatJoinedPlacesSinceItWasTaken) {
   EXPECT_EQ(taken[1].reference, 6);
   EXPECT_TRUE(links.takeUnsaved().empty());
   links.link(60, 7);
-  links.adopt({});  // a map put in place: its links are not the old map's
+  links.adopt({}, {});  // a map put in place: its links are not the old map's
   EXPECT_TRUE(links.takeUnsaved().empty());
   EXPECT_EQ(links.linkedFrames(), 0);
+}
+
+// A closure that the robot's back end refused: forgetting its link parts the places it joined, and
+// only those; links made later through its frames stay, and so do those of other places.
+TEST(PlaceLinks, AForgottenClosurePartsThePlacesItJoinedAndNoOther) {
+  PlaceLinks links;
+  links.keepUnsaved();
+  links.link(200, 50);  // second visit -> first, right
+  links.link(210, 90);  // a wrong closure: frame 210 put in frame 90's place
+  links.link(400, 200);  // third visit -> second, right
+  links.link(410, 210);  // third -> the frame of the wrong closure: frame 90's place too
+  links.link(420, 60);   // another place
+  EXPECT_EQ(links.linkedFrames(), 5);
+  EXPECT_EQ(pairsOf(links.samePlaceAs(90, 0)), (Pairs{{210, 211}, {410, 411}}));
+  const std::vector<PlaceLink> wrong = links.linksOfClosure(210, 90);
+  EXPECT_EQ(pairsOf(wrong), (Pairs{{210, 90}}));
+  EXPECT_TRUE(links.linksOfClosure(210, 50).empty());  // 210 shows 90's place, not 50's
+  EXPECT_TRUE(links.linksOfClosure(211, 90).empty());   // 211 was never linked
+  links.forget(wrong);
+  EXPECT_EQ(links.linkedFrames(), 4);
+  EXPECT_TRUE(links.samePlaceAs(90, 0).empty());  // no other visit shows frame 90's place
+  EXPECT_EQ(pairsOf(links.samePlaceAs(410, 0)), (Pairs{{210, 211}}));  // the third visit still shows 210's
+  EXPECT_EQ(pairsOf(links.samePlaceAs(400, 0)), (Pairs{{50, 51}, {200, 201}}));
+  EXPECT_EQ(pairsOf(links.samePlaceAs(420, 0)), (Pairs{{60, 61}}));
+  EXPECT_TRUE(links.linksOfClosure(210, 90).empty());  // forgotten already
+  // The log of links a database has yet to store no longer holds it; a new closure links again.
+  EXPECT_EQ(pairsOf(links.takeUnsaved()), (Pairs{{200, 50}, {400, 200}, {410, 210}, {420, 60}}));
+  EXPECT_TRUE(links.link(210, 90));
+}
+
+// A map saved without its links as made keeps each linked frame's link to its place's first frame;
+// the closure's link is found through it.
+TEST(PlaceLinks, AClosureIsForgottenInAMapThatKeptItsPlacesOnly) {
+  PlaceLinks made;
+  made.link(200, 50);
+  made.link(300, 200);  // kept as 300 -> 50
+  PlaceLinks saved;
+  saved.adopt(PlaceLinks::placesOf(made.asLinks(400), 400), made.asLinks(400));
+  const std::vector<PlaceLink> closure = saved.linksOfClosure(300, 200);
+  EXPECT_EQ(pairsOf(closure), (Pairs{{300, 50}}));
+  saved.forget(closure);
+  EXPECT_EQ(pairsOf(saved.samePlaceAs(50, 0)), (Pairs{{200, 201}}));
+  EXPECT_EQ(saved.linkedFrames(), 1);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +32,7 @@
 #include "mrs_vpr/LoopClosure.h"
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/RejectClosure.h"
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor.hpp"
 #include "mrs_vpr/node/bag_images.hpp"
@@ -566,7 +568,8 @@ TEST_F(MapDatabaseNodeTest, RecentFramesNeverJoinALoadedMapToTheCamerasFirstKeyf
 }
 
 // A node that maps as it drives closes the loops of a revisit, which link the visits' frames, so that a
-// place it holds twice is no rival of itself: the links survive a restart and a saved and loaded map.
+// place it holds twice is no rival of itself: the links survive a restart and a saved and loaded map,
+// and a closure that the back end refused (~reject_closure) is forgotten for good.
 TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAndALoad) {
   const std::string database = path("map.db");
   std::uint32_t linked = 0;
@@ -592,6 +595,30 @@ TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAnd
     std::printf("[ figures  ] revisit: %zu closures, %d accepted, %u frames linked\n", closures.received().size(),
                 accepted, info.latest().frames_linked);
     linked = info.latest().frames_linked;
+
+    // The back end refuses one closure: its link goes, from the map and (after the restart below) its
+    // database; asking again, or with no stamp, is refused with the map unchanged.
+    const auto is_accepted = [](const mrs_vpr::LoopClosure& closure) { return closure.accepted; };
+    const std::vector<mrs_vpr::LoopClosure> received = closures.received();
+    const auto refused = std::find_if(received.begin(), received.end(), is_accepted);
+    ASSERT_NE(refused, received.end());
+    mrs_vpr::RejectClosure reject;
+    reject.request.localised_keyframe_stamp = refused->localised_keyframe_stamp;
+    reject.request.reference_index = refused->reference_index;
+    ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reject_closure"), reject));
+    EXPECT_TRUE(reject.response.success) << reject.response.message;
+    EXPECT_EQ(reject.response.links_forgotten, 1U);
+    EXPECT_EQ(reject.response.frames_linked, linked - 1);
+    ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reject_closure"), reject));
+    EXPECT_FALSE(reject.response.success);
+    EXPECT_NE(reject.response.message.find("forgotten already"), std::string::npos) << reject.response.message;
+    EXPECT_EQ(reject.response.frames_linked, linked - 1);
+    reject.request.localised_keyframe_stamp = ros::Time();
+    ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reject_closure"), reject));
+    EXPECT_FALSE(reject.response.success);
+    EXPECT_NE(reject.response.message.find("localised_keyframe_stamp is 0"), std::string::npos)
+        << reject.response.message;
+    --linked;
     EXPECT_EQ(node->stop(), 0);
   }
   auto node = startNode("linker", database, {"descriptor/type:=thumbnail"});

@@ -324,6 +324,45 @@ TEST_F(StoredPlaceLinksTest, SaveAndLoadCarryThePlaceLinksAndResetForgetsThem) {
   EXPECT_TRUE(MapDatabase(path("map.db"), MapAccess::kReadOnly).placeLinks().empty());
 }
 
+// A closure that the robot's back end refused: its link goes from the map and from its database, so
+// that it stays gone after a restart, and asking again, or about frames it does not hold, is refused.
+TEST_F(StoredPlaceLinksTest, ARejectedClosuresLinkIsForgottenInTheMapAndItsDatabase) {
+  MappingDrive drive(path("map.db"));
+  drive.start();
+  drive.mapRoute();
+  drive.driveElsewhere(60);
+  drive.revisit(100, 300);
+  drive.stop();  // The database is the node's alone while it runs.
+  const std::vector<PlaceLink> stored = MapDatabase(path("map.db"), MapAccess::kReadOnly).placeLinks();
+  drive.start();
+  const int linked = drive.recognizer().state().linked_frames;
+  ASSERT_GT(linked, 10);
+  ASSERT_EQ(stored.size(), static_cast<std::size_t>(linked));
+  const PlaceLink rejected = stored[stored.size() / 2];
+  const std::vector<PlaceLink> forgotten = drive.map().forgetClosure(rejected.frame, rejected.reference);
+  EXPECT_EQ(pairsOf(forgotten), pairsOf({rejected}));
+  EXPECT_EQ(drive.recognizer().state().linked_frames, linked - 1);
+  EXPECT_THROW(drive.map().forgetClosure(rejected.frame, rejected.reference), std::invalid_argument);
+  EXPECT_THROW(drive.map().forgetClosure(rejected.frame, drive.recognizer().size()), std::invalid_argument);
+  EXPECT_THROW(drive.map().forgetClosure(-1, rejected.reference), std::invalid_argument);
+  drive.stop();
+  std::vector<PlaceLink> kept = stored;
+  kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(stored.size() / 2));
+  EXPECT_EQ(pairsOf(MapDatabase(path("map.db"), MapAccess::kReadOnly).placeLinks()), pairsOf(kept));
+  drive.start();
+  EXPECT_EQ(drive.recognizer().state().linked_frames, linked - 1);
+  EXPECT_TRUE(drive.recognizer().linksOfClosure(rejected.frame, rejected.reference).empty());
+  drive.stop();
+
+  // In memory only (no ~database), from a map loaded with the links.
+  PlaceRecognizer recognizer(testing_support::routeParameters());
+  PersistentMap in_memory(recognizer);
+  in_memory.load(path("map.db"));
+  const PlaceLink other = kept.front();
+  EXPECT_EQ(pairsOf(in_memory.forgetClosure(other.frame, other.reference)), pairsOf({other}));
+  EXPECT_EQ(recognizer.state().linked_frames, linked - 2);
+}
+
 // Links made of the old map while load() replaces it name the old map's frames: none may reach the
 // new map's database. Whatever the timing, the database holds the links the map holds, of its frames.
 // (Without the hold-back, a commit between the rewrite and the swap wrote 5 to 14 of them there.)
@@ -353,7 +392,7 @@ TEST_F(StoredPlaceLinksTest, LinksMadeWhileAMapIsLoadedNeverReachTheLoadedMapsDa
   const MapDatabase database(path("map.db"), MapAccess::kReadOnly);
   const std::vector<PlaceLink> links = database.placeLinks();  // every one two of its frames (else it throws)
   PlaceLinks stored;
-  stored.adopt(PlaceLinks::placesOf(links, static_cast<int>(database.size())));
+  stored.adopt(PlaceLinks::placesOf(links, static_cast<int>(database.size())), std::vector<PlaceLink>(links));
   EXPECT_EQ(stored.linkedFrames(), linked);
   EXPECT_EQ(links.size(), static_cast<std::size_t>(linked));
   EXPECT_GT(linked, 0);  // the new map's own loops, closed after the load

@@ -19,6 +19,7 @@
 #include "mrs_vpr/LoadMap.h"
 #include "mrs_vpr/MapInfo.h"
 #include "mrs_vpr/QuerySequence.h"
+#include "mrs_vpr/RejectClosure.h"
 #include "mrs_vpr/SaveMap.h"
 #include "mrs_vpr/descriptor_sequence.hpp"
 #include "mrs_vpr/node/camera_silence.hpp"
@@ -119,6 +120,7 @@ class PlaceRecognitionNode {
   void warnOfKeyframingMismatch() const;
   bool resetCallback(std_srvs::Trigger::Request& request, std_srvs::Trigger::Response& response);
   bool saveMapCallback(SaveMap::Request& request, SaveMap::Response& response);
+  bool rejectClosureCallback(RejectClosure::Request& request, RejectClosure::Response& response);
   bool loadMapCallback(LoadMap::Request& request, LoadMap::Response& response);
   /// After ~reset or ~load_map: the keyframe policies, the standing frames and continuous mode start over.
   /// Continuous mode asks about the keyframes after the new map's `map_frames` (those added while a
@@ -225,6 +227,7 @@ class PlaceRecognitionNode {
   ros::ServiceServer query_srv_;
   ros::ServiceServer reset_srv_;
   ros::ServiceServer save_map_srv_;
+  ros::ServiceServer reject_closure_srv_;
   ros::ServiceServer load_map_srv_;
   ros::WallTimer auto_query_timer_;
   ros::WallTimer map_info_timer_;

@@ -120,6 +120,8 @@ class MapDatabase {
   /// placeLinks() of the map's `frames`, which the caller has counted already (size() reads the whole
   /// table: half a second on a million frames).
   std::vector<PlaceLink> placeLinks(std::int64_t frames) const;
+  /// Removes every stored place link equal to one of `links` (a refused closure's), in one transaction.
+  void forgetLinks(const std::vector<PlaceLink>& links);
   /// Frames stored.
   std::int64_t size() const;
   /// Calls `visit` for every frame in map order. Throws MapDatabaseError on a corrupt or foreign row.

@@ -97,6 +97,16 @@ class PersistentMap {
    */
   void startDrive(int frame);
 
+  /**
+   * Forgets the place link by which an accepted loop closure put map frame `frame` in the place of map
+   * frame `reference` (PlaceRecognizer::linksOfClosure), for a closure that the robot's back end
+   * refused afterwards: later answers no longer take those frames for one place. The database loses
+   * the link too. Returns the links forgotten. Throws std::invalid_argument for a frame the map does
+   * not hold, or when no such link is kept (the closure linked nothing, or was forgotten already), and
+   * MapDatabaseError when the database cannot be written (the link is then kept in both).
+   */
+  std::vector<PlaceLink> forgetClosure(int frame, int reference);
+
   /// Map frame `index`'s frame id and number (StoredFrame), as added or loaded; "" and -1 for an
   /// index the map does not hold.
   std::string frameIdOf(int index) const;
