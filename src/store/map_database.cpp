@@ -345,18 +345,19 @@ void MapDatabase::insertFrames(const FrameSource& source) {
 }
 
 void MapDatabase::insertLinks(const std::vector<PlaceLink>& links) {
+  bindEachLink("INSERT INTO place_links (frame, reference) VALUES (?, ?)", links);
+}
+
+void MapDatabase::bindEachLink(const char* sql, const std::vector<PlaceLink>& links) {
   if (links.empty()) return;
   sqlite3_stmt* raw = nullptr;
-  if (sqlite3_prepare_v2(db_, "INSERT INTO place_links (frame, reference) VALUES (?, ?)", -1, &raw, nullptr) !=
-      SQLITE_OK) {
-    fail(lastProblem(db_));
-  }
-  const Statement insert(raw, sqlite3_finalize);
+  if (sqlite3_prepare_v2(db_, sql, -1, &raw, nullptr) != SQLITE_OK) fail(lastProblem(db_));
+  const Statement statement(raw, sqlite3_finalize);
   for (const PlaceLink& link : links) {
-    sqlite3_bind_int(insert.get(), 1, link.frame);
-    sqlite3_bind_int(insert.get(), 2, link.reference);
-    if (sqlite3_step(insert.get()) != SQLITE_DONE) fail(lastProblem(db_));
-    sqlite3_reset(insert.get());
+    sqlite3_bind_int(statement.get(), 1, link.frame);
+    sqlite3_bind_int(statement.get(), 2, link.reference);
+    if (sqlite3_step(statement.get()) != SQLITE_DONE) fail(lastProblem(db_));
+    sqlite3_reset(statement.get());
   }
 }
 
@@ -373,20 +374,7 @@ void MapDatabase::append(const std::vector<StoredFrame>& frames, const std::vect
 
 void MapDatabase::forgetLinks(const std::vector<PlaceLink>& links) {
   if (links.empty()) return;
-  inWriteTransaction([&] {
-    sqlite3_stmt* raw = nullptr;
-    if (sqlite3_prepare_v2(db_, "DELETE FROM place_links WHERE frame = ? AND reference = ?", -1, &raw, nullptr) !=
-        SQLITE_OK) {
-      fail(lastProblem(db_));
-    }
-    const Statement remove(raw, sqlite3_finalize);
-    for (const PlaceLink& link : links) {
-      sqlite3_bind_int(remove.get(), 1, link.frame);
-      sqlite3_bind_int(remove.get(), 2, link.reference);
-      if (sqlite3_step(remove.get()) != SQLITE_DONE) fail(lastProblem(db_));
-      sqlite3_reset(remove.get());
-    }
-  });
+  inWriteTransaction([&] { bindEachLink("DELETE FROM place_links WHERE frame = ? AND reference = ?", links); });
 }
 
 std::vector<PlaceLink> MapDatabase::placeLinks(std::int64_t frames) const {

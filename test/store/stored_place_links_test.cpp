@@ -195,6 +195,15 @@ class MappingDrive {
     for (int frame = 0; frame < kRouteFrames; ++frame) offer(frame);
   }
 
+  /// A node started on the database maps the route, drives elsewhere and revisits a stretch, which
+  /// its closures link to the route's first visit.
+  void mapAndRevisit() {
+    start();
+    mapRoute();
+    driveElsewhere(60);
+    revisit(100, 300);
+  }
+
   /// Drives the route's frames [begin, end) again, asking after each keyframe.
   Counts revisit(int begin, int end) {
     Counts counts;
@@ -295,10 +304,7 @@ TEST_F(StoredPlaceLinksTest, AMapRestartedBetweenVisitsKeepsClosingTheirLoops) {
 // forgets them with the frames.
 TEST_F(StoredPlaceLinksTest, SaveAndLoadCarryThePlaceLinksAndResetForgetsThem) {
   MappingDrive drive(path("map.db"));
-  drive.start();
-  drive.mapRoute();
-  drive.driveElsewhere(60);
-  drive.revisit(100, 300);
+  drive.mapAndRevisit();
   const int linked = drive.recognizer().state().linked_frames;
   ASSERT_GT(linked, 0);
   drive.map().save(path("saved.db"));
@@ -328,10 +334,7 @@ TEST_F(StoredPlaceLinksTest, SaveAndLoadCarryThePlaceLinksAndResetForgetsThem) {
 // that it stays gone after a restart, and asking again, or about frames it does not hold, is refused.
 TEST_F(StoredPlaceLinksTest, ARejectedClosuresLinkIsForgottenInTheMapAndItsDatabase) {
   MappingDrive drive(path("map.db"));
-  drive.start();
-  drive.mapRoute();
-  drive.driveElsewhere(60);
-  drive.revisit(100, 300);
+  drive.mapAndRevisit();
   drive.stop();  // The database is the node's alone while it runs.
   const std::vector<PlaceLink> stored = MapDatabase(path("map.db"), MapAccess::kReadOnly).placeLinks();
   drive.start();

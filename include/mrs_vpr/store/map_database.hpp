@@ -231,6 +231,8 @@ class MapDatabase {
   void recordDriveStarts(const std::vector<int>& starts);
   /// Inserts `links` inside a transaction the caller has begun.
   void insertLinks(const std::vector<PlaceLink>& links);
+  /// Runs `sql`, whose two parameters are a link's frame and reference, once for each of `links`.
+  void bindEachLink(const char* sql, const std::vector<PlaceLink>& links);
   /// Inserts the frames of `source` inside a transaction the caller has begun; throws
   /// std::invalid_argument for a descriptor that is not of this map's size.
   void insertFrames(const FrameSource& source);
