@@ -190,6 +190,11 @@ bool PlaceRecognitionNode::rejectClosureCallback(RejectClosure::Request& request
     if (stamp.isZero()) {
       throw std::invalid_argument("localised_keyframe_stamp is 0: copy it from the closure's mrs_vpr/LoopClosure");
     }
+    const int frames = recognizer_.size();
+    if (request.reference_index < 0 || request.reference_index >= frames) {
+      throw std::invalid_argument("reference_index " + std::to_string(request.reference_index) +
+                                  " is not a frame of the map, which holds frames 0 to " + std::to_string(frames - 1));
+    }
     const int frame = recognizer_.newestFrameStamped(stamp);
     if (frame < 0) {
       throw std::invalid_argument("no map keyframe has the stamp " + stamp.toString() +
