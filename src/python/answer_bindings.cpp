@@ -74,6 +74,9 @@ void bindAnswers(py::module_& m) {
                              "Stamp of the matched map frame [s]; 0 when none.")
       .def_property_readonly("newest_stamp", [](const PlaceAnswer& a) { return secondsOf(a.newest_stamp); },
                              "Stamp of the test sequence's newest frame [s] (match_recent; else 0).")
+      .def_readonly("localised_frame", &PlaceAnswer::localised_frame,
+                    "The localised frame's index in the map (match_recent; else -1): with reference_index, what "
+                    "reject_closure() takes.")
       .def_readonly("localised_row", &PlaceAnswer::localised_row,
                     "The test-sequence frame the answer localises: the middle one (sequence/alignment centred, "
                     "the default) or the newest (causal).")

@@ -334,6 +334,17 @@ void bindRecognizer(py::module_& m) {
           py::arg("path"),
           "Replaces the map by the map database `path` (of this recognizer's front end); returns its frames.")
       .def(
+          "reject_closure",
+          [](Recognizer& self, int localised_frame, int reference_index) {
+            py::gil_scoped_release released;
+            return self.map().forgetClosure(localised_frame, reference_index).size();
+          },
+          py::arg("localised_frame"), py::arg("reference_index"),
+          "Forgets the place link by which an accepted match_recent answer put map frame `localised_frame` in "
+          "the place of map frame `reference_index` (the answer's localised_frame and reference_index), for a "
+          "closure found wrong afterwards; returns the links forgotten (1). Raises ValueError when there is none "
+          "(the answer linked nothing, or was forgotten already) or a frame is not in the map.")
+      .def(
           "reset",
           [](Recognizer& self) {
             py::gil_scoped_release released;

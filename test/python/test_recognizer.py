@@ -61,15 +61,25 @@ def test_the_places_match_recent_links_are_saved_and_loaded_with_the_map(route, 
     recognizer.add_frames(route["reference"])
     assert recognizer.linked_frames == 0
     accepted = 0
+    last_accepted = None
     for i in range(100, 250):  # the second traversal, asked about after each frame as continuous mode asks
         recognizer.add_frame(route["query"][i], stamp=1000.0 + i)
-        accepted += recognizer.match_recent(20).accepted
+        answer = recognizer.match_recent(20)
+        accepted += answer.accepted
+        last_accepted = answer if answer.accepted else last_accepted
     assert accepted >= 10
     assert recognizer.linked_frames == accepted  # each accepted answer linked a new keyframe
     recognizer.save(str(tmp_path / "linked.db"))
     loaded = mrs_vpr.PlaceRecognizer(**ROUTE_PARAMETERS)
     loaded.load(str(tmp_path / "linked.db"))
     assert loaded.linked_frames == accepted
+    # A closure found wrong afterwards: its link goes, in the saved map too, and asking again is an error.
+    assert loaded.reject_closure(last_accepted.localised_frame, last_accepted.reference_index) == 1
+    assert loaded.linked_frames == accepted - 1
+    with pytest.raises(ValueError, match="forgotten already"):
+        loaded.reject_closure(last_accepted.localised_frame, last_accepted.reference_index)
+    loaded.save(str(tmp_path / "rejected.db"))
+    assert mrs_vpr.PlaceRecognizer.from_map(str(tmp_path / "rejected.db")).linked_frames == accepted - 1
 
 
 def test_a_fixed_map_localises_the_trail_of_the_camera_and_stays_as_it_was(route, mapped):
