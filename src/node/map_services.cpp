@@ -185,10 +185,14 @@ bool PlaceRecognitionNode::loadMapCallback(LoadMap::Request& request, LoadMap::R
 }
 
 bool PlaceRecognitionNode::rejectClosureCallback(RejectClosure::Request& request, RejectClosure::Response& response) {
+  std::string restating;  // Said whatever the links: a closure of a fixed map, say, links nothing.
   try {
     const Stamp stamp = stampOf(request.localised_keyframe_stamp);
     if (stamp.isZero()) {
       throw std::invalid_argument("localised_keyframe_stamp is 0: copy it from the closure's mrs_vpr/LoopClosure");
+    }
+    if (stopRestating(stamp, request.reference_index)) {
+      restating = "; it is no longer restated for the frames of the stop at its keyframe";
     }
     const int frames = recognizer_.size();
     if (request.reference_index < 0 || request.reference_index >= frames) {
@@ -206,11 +210,11 @@ bool PlaceRecognitionNode::rejectClosureCallback(RejectClosure::Request& request
     response.links_forgotten = static_cast<std::uint32_t>(forgotten.size());
     response.message = "forgot the link of map frame " + std::to_string(frame) + " (stamp " + stamp.toString() +
                        ") to the place of map frame " + std::to_string(request.reference_index) +
-                       (map_->persistent() ? ", in the map and its database" : "");
+                       (map_->persistent() ? ", in the map and its database" : "") + restating;
     ROS_INFO("mrs_vpr: %s", response.message.c_str());
   } catch (const std::exception& error) {
     response.success = false;
-    response.message = std::string("reject_closure: ") + error.what() + "; the map's links are kept";
+    response.message = std::string("reject_closure: ") + error.what() + "; the map's links are kept" + restating;
     ROS_WARN("mrs_vpr: %s", response.message.c_str());
   }
   response.frames_linked = static_cast<std::uint32_t>(recognizer_.state().linked_frames);

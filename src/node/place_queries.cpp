@@ -185,6 +185,16 @@ void PlaceRecognitionNode::restateLastClosure() {
   }
 }
 
+bool PlaceRecognitionNode::stopRestating(Stamp keyframe, int reference_index) {
+  if (!last_closure_ || last_closure_->answer.match.reference_index != reference_index) return false;
+  {
+    std::lock_guard<std::mutex> lock(state_mutex_);
+    if (!pending_restatements_.reject(keyframe)) return false;
+  }
+  last_closure_.reset();
+  return true;
+}
+
 void PlaceRecognitionNode::autoQueryCallback(const ros::WallTimerEvent&) {
   if (!flushWaitingKeyframes()) return;
   restateLastClosure();  // A stop at the keyframe it localised adds no keyframe, so no new question.

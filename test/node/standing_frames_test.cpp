@@ -104,6 +104,22 @@ TEST(PendingRestatements, AnAnswerAboutAnOlderKeyframeTakesItsWholeStopOnceAndCl
   EXPECT_TRUE(pending.take(standing).empty());
 }
 
+// A closure that the robot's back end rejected is not restated for its stop any more; rejecting
+// another keyframe's closure changes nothing.
+TEST(PendingRestatements, ARejectedClosureIsNotRestatedForTheRestOfItsStop) {
+  StandingFrames standing(1.0);
+  PendingRestatements pending;
+  standing.keyframe(at(10.0));
+  pending.accepted(at(10.0));
+  for (double t = 10.1; t < 12.55; t += 0.1) standing.tooSimilar(at(t));
+  EXPECT_EQ(pending.take(standing).size(), 2U);
+  EXPECT_FALSE(pending.reject(at(9.0)));
+  for (double t = 12.6; t < 13.55; t += 0.1) standing.tooSimilar(at(t));
+  EXPECT_TRUE(pending.reject(at(10.0)));
+  EXPECT_TRUE(pending.take(standing).empty());
+  EXPECT_FALSE(pending.reject(at(10.0)));
+}
+
 }  // namespace
 }  // namespace node
 }  // namespace mrs_vpr

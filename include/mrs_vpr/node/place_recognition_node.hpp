@@ -155,6 +155,9 @@ class PlaceRecognitionNode {
                                const QuerySequence::Response& response);
   /// Restates the last accepted answer for the standing frames its keyframe gained since.
   void restateLastClosure();
+  /// The closure of `keyframe` to `reference_index` was rejected: when it is the one restated, stops
+  /// restating it. Returns whether it was.
+  bool stopRestating(Stamp keyframe, int reference_index);
   MapInfo makeMapInfo();
   void publishMapInfoIfChanged();
 

@@ -98,6 +98,14 @@ class PendingRestatements {
 
   void clear() { accepted(Stamp()); }
 
+  /// The closure localising `keyframe` was rejected (~reject_closure): when it is the one restated, its
+  /// frames are restated no more. Returns whether it was.
+  bool reject(Stamp keyframe) {
+    if (keyframe_.isZero() || keyframe_ != keyframe) return false;
+    clear();
+    return true;
+  }
+
  private:
   Stamp keyframe_;
   std::size_t restated_ = 0;
