@@ -40,7 +40,7 @@ bool PlaceLinks::link(int frame, int reference) {
   const int b = placeOfLocked(reference);
   if (a == b) return false;
   // Before the change, so that a failure for want of memory changes nothing.
-  made_.reserve(made_.size() + 1);
+  if (made_.size() == made_.capacity()) made_.reserve(std::max<std::size_t>(64, 2 * made_.size()));
   if (keep_unsaved_) unsaved_.push_back({frame, reference});
   made_.push_back({frame, reference});
   // The older place names both: every frame of the newer one joins it.
