@@ -190,7 +190,7 @@ std::vector<PlaceLink> PersistentMap::forgetClosure(int frame, int reference) {
     }
   }
   std::vector<PlaceLink> links;
-  const auto forget = [&] {
+  const auto findLinks = [&] {
     links = recognizer_.linksOfClosure(frame, reference);
     if (links.empty()) {
       throw std::invalid_argument("map frame " + std::to_string(frame) + " is not linked to the place of map frame " +
@@ -203,12 +203,12 @@ std::vector<PlaceLink> PersistentMap::forgetClosure(int frame, int reference) {
     // After the commit of the links made so far, the database holds every link the recognizer keeps:
     // it loses them first, so that a failure leaves both as they were.
     writer_->withDatabase([&](MapDatabase& database) {
-      forget();
+      findLinks();
       database.forgetLinks(links);
       recognizer_.forgetPlaceLinks(links);
     });
   } else {
-    forget();
+    findLinks();
     recognizer_.forgetPlaceLinks(links);
   }
   return links;
