@@ -128,6 +128,7 @@ PlaceRecognitionNode::~PlaceRecognitionNode() {
   reset_srv_.shutdown();
   save_map_srv_.shutdown();
   load_map_srv_.shutdown();
+  reject_closure_srv_.shutdown();
   if (info_spinner_) {
     info_spinner_->stop();
   }
