@@ -194,13 +194,6 @@ bool PlaceRecognitionNode::rejectClosureCallback(RejectClosure::Request& request
     if (stopRestating(stamp, request.reference_index)) {
       restating = "; it is no longer restated for the frames of the stop at its keyframe";
     }
-    const int frames = recognizer_.size();
-    if (request.reference_index < 0 || request.reference_index >= frames) {
-      throw std::invalid_argument("reference_index " + std::to_string(request.reference_index) +
-                                  " is not a frame of the map, " +
-                                  (frames > 0 ? "which holds frames 0 to " + std::to_string(frames - 1)
-                                              : std::string("which is empty")));
-    }
     const int frame = recognizer_.newestFrameStamped(stamp);
     if (frame < 0) {
       throw std::invalid_argument("no map keyframe has the stamp " + stamp.toString() +

@@ -6,6 +6,7 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -183,10 +184,13 @@ void PersistentMap::startDrive(int frame) {
 std::vector<PlaceLink> PersistentMap::forgetClosure(int frame, int reference) {
   std::lock_guard<std::mutex> whole(whole_map_mutex_);
   const int frames = recognizer_.size();
-  for (const int index : {frame, reference}) {
+  using Role = std::pair<const char*, int>;
+  for (const auto& [role, index] : {Role{"localised frame", frame}, Role{"reference frame", reference}}) {
     if (index < 0 || index >= frames) {
-      throw std::invalid_argument("frame " + std::to_string(index) + " is not one of the map's " +
-                                  std::to_string(frames) + " frames");
+      throw std::invalid_argument(std::string("the ") + role + " " + std::to_string(index) +
+                                  " is not a frame of the map, " +
+                                  (frames > 0 ? "which holds frames 0 to " + std::to_string(frames - 1)
+                                              : std::string("which is empty")));
     }
   }
   std::vector<PlaceLink> links;

@@ -613,6 +613,13 @@ TEST_F(MapDatabaseNodeTest, TheVisitsItsClosuresLinkedStayLinkedAfterARestartAnd
     EXPECT_FALSE(reject.response.success);
     EXPECT_NE(reject.response.message.find("forgotten already"), std::string::npos) << reject.response.message;
     EXPECT_EQ(reject.response.frames_linked, linked - 1);
+    reject.request.reference_index = 100000;
+    ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reject_closure"), reject));
+    EXPECT_FALSE(reject.response.success);
+    EXPECT_NE(reject.response.message.find("the reference frame 100000 is not a frame of the map, which holds "
+                                           "frames 0 to 559"),
+              std::string::npos)
+        << reject.response.message;
     reject.request.localised_keyframe_stamp = ros::Time();
     ASSERT_TRUE(mrs_vpr::testing_support::callService(node->service("reject_closure"), reject));
     EXPECT_FALSE(reject.response.success);
